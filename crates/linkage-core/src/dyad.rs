@@ -1,0 +1,305 @@
+//! The RRR dyad: a joint at given distances from two known joints.
+
+use nalgebra::RealField;
+
+use crate::scalar::{cross, eps, lit, perp, Vec2};
+
+/// Which of the two mirror-image solutions of a dyad: the side of the directed line from the
+/// first base joint to the second on which the new joint lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Side {
+    /// Left of `p1 → p2` (the triangle `p1, p2, joint` is counter-clockwise).
+    Left,
+    /// Right of `p1 → p2` (the triangle `p1, p2, joint` is clockwise).
+    Right,
+}
+
+impl Side {
+    /// `+1` for [`Side::Left`], `-1` for [`Side::Right`].
+    #[inline]
+    pub fn sign<T: RealField>(self) -> T {
+        match self {
+            Side::Left => T::one(),
+            Side::Right => -T::one(),
+        }
+    }
+
+    /// The other side.
+    #[inline]
+    pub fn flipped(self) -> Side {
+        match self {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        }
+    }
+}
+
+/// Area of a triangle with sides `a`, `b`, `c` (any order), by Kahan's formula
+/// `¼·√((a+(b+c))(c−(a−b))(c+(a−b))(a+(b−c)))` with `a ≥ b ≥ c`.
+///
+/// Unlike Heron's formula or `h = √(r² − x²)`, every factor is formed without cancellation, so
+/// the area keeps full relative accuracy for needle-like triangles — which is what a dyad near
+/// its toggle position is (W. Kahan, "Miscalculating Area and Angles of a Needle-like
+/// Triangle", 2014).
+///
+/// # Errors
+/// When the sides violate the triangle inequality by more than `tol`, returns `Err(gap)` with
+/// `gap = a − (b + c) > tol` (how much the longest side exceeds the other two). A violation of at
+/// most `tol` is treated as a touching (flat) triangle of area zero; pass `tol` at rounding level.
+pub fn triangle_area<T: RealField + Copy>(a: T, b: T, c: T, tol: T) -> Result<T, T> {
+    // Sort descending with three compare-swaps.
+    let (mut a, mut b, mut c) = (a, b, c);
+    if a < b {
+        core::mem::swap(&mut a, &mut b);
+    }
+    if b < c {
+        core::mem::swap(&mut b, &mut c);
+    }
+    if a < b {
+        core::mem::swap(&mut a, &mut b);
+    }
+    let amb = a - b;
+    let f2 = c - amb;
+    if f2 < T::zero() {
+        let gap = -f2;
+        return if gap <= tol { Ok(T::zero()) } else { Err(gap) };
+    }
+    let prod = (a + (b + c)) * f2 * (c + amb) * (a + (b - c));
+    Ok(prod.sqrt() * lit::<T>(0.25))
+}
+
+/// A solved dyad: both mirror-image candidates are `foot ± offset`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DyadPose<T: RealField + Copy> {
+    /// Foot of the perpendicular from the joint onto the line `p1 p2`.
+    pub foot: Vec2<T>,
+    /// From the foot to the joint on the [`Side::Left`] candidate (length `h`).
+    pub offset: Vec2<T>,
+    /// Assembly margin `sin γ = 2·Area/(r1·r2)`, where `γ` is the angle between the two links at
+    /// the joint: 1 when they are perpendicular, 0 at a toggle (links collinear). It is also
+    /// the velocity Jacobian's determinant divided by `r1·r2`, so `1/margin` bounds how much
+    /// velocities and accelerations amplify input errors.
+    pub margin: T,
+}
+
+impl<T: RealField + Copy> DyadPose<T> {
+    /// The joint on the given side.
+    #[inline]
+    pub fn point(&self, side: Side) -> Vec2<T> {
+        match side {
+            Side::Left => self.foot + self.offset,
+            Side::Right => self.foot - self.offset,
+        }
+    }
+}
+
+/// An RRR dyad: a joint at distance `r1` from a first known joint and `r2` from a second.
+///
+/// ```
+/// use linkage_core::{Dyad, Side, Vec2};
+/// let d = Dyad { r1: 3.0_f64, r2: 4.0 };
+/// let pose = d.solve(Vec2::new(0.0, 0.0), Vec2::new(5.0, 0.0), 0.0).unwrap();
+/// let p = pose.point(Side::Left);
+/// assert!((p - Vec2::new(1.8, 2.4)).norm() < 1e-15);
+/// assert!((pose.margin - 1.0).abs() < 1e-15); // a right angle at the joint
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dyad<T> {
+    /// Distance from the first base joint.
+    pub r1: T,
+    /// Distance from the second base joint.
+    pub r2: T,
+}
+
+/// How a dyad failed to close.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum DyadFailure<T> {
+    /// The circles do not meet; the lengths miss closure by this much.
+    Gap(T),
+    /// The base joints coincide and `r1 = r2`: every point of the circle is a solution.
+    Undetermined,
+}
+
+impl<T: RealField + Copy> Dyad<T> {
+    /// Solves the dyad on base joints `p1`, `p2`.
+    ///
+    /// With `d = |p2 − p1|`, the joint lies at `x = (d² + (r1 − r2)(r1 + r2)) / 2d` along
+    /// `p1 → p2` and at height `h = 2·Area(d, r1, r2)/d` from that line ([`triangle_area`]).
+    /// `slack` (length units, ≥ 0) widens the rounding tolerance below which a closure miss is
+    /// treated as a toggle; the tolerance always includes `8 ε (d + r1 + r2 + |p1| + |p2|)`,
+    /// the rounding the inputs themselves carry.
+    ///
+    /// # Errors
+    /// [`DyadFailure::Gap`] when the circles do not meet, [`DyadFailure::Undetermined`] when
+    /// `p1 = p2` and `r1 = r2`.
+    pub fn solve(&self, p1: Vec2<T>, p2: Vec2<T>, slack: T) -> Result<DyadPose<T>, DyadFailure<T>> {
+        let (r1, r2) = (self.r1, self.r2);
+        let dv = p2 - p1;
+        let d = dv.norm();
+        let scale = d + r1 + r2 + p1.amax() + p2.amax();
+        let tol = eps::<T>() * lit::<T>(8.0) * scale + slack;
+        if d == T::zero() {
+            let gap = (r1 - r2).abs();
+            return if gap > tol {
+                Err(DyadFailure::Gap(gap))
+            } else {
+                Err(DyadFailure::Undetermined)
+            };
+        }
+        let area = triangle_area(d, r1, r2, tol).map_err(DyadFailure::Gap)?;
+        let u = dv / d;
+        let x = (d + (r1 - r2) * (r1 + r2) / d) * lit::<T>(0.5);
+        let h = lit::<T>(2.0) * area / d;
+        Ok(DyadPose {
+            foot: p1 + u * x,
+            offset: perp(u) * h,
+            margin: lit::<T>(2.0) * area / (r1 * r2),
+        })
+    }
+
+    /// Velocity of the joint `p` from the velocities of the base joints.
+    ///
+    /// Differentiating `|p − p1|² = r1²`, `|p − p2|² = r2²` gives the 2×2 system
+    /// `[(p − p1)ᵀ; (p − p2)ᵀ] v = [(p − p1)·v1; (p − p2)·v2]`, whose determinant
+    /// `(p − p1) × (p − p2) = ±r1·r2·margin` is the dyad's doubled area. Returns `None` at a toggle
+    /// (determinant zero), where the velocity is unbounded.
+    pub fn velocity(
+        p1: Vec2<T>,
+        v1: Vec2<T>,
+        p2: Vec2<T>,
+        v2: Vec2<T>,
+        p: Vec2<T>,
+    ) -> Option<Vec2<T>> {
+        let (e1, e2) = (p - p1, p - p2);
+        solve_rows(e1, e2, e1.dot(&v1), e2.dot(&v2))
+    }
+
+    /// Acceleration of the joint `p` (velocity `v`) from the base joints' motion.
+    ///
+    /// Differentiating twice: `(p − pi)·(a − ai) + |v − vi|² = 0` for `i = 1, 2`, the same matrix
+    /// as [`Dyad::velocity`]. Returns `None` at a toggle.
+    #[allow(clippy::too_many_arguments)]
+    pub fn acceleration(
+        p1: Vec2<T>,
+        v1: Vec2<T>,
+        a1: Vec2<T>,
+        p2: Vec2<T>,
+        v2: Vec2<T>,
+        a2: Vec2<T>,
+        p: Vec2<T>,
+        v: Vec2<T>,
+    ) -> Option<Vec2<T>> {
+        let (e1, e2) = (p - p1, p - p2);
+        let (w1, w2) = (v - v1, v - v2);
+        solve_rows(
+            e1,
+            e2,
+            e1.dot(&a1) - w1.norm_squared(),
+            e2.dot(&a2) - w2.norm_squared(),
+        )
+    }
+}
+
+/// Solves `[e1ᵀ; e2ᵀ] x = [b1; b2]` by Cramer's rule; `None` if the rows are parallel.
+#[inline]
+pub(crate) fn solve_rows<T: RealField + Copy>(
+    e1: Vec2<T>,
+    e2: Vec2<T>,
+    b1: T,
+    b2: T,
+) -> Option<Vec2<T>> {
+    let det = cross(e1, e2);
+    if det == T::zero() || !det.is_finite() {
+        return None;
+    }
+    Some(Vec2::new(b1 * e2.y - b2 * e1.y, e1.x * b2 - e2.x * b1) / det)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kahan_area_of_3_4_5() {
+        assert_eq!(triangle_area(3.0, 4.0, 5.0, 0.0), Ok(6.0));
+        assert_eq!(triangle_area(5.0, 3.0, 4.0, 0.0), Ok(6.0));
+    }
+
+    #[test]
+    fn needle_triangle_keeps_relative_accuracy() {
+        // Sides 1, 1, 2 − δ: exact area = ½·(1 − δ/2)·√(δ(4 − δ))·... computed in closed form:
+        // height h = √(1 − (1 − δ/2)²) = √(δ − δ²/4); area = (1 − δ/2)·h.
+        let delta = 1e-12_f64;
+        let base = 2.0 - delta;
+        let exact = (1.0 - delta / 2.0) * (delta - delta * delta / 4.0).sqrt();
+        let kahan = triangle_area(1.0, 1.0, base, 0.0).unwrap();
+        // The base 2 − δ itself is rounded (relative 1e-16, i.e. δ changes by ~2e-16 relative
+        // 2e-4): the area follows √δ, so a relative error up to 1e-4 is the conditioning, not
+        // the formula. Heron's formula gives no correct digits here.
+        let base_delta = 2.0 - base;
+        let exact_rounded =
+            (1.0 - base_delta / 2.0) * (base_delta - base_delta * base_delta / 4.0).sqrt();
+        assert!(
+            (kahan - exact_rounded).abs() <= 1e-14 * exact_rounded,
+            "{kahan} vs {exact_rounded}"
+        );
+        assert!((kahan - exact).abs() <= 2e-4 * exact);
+    }
+
+    #[test]
+    fn violation_reports_gap_and_rounding_touch() {
+        assert_eq!(triangle_area(1.0, 1.0, 3.0, 0.0), Err(1.0));
+        assert_eq!(triangle_area(1.0, 1.0, 2.0 + 1e-15, 1e-14), Ok(0.0));
+    }
+
+    #[test]
+    fn dyad_3_4_5_both_sides() {
+        let d = Dyad { r1: 3.0, r2: 4.0 };
+        let pose = d
+            .solve(Vec2::new(1.0, 1.0), Vec2::new(1.0, 6.0), 0.0)
+            .unwrap();
+        // p1 → p2 points +y; left is −x.
+        assert!((pose.point(Side::Left) - Vec2::new(1.0 - 2.4, 1.0 + 1.8)).norm() < 1e-15);
+        assert!((pose.point(Side::Right) - Vec2::new(1.0 + 2.4, 1.0 + 1.8)).norm() < 1e-15);
+    }
+
+    #[test]
+    fn dyad_apart_and_coincident() {
+        let d = Dyad { r1: 1.0, r2: 1.0 };
+        assert_eq!(
+            d.solve(Vec2::new(0.0, 0.0), Vec2::new(3.0, 0.0), 0.0),
+            Err(DyadFailure::Gap(1.0))
+        );
+        assert_eq!(
+            d.solve(Vec2::new(0.0, 0.0), Vec2::new(0.0, 0.0), 0.0),
+            Err(DyadFailure::Undetermined)
+        );
+        let d = Dyad { r1: 1.0, r2: 3.0 };
+        assert_eq!(
+            d.solve(Vec2::new(0.0, 0.0), Vec2::new(0.0, 0.0), 0.0),
+            Err(DyadFailure::Gap(2.0))
+        );
+    }
+
+    #[test]
+    fn dyad_near_toggle_keeps_lengths() {
+        // Links 1 and 1 on a base 2 − 1e-10: the joint is 1e-5 off the line.
+        let d = Dyad {
+            r1: 1.0_f64,
+            r2: 1.0,
+        };
+        let p1 = Vec2::new(0.0, 0.0);
+        let p2 = Vec2::new(2.0 - 1e-10, 0.0);
+        let pose = d.solve(p1, p2, 0.0).unwrap();
+        let p = pose.point(Side::Left);
+        assert!(((p - p1).norm() - 1.0).abs() < 4e-16);
+        assert!(((p - p2).norm() - 1.0).abs() < 4e-16);
+        // h = √(1 − (d/2)²) ≈ 1e-5 and margin = h·d/(r1·r2) ≈ 2e-5; the naive √(r1² − x²) would
+        // keep only about half of h's digits.
+        // With δ = 2 − d (exact, Sterbenz), h² = 1 − (d/2)² = δ(1 − δ/4) exactly.
+        let delta = 2.0 - p2.x;
+        let h = (delta * (1.0 - delta / 4.0)).sqrt();
+        assert!(p.y > 0.0 && (p.y - h).abs() < 1e-12 * h, "{} vs {h}", p.y);
+        assert!((pose.margin - h * p2.x).abs() < 1e-12 * pose.margin);
+    }
+}

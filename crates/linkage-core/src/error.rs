@@ -1,0 +1,139 @@
+//! The crate's error type.
+
+use core::fmt;
+
+/// Why a mechanism could not be built, solved or swept.
+///
+/// Lengths and gaps are carried as `f64` whatever the scalar type, so the error type is the same
+/// for `f32` and `f64` mechanisms.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Error {
+    /// A length that must be positive and finite is not (zero, negative, NaN or infinite).
+    InvalidLength {
+        /// Which length, e.g. `"crank"` or `"dyad r1"`.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// A coordinate, angle or other value that must be finite is not.
+    NotFinite {
+        /// Which value.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// The joint cannot be placed: the two circles (or the circle and the line) do not meet.
+    CannotAssemble {
+        /// Index of the joint that could not be placed.
+        joint: usize,
+        /// By how much the lengths miss closure (length units, > 0): the longest side exceeds
+        /// the sum of the other two by this amount, or the line passes this far outside the
+        /// circle.
+        gap: f64,
+    },
+    /// The two joints a construction is built on coincide, so its position is undetermined.
+    Coincident {
+        /// Index of the joint whose construction is undetermined.
+        joint: usize,
+    },
+    /// A construction refers to a joint that is not (yet) defined.
+    UnknownJoint {
+        /// Index of the construction being added.
+        joint: usize,
+        /// The index it referred to.
+        refers_to: usize,
+    },
+    /// The mechanism's fixed capacity is full.
+    CapacityExceeded {
+        /// The capacity `N`.
+        capacity: usize,
+    },
+    /// An output slice has the wrong length.
+    BufferLength {
+        /// Which buffer.
+        what: &'static str,
+        /// The length needed.
+        expected: usize,
+        /// The length given.
+        got: usize,
+    },
+    /// The mechanism has no crank, so there is nothing to sweep.
+    NoDriver,
+    /// The mechanism has more than one crank; a sweep drives exactly one.
+    SecondDriver {
+        /// Index of the second crank.
+        joint: usize,
+    },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::InvalidLength { what, value } => {
+                write!(f, "{what} must be a positive finite length, got {value}")
+            }
+            Error::NotFinite { what, value } => write!(f, "{what} must be finite, got {value}"),
+            Error::CannotAssemble { joint, gap } => write!(
+                f,
+                "joint {joint} cannot be assembled: the lengths miss closure by {gap:e}"
+            ),
+            Error::Coincident { joint } => write!(
+                f,
+                "joint {joint} is undetermined: the joints it is built on coincide"
+            ),
+            Error::UnknownJoint { joint, refers_to } => write!(
+                f,
+                "construction {joint} refers to joint {refers_to}, which is not defined before it"
+            ),
+            Error::CapacityExceeded { capacity } => {
+                write!(
+                    f,
+                    "the mechanism is full: it holds at most {capacity} joints"
+                )
+            }
+            Error::BufferLength {
+                what,
+                expected,
+                got,
+            } => write!(f, "{what} must have length {expected}, got {got}"),
+            Error::NoDriver => write!(f, "the mechanism has no crank to drive"),
+            Error::SecondDriver { joint } => write!(
+                f,
+                "joint {joint} is a second crank; a mechanism is driven by exactly one"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for Error {}
+
+/// Checks that `value` is a positive finite length.
+pub(crate) fn check_length<T: nalgebra::RealField + Copy>(
+    what: &'static str,
+    value: T,
+) -> Result<T, Error> {
+    if value.is_finite() && value > T::zero() {
+        Ok(value)
+    } else {
+        Err(Error::InvalidLength {
+            what,
+            value: crate::scalar::to_f64(value),
+        })
+    }
+}
+
+/// Checks that `value` is finite.
+pub(crate) fn check_finite<T: nalgebra::RealField + Copy>(
+    what: &'static str,
+    value: T,
+) -> Result<T, Error> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::NotFinite {
+            what,
+            value: crate::scalar::to_f64(value),
+        })
+    }
+}

@@ -1,0 +1,506 @@
+//! The four-bar linkage: Grashof class, input limits, transmission angle, circuits.
+
+use nalgebra::RealField;
+
+use crate::dyad::{triangle_area, Side};
+use crate::error::{check_finite, check_length, Error};
+use crate::mechanism::Mechanism;
+use crate::scalar::{cross, eps, lit, Vec2};
+use crate::tracker::{Outputs, Tracker};
+
+/// Assembly of a four-bar: on which side of the diagonal `A → C` the coupler–rocker joint `B`
+/// lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Assembly {
+    /// `B` left of `A → C`. With the crank up and the pivots left to right this is the convex,
+    /// uncrossed quadrilateral `O A B C`.
+    Open,
+    /// `B` right of `A → C`: the mirror assembly, coupler and rocker crossing the ground line.
+    Crossed,
+}
+
+impl Assembly {
+    /// The dyad side this assembly puts `B` on.
+    pub fn side(self) -> Side {
+        match self {
+            Assembly::Open => Side::Left,
+            Assembly::Crossed => Side::Right,
+        }
+    }
+}
+
+/// Grashof classification by `s + l` against `p + q` and by which link is shortest.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum GrashofClass {
+    /// `s + l < p + q`, crank shortest: the crank turns fully, the rocker oscillates.
+    CrankRocker,
+    /// `s + l < p + q`, ground shortest: both crank and rocker turn fully (drag link).
+    DoubleCrank,
+    /// `s + l < p + q`, rocker shortest: the input oscillates, the output turns fully.
+    RockerCrank,
+    /// `s + l < p + q`, coupler shortest: both side links oscillate, the coupler turns fully.
+    DoubleRocker,
+    /// `s + l = p + q` (to rounding): the linkage can flatten, where its branches meet.
+    ChangePoint,
+    /// `s + l > p + q`: non-Grashof, no link turns fully relative to another.
+    TripleRocker,
+}
+
+impl GrashofClass {
+    /// The class name as users write it: `"crank-rocker"`, `"double-crank"`, `"rocker-crank"`,
+    /// `"double-rocker"`, `"change-point"`, `"triple-rocker"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            GrashofClass::CrankRocker => "crank-rocker",
+            GrashofClass::DoubleCrank => "double-crank",
+            GrashofClass::RockerCrank => "rocker-crank",
+            GrashofClass::DoubleRocker => "double-rocker",
+            GrashofClass::ChangePoint => "change-point",
+            GrashofClass::TripleRocker => "triple-rocker",
+        }
+    }
+}
+
+/// The crank angles at which a four-bar assembles (absolute angles, radians).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum InputRange<T> {
+    /// Every crank angle: the crank turns fully.
+    Full,
+    /// `lo ≤ θ ≤ hi` (`hi − lo < 2π`; `lo` may exceed `π`): limited by toggle positions.
+    Between {
+        /// Lower limit.
+        lo: T,
+        /// Upper limit.
+        hi: T,
+    },
+    /// Two mirror-image intervals (the coupler and rocker toggle both stretched and folded):
+    /// `first` is the one counter-clockwise of the ground line, `second` its mirror. Each is a
+    /// separate circuit of the linkage.
+    TwoIntervals {
+        /// `(lo, hi)` counter-clockwise of the ground line.
+        first: (T, T),
+        /// `(lo, hi)` clockwise of it.
+        second: (T, T),
+    },
+    /// At no angle: the coupler and rocker cannot reach across the crank's circle.
+    Never,
+}
+
+/// A solved four-bar position.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FourBarPose<T: RealField + Copy> {
+    /// Crank pin.
+    pub a: Vec2<T>,
+    /// Coupler–rocker joint.
+    pub b: Vec2<T>,
+    /// The coupler point.
+    pub coupler_point: Vec2<T>,
+    /// Assembly margin of the coupler–rocker dyad (`sin` of the transmission angle).
+    pub margin: T,
+}
+
+/// A four-bar linkage: ground pivots `O` (crank) and `C` (rocker), crank `O A`, coupler `A B`,
+/// rocker `C B`, and a coupler point in coupler coordinates.
+///
+/// Joints of [`FourBar::mechanism`] are numbered `O = 0, C = 1, A = 2, B = 3, P = 4`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FourBar<T> {
+    /// Crank pivot.
+    pub o: Vec2<T>,
+    /// Rocker pivot.
+    pub c: Vec2<T>,
+    /// Crank length `|OA|`.
+    pub crank: T,
+    /// Coupler length `|AB|`.
+    pub coupler: T,
+    /// Rocker length `|CB|`.
+    pub rocker: T,
+    /// Coupler point: distance along `A → B`.
+    pub along: T,
+    /// Coupler point: distance to the left of `A → B`.
+    pub left: T,
+    /// Which assembly.
+    pub assembly: Assembly,
+}
+
+impl<T: RealField + Copy> FourBar<T> {
+    /// Index of the crank pivot in [`FourBar::mechanism`].
+    pub const O: usize = 0;
+    /// Index of the rocker pivot.
+    pub const C: usize = 1;
+    /// Index of the crank pin.
+    pub const A: usize = 2;
+    /// Index of the coupler–rocker joint.
+    pub const B: usize = 3;
+    /// Index of the coupler point.
+    pub const P: usize = 4;
+
+    /// A four-bar with `O = (0, 0)` and `C = (ground, 0)`; `point = (along, left)`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidLength`] for a length that is not positive and finite,
+    /// [`Error::NotFinite`] for a non-finite point coordinate.
+    pub fn new(
+        ground: T,
+        crank: T,
+        coupler: T,
+        rocker: T,
+        point: (T, T),
+        assembly: Assembly,
+    ) -> Result<Self, Error> {
+        let ground = check_length("ground", ground)?;
+        Self::with_pivots(
+            Vec2::zeros(),
+            Vec2::new(ground, T::zero()),
+            crank,
+            coupler,
+            rocker,
+            point,
+            assembly,
+        )
+    }
+
+    /// A four-bar on explicit pivots.
+    ///
+    /// # Errors
+    /// As [`FourBar::new`]; [`Error::InvalidLength`] (`"ground"`) when the pivots coincide.
+    pub fn with_pivots(
+        o: Vec2<T>,
+        c: Vec2<T>,
+        crank: T,
+        coupler: T,
+        rocker: T,
+        point: (T, T),
+        assembly: Assembly,
+    ) -> Result<Self, Error> {
+        for (what, v) in [("o.x", o.x), ("o.y", o.y), ("c.x", c.x), ("c.y", c.y)] {
+            check_finite(what, v)?;
+        }
+        check_length("ground", (c - o).norm())?;
+        Ok(FourBar {
+            o,
+            c,
+            crank: check_length("crank", crank)?,
+            coupler: check_length("coupler", coupler)?,
+            rocker: check_length("rocker", rocker)?,
+            along: check_finite("point along", point.0)?,
+            left: check_finite("point left", point.1)?,
+            assembly,
+        })
+    }
+
+    /// Ground length `|OC|`.
+    pub fn ground(&self) -> T {
+        (self.c - self.o).norm()
+    }
+
+    /// The four-bar as a [`Mechanism`] program: `O, C` fixed, `A` crank, `B` dyad, `P` point.
+    pub fn mechanism(&self) -> Mechanism<T, 5> {
+        let mut m = Mechanism::new();
+        // Lengths were validated on construction, so these pushes cannot fail.
+        let steps = [
+            m.fixed(self.o),
+            m.fixed(self.c),
+            m.crank(Self::O, self.crank, T::zero()),
+            m.dyad(
+                Self::A,
+                Self::C,
+                self.coupler,
+                self.rocker,
+                self.assembly.side(),
+            ),
+            m.point(Self::A, Self::B, self.along, self.left),
+        ];
+        debug_assert!(steps.iter().all(|s| s.is_ok()));
+        m
+    }
+
+    /// Position at crank angle `theta` on the declared assembly (no tracking).
+    ///
+    /// # Errors
+    /// [`Error::CannotAssemble`] (joint 3) outside the input range.
+    pub fn pose(&self, theta: T) -> Result<FourBarPose<T>, Error> {
+        let m = self.mechanism();
+        let mut j = [Vec2::zeros(); 5];
+        let margin = m.pose(theta, &mut j)?;
+        Ok(FourBarPose {
+            a: j[Self::A],
+            b: j[Self::B],
+            coupler_point: j[Self::P],
+            margin,
+        })
+    }
+
+    /// Grashof class. Ties `s + l = p + q` within `8 ε (s + l + p + q)` are
+    /// [`GrashofClass::ChangePoint`].
+    pub fn grashof(&self) -> GrashofClass {
+        let g = self.ground();
+        let links = [g, self.crank, self.coupler, self.rocker];
+        let mut s = links[0];
+        let mut l = links[0];
+        let mut shortest = 0;
+        for (i, &x) in links.iter().enumerate() {
+            if x < s {
+                s = x;
+                shortest = i;
+            }
+            if x > l {
+                l = x;
+            }
+        }
+        let total = links[0] + links[1] + links[2] + links[3];
+        let pq = total - s - l;
+        let diff = (s + l) - pq;
+        if diff.abs() <= eps::<T>() * lit::<T>(8.0) * total {
+            GrashofClass::ChangePoint
+        } else if diff > T::zero() {
+            GrashofClass::TripleRocker
+        } else {
+            match shortest {
+                0 => GrashofClass::DoubleCrank,
+                1 => GrashofClass::CrankRocker,
+                2 => GrashofClass::DoubleRocker,
+                _ => GrashofClass::RockerCrank,
+            }
+        }
+    }
+
+    /// Crank angle (from `O → C`, in `[0, π]`) at which `|AC| = diag`, or `None` when `diag` lies
+    /// outside the open range the crank can give `|AC|`.
+    ///
+    /// In the triangle `O A C` with sides `r`, `g`, `diag`, the angle at `O` is
+    /// `atan2(4·Area, r² + g² − diag²)`: the area comes from [`triangle_area`], so the angle is
+    /// accurate even at the toggle extremes where `acos` of a cosine near ±1 loses half its digits.
+    fn angle_for_diagonal(&self, diag: T) -> Option<T> {
+        let (r, g) = (self.crank, self.ground());
+        if diag <= (g - r).abs() || diag >= g + r {
+            return None;
+        }
+        let area = triangle_area(r, g, diag, T::zero()).ok()?;
+        let adjacent = (r - diag) * (r + diag) + g * g;
+        Some((lit::<T>(4.0) * area).atan2(adjacent))
+    }
+
+    /// The crank angles at which the linkage assembles, bounded by toggle positions where
+    /// coupler and rocker are collinear (`|AC| = coupler + rocker` stretched, or
+    /// `|coupler − rocker|` folded).
+    pub fn input_range(&self) -> InputRange<T> {
+        let (r, g) = (self.crank, self.ground());
+        let stretched = self.coupler + self.rocker;
+        let folded = (self.coupler - self.rocker).abs();
+        if stretched <= (g - r).abs() || folded >= g + r {
+            return InputRange::Never;
+        }
+        let d = self.c - self.o;
+        let base = d.y.atan2(d.x);
+        let lo = self.angle_for_diagonal(folded);
+        let hi = self.angle_for_diagonal(stretched);
+        match (lo, hi) {
+            (None, None) => InputRange::Full,
+            (None, Some(h)) => InputRange::Between {
+                lo: base - h,
+                hi: base + h,
+            },
+            (Some(l), None) => InputRange::Between {
+                lo: base + l,
+                hi: base + T::two_pi() - l,
+            },
+            (Some(l), Some(h)) => InputRange::TwoIntervals {
+                first: (base + l, base + h),
+                second: (base - h, base - l),
+            },
+        }
+    }
+
+    /// Transmission angle `μ ∈ [0, π]`: the angle at `B` between coupler and rocker. Force
+    /// transmission is best at `μ = 90°` and fails at the toggles `μ = 0, π`. `None` when the
+    /// linkage cannot assemble at `theta`.
+    pub fn transmission_angle(&self, theta: T) -> Option<T> {
+        let p = self.pose(theta).ok()?;
+        let (ba, bc) = (p.a - p.b, self.c - p.b);
+        Some(cross(ba, bc).abs().atan2(ba.dot(&bc)))
+    }
+
+    /// The `k`-th of `n` samples of a circuit sweep, and whether it is on the flipped branch.
+    ///
+    /// A full-turn crank sweeps `θ0 … θ0 + 2π` (from the ground direction) on the declared
+    /// assembly. A limited crank goes limit to limit on the declared assembly and back on the
+    /// other (`n/2` samples each way, both including the limits): the whole coupler curve of
+    /// the circuit. For [`InputRange::TwoIntervals`], the `first` interval's circuit.
+    /// `None` when `k ≥ n`, `n < 2`, or the linkage never assembles.
+    pub fn circuit_sample(&self, k: usize, n: usize) -> Option<(T, bool)> {
+        if k >= n || n < 2 {
+            return None;
+        }
+        let d = self.c - self.o;
+        let base = d.y.atan2(d.x);
+        let at = |lo: T, hi: T, i: usize, m: usize| {
+            if m <= 1 {
+                lo
+            } else {
+                lo + (hi - lo) * lit::<T>(i as f64) / lit::<T>((m - 1) as f64)
+            }
+        };
+        let (lo, hi) = match self.input_range() {
+            InputRange::Never => return None,
+            InputRange::Full => return Some((at(base, base + T::two_pi(), k, n), false)),
+            InputRange::Between { lo, hi } => (lo, hi),
+            InputRange::TwoIntervals { first, .. } => first,
+        };
+        let half = n.div_ceil(2);
+        if k < half {
+            Some((at(lo, hi, k, half), false))
+        } else {
+            Some((at(hi, lo, k - half, n - half), true))
+        }
+    }
+
+    /// Fills `theta` and `joints` (`n` and `5·n` long) with a circuit sweep (see
+    /// [`FourBar::circuit_sample`]), tracking the branch and passing to the other one at the
+    /// limit. Samples that cannot assemble (rounding at a limit) are NaN; returns how many
+    /// assembled.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] for mismatched slices; [`Error::CannotAssemble`] (joint 3) when
+    /// the linkage never assembles.
+    pub fn circuit(&self, theta: &mut [T], joints: &mut [Vec2<T>]) -> Result<usize, Error> {
+        let n = theta.len();
+        if joints.len() != 5 * n {
+            return Err(Error::BufferLength {
+                what: "joints",
+                expected: 5 * n,
+                got: joints.len(),
+            });
+        }
+        if matches!(self.input_range(), InputRange::Never) {
+            return Err(Error::CannotAssemble {
+                joint: Self::B,
+                gap: crate::scalar::to_f64(
+                    ((self.ground() - self.crank).abs() - self.coupler - self.rocker)
+                        .max((self.coupler - self.rocker).abs() - self.ground() - self.crank),
+                ),
+            });
+        }
+        let m = self.mechanism();
+        let mut tracker = Tracker::new(&m)?;
+        let mut flipped = false;
+        let mut ok = 0;
+        for k in 0..n {
+            let (t, second) = self
+                .circuit_sample(k, n)
+                .unwrap_or((crate::scalar::nan::<T>(), false));
+            if second && !flipped {
+                let s = tracker.branch(Self::B);
+                tracker.set_branch(Self::B, -s);
+                flipped = true;
+            }
+            theta[k] = t;
+            let out = &mut joints[5 * k..5 * k + 5];
+            if tracker
+                .step(t, None, Outputs::default(), out, None, None)
+                .is_ok()
+            {
+                ok += 1;
+            }
+        }
+        Ok(ok)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn deg(x: f64) -> f64 {
+        x.to_degrees()
+    }
+
+    #[test]
+    fn classes_of_the_catalogue() {
+        let fb = |g, a, b, c| FourBar::new(g, a, b, c, (0.0, 0.0), Assembly::Open).unwrap();
+        assert_eq!(
+            fb(20.0, 10.0, 25.0, 25.0).grashof(),
+            GrashofClass::CrankRocker
+        );
+        assert_eq!(
+            fb(20.0, 25.0, 10.0, 25.0).grashof(),
+            GrashofClass::DoubleRocker
+        );
+        assert_eq!(
+            fb(40.0, 20.0, 10.0, 20.0).grashof(),
+            GrashofClass::TripleRocker
+        );
+        assert_eq!(fb(2.0, 3.0, 4.0, 3.5).grashof(), GrashofClass::DoubleCrank);
+        assert_eq!(fb(3.0, 1.0, 3.0, 1.0).grashof(), GrashofClass::ChangePoint);
+        assert_eq!(fb(3.0, 2.5, 4.0, 1.0).grashof(), GrashofClass::RockerCrank);
+    }
+
+    /// Evans linkages' input ranges: DOMAIN.md (thesis 1 §1.4.3.6, after Norton) gives about
+    /// 27°…333°, −81°…+81°, −75°…+75°.
+    #[test]
+    fn evans_input_limits_golden() {
+        let evans = |g, a, b, c| FourBar::new(g, a, b, c, (0.0, 0.0), Assembly::Open).unwrap();
+        match evans(12.0, 10.0, 16.0, 10.39).input_range() {
+            InputRange::Between { lo, hi } => {
+                assert!((deg(lo) - 27.0).abs() < 1.0 && (deg(hi) - 333.0).abs() < 1.0);
+            }
+            r => panic!("{r:?}"),
+        }
+        for ((g, b, c), lim) in [((23.05, 12.0, 11.67), 81.0), ((20.0, 10.0, 10.0), 75.0)] {
+            match evans(g, 10.0, b, c).input_range() {
+                InputRange::Between { lo, hi } => {
+                    assert!((deg(hi) - lim).abs() < 0.6, "{}", deg(hi));
+                    assert!((lo + hi).abs() < 1e-15);
+                }
+                r => panic!("{r:?}"),
+            }
+        }
+        // Evans C in closed form: |AC|² = 500 − 400 cos θ = 20²  ⇒  θ = acos(1/4).
+        if let InputRange::Between { hi, .. } = evans(20.0, 10.0, 10.0, 10.0).input_range() {
+            assert!((hi - 0.25_f64.acos()).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn limit_is_a_toggle_and_accurate_near_extreme() {
+        // Near-degenerate: stretched toggle angle tiny (≈ 1e-6 rad), where acos would lose
+        // half the digits. Reference from the law of cosines in high precision, expanded:
+        // for g = 1, r = 1, the diagonal 2 sin(θ/2)... use sides so that θ = 2 asin(D/2).
+        let theta_true = 2e-6_f64;
+        let diag = 2.0 * (theta_true / 2.0).sin();
+        let fb =
+            FourBar::new(1.0, 1.0, diag / 2.0, diag / 2.0, (0.0, 0.0), Assembly::Open).unwrap();
+        match fb.input_range() {
+            InputRange::Between { hi, .. } => {
+                assert!((hi - theta_true).abs() < 1e-15 * 100.0, "{hi}");
+            }
+            r => panic!("{r:?}"),
+        }
+        let fb = FourBar::new(23.05, 10.0, 12.0, 11.67, (15.0, 0.0), Assembly::Open).unwrap();
+        if let InputRange::Between { hi, .. } = fb.input_range() {
+            let p = fb.pose(hi).unwrap();
+            assert!(p.margin < 1e-6);
+            assert!(fb.transmission_angle(hi).unwrap() > core::f64::consts::PI - 1e-3);
+            assert!(fb.pose(hi + 1e-6).is_err());
+        }
+    }
+
+    #[test]
+    fn circuit_of_triple_rocker_closes() {
+        let fb = FourBar::new(20.0, 10.0, 10.0, 10.0, (20.0, 0.0), Assembly::Open).unwrap();
+        let n = 400;
+        let mut th = [0.0; 400];
+        let mut j = [Vec2::zeros(); 2000];
+        let ok = fb.circuit(&mut th, &mut j).unwrap();
+        assert_eq!(ok, n);
+        // Consecutive points close together (no branch jump), and the two halves meet.
+        let p = |k: usize| j[5 * k + 4];
+        let mut worst: f64 = 0.0;
+        for k in 1..n {
+            worst = worst.max((p(k) - p(k - 1)).norm());
+        }
+        assert!(worst < 2.5, "largest step {worst}");
+        assert!((p(0) - p(n - 1)).norm() < 1e-6);
+        assert!((p(n / 2 - 1) - p(n / 2)).norm() < 1e-6);
+    }
+}

@@ -1,0 +1,66 @@
+//! Closed-form kinematics of planar linkages.
+//!
+//! A linkage is an ordered program of [`Construction`]s — fixed joints, a crank, RRR dyads,
+//! RRP slider dyads and points carried by links — held in a [`Mechanism`]. Each construction
+//! places one joint from joints placed before it, in closed form, so solving a pose is a single
+//! pass with no iteration. A [`Tracker`] sweeps a mechanism over crank angles and keeps every
+//! dyad on its assembly branch by geometry (the orientation of the dyad), never by angle ranges.
+//! [`FourBar`] adds the classical four-bar vocabulary: Grashof class, input limits at the
+//! toggle positions, transmission angle and circuit sweeps. [`catalog`] holds the straight-line
+//! linkages of the project's source documents.
+//!
+//! The crate is `no_std`: solving and sweeping need no heap (fixed capacity `N` joints per
+//! mechanism, caller-provided output slices). All numerics are generic over
+//! [`nalgebra::RealField`] so that `f32` firmware and `f64` analysis share one code path.
+//!
+//! # Conventions
+//! - Units are whatever the caller uses for lengths (mm or m, consistently); angles are radians.
+//! - Angles are measured from the +x axis, counter-clockwise positive. Angular velocities and
+//!   accelerations are counter-clockwise positive too.
+//! - "Left of A→B" is the side a counter-clockwise quarter turn of A→B points to.
+//! - Points and vectors are [`Vec2`] (`nalgebra::Vector2`).
+//!
+//! # Features
+//! - `std` (default): use the platform's math library.
+//! - `libm`: use `libm` for targets without `std` (e.g. `thumbv7em-none-eabihf`).
+//! - `alloc`: conveniences that return `Vec`s.
+//!
+//! # Example
+//! ```
+//! use linkage_core::{FourBar, Assembly, GrashofClass};
+//! // Hoecken straight-line linkage, mm (DOMAIN.md): ground 20, crank 10, coupler 25, rocker 25,
+//! // foot on the coupler line 50 from A.
+//! let fb = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
+//! assert_eq!(fb.grashof(), GrashofClass::CrankRocker);
+//! let pose = fb.pose(0.0).unwrap();
+//! assert!((pose.coupler_point - pose.a).norm() - 50.0 < 1e-12);
+//! ```
+#![cfg_attr(not(feature = "std"), no_std)]
+
+#[cfg(not(any(feature = "std", feature = "libm")))]
+compile_error!("linkage-core needs a math backend: enable the `std` feature or the `libm` feature");
+
+#[cfg(feature = "alloc")]
+extern crate alloc;
+
+mod catalog_impl;
+mod dyad;
+mod error;
+mod fourbar;
+mod mechanism;
+mod scalar;
+mod slider;
+mod tracker;
+
+/// The straight-line linkages of the source documents (DOMAIN.md), ready to sweep.
+pub mod catalog {
+    pub use crate::catalog_impl::*;
+}
+
+pub use dyad::{triangle_area, Dyad, DyadFailure, DyadPose, Side};
+pub use error::Error;
+pub use fourbar::{Assembly, FourBar, FourBarPose, GrashofClass, InputRange};
+pub use mechanism::{Construction, LineDirection, Mechanism, Motion};
+pub use scalar::Vec2;
+pub use slider::{Reach, SliderDyad, SliderPose};
+pub use tracker::{Outputs, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};

@@ -1,0 +1,771 @@
+//! A mechanism as an ordered program of closed-form constructions.
+
+use nalgebra::RealField;
+
+use crate::dyad::{Dyad, DyadFailure, Side};
+use crate::error::{check_finite, check_length, Error};
+use crate::scalar::{cross, lit, perp, Vec2};
+use crate::slider::{Reach, SliderDyad};
+
+/// Direction of a slider's line.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LineDirection<T> {
+    /// A fixed direction (stored as a unit vector).
+    Fixed(Vec2<T>),
+    /// The direction of the link `from → to`, turned counter-clockwise by `angle`: the line is
+    /// carried by that link.
+    Link {
+        /// First joint of the carrying link.
+        from: usize,
+        /// Second joint of the carrying link.
+        to: usize,
+        /// Angle from `from → to` to the line direction (radians).
+        angle: T,
+    },
+}
+
+/// One step of a mechanism's program: it places one joint from joints placed before it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Construction<T> {
+    /// A joint fixed to the frame.
+    Fixed {
+        /// Its position.
+        at: Vec2<T>,
+    },
+    /// The driven crank: `centre + radius·(cos(θ + phase), sin(θ + phase))` for the driver angle
+    /// `θ`.
+    Crank {
+        /// The joint the crank turns about.
+        centre: usize,
+        /// Crank radius.
+        radius: T,
+        /// Angle added to the driver angle (radians).
+        phase: T,
+    },
+    /// An RRR dyad on joints `p1`, `p2` (see [`Dyad`]), assembled on `side` of `p1 → p2`.
+    Dyad {
+        /// First base joint (at distance `dyad.r1`).
+        p1: usize,
+        /// Second base joint (at distance `dyad.r2`).
+        p2: usize,
+        /// The two link lengths.
+        dyad: Dyad<T>,
+        /// Initial assembly side; sweeps track it by continuity.
+        side: Side,
+    },
+    /// An RRP dyad: a joint on the line through `origin` with `direction`, at distance
+    /// `slider.r` from `pivot` (see [`SliderDyad`]).
+    Slider {
+        /// The joint the connecting link turns about.
+        pivot: usize,
+        /// A joint the line passes through.
+        origin: usize,
+        /// The line's direction.
+        direction: LineDirection<T>,
+        /// The link length.
+        slider: SliderDyad<T>,
+        /// Initial intersection; sweeps track it by continuity.
+        reach: Reach,
+    },
+    /// A point rigidly carried by the link `from → to`: `from + along·û + left·û⊥` with
+    /// `û` the unit vector from `from` to `to`.
+    Point {
+        /// Origin of the local frame.
+        from: usize,
+        /// The joint that sets the local x axis.
+        to: usize,
+        /// Coordinate along `from → to` (length units, not a fraction).
+        along: T,
+        /// Coordinate to the left of `from → to`.
+        left: T,
+    },
+}
+
+impl<T: RealField + Copy> Construction<T> {
+    /// The joints this construction is built on.
+    fn references(&self) -> ([usize; 4], usize) {
+        match *self {
+            Construction::Fixed { .. } => ([0; 4], 0),
+            Construction::Crank { centre, .. } => ([centre, 0, 0, 0], 1),
+            Construction::Dyad { p1, p2, .. } => ([p1, p2, 0, 0], 2),
+            Construction::Slider {
+                pivot,
+                origin,
+                direction,
+                ..
+            } => match direction {
+                LineDirection::Fixed(_) => ([pivot, origin, 0, 0], 2),
+                LineDirection::Link { from, to, .. } => ([pivot, origin, from, to], 4),
+            },
+            Construction::Point { from, to, .. } => ([from, to, 0, 0], 2),
+        }
+    }
+
+    /// Whether the construction has two solutions (a branch to track).
+    pub fn has_branch(&self) -> bool {
+        matches!(
+            self,
+            Construction::Dyad { .. } | Construction::Slider { .. }
+        )
+    }
+
+    /// `+1`/`-1` for the initial branch of a dyad or slider, `+1` otherwise.
+    pub(crate) fn initial_sign(&self) -> T {
+        match *self {
+            Construction::Dyad { side, .. } => side.sign(),
+            Construction::Slider { reach, .. } => reach.sign(),
+            _ => T::one(),
+        }
+    }
+}
+
+/// Where a construction may put its joint.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Candidates<T: RealField + Copy> {
+    /// Exactly one place.
+    One(Vec2<T>),
+    /// `foot + sign·offset` for `sign = ±1`, with the assembly margin.
+    Two {
+        foot: Vec2<T>,
+        offset: Vec2<T>,
+        margin: T,
+    },
+}
+
+/// Velocity and acceleration inputs of the driver.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Motion<T> {
+    /// Crank angular velocity `dθ/dt`.
+    pub omega: T,
+    /// Crank angular acceleration `d²θ/dt²`.
+    pub alpha: T,
+}
+
+/// A planar mechanism: at most `N` joints, each placed by one [`Construction`] from joints
+/// before it, driven by one crank angle.
+///
+/// ```
+/// use linkage_core::{Mechanism, Side, Vec2};
+/// // Hoecken linkage as a program: O, C fixed; A crank; B dyad; P on A→B.
+/// let mut m = Mechanism::<f64, 8>::new();
+/// let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+/// let c = m.fixed(Vec2::new(20.0, 0.0)).unwrap();
+/// let a = m.crank(o, 10.0, 0.0).unwrap();
+/// let b = m.dyad(a, c, 25.0, 25.0, Side::Left).unwrap();
+/// let p = m.point(a, b, 50.0, 0.0).unwrap();
+/// let mut joints = [Vec2::zeros(); 5];
+/// m.pose(core::f64::consts::PI, &mut joints).unwrap();
+/// assert!((joints[p] - Vec2::new(20.0, 40.0)).norm() < 1e-12);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mechanism<T: RealField + Copy, const N: usize> {
+    steps: [Construction<T>; N],
+    len: usize,
+    driver: Option<usize>,
+}
+
+impl<T: RealField + Copy, const N: usize> Default for Mechanism<T, N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
+    /// An empty mechanism.
+    pub fn new() -> Self {
+        Mechanism {
+            steps: [Construction::Fixed { at: Vec2::zeros() }; N],
+            len: 0,
+            driver: None,
+        }
+    }
+
+    /// Number of joints.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True when the mechanism has no joints.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The constructions, in order.
+    #[inline]
+    pub fn constructions(&self) -> &[Construction<T>] {
+        &self.steps[..self.len]
+    }
+
+    /// Index of the crank joint, if any.
+    #[inline]
+    pub fn driver(&self) -> Option<usize> {
+        self.driver
+    }
+
+    /// Appends a construction after validating its lengths and references.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`], [`Error::UnknownJoint`] for a reference to a joint not
+    /// placed before it, [`Error::InvalidLength`] / [`Error::NotFinite`] for bad numbers,
+    /// [`Error::SecondDriver`] for a second crank, [`Error::Coincident`] when a link or
+    /// direction is built on one joint twice.
+    pub fn push(&mut self, c: Construction<T>) -> Result<usize, Error> {
+        let index = self.len;
+        if index >= N {
+            return Err(Error::CapacityExceeded { capacity: N });
+        }
+        let (refs, n) = c.references();
+        if let Some(&bad) = refs[..n].iter().find(|&&r| r >= index) {
+            return Err(Error::UnknownJoint {
+                joint: index,
+                refers_to: bad,
+            });
+        }
+        let c = match c {
+            Construction::Fixed { at } => {
+                check_finite("fixed joint x", at.x)?;
+                check_finite("fixed joint y", at.y)?;
+                c
+            }
+            Construction::Crank { radius, phase, .. } => {
+                check_length("crank radius", radius)?;
+                check_finite("crank phase", phase)?;
+                if self.driver.is_some() {
+                    return Err(Error::SecondDriver { joint: index });
+                }
+                c
+            }
+            Construction::Dyad { p1, p2, dyad, .. } => {
+                check_length("dyad r1", dyad.r1)?;
+                check_length("dyad r2", dyad.r2)?;
+                if p1 == p2 {
+                    return Err(Error::Coincident { joint: index });
+                }
+                c
+            }
+            Construction::Slider {
+                pivot,
+                origin,
+                direction,
+                slider,
+                reach,
+            } => {
+                check_length("slider r", slider.r)?;
+                let direction = match direction {
+                    LineDirection::Fixed(u) => {
+                        check_finite("slider direction x", u.x)?;
+                        check_finite("slider direction y", u.y)?;
+                        let n = u.norm();
+                        if n == T::zero() {
+                            return Err(Error::InvalidLength {
+                                what: "slider direction",
+                                value: 0.0,
+                            });
+                        }
+                        LineDirection::Fixed(u / n)
+                    }
+                    LineDirection::Link { from, to, angle } => {
+                        check_finite("slider direction angle", angle)?;
+                        if from == to {
+                            return Err(Error::Coincident { joint: index });
+                        }
+                        direction
+                    }
+                };
+                Construction::Slider {
+                    pivot,
+                    origin,
+                    direction,
+                    slider,
+                    reach,
+                }
+            }
+            Construction::Point {
+                from,
+                to,
+                along,
+                left,
+            } => {
+                check_finite("point along", along)?;
+                check_finite("point left", left)?;
+                if from == to {
+                    return Err(Error::Coincident { joint: index });
+                }
+                c
+            }
+        };
+        if matches!(c, Construction::Crank { .. }) {
+            self.driver = Some(index);
+        }
+        self.steps[index] = c;
+        self.len += 1;
+        Ok(index)
+    }
+
+    /// Adds a fixed joint. See [`Construction::Fixed`].
+    ///
+    /// # Errors
+    /// As [`Mechanism::push`].
+    pub fn fixed(&mut self, at: Vec2<T>) -> Result<usize, Error> {
+        self.push(Construction::Fixed { at })
+    }
+
+    /// Adds the crank. See [`Construction::Crank`].
+    ///
+    /// # Errors
+    /// As [`Mechanism::push`].
+    pub fn crank(&mut self, centre: usize, radius: T, phase: T) -> Result<usize, Error> {
+        self.push(Construction::Crank {
+            centre,
+            radius,
+            phase,
+        })
+    }
+
+    /// Adds an RRR dyad. See [`Construction::Dyad`].
+    ///
+    /// # Errors
+    /// As [`Mechanism::push`].
+    pub fn dyad(&mut self, p1: usize, p2: usize, r1: T, r2: T, side: Side) -> Result<usize, Error> {
+        self.push(Construction::Dyad {
+            p1,
+            p2,
+            dyad: Dyad { r1, r2 },
+            side,
+        })
+    }
+
+    /// Adds an RRP slider dyad. See [`Construction::Slider`].
+    ///
+    /// # Errors
+    /// As [`Mechanism::push`].
+    pub fn slider(
+        &mut self,
+        pivot: usize,
+        r: T,
+        origin: usize,
+        direction: LineDirection<T>,
+        reach: Reach,
+    ) -> Result<usize, Error> {
+        self.push(Construction::Slider {
+            pivot,
+            origin,
+            direction,
+            slider: SliderDyad { r },
+            reach,
+        })
+    }
+
+    /// Adds a point carried by the link `from → to`. See [`Construction::Point`].
+    ///
+    /// # Errors
+    /// As [`Mechanism::push`].
+    pub fn point(&mut self, from: usize, to: usize, along: T, left: T) -> Result<usize, Error> {
+        self.push(Construction::Point {
+            from,
+            to,
+            along,
+            left,
+        })
+    }
+
+    /// Unit direction of a slider line and the link that carries it (if any).
+    #[inline]
+    fn line_direction(dir: LineDirection<T>, pos: &[Vec2<T>]) -> Option<Vec2<T>> {
+        match dir {
+            LineDirection::Fixed(u) => Some(u),
+            LineDirection::Link { from, to, angle } => {
+                let d = pos[to] - pos[from];
+                let n = d.norm();
+                if n == T::zero() || !n.is_finite() {
+                    return None;
+                }
+                let (s, c) = angle.sin_cos();
+                let e = d / n;
+                Some(Vec2::new(c * e.x - s * e.y, s * e.x + c * e.y))
+            }
+        }
+    }
+
+    /// Where joint `i` may go at driver angle `theta`, given the joints before it.
+    ///
+    /// `slack` widens the toggle tolerance (length units, see [`Dyad::solve`]).
+    pub(crate) fn candidates(
+        &self,
+        i: usize,
+        theta: T,
+        pos: &[Vec2<T>],
+        slack: T,
+    ) -> Result<Candidates<T>, Error> {
+        let fail = |f: DyadFailure<T>| match f {
+            DyadFailure::Gap(g) => Error::CannotAssemble {
+                joint: i,
+                gap: crate::scalar::to_f64(g),
+            },
+            DyadFailure::Undetermined => Error::Coincident { joint: i },
+        };
+        match self.steps[i] {
+            Construction::Fixed { at } => Ok(Candidates::One(at)),
+            Construction::Crank {
+                centre,
+                radius,
+                phase,
+            } => {
+                let (s, c) = (theta + phase).sin_cos();
+                Ok(Candidates::One(pos[centre] + Vec2::new(c, s) * radius))
+            }
+            Construction::Dyad { p1, p2, dyad, .. } => {
+                let d = dyad.solve(pos[p1], pos[p2], slack).map_err(fail)?;
+                Ok(Candidates::Two {
+                    foot: d.foot,
+                    offset: d.offset,
+                    margin: d.margin,
+                })
+            }
+            Construction::Slider {
+                pivot,
+                origin,
+                direction,
+                slider,
+                ..
+            } => {
+                let u =
+                    Self::line_direction(direction, pos).ok_or(Error::Coincident { joint: i })?;
+                let s = slider
+                    .solve(pos[pivot], pos[origin], u, slack)
+                    .map_err(fail)?;
+                Ok(Candidates::Two {
+                    foot: s.foot,
+                    offset: s.offset,
+                    margin: s.margin,
+                })
+            }
+            Construction::Point {
+                from,
+                to,
+                along,
+                left,
+            } => {
+                let d = pos[to] - pos[from];
+                let n = d.norm();
+                if n == T::zero() {
+                    return Err(Error::Coincident { joint: i });
+                }
+                let e = d / n;
+                Ok(Candidates::One(pos[from] + e * along + perp(e) * left))
+            }
+        }
+    }
+
+    /// Solves every joint at driver angle `theta` on the branches the constructions declare,
+    /// writing positions into `joints` (length [`Mechanism::len`]). Returns the smallest
+    /// assembly margin of the dyads (1 if there are none).
+    ///
+    /// This is a single pose with no history; use a [`crate::Tracker`] to sweep.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`], or the first joint that cannot be placed.
+    pub fn pose(&self, theta: T, joints: &mut [Vec2<T>]) -> Result<T, Error> {
+        if joints.len() != self.len {
+            return Err(Error::BufferLength {
+                what: "joints",
+                expected: self.len,
+                got: joints.len(),
+            });
+        }
+        let mut margin = T::one();
+        for i in 0..self.len {
+            joints[i] = match self.candidates(i, theta, joints, T::zero())? {
+                Candidates::One(p) => p,
+                Candidates::Two {
+                    foot,
+                    offset,
+                    margin: m,
+                } => {
+                    margin = margin.min(m);
+                    foot + offset * self.steps[i].initial_sign()
+                }
+            };
+        }
+        Ok(margin)
+    }
+
+    /// Velocities (and, if `acc` is given, accelerations) of every joint of a solved pose.
+    ///
+    /// Each construction's rate equations are solved in program order (see [`Dyad::velocity`],
+    /// [`SliderDyad::velocity`]). A joint at an exact toggle has no finite velocity: it and every
+    /// joint built on it get NaN, and the return value is `false`.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] when a slice is not [`Mechanism::len`] long.
+    pub fn motion(
+        &self,
+        pos: &[Vec2<T>],
+        drive: Motion<T>,
+        vel: &mut [Vec2<T>],
+        mut acc: Option<&mut [Vec2<T>]>,
+    ) -> Result<bool, Error> {
+        let n = self.len;
+        for (what, got) in [
+            ("joints", pos.len()),
+            ("velocities", vel.len()),
+            ("accelerations", acc.as_ref().map_or(n, |a| a.len())),
+        ] {
+            if got != n {
+                return Err(Error::BufferLength {
+                    what,
+                    expected: n,
+                    got,
+                });
+            }
+        }
+        let nan = Vec2::new(crate::scalar::nan::<T>(), crate::scalar::nan::<T>());
+        let zero = Vec2::zeros();
+        let mut regular = true;
+        for i in 0..n {
+            let p = pos[i];
+            // `a` is evaluated only when accelerations are wanted.
+            let (v, a): (Vec2<T>, Option<Vec2<T>>) = match self.steps[i] {
+                Construction::Fixed { .. } => (zero, Some(zero)),
+                Construction::Crank { centre, .. } => {
+                    let r = p - pos[centre];
+                    let v = vel[centre] + perp(r) * drive.omega;
+                    let a = acc.as_ref().map(|acc| {
+                        acc[centre] + perp(r) * drive.alpha - r * (drive.omega * drive.omega)
+                    });
+                    (v, a)
+                }
+                Construction::Dyad { p1, p2, .. } => {
+                    match Dyad::velocity(pos[p1], vel[p1], pos[p2], vel[p2], p) {
+                        Some(v) => {
+                            let a = acc.as_ref().map(|acc| {
+                                Dyad::acceleration(
+                                    pos[p1], vel[p1], acc[p1], pos[p2], vel[p2], acc[p2], p, v,
+                                )
+                                .unwrap_or(nan)
+                            });
+                            (v, a)
+                        }
+                        None => (nan, Some(nan)),
+                    }
+                }
+                Construction::Slider {
+                    pivot,
+                    origin,
+                    direction,
+                    ..
+                } => {
+                    let u = Self::line_direction(direction, pos).unwrap_or(nan);
+                    let (w, al) = match direction {
+                        LineDirection::Fixed(_) => (T::zero(), T::zero()),
+                        LineDirection::Link { from, to, .. } => link_rates(
+                            pos[from],
+                            pos[to],
+                            vel[from],
+                            vel[to],
+                            acc.as_ref().map(|a| (a[from], a[to])),
+                        ),
+                    };
+                    match SliderDyad::velocity(
+                        pos[pivot],
+                        vel[pivot],
+                        pos[origin],
+                        vel[origin],
+                        u,
+                        w,
+                        p,
+                    ) {
+                        Some((sdot, v)) => {
+                            let a = acc.as_ref().map(|acc| {
+                                SliderDyad::acceleration(
+                                    pos[pivot],
+                                    vel[pivot],
+                                    acc[pivot],
+                                    pos[origin],
+                                    acc[origin],
+                                    u,
+                                    w,
+                                    al,
+                                    p,
+                                    v,
+                                    sdot,
+                                )
+                                .unwrap_or(nan)
+                            });
+                            (v, a)
+                        }
+                        None => (nan, Some(nan)),
+                    }
+                }
+                Construction::Point { from, to, .. } => {
+                    let (w, al) = link_rates(
+                        pos[from],
+                        pos[to],
+                        vel[from],
+                        vel[to],
+                        acc.as_ref().map(|a| (a[from], a[to])),
+                    );
+                    let r = p - pos[from];
+                    let v = vel[from] + perp(r) * w;
+                    let a = acc
+                        .as_ref()
+                        .map(|acc| acc[from] + perp(r) * al - r * (w * w));
+                    (v, a)
+                }
+            };
+            if !(v.x.is_finite() && v.y.is_finite()) {
+                regular = false;
+            }
+            vel[i] = v;
+            if let Some(acc) = acc.as_deref_mut() {
+                acc[i] = a.unwrap_or(nan);
+            }
+        }
+        Ok(regular)
+    }
+}
+
+/// Angular velocity and acceleration of the direction `p → q`.
+///
+/// `ω = (d × ḋ)/|d|²`, `α = (d × d̈)/|d|² − 2 (d·ḋ) ω/|d|²` with `d = q − p`; exact whether or not
+/// `|d|` is constant. `α` is zero when accelerations are not given.
+#[inline]
+fn link_rates<T: RealField + Copy>(
+    p: Vec2<T>,
+    q: Vec2<T>,
+    vp: Vec2<T>,
+    vq: Vec2<T>,
+    acc: Option<(Vec2<T>, Vec2<T>)>,
+) -> (T, T) {
+    let d = q - p;
+    let dd = vq - vp;
+    let l2 = d.norm_squared();
+    let w = cross(d, dd) / l2;
+    let al = match acc {
+        Some((ap, aq)) => (cross(d, aq - ap) - lit::<T>(2.0) * d.dot(&dd) * w) / l2,
+        None => T::zero(),
+    };
+    (w, al)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn slider_crank() -> (Mechanism<f64, 4>, usize) {
+        let mut m = Mechanism::new();
+        let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+        let a = m.crank(o, 2.0, 0.0).unwrap();
+        let b = m
+            .slider(
+                a,
+                5.0,
+                o,
+                LineDirection::Fixed(Vec2::new(3.0, 0.0)),
+                Reach::Ahead,
+            )
+            .unwrap();
+        (m, b)
+    }
+
+    #[test]
+    fn rejects_bad_programs() {
+        let mut m = Mechanism::<f64, 3>::new();
+        assert_eq!(
+            m.crank(0, 1.0, 0.0),
+            Err(Error::UnknownJoint {
+                joint: 0,
+                refers_to: 0
+            })
+        );
+        let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+        assert!(matches!(
+            m.crank(o, -1.0, 0.0),
+            Err(Error::InvalidLength {
+                what: "crank radius",
+                ..
+            })
+        ));
+        assert!(matches!(
+            m.fixed(Vec2::new(f64::NAN, 0.0)),
+            Err(Error::NotFinite { .. })
+        ));
+        m.crank(o, 1.0, 0.0).unwrap();
+        assert_eq!(m.crank(o, 1.0, 0.0), Err(Error::SecondDriver { joint: 2 }));
+        m.fixed(Vec2::new(1.0, 0.0)).unwrap();
+        assert_eq!(
+            m.fixed(Vec2::new(1.0, 0.0)),
+            Err(Error::CapacityExceeded { capacity: 3 })
+        );
+    }
+
+    #[test]
+    fn slider_crank_acceleration_matches_closed_form() {
+        let (m, b) = slider_crank();
+        let (r, l, th, w, al) = (2.0_f64, 5.0_f64, 0.9_f64, 1.5, 0.4);
+        let mut pos = [Vec2::zeros(); 3];
+        m.pose(th, &mut pos).unwrap();
+        let mut vel = [Vec2::zeros(); 3];
+        let mut acc = [Vec2::zeros(); 3];
+        m.motion(
+            &pos,
+            Motion {
+                omega: w,
+                alpha: al,
+            },
+            &mut vel,
+            Some(&mut acc),
+        )
+        .unwrap();
+        // x(θ) = r cos θ + √(l² − r² sin² θ): x' and x'' in θ by hand, then chain rule.
+        let (s, c) = th.sin_cos();
+        let g = l * l - r * r * s * s;
+        let root = g.sqrt();
+        let x1 = -r * s - r * r * s * c / root;
+        let x2 = -r * c - r * r * (c * c - s * s) / root - (r * r * s * c).powi(2) / (g * root);
+        assert!((pos[b].x - (r * c + root)).abs() < 1e-14);
+        assert!((vel[b].x - x1 * w).abs() < 1e-13);
+        assert!((acc[b].x - (x2 * w * w + x1 * al)).abs() < 1e-12);
+        assert!(acc[b].y.abs() < 1e-14);
+    }
+
+    #[test]
+    fn toggle_velocity_is_nan_not_garbage() {
+        // Slider-crank with r = l: at θ = 90° the rod is perpendicular to the line.
+        let mut m = Mechanism::<f64, 3>::new();
+        let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+        let a = m.crank(o, 1.0, 0.0).unwrap();
+        let b = m
+            .slider(
+                a,
+                1.0,
+                o,
+                LineDirection::Fixed(Vec2::new(1.0, 0.0)),
+                Reach::Ahead,
+            )
+            .unwrap();
+        let mut pos = [Vec2::zeros(); 3];
+        // Exactly at the toggle the pose is valid (joint at the foot) ...
+        let margin = m.pose(core::f64::consts::FRAC_PI_2, &mut pos).unwrap();
+        assert!(margin < 1e-7);
+        // ... and a velocity solve there reports the singularity, or stays finite only if the
+        // rounding left the rod not exactly perpendicular.
+        let mut vel = [Vec2::zeros(); 3];
+        pos[b] = Vec2::new(0.0, 0.0);
+        pos[a] = Vec2::new(0.0, 1.0);
+        let regular = m
+            .motion(
+                &pos,
+                Motion {
+                    omega: 1.0,
+                    alpha: 0.0,
+                },
+                &mut vel,
+                None,
+            )
+            .unwrap();
+        assert!(!regular && vel[b].x.is_nan());
+    }
+}

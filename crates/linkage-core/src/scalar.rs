@@ -1,0 +1,42 @@
+//! Small numeric helpers shared by the solvers.
+
+use nalgebra::{RealField, Vector2};
+
+/// A point or vector in the plane.
+pub type Vec2<T> = Vector2<T>;
+
+/// `x` as the scalar type `T` (exact for the small constants used here).
+#[inline]
+pub(crate) fn lit<T: RealField>(x: f64) -> T {
+    T::from_subset(&x)
+}
+
+/// `x` as `f64`, for error payloads (NaN if `T` cannot say).
+#[inline]
+pub(crate) fn to_f64<T: RealField + Copy>(x: T) -> f64 {
+    x.to_subset().unwrap_or(f64::NAN)
+}
+
+/// Counter-clockwise quarter turn: `(x, y) -> (-y, x)`.
+#[inline]
+pub(crate) fn perp<T: RealField + Copy>(v: Vec2<T>) -> Vec2<T> {
+    Vec2::new(-v.y, v.x)
+}
+
+/// The z component of the cross product `a × b` (positive when `b` is left of `a`).
+#[inline]
+pub(crate) fn cross<T: RealField + Copy>(a: Vec2<T>, b: Vec2<T>) -> T {
+    a.x * b.y - a.y * b.x
+}
+
+/// The machine epsilon of `T`.
+#[inline]
+pub(crate) fn eps<T: RealField + Copy>() -> T {
+    T::default_epsilon()
+}
+
+/// Not-a-number of `T` (`0/0`), for samples that have no value.
+#[inline]
+pub(crate) fn nan<T: RealField + Copy>() -> T {
+    T::zero() / T::zero()
+}
