@@ -326,7 +326,8 @@ impl<T: RealField + Copy> FourBar<T> {
     /// A full-turn crank sweeps `θ0 … θ0 + 2π` (from the ground direction) on the declared
     /// assembly. A limited crank goes limit to limit on the declared assembly and back on the
     /// other (`n/2` samples each way, both including the limits): the whole coupler curve of
-    /// the circuit. For [`InputRange::TwoIntervals`], the `first` interval's circuit.
+    /// the circuit. Limited ranges are sampled at `lo + (hi − lo)(1 − cos πs)/2` for uniform
+    /// `s`, which spaces the points evenly through the square-root motion at the toggles. For [`InputRange::TwoIntervals`], the `first` interval's circuit.
     /// `None` when `k ≥ n`, `n < 2`, or the linkage never assembles.
     pub fn circuit_sample(&self, k: usize, n: usize) -> Option<(T, bool)> {
         if k >= n || n < 2 {
@@ -347,11 +348,18 @@ impl<T: RealField + Copy> FourBar<T> {
             InputRange::Between { lo, hi } => (lo, hi),
             InputRange::TwoIntervals { first, .. } => first,
         };
+        // Near a toggle the coupler point moves as √(θ_lim − θ): spacing the angles as
+        // (1 − cos πs)/2 in a uniform s makes θ_lim − θ ∝ s², so the points come out evenly
+        // spaced instead of leaving a gap at each limit.
+        let eased = |lo: T, hi: T, i: usize, m: usize| {
+            let s = at(T::zero(), T::pi(), i, m);
+            lo + (hi - lo) * (T::one() - s.cos()) * lit::<T>(0.5)
+        };
         let half = n.div_ceil(2);
         if k < half {
-            Some((at(lo, hi, k, half), false))
+            Some((eased(lo, hi, k, half), false))
         } else {
-            Some((at(hi, lo, k - half, n - half), true))
+            Some((eased(hi, lo, k - half, n - half), true))
         }
     }
 

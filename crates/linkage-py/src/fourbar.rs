@@ -1,0 +1,137 @@
+//! Mirrors `linkage_core::fourbar`.
+
+use linkage_core::{Assembly, FourBar as CoreFourBar, InputRange, Vec2};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use pyo3::prelude::*;
+
+use crate::error::{linkage_error, to_py};
+use crate::mechanism::Mechanism;
+use crate::CAPACITY;
+
+/// A four-bar linkage (see `linkage.FourBar` for the documented Python class).
+#[pyclass(module = "linkage._core", frozen)]
+#[derive(Clone)]
+pub struct FourBar {
+    inner: CoreFourBar<f64>,
+}
+
+impl FourBar {
+    /// Wraps a core four-bar.
+    pub fn from_core(inner: CoreFourBar<f64>) -> Self {
+        FourBar { inner }
+    }
+}
+
+#[pymethods]
+impl FourBar {
+    #[new]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        o: (f64, f64),
+        c: (f64, f64),
+        crank: f64,
+        coupler: f64,
+        rocker: f64,
+        point: (f64, f64),
+        assembly: &str,
+    ) -> PyResult<Self> {
+        let assembly = match assembly {
+            "open" => Assembly::Open,
+            "crossed" => Assembly::Crossed,
+            other => {
+                return Err(linkage_error(format!(
+                    "assembly must be 'open' or 'crossed', got {other:?}"
+                )))
+            }
+        };
+        CoreFourBar::with_pivots(
+            Vec2::new(o.0, o.1),
+            Vec2::new(c.0, c.1),
+            crank,
+            coupler,
+            rocker,
+            point,
+            assembly,
+        )
+        .map(FourBar::from_core)
+        .map_err(to_py)
+    }
+
+    /// (ox, oy, cx, cy, crank, coupler, rocker, along, left, assembly)
+    fn parameters(&self) -> (f64, f64, f64, f64, f64, f64, f64, f64, f64, &'static str) {
+        let f = &self.inner;
+        let asm = match f.assembly {
+            Assembly::Open => "open",
+            Assembly::Crossed => "crossed",
+        };
+        (
+            f.o.x, f.o.y, f.c.x, f.c.y, f.crank, f.coupler, f.rocker, f.along, f.left, asm,
+        )
+    }
+
+    /// Grashof class name.
+    fn grashof(&self) -> &'static str {
+        self.inner.grashof().name()
+    }
+
+    /// None (full turn), (lo, hi), ((lo, hi), (lo, hi)) for two circuits, or "never".
+    fn input_range(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        Ok(match self.inner.input_range() {
+            InputRange::Full => py.None(),
+            InputRange::Between { lo, hi } => (lo, hi).into_pyobject(py)?.into_any().unbind(),
+            InputRange::TwoIntervals { first, second } => {
+                (first, second).into_pyobject(py)?.into_any().unbind()
+            }
+            InputRange::Never => "never".into_pyobject(py)?.into_any().unbind(),
+        })
+    }
+
+    /// Transmission angle at each crank angle (NaN where it cannot assemble).
+    fn transmission_angle<'py>(
+        &self,
+        py: Python<'py>,
+        theta: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let th = theta
+            .as_slice()
+            .map_err(|_| linkage_error("theta must be a contiguous float64 array"))?;
+        let f = self.inner;
+        let out: Vec<f64> = py.detach(|| {
+            th.iter()
+                .map(|&t| f.transmission_angle(t).unwrap_or(f64::NAN))
+                .collect()
+        });
+        Ok(PyArray1::from_vec(py, out))
+    }
+
+    /// The mechanism program (joints O, C, A, B, P).
+    fn mechanism(&self) -> PyResult<Mechanism> {
+        let mut m = linkage_core::Mechanism::<f64, CAPACITY>::new();
+        for c in self.inner.mechanism().constructions() {
+            m.push(*c).map_err(to_py)?;
+        }
+        Ok(Mechanism::from_core(m))
+    }
+
+    /// Circuit sweep of `n` samples: (theta (n,), joints (n, 5, 2)).
+    fn circuit<'py>(
+        &self,
+        py: Python<'py>,
+        n: usize,
+    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyAny>)> {
+        if n < 2 {
+            return Err(linkage_error(format!("n must be at least 2, got {n}")));
+        }
+        let f = self.inner;
+        let (theta, joints) = py
+            .detach(|| {
+                let mut theta = vec![0.0; n];
+                let mut joints = vec![Vec2::zeros(); 5 * n];
+                f.circuit(&mut theta, &mut joints).map(|_| (theta, joints))
+            })
+            .map_err(to_py)?;
+        let flat: Vec<f64> = joints.iter().flat_map(|p| [p.x, p.y]).collect();
+        let arr = PyArray1::from_vec(py, flat).reshape([n, 5, 2])?.into_any();
+        Ok((PyArray1::from_vec(py, theta), arr))
+    }
+}

@@ -1,0 +1,307 @@
+//! Mirrors `linkage_core::mechanism` and `linkage_core::tracker`: the mechanism builder and
+//! the sweep over numpy arrays.
+
+use linkage_core::{
+    Error, LineDirection, Mechanism as CoreMechanism, Motion, Outputs, Reach, Side, Tracker, Vec2,
+};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::error::{linkage_error, to_py};
+use crate::CAPACITY;
+
+/// A per-sample rate input: one value for every sample, or one per sample.
+#[derive(Clone, Copy)]
+pub enum Rate<'a> {
+    /// The same value at every sample.
+    Scalar(f64),
+    /// One value per sample.
+    PerSample(&'a [f64]),
+}
+
+impl Rate<'_> {
+    #[inline]
+    fn at(&self, k: usize) -> f64 {
+        match self {
+            Rate::Scalar(x) => *x,
+            Rate::PerSample(v) => v[k],
+        }
+    }
+}
+
+/// Flat sweep results (`n` samples, `j` joints), row-major.
+pub struct SweepArrays {
+    /// `n·j·2` positions (NaN where invalid).
+    pub joints: Vec<f64>,
+    /// Whether each sample assembled.
+    pub valid: Vec<bool>,
+    /// Smallest dyad margin per sample (NaN where invalid).
+    pub margin: Vec<f64>,
+    /// How much the lengths miss closure (0 where valid, NaN where undetermined).
+    pub gap: Vec<f64>,
+    /// `n·j·2` velocities, if asked.
+    pub velocity: Option<Vec<f64>>,
+    /// `n·j·2` accelerations, if asked.
+    pub acceleration: Option<Vec<f64>>,
+}
+
+/// Sweeps `m` over `theta` with the core tracker. Pure Rust, no Python: runs with the GIL
+/// released. Rates are computed only when `outputs` asks.
+pub fn sweep_arrays<const N: usize>(
+    m: &CoreMechanism<f64, N>,
+    theta: &[f64],
+    omega: Rate<'_>,
+    alpha: Rate<'_>,
+    outputs: Outputs,
+) -> Result<SweepArrays, Error> {
+    let (n, j) = (theta.len(), m.len());
+    let rates = outputs.velocity || outputs.acceleration;
+    let mut out = SweepArrays {
+        joints: vec![f64::NAN; n * j * 2],
+        valid: vec![false; n],
+        margin: vec![f64::NAN; n],
+        gap: vec![0.0; n],
+        velocity: rates.then(|| vec![f64::NAN; n * j * 2]),
+        acceleration: outputs.acceleration.then(|| vec![f64::NAN; n * j * 2]),
+    };
+    let mut tracker = Tracker::new(m)?;
+    let mut pos = [Vec2::zeros(); N];
+    let mut vel = [Vec2::zeros(); N];
+    let mut acc = [Vec2::zeros(); N];
+    for (k, &th) in theta.iter().enumerate() {
+        let motion = rates.then(|| Motion {
+            omega: omega.at(k),
+            alpha: alpha.at(k),
+        });
+        let sample = tracker.step(
+            th,
+            motion,
+            outputs,
+            &mut pos[..j],
+            rates.then_some(&mut vel[..j]),
+            outputs.acceleration.then_some(&mut acc[..j]),
+        );
+        match sample {
+            Ok(s) => {
+                out.valid[k] = true;
+                out.margin[k] = s.margin;
+                let row = k * j * 2;
+                write_rows(&mut out.joints[row..row + 2 * j], &pos[..j]);
+                if let Some(v) = out.velocity.as_mut() {
+                    write_rows(&mut v[row..row + 2 * j], &vel[..j]);
+                }
+                if let Some(a) = out.acceleration.as_mut() {
+                    write_rows(&mut a[row..row + 2 * j], &acc[..j]);
+                }
+            }
+            Err(Error::CannotAssemble { gap, .. }) => out.gap[k] = gap,
+            Err(Error::Coincident { .. }) => out.gap[k] = f64::NAN,
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(out)
+}
+
+#[inline]
+fn write_rows(dst: &mut [f64], src: &[Vec2<f64>]) {
+    for (d, p) in dst.chunks_exact_mut(2).zip(src) {
+        d[0] = p.x;
+        d[1] = p.y;
+    }
+}
+
+/// Reads an optional rate array: absent is `default`, length 1 is a scalar, length `n` per sample.
+fn rate<'a>(
+    name: &str,
+    arr: &'a Option<PyReadonlyArray1<'_, f64>>,
+    n: usize,
+    default: f64,
+) -> PyResult<Rate<'a>> {
+    let Some(arr) = arr else {
+        return Ok(Rate::Scalar(default));
+    };
+    let s = arr
+        .as_slice()
+        .map_err(|_| linkage_error(format!("{name} must be a contiguous float64 array")))?;
+    match s.len() {
+        1 => Ok(Rate::Scalar(s[0])),
+        len if len == n => Ok(Rate::PerSample(s)),
+        len => Err(linkage_error(format!(
+            "{name} must be a scalar or have one value per angle ({n}), got {len}"
+        ))),
+    }
+}
+
+/// Turns a flat result into an `(n, j, 2)` array.
+fn to_array3<'py>(py: Python<'py>, v: Vec<f64>, n: usize, j: usize) -> PyResult<Bound<'py, PyAny>> {
+    Ok(PyArray1::from_vec(py, v).reshape([n, j, 2])?.into_any())
+}
+
+/// Parses `"left"` / `"right"`.
+fn parse_side(side: &str) -> PyResult<Side> {
+    match side {
+        "left" => Ok(Side::Left),
+        "right" => Ok(Side::Right),
+        other => Err(linkage_error(format!(
+            "side must be 'left' or 'right', got {other:?}"
+        ))),
+    }
+}
+
+/// Parses `"ahead"` / `"behind"`.
+fn parse_reach(reach: &str) -> PyResult<Reach> {
+    match reach {
+        "ahead" => Ok(Reach::Ahead),
+        "behind" => Ok(Reach::Behind),
+        other => Err(linkage_error(format!(
+            "reach must be 'ahead' or 'behind', got {other:?}"
+        ))),
+    }
+}
+
+/// A mechanism program of up to `CAPACITY` joints, addressed by index (the `linkage.Mechanism`
+/// class adds names).
+#[pyclass(module = "linkage._core")]
+#[derive(Clone)]
+pub struct Mechanism {
+    inner: CoreMechanism<f64, CAPACITY>,
+}
+
+impl Mechanism {
+    /// Wraps a core mechanism.
+    pub fn from_core(inner: CoreMechanism<f64, CAPACITY>) -> Self {
+        Mechanism { inner }
+    }
+}
+
+#[pymethods]
+impl Mechanism {
+    #[new]
+    fn new() -> Self {
+        Mechanism {
+            inner: CoreMechanism::new(),
+        }
+    }
+
+    fn __len__(&self) -> usize {
+        self.inner.len()
+    }
+
+    /// Index of the crank joint, or None.
+    #[getter]
+    fn driver(&self) -> Option<usize> {
+        self.inner.driver()
+    }
+
+    /// Adds a fixed joint at (x, y); returns its index.
+    fn fixed(&mut self, x: f64, y: f64) -> PyResult<usize> {
+        self.inner.fixed(Vec2::new(x, y)).map_err(to_py)
+    }
+
+    /// Adds the crank about joint `centre`; returns its index.
+    #[pyo3(signature = (centre, radius, phase=0.0))]
+    fn crank(&mut self, centre: usize, radius: f64, phase: f64) -> PyResult<usize> {
+        self.inner.crank(centre, radius, phase).map_err(to_py)
+    }
+
+    /// Adds an RRR dyad at r1 from p1 and r2 from p2 on `side` of p1 → p2.
+    fn dyad(&mut self, p1: usize, p2: usize, r1: f64, r2: f64, side: &str) -> PyResult<usize> {
+        let side = parse_side(side)?;
+        self.inner.dyad(p1, p2, r1, r2, side).map_err(to_py)
+    }
+
+    /// Adds a slider dyad on the fixed direction (dx, dy) through `origin`.
+    fn slider(
+        &mut self,
+        pivot: usize,
+        r: f64,
+        origin: usize,
+        dx: f64,
+        dy: f64,
+        reach: &str,
+    ) -> PyResult<usize> {
+        let reach = parse_reach(reach)?;
+        self.inner
+            .slider(pivot, r, origin, LineDirection::Fixed(Vec2::new(dx, dy)), reach)
+            .map_err(to_py)
+    }
+
+    /// Adds a slider dyad on a line through `origin` carried by the link `from_ → to`, turned by
+    /// `angle`.
+    #[allow(clippy::too_many_arguments)]
+    fn slider_on_link(
+        &mut self,
+        pivot: usize,
+        r: f64,
+        origin: usize,
+        from_: usize,
+        to: usize,
+        angle: f64,
+        reach: &str,
+    ) -> PyResult<usize> {
+        let reach = parse_reach(reach)?;
+        let direction = LineDirection::Link {
+            from: from_,
+            to,
+            angle,
+        };
+        self.inner
+            .slider(pivot, r, origin, direction, reach)
+            .map_err(to_py)
+    }
+
+    /// Adds a point carried by the link `from_ → to` at (along, left).
+    fn point(&mut self, from_: usize, to: usize, along: f64, left: f64) -> PyResult<usize> {
+        self.inner.point(from_, to, along, left).map_err(to_py)
+    }
+
+    /// Constructions as tuples, for display: (kind, references, numbers, branch).
+    fn describe(&self) -> Vec<String> {
+        self.inner
+            .constructions()
+            .iter()
+            .map(|c| format!("{c:?}"))
+            .collect()
+    }
+
+    /// Sweeps over `theta` (contiguous float64, 1-D). `omega`, `alpha`: None, one value, or one
+    /// per angle. Returns a dict of numpy arrays.
+    #[pyo3(signature = (theta, omega=None, alpha=None, velocity=false, acceleration=false))]
+    fn sweep<'py>(
+        &self,
+        py: Python<'py>,
+        theta: PyReadonlyArray1<'py, f64>,
+        omega: Option<PyReadonlyArray1<'py, f64>>,
+        alpha: Option<PyReadonlyArray1<'py, f64>>,
+        velocity: bool,
+        acceleration: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let th = theta
+            .as_slice()
+            .map_err(|_| linkage_error("theta must be a contiguous float64 array"))?;
+        let n = th.len();
+        let (w, a) = (rate("omega", &omega, n, 0.0)?, rate("alpha", &alpha, n, 0.0)?);
+        let outputs = Outputs {
+            velocity,
+            acceleration,
+        };
+        let mech = self.inner.clone();
+        let res = py
+            .detach(|| sweep_arrays(&mech, th, w, a, outputs))
+            .map_err(to_py)?;
+        let j = self.inner.len();
+        let d = PyDict::new(py);
+        d.set_item("joints", to_array3(py, res.joints, n, j)?)?;
+        d.set_item("valid", PyArray1::from_vec(py, res.valid))?;
+        d.set_item("margin", PyArray1::from_vec(py, res.margin))?;
+        d.set_item("gap", PyArray1::from_vec(py, res.gap))?;
+        if let Some(v) = res.velocity.filter(|_| velocity || acceleration) {
+            d.set_item("velocity", to_array3(py, v, n, j)?)?;
+        }
+        if let Some(v) = res.acceleration {
+            d.set_item("acceleration", to_array3(py, v, n, j)?)?;
+        }
+        Ok(d)
+    }
+}

@@ -1,0 +1,36 @@
+"""linkage — kinematics of planar linkages, solved in closed form on a tracked branch.
+
+>>> import numpy as np, linkage
+>>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+>>> s = fb.sweep(np.linspace(0, 2 * np.pi, 5))
+>>> s.point.shape, s.joints.shape, s.valid.dtype
+((5, 2), (5, 5, 2), dtype('bool'))
+
+Conventions: angles in radians, counter-clockwise positive; lengths in any consistent unit.
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import PackageNotFoundError, version
+
+from linkage import catalog
+from linkage._core import AssemblyError, LinkageError
+from linkage._fourbar import FourBar
+from linkage._mechanism import Mechanism
+from linkage._sweep import OUTPUTS, Sweep
+
+try:
+    __version__ = version("linkage-kinematics")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree
+    __version__ = "0+unknown"
+
+__all__ = [
+    "OUTPUTS",
+    "AssemblyError",
+    "FourBar",
+    "LinkageError",
+    "Mechanism",
+    "Sweep",
+    "catalog",
+    "__version__",
+]

@@ -1,0 +1,228 @@
+"""``FourBar``: the four-bar linkage with its classical analyses."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+from typing import Any, Union
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage import _core
+from linkage._arrays import as_angles, as_length, as_point
+from linkage._core import LinkageError
+from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism, check_outputs
+from linkage._sweep import Sweep
+
+JOINTS = ("O", "C", "A", "B", "P")
+ArrayOrFloat = Union[float, NDArray[np.float64]]
+
+
+class FourBar:
+    """A four-bar linkage: crank ``O A`` about ground pivot ``O``, coupler ``A B``, rocker
+    ``C B`` about ground pivot ``C``, and a coupler point ``P``.
+
+    Parameters
+    ----------
+    ground, crank, coupler, rocker : float
+        Link lengths (any consistent unit). ``ground`` may be omitted when ``c`` is given.
+    point : (along, left)
+        Coupler point in coupler coordinates: distance along ``A → B`` and to its left.
+    assembly : {"open", "crossed"}
+        ``B`` left ("open") or right ("crossed") of the diagonal ``A → C``.
+    o, c : (x, y)
+        Ground pivots; default ``o = (0, 0)``, ``c = o + (ground, 0)``.
+
+    Examples
+    --------
+    >>> import linkage
+    >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+    >>> fb.grashof()
+    'crank-rocker'
+    >>> fb.input_limits() is None
+    True
+    >>> fb.sweep([0.5 * 3.141592653589793]).point.round(9)
+    array([[40., 40.]])
+    >>> linkage.FourBar(ground=20, crank=10, coupler=-25, rocker=25)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: coupler must be a positive finite length, got -25.0
+    """
+
+    def __init__(
+        self,
+        ground: float | None = None,
+        crank: float | None = None,
+        coupler: float | None = None,
+        rocker: float | None = None,
+        point: Sequence[float] = (0.0, 0.0),
+        assembly: str = "open",
+        o: Sequence[float] = (0.0, 0.0),
+        c: Sequence[float] | None = None,
+    ) -> None:
+        for name, v in (("crank", crank), ("coupler", coupler), ("rocker", rocker)):
+            if v is None:
+                raise TypeError(f"FourBar() missing the {name} length")
+        ox, oy = as_point(o, "o")
+        if c is None:
+            if ground is None:
+                raise TypeError("FourBar() needs ground (or the rocker pivot c)")
+            g = as_length(ground, "ground")
+            cx, cy = ox + g, oy
+        else:
+            cx, cy = as_point(c, "c")
+            if ground is not None:
+                g = as_length(ground, "ground")
+                actual = math.hypot(cx - ox, cy - oy)
+                if abs(actual - g) > 1e-12 * max(g, actual):
+                    raise LinkageError(f"ground {g} contradicts |c - o| = {actual}")
+        if not isinstance(assembly, str) or assembly not in ("open", "crossed"):
+            raise LinkageError(f"assembly must be 'open' or 'crossed', got {assembly!r}")
+        lengths = [as_length(v, n) for n, v in (("crank", crank), ("coupler", coupler), ("rocker", rocker))]
+        along, left = as_point(point, "point")
+        self._core = _core.FourBar((ox, oy), (cx, cy), *lengths, (along, left), assembly)
+
+    @classmethod
+    def _from_core(cls, core: Any) -> FourBar:
+        fb = cls.__new__(cls)
+        fb._core = core
+        return fb
+
+    # -- parameters -----------------------------------------------------------------------
+    def _p(self) -> tuple[Any, ...]:
+        return tuple(self._core.parameters())
+
+    @property
+    def o(self) -> tuple[float, float]:
+        """Crank pivot."""
+        p = self._p()
+        return (p[0], p[1])
+
+    @property
+    def c(self) -> tuple[float, float]:
+        """Rocker pivot."""
+        p = self._p()
+        return (p[2], p[3])
+
+    @property
+    def ground(self) -> float:
+        """Distance between the ground pivots."""
+        p = self._p()
+        return math.hypot(p[2] - p[0], p[3] - p[1])
+
+    @property
+    def crank(self) -> float:
+        """Crank length."""
+        return float(self._p()[4])
+
+    @property
+    def coupler(self) -> float:
+        """Coupler length."""
+        return float(self._p()[5])
+
+    @property
+    def rocker(self) -> float:
+        """Rocker length."""
+        return float(self._p()[6])
+
+    @property
+    def point(self) -> tuple[float, float]:
+        """Coupler point (along, left)."""
+        p = self._p()
+        return (p[7], p[8])
+
+    @property
+    def assembly(self) -> str:
+        """"open" or "crossed"."""
+        return str(self._p()[9])
+
+    def __repr__(self) -> str:
+        return (
+            f"FourBar(ground={self.ground:g}, crank={self.crank:g}, coupler={self.coupler:g}, "
+            f"rocker={self.rocker:g}, point={self.point}, assembly={self.assembly!r}, "
+            f"o={self.o}, c={self.c})"
+        )
+
+    # -- analyses -------------------------------------------------------------------------
+    def grashof(self) -> str:
+        """Grashof class: "crank-rocker", "double-crank", "rocker-crank", "double-rocker",
+        "change-point" (s + l = p + q) or "triple-rocker" (non-Grashof)."""
+        return str(self._core.grashof())
+
+    def input_ranges(self) -> list[tuple[float, float]]:
+        """Every interval of crank angles (radians) at which the linkage assembles.
+
+        ``[(θ0, θ0 + 2π)]`` for a full-turn crank (θ0 the ground direction); one interval
+        between toggle positions; two mirror intervals (separate circuits); ``[]`` if never.
+        """
+        r = self._core.input_range()
+        if r is None:
+            base = math.atan2(self.c[1] - self.o[1], self.c[0] - self.o[0])
+            return [(base, base + 2 * math.pi)]
+        if r == "never":
+            return []
+        if isinstance(r[0], tuple):
+            return [tuple(r[0]), tuple(r[1])]  # type: ignore[list-item]
+        return [(float(r[0]), float(r[1]))]
+
+    def input_limits(self) -> tuple[float, float] | None:
+        """None for a full-turn crank, else the crank angles (lo, hi) of the toggle positions.
+
+        Computed as ``atan2(4·Area, r² + g² − d²)`` from Kahan's triangle area, so it stays
+        accurate where ``acos`` of a cosine near ±1 would lose half the digits. For a linkage
+        with two circuits, the counter-clockwise one (see :meth:`input_ranges`).
+
+        Raises
+        ------
+        LinkageError
+            When the linkage cannot be assembled at any angle.
+        """
+        r = self._core.input_range()
+        if r is None:
+            return None
+        if r == "never":
+            raise LinkageError("the linkage cannot be assembled at any crank angle")
+        lo, hi = r[0] if isinstance(r[0], tuple) else r
+        return (float(lo), float(hi))
+
+    def transmission_angle(self, theta: Any) -> ArrayOrFloat:
+        """Angle at ``B`` between coupler and rocker, in [0, π] (best at π/2, fails at 0 and π);
+        NaN where the linkage cannot be assembled. Scalar in, scalar out."""
+        th, scalar = as_angles(theta, "theta")
+        mu = self._core.transmission_angle(th)
+        return float(mu[0]) if scalar else mu
+
+    # -- sweeping -------------------------------------------------------------------------
+    def mechanism(self) -> Mechanism:
+        """The linkage as a :class:`Mechanism` with joints O, C, A, B, P."""
+        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4)
+
+    def sweep(
+        self,
+        theta: Any,
+        omega: Any = None,
+        alpha: Any = None,
+        outputs: Iterable[str] = DEFAULT_OUTPUTS,
+    ) -> Sweep:
+        """Solve at each crank angle; see :meth:`Mechanism.sweep`. ``s.point`` is the coupler
+        point, ``s.joints`` holds O, C, A, B, P."""
+        return self.mechanism().sweep(theta, omega, alpha, outputs)
+
+    def circuit(self, n: int = 721) -> Sweep:
+        """The whole coupler curve of the circuit in ``n`` samples.
+
+        A full-turn crank sweeps one turn on its assembly; a limited crank goes from limit to
+        limit on its assembly and back on the other, both halves including the toggle
+        positions, so the curve closes. ``s.theta`` holds the angles used.
+        """
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
+            raise TypeError(f"n must be an int, got {type(n).__name__}")
+        theta, joints = self._core.circuit(int(n))
+        valid = np.isfinite(joints[:, 4, 0])
+        # The dyad margin of a four-bar is |sin| of the transmission angle at B.
+        ba, bc = joints[:, 2] - joints[:, 3], joints[:, 1] - joints[:, 3]
+        cross = ba[:, 0] * bc[:, 1] - ba[:, 1] * bc[:, 0]
+        margin = np.abs(cross) / (self.coupler * self.rocker)
+        raw = {"joints": joints, "valid": valid, "margin": margin, "gap": np.where(valid, 0.0, np.nan)}
+        return Sweep(theta, raw, JOINTS, 4, ("point", "joints"))

@@ -1,0 +1,220 @@
+"""``Mechanism``: a linkage as a named program of closed-form constructions."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+from linkage import _core
+from linkage._arrays import as_angles, as_finite, as_length, as_point, as_rate
+from linkage._core import LinkageError
+from linkage._sweep import OUTPUTS, Sweep
+
+DEFAULT_OUTPUTS = ("point", "joints")
+
+
+def check_outputs(outputs: Iterable[str], omega: Any) -> tuple[str, ...]:
+    """Validate ``outputs=``: known names only, and rates only with ``omega``."""
+    if isinstance(outputs, str):
+        outputs = (outputs,)
+    try:
+        out = tuple(outputs)
+    except TypeError:
+        raise TypeError(
+            f"outputs must be a sequence of names, got {type(outputs).__name__}"
+        ) from None
+    for o in out:
+        if not isinstance(o, str):
+            raise TypeError(f"outputs must be names (str), got {type(o).__name__}")
+        if o not in OUTPUTS:
+            raise LinkageError(f"unknown output {o!r}; choose from {', '.join(OUTPUTS)}")
+    wants_rates = "velocity" in out or "acceleration" in out
+    if wants_rates and omega is None:
+        raise LinkageError("outputs 'velocity'/'acceleration' need omega (crank speed, rad/s)")
+    return out
+
+
+class Mechanism:
+    """A planar linkage built as an ordered program of constructions, each placing one named
+    joint from joints placed before it, in closed form.
+
+    Constructions: :meth:`fixed` joints, one :meth:`crank` (the driver), RRR :meth:`dyad`\\ s,
+    RRP :meth:`slider`\\ s and :meth:`point`\\ s carried by links. A sweep tracks each dyad's
+    assembly branch by continuity (see :meth:`sweep`).
+
+    Examples
+    --------
+    The Hoecken straight-line linkage, foot 50 along the coupler:
+
+    >>> import numpy as np, linkage
+    >>> m = linkage.Mechanism()
+    >>> m.fixed("O", (0, 0)); m.fixed("C", (20, 0))
+    >>> m.crank("A", "O", radius=10)
+    >>> m.dyad("B", "A", "C", 25, 25, side="left")
+    >>> m.point("P", on=("A", "B"), at=(50, 0))
+    >>> s = m.sweep(np.pi)
+    >>> s.point.round(12)
+    array([20., 40.])
+    >>> m.dyad("Q", "A", "C", 1, 1)  # cannot reach: only fails when solved
+    >>> bool(m.sweep(0.0).valid)
+    False
+    """
+
+    def __init__(self) -> None:
+        self._core = _core.Mechanism()
+        self._names: list[str] = []
+        self._trace: str | None = None
+
+    @classmethod
+    def _from_core(cls, core: Any, names: Sequence[str], trace: int) -> Mechanism:
+        m = cls()
+        m._core = core
+        m._names = list(names)
+        m._trace = m._names[trace]
+        return m
+
+    # -- building -------------------------------------------------------------------------
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        """Joint names in program order."""
+        return tuple(self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+    def __repr__(self) -> str:
+        return f"<Mechanism joints {', '.join(self._names)}; trace {self.trace!r}>"
+
+    @property
+    def trace(self) -> str | None:
+        """Name of the joint reported as ``Sweep.point`` (default: the last joint)."""
+        return self._trace if self._trace is not None else (self._names[-1] if self._names else None)
+
+    @trace.setter
+    def trace(self, name: str) -> None:
+        self._index(name, "trace")
+        self._trace = name
+
+    def _index(self, name: Any, role: str) -> int:
+        if not isinstance(name, str):
+            raise TypeError(f"{role} must be a joint name (str), got {type(name).__name__}")
+        try:
+            return self._names.index(name)
+        except ValueError:
+            known = ", ".join(self._names) or "none yet"
+            raise LinkageError(f"{role}: unknown joint {name!r} (defined so far: {known})") from None
+
+    def _add(self, name: Any, build: Any) -> None:
+        if not isinstance(name, str) or not name:
+            raise TypeError(f"joint name must be a non-empty str, got {name!r}")
+        if name in self._names:
+            raise LinkageError(f"joint {name!r} is already defined")
+        try:
+            build()
+        except LinkageError as exc:
+            raise type(exc)(f"joint {name!r}: {exc}") from None
+        self._names.append(name)
+
+    def fixed(self, name: str, at: Sequence[float]) -> None:
+        """Add a joint fixed to the frame at ``at = (x, y)``."""
+        x, y = as_point(at, "at")
+        self._add(name, lambda: self._core.fixed(x, y))
+
+    def crank(self, name: str, centre: str, radius: float, phase: float = 0.0) -> None:
+        """Add the driven crank: ``centre + radius·(cos(θ+phase), sin(θ+phase))``."""
+        c = self._index(centre, "centre")
+        r = as_length(radius, "radius")
+        ph = as_finite(phase, "phase")
+        self._add(name, lambda: self._core.crank(c, r, ph))
+
+    def dyad(
+        self, name: str, p1: str, p2: str, r1: float, r2: float, side: str = "left"
+    ) -> None:
+        """Add an RRR dyad: the joint at ``r1`` from ``p1`` and ``r2`` from ``p2``, initially on
+        ``side`` ("left" or "right") of the directed line ``p1 → p2``."""
+        i, j = self._index(p1, "p1"), self._index(p2, "p2")
+        a, b = as_length(r1, "r1"), as_length(r2, "r2")
+        side = _choice(side, "side", ("left", "right"))
+        self._add(name, lambda: self._core.dyad(i, j, a, b, side))
+
+    def slider(
+        self,
+        name: str,
+        pivot: str,
+        r: float,
+        origin: str,
+        direction: Sequence[float] | None = None,
+        link: tuple[str, str] | None = None,
+        angle: float = 0.0,
+        reach: str = "ahead",
+    ) -> None:
+        """Add an RRP slider dyad: the joint at ``r`` from ``pivot`` on the line through
+        ``origin``, with a fixed ``direction`` (dx, dy) or carried by ``link = (from, to)`` turned
+        by ``angle``; ``reach`` "ahead"/"behind" picks the intersection along the direction."""
+        p, o = self._index(pivot, "pivot"), self._index(origin, "origin")
+        length = as_length(r, "r")
+        reach = _choice(reach, "reach", ("ahead", "behind"))
+        if (direction is None) == (link is None):
+            raise LinkageError("slider needs exactly one of direction=(dx, dy) or link=(from, to)")
+        if direction is not None:
+            dx, dy = as_point(direction, "direction")
+            self._add(name, lambda: self._core.slider(p, length, o, dx, dy, reach))
+        else:
+            assert link is not None
+            if len(link) != 2:
+                raise LinkageError("link must be a pair of joint names (from, to)")
+            f, t = self._index(link[0], "link[0]"), self._index(link[1], "link[1]")
+            ang = as_finite(angle, "angle")
+            self._add(name, lambda: self._core.slider_on_link(p, length, o, f, t, ang, reach))
+
+    def point(self, name: str, on: tuple[str, str], at: Sequence[float]) -> None:
+        """Add a point carried by the link ``on = (from, to)`` at ``at = (along, left)``:
+        ``along`` the direction from → to (length units) and ``left`` of it."""
+        if isinstance(on, str) or len(on) != 2:
+            raise LinkageError("on must be a pair of joint names (from, to)")
+        f, t = self._index(on[0], "on[0]"), self._index(on[1], "on[1]")
+        along, left = as_point(at, "at")
+        self._add(name, lambda: self._core.point(f, t, along, left))
+
+    # -- solving --------------------------------------------------------------------------
+    def sweep(
+        self,
+        theta: Any,
+        omega: Any = None,
+        alpha: Any = None,
+        outputs: Iterable[str] = DEFAULT_OUTPUTS,
+    ) -> Sweep:
+        """Solve the mechanism at each crank angle of ``theta`` (radians, scalar or 1-D).
+
+        Branches are tracked along the samples in the order given: each dyad keeps its
+        orientation, except near a toggle, where the branch consistent with the previous
+        samples' motion is taken (long steps are refined internally, so coarse sampling does
+        not decide the branch). A sample that cannot be assembled is NaN with ``valid`` False.
+
+        ``outputs`` names what to compute besides positions: ``"velocity"`` and
+        ``"acceleration"`` need ``omega`` (rad/s; scalar or one per angle); ``alpha`` (rad/s²)
+        defaults to 0, constant crank speed. Position-only sweeps do no rate work.
+        """
+        if not self._names:
+            raise LinkageError("the mechanism has no joints")
+        out = check_outputs(outputs, omega)
+        th, scalar = as_angles(theta, "theta")
+        n = th.shape[0]
+        w = as_rate(omega, "omega", n)
+        a = as_rate(alpha, "alpha", n)
+        raw = self._core.sweep(
+            th, w, a, velocity="velocity" in out, acceleration="acceleration" in out
+        )
+        trace = self._index(self.trace, "trace")
+        return Sweep(th, raw, self.joint_names, trace, out, scalar)
+
+
+def _choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be one of {allowed}, got {type(value).__name__}")
+    if value not in allowed:
+        raise LinkageError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
+    return value
+
+
+__all__ = ["Mechanism", "check_outputs"]

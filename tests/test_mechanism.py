@@ -1,0 +1,134 @@
+"""Mechanism: building by names, sweeping multi-loop chains, and its errors."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import linkage
+
+
+def slider_crank(r=2.0, rod=5.0):
+    m = linkage.Mechanism()
+    m.fixed("O", (0, 0))
+    m.crank("A", "O", radius=r)
+    m.slider("S", "A", rod, "O", direction=(1, 0))
+    return m
+
+
+def test_slider_crank_closed_form():
+    r, rod = 2.0, 5.0
+    theta = np.linspace(0, 2 * np.pi, 361)
+    w = 3.0
+    s = slider_crank(r, rod).sweep(theta, omega=w, outputs=("velocity", "acceleration"))
+    root = np.sqrt(rod**2 - (r * np.sin(theta)) ** 2)
+    x = r * np.cos(theta) + root
+    np.testing.assert_allclose(s.point[:, 0], x, atol=1e-13)
+    np.testing.assert_allclose(s.point[:, 1], 0, atol=1e-13)
+    xdot = -r * np.sin(theta) * w - r**2 * np.sin(theta) * np.cos(theta) * w / root
+    np.testing.assert_allclose(s.velocity[:, 0], xdot, atol=1e-12)
+
+
+def test_slider_on_a_link_direction():
+    # A line carried by the crank itself: the joint slides along O→A at distance rod from C.
+    m = linkage.Mechanism()
+    m.fixed("O", (0, 0))
+    m.fixed("C", (3, 0))
+    m.crank("A", "O", radius=1.0)
+    m.slider("S", "C", 4.0, "O", link=("O", "A"), reach="ahead")
+    s = m.sweep(np.linspace(0, 2 * np.pi, 100))
+    d = np.linalg.norm(s.joint("S") - s.joint("C"), axis=1)
+    np.testing.assert_allclose(d, 4.0, atol=1e-13)
+    u = s.joint("A") / np.linalg.norm(s.joint("A"), axis=1)[:, None]
+    cross = u[:, 0] * s.joint("S")[:, 1] - u[:, 1] * s.joint("S")[:, 0]
+    np.testing.assert_allclose(cross, 0, atol=1e-13)
+
+
+def test_peaucellier_exact_line():
+    m = linkage.catalog.peaucellier()
+    theta = np.linspace(-2, 2, 4001)
+    s = m.sweep(theta)
+    lim = 2 * math.acos(2 / 3)  # 20 ≤ |DA| = 30|cos(θ/2)|
+    np.testing.assert_array_equal(s.valid, np.abs(theta) <= lim)
+    dev = np.abs(s.point[s.valid, 0] - 40.0).max()
+    assert dev < 1e-12, dev
+    assert np.ptp(s.point[s.valid, 1]) > 80
+
+
+def test_hart_exact_line():
+    s = linkage.catalog.hart().sweep(np.linspace(-np.pi, np.pi, 4001))
+    assert s.valid.sum() > 500
+    assert np.abs(s.point[s.valid, 0] - 7.5).max() < 1e-12
+    assert s.trace == "P"
+
+
+def test_pantograph_doubles_the_foot_path():
+    m = linkage.catalog.hoecken_pantograph(2.0)
+    s = m.sweep(np.linspace(0, 2 * np.pi, 721))
+    q = s.joint("Q")
+    np.testing.assert_allclose(s.point, q + 2 * (s.joint("T") - q), atol=1e-11)
+    foot = linkage.catalog.hoecken().sweep(np.linspace(0, 2 * np.pi, 721)).point
+    np.testing.assert_allclose(s.joint("T"), foot, atol=1e-12)
+    with pytest.raises(linkage.LinkageError, match="scale"):
+        linkage.catalog.hoecken_pantograph(0.5)
+
+
+def test_fourbar_mechanism_equals_fourbar_sweep(hoecken):
+    theta = np.linspace(0, 2 * np.pi, 37)
+    np.testing.assert_array_equal(hoecken.mechanism().sweep(theta).joints, hoecken.sweep(theta).joints)
+
+
+def test_named_builder_errors():
+    m = linkage.Mechanism()
+    with pytest.raises(linkage.LinkageError, match="no joints"):
+        m.sweep(0.0)
+    m.fixed("O", (0, 0))
+    with pytest.raises(linkage.LinkageError, match="already defined"):
+        m.fixed("O", (1, 0))
+    with pytest.raises(linkage.LinkageError, match=r"centre: unknown joint 'X' \(defined so far: O\)"):
+        m.crank("A", "X", radius=1)
+    with pytest.raises(linkage.LinkageError, match="radius must be a positive finite length"):
+        m.crank("A", "O", radius=-1)
+    with pytest.raises(TypeError, match="joint name"):
+        m.fixed(3, (0, 0))
+    m.crank("A", "O", radius=1)
+    with pytest.raises(linkage.LinkageError, match="joint 'A2': .*second crank"):
+        m.crank("A2", "O", radius=1)
+    with pytest.raises(linkage.LinkageError, match="side must be one of"):
+        m.dyad("B", "A", "O", 1, 1, side="up")
+    with pytest.raises(linkage.LinkageError, match="exactly one of direction"):
+        m.slider("S", "A", 1.0, "O")
+    with pytest.raises(linkage.LinkageError, match="joint 'B': .*coincide"):
+        m.dyad("B", "A", "A", 1, 1)
+    with pytest.raises(linkage.LinkageError, match="on must be a pair"):
+        m.point("P", on="A", at=(1, 0))
+    # A failed add leaves the mechanism unchanged.
+    assert m.joint_names == ("O", "A")
+
+
+def test_mechanism_without_crank_cannot_sweep():
+    m = linkage.Mechanism()
+    m.fixed("O", (0, 0))
+    with pytest.raises(linkage.LinkageError, match="no crank"):
+        m.sweep(0.0)
+
+
+def test_capacity_limit_is_an_error():
+    m = linkage.Mechanism()
+    for i in range(linkage._core.CAPACITY):
+        m.fixed(f"J{i}", (i, 0))
+    with pytest.raises(linkage.LinkageError, match="at most 64 joints"):
+        m.fixed("extra", (0, 0))
+
+
+def test_trace_selection():
+    m = linkage.catalog.peaucellier()
+    m.trace = "B"
+    s = m.sweep([0.0])
+    np.testing.assert_array_equal(s.point, s.joint("B"))
+    with pytest.raises(linkage.LinkageError, match="unknown joint"):
+        m.trace = "Z"
+    with pytest.raises(KeyError, match="no joint 'Z'"):
+        s.joint("Z")
