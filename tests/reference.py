@@ -24,5 +24,3 @@ def fourbar_reference(g, r, c, k, along, left, theta, open_=True):
     ex, ey = (bx - ax) / c, (by - ay) / c
     px, py = ax + along * ex - left * ey, ay + along * ey + left * ex
     return (ax, ay), (bx, by), (px, py)
-
-

@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import math
 
+import linkage
 import mpmath as mp
 import numpy as np
 import pytest
 from reference import fourbar_reference
-
-import linkage
 
 
 def test_contract_shapes_and_dtypes():
@@ -36,8 +35,12 @@ def test_scalar_angle_gives_unbatched_shapes(hoecken):
 
 def test_any_float_array_like_and_zero_copy_input(hoecken):
     ref = hoecken.sweep(np.array([0.0, 1.0, 2.0])).point
-    for theta in ([0, 1, 2], (0.0, 1.0, 2.0), np.array([0, 1, 2], dtype=np.int32),
-                  np.array([0, 1, 2], dtype=np.float32)):
+    for theta in (
+        [0, 1, 2],
+        (0.0, 1.0, 2.0),
+        np.array([0, 1, 2], dtype=np.int32),
+        np.array([0, 1, 2], dtype=np.float32),
+    ):
         np.testing.assert_array_equal(hoecken.sweep(theta).point, ref)
     strided = np.array([0.0, 9.0, 1.0, 9.0, 2.0, 9.0])[::2]
     np.testing.assert_array_equal(hoecken.sweep(strided).point, ref)
@@ -55,19 +58,34 @@ def test_rates_not_requested_are_not_computed(hoecken):
 
 def test_positions_against_mpmath_reference():
     rng = np.random.default_rng(7)
-    cases = [(20, 10, 25, 25, 50, 0, True), (40, 40, 20, 40, 10, -math.sqrt(1500), True),
-             (20, 25, 10, 25, 5, 0, False), (3.0, 1.0, 2.5, 2.2, 1.7, 0.4, True)]
+    cases = [
+        (20, 10, 25, 25, 50, 0, True),
+        (40, 40, 20, 40, 10, -math.sqrt(1500), True),
+        (20, 25, 10, 25, 5, 0, False),
+        (3.0, 1.0, 2.5, 2.2, 1.7, 0.4, True),
+    ]
     for g, r, c, k, al, le, op in cases:
-        fb = linkage.FourBar(ground=g, crank=r, coupler=c, rocker=k, point=(al, le),
-                             assembly="open" if op else "crossed")
+        fb = linkage.FourBar(
+            ground=g,
+            crank=r,
+            coupler=c,
+            rocker=k,
+            point=(al, le),
+            assembly="open" if op else "crossed",
+        )
         theta = rng.uniform(-np.pi, np.pi, 400)
         s = fb.sweep(theta)
         size = max(g, r, c, k, abs(al), abs(le))
         worst = 0.0
         for i in np.flatnonzero(s.valid):
             (_, _), (bx, by), (px, py) = fourbar_reference(g, r, c, k, al, le, theta[i], op)
-            worst = max(worst, abs(float(bx) - s.joints[i, 3, 0]), abs(float(by) - s.joints[i, 3, 1]),
-                        abs(float(px) - s.point[i, 0]), abs(float(py) - s.point[i, 1]))
+            worst = max(
+                worst,
+                abs(float(bx) - s.joints[i, 3, 0]),
+                abs(float(by) - s.joints[i, 3, 1]),
+                abs(float(px) - s.point[i, 0]),
+                abs(float(py) - s.point[i, 1]),
+            )
         assert worst <= 1e-14 * size * 8, worst
 
 
@@ -147,8 +165,7 @@ def test_coarse_sweep_of_crank_rocker_stays_on_branch(hoecken):
 
 
 def test_change_point_parallelogram_keeps_parallelogram_coarse_and_fine():
-    fb = linkage.FourBar(ground=30, crank=10, coupler=30, rocker=10, point=(15, 0),
-                         assembly="open")
+    fb = linkage.FourBar(ground=30, crank=10, coupler=30, rocker=10, point=(15, 0), assembly="open")
     assert fb.grashof() == "change-point"
     for step in (0.5, 10.0, 50.0):
         theta = np.radians(90 + np.arange(0, 720, step))
@@ -160,17 +177,53 @@ def test_change_point_parallelogram_keeps_parallelogram_coarse_and_fine():
 @pytest.mark.parametrize(
     "kwargs, exc, match",
     [
-        (dict(ground=20, crank=0, coupler=25, rocker=25), linkage.LinkageError, "crank must be a positive"),
-        (dict(ground=-20, crank=10, coupler=25, rocker=25), linkage.LinkageError, "ground must be a positive"),
-        (dict(ground=20, crank=10, coupler=float("nan"), rocker=25), linkage.LinkageError, "coupler"),
-        (dict(ground=20, crank=10, coupler=25, rocker=float("inf")), linkage.LinkageError, "rocker"),
-        (dict(ground=20, crank="10", coupler=25, rocker=25), TypeError, "crank must be a real number"),
+        (
+            dict(ground=20, crank=0, coupler=25, rocker=25),
+            linkage.LinkageError,
+            "crank must be a positive",
+        ),
+        (
+            dict(ground=-20, crank=10, coupler=25, rocker=25),
+            linkage.LinkageError,
+            "ground must be a positive",
+        ),
+        (
+            dict(ground=20, crank=10, coupler=float("nan"), rocker=25),
+            linkage.LinkageError,
+            "coupler",
+        ),
+        (
+            dict(ground=20, crank=10, coupler=25, rocker=float("inf")),
+            linkage.LinkageError,
+            "rocker",
+        ),
+        (
+            dict(ground=20, crank="10", coupler=25, rocker=25),
+            TypeError,
+            "crank must be a real number",
+        ),
         (dict(ground=20, crank=True, coupler=25, rocker=25), TypeError, "crank"),
         (dict(ground=20, crank=10, coupler=25), TypeError, "rocker"),
-        (dict(ground=20, crank=10, coupler=25, rocker=25, point=(1,)), linkage.LinkageError, "point"),
-        (dict(ground=20, crank=10, coupler=25, rocker=25, point=(1, float("nan"))), linkage.LinkageError, "point"),
-        (dict(ground=20, crank=10, coupler=25, rocker=25, assembly="upside"), linkage.LinkageError, "assembly"),
-        (dict(ground=21, crank=10, coupler=25, rocker=25, c=(20, 0)), linkage.LinkageError, "contradicts"),
+        (
+            dict(ground=20, crank=10, coupler=25, rocker=25, point=(1,)),
+            linkage.LinkageError,
+            "point",
+        ),
+        (
+            dict(ground=20, crank=10, coupler=25, rocker=25, point=(1, float("nan"))),
+            linkage.LinkageError,
+            "point",
+        ),
+        (
+            dict(ground=20, crank=10, coupler=25, rocker=25, assembly="upside"),
+            linkage.LinkageError,
+            "assembly",
+        ),
+        (
+            dict(ground=21, crank=10, coupler=25, rocker=25, c=(20, 0)),
+            linkage.LinkageError,
+            "contradicts",
+        ),
         (dict(crank=10, coupler=25, rocker=25, o=(1, 1), c=(1, 1)), linkage.LinkageError, "ground"),
     ],
 )
@@ -188,10 +241,25 @@ def test_bad_parameters_raise_specific_errors(kwargs, exc, match):
         ((np.zeros((2, 3)),), {}, linkage.LinkageError, r"theta must be a scalar or 1-D"),
         (([0.0, np.nan],), {}, linkage.LinkageError, r"theta\[1\] is nan"),
         (([0.0, np.inf],), {}, linkage.LinkageError, "theta must be finite"),
-        (([0.0, 1.0],), dict(outputs=("point", "speed")), linkage.LinkageError, "unknown output 'speed'"),
+        (
+            ([0.0, 1.0],),
+            dict(outputs=("point", "speed")),
+            linkage.LinkageError,
+            "unknown output 'speed'",
+        ),
         (([0.0, 1.0],), dict(outputs=("velocity",)), linkage.LinkageError, "need omega"),
-        (([0.0, 1.0],), dict(omega=[1.0, 2.0, 3.0], outputs=("velocity",)), linkage.LinkageError, "omega must be a scalar or have one value per angle"),
-        (([0.0, 1.0],), dict(omega=np.nan, outputs=("velocity",)), linkage.LinkageError, "omega must be finite"),
+        (
+            ([0.0, 1.0],),
+            dict(omega=[1.0, 2.0, 3.0], outputs=("velocity",)),
+            linkage.LinkageError,
+            "omega must be a scalar or have one value per angle",
+        ),
+        (
+            ([0.0, 1.0],),
+            dict(omega=np.nan, outputs=("velocity",)),
+            linkage.LinkageError,
+            "omega must be finite",
+        ),
         (([0.0, 1.0],), dict(omega=1.0, alpha="x", outputs=("acceleration",)), TypeError, "alpha"),
         (([0.0, 1.0],), dict(outputs=3), TypeError, "outputs"),
     ],
@@ -211,6 +279,8 @@ def test_per_sample_omega_and_alpha(hoecken):
     w = np.linspace(1, 2, 5)
     s = hoecken.sweep(theta, omega=w, alpha=0.5, outputs=("velocity", "acceleration"))
     for i in range(5):
-        si = hoecken.sweep(theta[i:i + 1], omega=w[i], alpha=0.5, outputs=("velocity", "acceleration"))
+        si = hoecken.sweep(
+            theta[i : i + 1], omega=w[i], alpha=0.5, outputs=("velocity", "acceleration")
+        )
         np.testing.assert_allclose(s.velocity[i], si.velocity[0], rtol=0, atol=1e-12)
         np.testing.assert_allclose(s.acceleration[i], si.acceleration[0], rtol=0, atol=1e-12)

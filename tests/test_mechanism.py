@@ -4,10 +4,9 @@ from __future__ import annotations
 
 import math
 
+import linkage
 import numpy as np
 import pytest
-
-import linkage
 
 
 def slider_crank(r=2.0, rod=5.0):
@@ -77,7 +76,9 @@ def test_pantograph_doubles_the_foot_path():
 
 def test_fourbar_mechanism_equals_fourbar_sweep(hoecken):
     theta = np.linspace(0, 2 * np.pi, 37)
-    np.testing.assert_array_equal(hoecken.mechanism().sweep(theta).joints, hoecken.sweep(theta).joints)
+    np.testing.assert_array_equal(
+        hoecken.mechanism().sweep(theta).joints, hoecken.sweep(theta).joints
+    )
 
 
 def test_named_builder_errors():
@@ -87,7 +88,9 @@ def test_named_builder_errors():
     m.fixed("O", (0, 0))
     with pytest.raises(linkage.LinkageError, match="already defined"):
         m.fixed("O", (1, 0))
-    with pytest.raises(linkage.LinkageError, match=r"centre: unknown joint 'X' \(defined so far: O\)"):
+    with pytest.raises(
+        linkage.LinkageError, match=r"centre: unknown joint 'X' \(defined so far: O\)"
+    ):
         m.crank("A", "X", radius=1)
     with pytest.raises(linkage.LinkageError, match="radius must be a positive finite length"):
         m.crank("A", "O", radius=-1)

@@ -53,7 +53,9 @@ def as_length(value: Any, name: str) -> float:
 
 def as_real(value: Any, name: str) -> float:
     """A real scalar (int or float, not bool), as float; finiteness is checked by the caller."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (Real, np.integer, np.floating)):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(
+        value, (Real, np.integer, np.floating)
+    ):
         raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
     return float(value)
 

@@ -1,24 +1,39 @@
 """Type stubs of the compiled extension ``linkage._core`` (see crates/linkage-py)."""
 
-from typing import Any, Optional, Union
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+from typing_extensions import final
+
+__all__ = [
+    "LinkageError",
+    "AssemblyError",
+    "CAPACITY",
+    "Mechanism",
+    "FourBar",
+    "catalog_four_bar",
+    "catalog_linkage",
+    "catalog_names",
+]
 
 CAPACITY: int
 
 class LinkageError(ValueError): ...
 class AssemblyError(LinkageError): ...
 
+@final
 class Mechanism:
-    def __init__(self) -> None: ...
+    def __new__(cls) -> Mechanism: ...
     def __len__(self) -> int: ...
     @property
-    def driver(self) -> Optional[int]: ...
+    def driver(self) -> int | None: ...
     def fixed(self, x: float, y: float) -> int: ...
     def crank(self, centre: int, radius: float, phase: float = 0.0) -> int: ...
     def dyad(self, p1: int, p2: int, r1: float, r2: float, side: str) -> int: ...
-    def slider(self, pivot: int, r: float, origin: int, dx: float, dy: float, reach: str) -> int: ...
+    def slider(
+        self, pivot: int, r: float, origin: int, dx: float, dy: float, reach: str
+    ) -> int: ...
     def slider_on_link(
         self, pivot: int, r: float, origin: int, from_: int, to: int, angle: float, reach: str
     ) -> int: ...
@@ -27,15 +42,16 @@ class Mechanism:
     def sweep(
         self,
         theta: NDArray[np.float64],
-        omega: Optional[NDArray[np.float64]] = None,
-        alpha: Optional[NDArray[np.float64]] = None,
+        omega: NDArray[np.float64] | None = None,
+        alpha: NDArray[np.float64] | None = None,
         velocity: bool = False,
         acceleration: bool = False,
     ) -> dict[str, Any]: ...
 
+@final
 class FourBar:
-    def __init__(
-        self,
+    def __new__(
+        cls,
         o: tuple[float, float],
         c: tuple[float, float],
         crank: float,
@@ -43,19 +59,14 @@ class FourBar:
         rocker: float,
         point: tuple[float, float],
         assembly: str,
-    ) -> None: ...
+    ) -> FourBar: ...
     def parameters(
         self,
     ) -> tuple[float, float, float, float, float, float, float, float, float, str]: ...
     def grashof(self) -> str: ...
     def input_range(
         self,
-    ) -> Union[
-        None,
-        str,
-        tuple[float, float],
-        tuple[tuple[float, float], tuple[float, float]],
-    ]: ...
+    ) -> None | str | tuple[float, float] | tuple[tuple[float, float], tuple[float, float]]: ...
     def transmission_angle(self, theta: NDArray[np.float64]) -> NDArray[np.float64]: ...
     def mechanism(self) -> Mechanism: ...
     def circuit(self, n: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...

@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 from linkage import _core
 from linkage._arrays import as_angles, as_length, as_point
 from linkage._core import LinkageError
-from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism, check_outputs
+from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
 from linkage._sweep import Sweep
 
 JOINTS = ("O", "C", "A", "B", "P")
@@ -79,9 +79,11 @@ class FourBar:
                     raise LinkageError(f"ground {g} contradicts |c - o| = {actual}")
         if not isinstance(assembly, str) or assembly not in ("open", "crossed"):
             raise LinkageError(f"assembly must be 'open' or 'crossed', got {assembly!r}")
-        lengths = [as_length(v, n) for n, v in (("crank", crank), ("coupler", coupler), ("rocker", rocker))]
+        r = as_length(crank, "crank")
+        b = as_length(coupler, "coupler")
+        k = as_length(rocker, "rocker")
         along, left = as_point(point, "point")
-        self._core = _core.FourBar((ox, oy), (cx, cy), *lengths, (along, left), assembly)
+        self._core = _core.FourBar((ox, oy), (cx, cy), r, b, k, (along, left), assembly)
 
     @classmethod
     def _from_core(cls, core: Any) -> FourBar:
@@ -134,7 +136,7 @@ class FourBar:
 
     @property
     def assembly(self) -> str:
-        """"open" or "crossed"."""
+        """ "open" or "crossed"."""
         return str(self._p()[9])
 
     def __repr__(self) -> str:
@@ -160,11 +162,13 @@ class FourBar:
         if r is None:
             base = math.atan2(self.c[1] - self.o[1], self.c[0] - self.o[0])
             return [(base, base + 2 * math.pi)]
-        if r == "never":
+        if isinstance(r, str):
             return []
-        if isinstance(r[0], tuple):
-            return [tuple(r[0]), tuple(r[1])]  # type: ignore[list-item]
-        return [(float(r[0]), float(r[1]))]
+        first, second = r
+        if isinstance(first, tuple) and isinstance(second, tuple):
+            return [(float(first[0]), float(first[1])), (float(second[0]), float(second[1]))]
+        assert isinstance(first, float) and isinstance(second, float)
+        return [(first, second)]
 
     def input_limits(self) -> tuple[float, float] | None:
         """None for a full-turn crank, else the crank angles (lo, hi) of the toggle positions.
@@ -178,13 +182,12 @@ class FourBar:
         LinkageError
             When the linkage cannot be assembled at any angle.
         """
-        r = self._core.input_range()
-        if r is None:
-            return None
-        if r == "never":
+        ranges = self.input_ranges()
+        if not ranges:
             raise LinkageError("the linkage cannot be assembled at any crank angle")
-        lo, hi = r[0] if isinstance(r[0], tuple) else r
-        return (float(lo), float(hi))
+        if self._core.input_range() is None:
+            return None
+        return ranges[0]
 
     def transmission_angle(self, theta: Any) -> ArrayOrFloat:
         """Angle at ``B`` between coupler and rocker, in [0, π] (best at π/2, fails at 0 and π);
@@ -224,5 +227,10 @@ class FourBar:
         ba, bc = joints[:, 2] - joints[:, 3], joints[:, 1] - joints[:, 3]
         cross = ba[:, 0] * bc[:, 1] - ba[:, 1] * bc[:, 0]
         margin = np.abs(cross) / (self.coupler * self.rocker)
-        raw = {"joints": joints, "valid": valid, "margin": margin, "gap": np.where(valid, 0.0, np.nan)}
+        raw = {
+            "joints": joints,
+            "valid": valid,
+            "margin": margin,
+            "gap": np.where(valid, 0.0, np.nan),
+        }
         return Sweep(theta, raw, JOINTS, 4, ("point", "joints"))

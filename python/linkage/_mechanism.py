@@ -88,7 +88,9 @@ class Mechanism:
     @property
     def trace(self) -> str | None:
         """Name of the joint reported as ``Sweep.point`` (default: the last joint)."""
-        return self._trace if self._trace is not None else (self._names[-1] if self._names else None)
+        return (
+            self._trace if self._trace is not None else (self._names[-1] if self._names else None)
+        )
 
     @trace.setter
     def trace(self, name: str) -> None:
@@ -102,7 +104,9 @@ class Mechanism:
             return self._names.index(name)
         except ValueError:
             known = ", ".join(self._names) or "none yet"
-            raise LinkageError(f"{role}: unknown joint {name!r} (defined so far: {known})") from None
+            raise LinkageError(
+                f"{role}: unknown joint {name!r} (defined so far: {known})"
+            ) from None
 
     def _add(self, name: Any, build: Any) -> None:
         if not isinstance(name, str) or not name:
@@ -127,9 +131,7 @@ class Mechanism:
         ph = as_finite(phase, "phase")
         self._add(name, lambda: self._core.crank(c, r, ph))
 
-    def dyad(
-        self, name: str, p1: str, p2: str, r1: float, r2: float, side: str = "left"
-    ) -> None:
+    def dyad(self, name: str, p1: str, p2: str, r1: float, r2: float, side: str = "left") -> None:
         """Add an RRR dyad: the joint at ``r1`` from ``p1`` and ``r2`` from ``p2``, initially on
         ``side`` ("left" or "right") of the directed line ``p1 → p2``."""
         i, j = self._index(p1, "p1"), self._index(p2, "p2")

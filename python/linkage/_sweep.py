@@ -51,7 +51,10 @@ class Sweep:
         self.trace = joint_names[trace]
         self.outputs = outputs
         self._trace = trace
-        pick = (lambda a: a[0]) if scalar else (lambda a: a)
+
+        def pick(a: Any) -> Any:
+            return a[0] if scalar else a
+
         self.theta: NDArray[np.float64] = pick(theta)
         self.joints: NDArray[np.float64] = pick(raw["joints"])
         self.valid: NDArray[np.bool_] = pick(raw["valid"])
@@ -66,7 +69,8 @@ class Sweep:
 
     def __repr__(self) -> str:
         n, ok = len(self), int(np.count_nonzero(self.valid))
-        return f"<Sweep {n} samples ({ok} valid), joints {', '.join(self.joint_names)}; outputs {self.outputs}>"
+        joints = ", ".join(self.joint_names)
+        return f"<Sweep {n} samples ({ok} valid), joints {joints}; outputs {self.outputs}>"
 
     def joint(self, name: str) -> NDArray[np.float64]:
         """Positions of one joint by name, shape (N, 2)."""

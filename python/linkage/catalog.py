@@ -12,12 +12,10 @@ Four-bars are placed with the crank pivot ``O`` at the origin and the rocker piv
 >>> linkage.catalog.get("nope")
 Traceback (most recent call last):
 ...
-linkage.LinkageError: unknown catalogue linkage 'nope'; choose from watt, roberts, chebyshev, hoecken, evans_a, evans_b, evans_c, peaucellier, hart, hoecken_pantograph
+linkage.LinkageError: unknown catalogue linkage 'nope'; choose from watt, roberts, ...
 """
 
 from __future__ import annotations
-
-from typing import Union
 
 from linkage import _core
 from linkage._core import LinkageError
@@ -94,7 +92,7 @@ def names() -> tuple[str, ...]:
     return FOUR_BARS + MULTI_LOOP
 
 
-def get(name: str) -> Union[FourBar, Mechanism]:
+def get(name: str) -> FourBar | Mechanism:
     """A catalogue linkage by name."""
     if name in FOUR_BARS:
         return _four_bar(name)

@@ -83,13 +83,33 @@ def hoecken_report(samples: int = 3601) -> list[tuple[str, str, str, str]]:
     rows = [
         ("Grashof class", fb.grashof(), "", "exact"),
         ("crank speed (50 rpm motor, 18→15→14 gears)", f(crank_rpm), "rpm", "exact"),
-        ("transmission angle min / max", f"{math.degrees(np.nanmin(mu)):.2f} / {math.degrees(np.nanmax(mu)):.2f}", "deg", "sampled 0.1°"),
-        ("foot path x range", f"{f(p[:, 0].min())} … {f(p[:, 0].max())}", "mm", f"closure {e(closure)}"),
-        ("foot path y range", f"{f(p[:, 1].min())} … {f(p[:, 1].max())}", "mm", f"closure {e(closure)}"),
+        (
+            "transmission angle min / max",
+            f"{math.degrees(np.nanmin(mu)):.2f} / {math.degrees(np.nanmax(mu)):.2f}",
+            "deg",
+            "sampled 0.1°",
+        ),
+        (
+            "foot path x range",
+            f"{f(p[:, 0].min())} … {f(p[:, 0].max())}",
+            "mm",
+            f"closure {e(closure)}",
+        ),
+        (
+            "foot path y range",
+            f"{f(p[:, 1].min())} … {f(p[:, 1].max())}",
+            "mm",
+            f"closure {e(closure)}",
+        ),
         (f"stance (within {STRAIGHT_TOL_MM} mm of lowest) length", f(length), "mm", "sampled 0.1°"),
         ("stance share of crank turn", f(100.0 * len(idx) / n, 1), "%", "sampled 0.1°"),
         ("stance max deviation from best-fit line", f(deviation, 4), "mm", f"closure {e(closure)}"),
-        ("stance foot speed mean / ripple", f"{f(vx.mean(), 1)} / {f(100 * ripple, 1)}%", "mm/s", f"vel {e(vel_err)}"),
+        (
+            "stance foot speed mean / ripple",
+            f"{f(vx.mean(), 1)} / {f(100 * ripple, 1)}%",
+            "mm/s",
+            f"vel {e(vel_err)}",
+        ),
         ("lift height (swing above stance)", f(lift), "mm", f"closure {e(closure)}"),
         ("peak foot speed", f(speed.max(), 1), "mm/s", f"vel {e(vel_err)}"),
         ("peak foot acceleration", f(accel.max(), 1), "mm/s²", f"acc {e(acc_err)}"),
@@ -116,11 +136,13 @@ def print_table(title: str, rows: Sequence[tuple[str, str, str, str]]) -> None:
 def _run(args: argparse.Namespace) -> int:
     if args.scene is not None:
         raise LinkageError(
-            f"scene files are not supported yet (got {args.scene!r}); run `linkage run` for the default"
+            f"scene files are not supported yet (got {args.scene!r}); "
+            "run `linkage run` for the default study"
         )
     rows = hoecken_report(args.samples)
     print_table(
-        "Hoecken straight-line leg (thesis 1): ground 20, crank 10, coupler = rocker = 25, foot 50 mm",
+        "Hoecken straight-line leg (thesis 1): "
+        "ground 20, crank 10, coupler = rocker = 25, foot 50 mm",
         rows,
     )
     return 0
@@ -132,7 +154,11 @@ def _catalog(_: argparse.Namespace) -> int:
         item = catalog.get(name)
         if isinstance(item, FourBar):
             lim = item.input_limits()
-            rng = "full turn" if lim is None else f"{math.degrees(lim[0]):.1f}° … {math.degrees(lim[1]):.1f}°"
+            rng = (
+                "full turn"
+                if lim is None
+                else f"{math.degrees(lim[0]):.1f}° … {math.degrees(lim[1]):.1f}°"
+            )
             rows.append((name, "four-bar", item.grashof(), rng))
         else:
             rows.append((name, f"{len(item)} joints", "multi-loop", f"trace {item.trace}"))
@@ -148,7 +174,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a study (default: the Hoecken leg analysis)")
     run.add_argument("scene", nargs="?", default=None, help="scene file (not yet supported)")
-    run.add_argument("--samples", type=int, default=3601, help="crank angles per turn (default 3601)")
+    run.add_argument(
+        "--samples", type=int, default=3601, help="crank angles per turn (default 3601)"
+    )
     run.set_defaults(func=_run)
     cat = sub.add_parser("catalog", help="list the built-in linkages")
     cat.set_defaults(func=_catalog)
