@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import math
 
-import linkage
 import mpmath as mp
 import numpy as np
 import pytest
 from reference import fourbar_reference
+
+import linkage
 
 
 def test_contract_shapes_and_dtypes():

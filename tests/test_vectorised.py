@@ -5,10 +5,11 @@ from __future__ import annotations
 import threading
 import time
 
-import linkage
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
+import linkage
 
 angles = st.lists(st.floats(-50, 50, allow_nan=False), min_size=1, max_size=60)
 

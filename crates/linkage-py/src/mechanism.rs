@@ -223,7 +223,13 @@ impl Mechanism {
     ) -> PyResult<usize> {
         let reach = parse_reach(reach)?;
         self.inner
-            .slider(pivot, r, origin, LineDirection::Fixed(Vec2::new(dx, dy)), reach)
+            .slider(
+                pivot,
+                r,
+                origin,
+                LineDirection::Fixed(Vec2::new(dx, dy)),
+                reach,
+            )
             .map_err(to_py)
     }
 
@@ -281,7 +287,10 @@ impl Mechanism {
             .as_slice()
             .map_err(|_| linkage_error("theta must be a contiguous float64 array"))?;
         let n = th.len();
-        let (w, a) = (rate("omega", &omega, n, 0.0)?, rate("alpha", &alpha, n, 0.0)?);
+        let (w, a) = (
+            rate("omega", &omega, n, 0.0)?,
+            rate("alpha", &alpha, n, 0.0)?,
+        );
         let outputs = Outputs {
             velocity,
             acceleration,
