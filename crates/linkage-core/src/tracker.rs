@@ -78,6 +78,8 @@ pub struct Tracker<'m, T: RealField + Copy, const N: usize> {
     hist: [[Vec2<T>; N]; 2],
     hist_theta: [T; 2],
     hist_margin: [T; N],
+    /// Margins of the joints as last placed (committed into `hist_margin` with the sample).
+    placed_margin: [T; N],
     nhist: u8,
     toggle_margin: T,
     max_step: T,
@@ -117,6 +119,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             hist: [[Vec2::zeros(); N]; 2],
             hist_theta: [T::zero(); 2],
             hist_margin: [T::one(); N],
+            placed_margin: [T::one(); N],
             nhist: 0,
             toggle_margin,
             max_step,
@@ -161,6 +164,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                     margin: m,
                 } => {
                     margin = margin.min(m);
+                    self.placed_margin[i] = m;
                     let near = self.nhist > 0
                         && (m < self.toggle_margin || self.hist_margin[i] < self.toggle_margin);
                     near_any |= near;
@@ -190,20 +194,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         self.hist[0][..n].copy_from_slice(joints);
         self.hist_theta = [theta, self.hist_theta[0]];
         self.nhist = (self.nhist + 1).min(2);
-        for (i, c) in self.mech.constructions().iter().enumerate() {
-            if c.has_branch() {
-                self.hist_margin[i] = self.margin_of(i, joints);
-            }
-        }
-    }
-
-    /// Margin of branch joint `i` recomputed from the stored pose (cheap and exact enough for
-    /// the near-toggle test).
-    fn margin_of(&self, i: usize, joints: &[Vec2<T>]) -> T {
-        match self.mech.candidates(i, T::zero(), joints, T::zero()) {
-            Ok(Candidates::Two { margin, .. }) => margin,
-            _ => T::one(),
-        }
+        self.hist_margin[..n].copy_from_slice(&self.placed_margin[..n]);
     }
 
     /// Solves the sample at driver angle `theta`, writing joint positions (and, as `outputs`
