@@ -3,7 +3,7 @@
 //! `thumbv7em-none-eabihf` in CI, which proves both precisions compile for the target.
 #![cfg_attr(not(feature = "std"), no_std)]
 
-use linkage_core::{catalog, FourBar, Outputs, Tracker, Vec2};
+use linkage_core::{catalog, FourBar, Rates, Tracker, Vec2};
 use nalgebra::RealField;
 
 /// Foot height of the Hoecken leg at crank angle `theta` (mm), `NaN` if it cannot assemble.
@@ -25,7 +25,7 @@ fn sweep_extent<T: RealField + Copy>(n: u32) -> T {
     for k in 0..n {
         let theta = T::two_pi() * T::from_subset(&(k as f64)) / T::from_subset(&(n as f64));
         if tracker
-            .step(theta, None, Outputs::default(), &mut joints, None, None)
+            .step(theta, None, &mut joints, Rates::none())
             .is_ok()
         {
             best = best.max(joints[FourBar::<T>::P].x);

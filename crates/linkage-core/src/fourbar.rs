@@ -2,11 +2,15 @@
 
 use nalgebra::RealField;
 
+use crate::bodies::{Bodies, BodyId};
+use crate::centres::{line_intersection, BodyMotion, Centre};
 use crate::dyad::{triangle_area, Side};
 use crate::error::{check_finite, check_length, Error};
+use crate::inflection::{inflection, Inflection};
 use crate::mechanism::Mechanism;
+use crate::mechanism::Motion;
 use crate::scalar::{cross, eps, lit, Vec2};
-use crate::tracker::{Outputs, Tracker};
+use crate::tracker::{Rates, Tracker};
 
 /// Assembly of a four-bar: on which side of the diagonal `A → C` the coupler–rocker joint `B`
 /// lies.
@@ -321,6 +325,47 @@ impl<T: RealField + Copy> FourBar<T> {
         Some(cross(ba, bc).abs().atan2(ba.dot(&bc)))
     }
 
+    /// The six instant centres at `theta` by the Aronhold–Kennedy construction, numbering the
+    /// links 1 ground, 2 crank, 3 coupler, 4 rocker, in the order `I12, I13, I14, I23, I24, I34`.
+    ///
+    /// `I12 = O`, `I14 = C`, `I23 = A`, `I34 = B` are pins; by Kennedy's theorem `I13` lies on
+    /// lines `I12 I23` and `I14 I34` (`OA ∩ CB`) and `I24` on `I23 I34` and `I12 I14`
+    /// (`AB ∩ OC`). Parallel lines give a centre at infinity. `None` where it cannot assemble.
+    pub fn instant_centres(&self, theta: T) -> Option<[Centre<T>; 6]> {
+        let p = self.pose(theta).ok()?;
+        let (o, c) = (self.o, self.c);
+        Some([
+            Centre::Finite(o),
+            line_intersection(o, p.a - o, c, p.b - c),
+            Centre::Finite(c),
+            Centre::Finite(p.a),
+            line_intersection(p.a, p.b - p.a, o, c - o),
+            Centre::Finite(p.b),
+        ])
+    }
+
+    /// Inflection circle and Ball point of the coupler at `theta` (see [`inflection`]), from
+    /// rates per unit crank angle. `None` where it cannot assemble, at a toggle, or when the
+    /// coupler is instantaneously translating.
+    pub fn coupler_inflection(&self, theta: T) -> Option<Inflection<T>> {
+        let m = self.mechanism();
+        let mut pos = [Vec2::zeros(); 5];
+        m.pose(theta, &mut pos).ok()?;
+        let (mut v, mut a, mut j) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5], [Vec2::zeros(); 5]);
+        if !m
+            .motion(&pos, Motion::unit(), &mut v, Some(&mut a), Some(&mut j))
+            .ok()?
+        {
+            return None;
+        }
+        let bodies = Bodies::of(&m);
+        let coupler = BodyId {
+            joint: Self::B,
+            slot: 0,
+        };
+        inflection(&BodyMotion::of(&bodies, coupler, &pos, &v, &a, &j))
+    }
+
     /// The `k`-th of `n` samples of a circuit sweep, and whether it is on the flipped branch.
     ///
     /// A full-turn crank sweeps `θ0 … θ0 + 2π` (from the ground direction) on the declared
@@ -404,10 +449,7 @@ impl<T: RealField + Copy> FourBar<T> {
             }
             theta[k] = t;
             let out = &mut joints[5 * k..5 * k + 5];
-            if tracker
-                .step(t, None, Outputs::default(), out, None, None)
-                .is_ok()
-            {
+            if tracker.step(t, None, out, Rates::none()).is_ok() {
                 ok += 1;
             }
         }

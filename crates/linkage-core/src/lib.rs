@@ -43,11 +43,15 @@ compile_error!("linkage-core needs a math backend: enable the `std` feature or t
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+mod bodies;
 mod catalog_impl;
+mod centres;
 mod dyad;
 mod error;
 mod fourbar;
+mod inflection;
 mod mechanism;
+mod motion;
 mod scalar;
 mod slider;
 mod tracker;
@@ -57,10 +61,15 @@ pub mod catalog {
     pub use crate::catalog_impl::*;
 }
 
+pub use bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
+pub use centres::{
+    circumcentre, instant_centre, line_intersection, path_curvature, BodyMotion, Centre,
+};
 pub use dyad::{triangle_area, Dyad, DyadFailure, DyadPose, Side};
 pub use error::Error;
 pub use fourbar::{Assembly, FourBar, FourBarPose, GrashofClass, InputRange};
+pub use inflection::{inflection, Inflection};
 pub use mechanism::{Construction, LineDirection, Mechanism, Motion};
 pub use scalar::Vec2;
 pub use slider::{Reach, SliderDyad, SliderPose};
-pub use tracker::{Outputs, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
+pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};

@@ -4,7 +4,7 @@ use nalgebra::RealField;
 
 use crate::dyad::{Dyad, DyadFailure, Side};
 use crate::error::{check_finite, check_length, Error};
-use crate::scalar::{cross, lit, perp, Vec2};
+use crate::scalar::{perp, Vec2};
 use crate::slider::{Reach, SliderDyad};
 
 /// Direction of a slider's line.
@@ -132,13 +132,31 @@ pub(crate) enum Candidates<T: RealField + Copy> {
     },
 }
 
-/// Velocity and acceleration inputs of the driver.
+/// Rates of the driver: angular velocity, acceleration and jerk of the crank.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Motion<T> {
     /// Crank angular velocity `dθ/dt`.
     pub omega: T,
     /// Crank angular acceleration `d²θ/dt²`.
     pub alpha: T,
+    /// Crank angular jerk `d³θ/dt³` (used only when joint jerks are asked for).
+    pub jerk: T,
+}
+
+impl<T: RealField + Copy> Motion<T> {
+    /// A drive with angular velocity `omega` and acceleration `alpha`, zero jerk.
+    pub fn new(omega: T, alpha: T) -> Self {
+        Motion {
+            omega,
+            alpha,
+            jerk: T::zero(),
+        }
+    }
+
+    /// Unit crank speed, no acceleration: rates per radian of crank, `d/dθ`.
+    pub fn unit() -> Self {
+        Self::new(T::one(), T::zero())
+    }
 }
 
 /// A planar mechanism: at most `N` joints, each placed by one [`Construction`] from joints
@@ -373,7 +391,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
 
     /// Unit direction of a slider line and the link that carries it (if any).
     #[inline]
-    fn line_direction(dir: LineDirection<T>, pos: &[Vec2<T>]) -> Option<Vec2<T>> {
+    pub(crate) fn line_direction(dir: LineDirection<T>, pos: &[Vec2<T>]) -> Option<Vec2<T>> {
         match dir {
             LineDirection::Fixed(u) => Some(u),
             LineDirection::Link { from, to, angle } => {
@@ -491,163 +509,6 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         }
         Ok(margin)
     }
-
-    /// Velocities (and, if `acc` is given, accelerations) of every joint of a solved pose.
-    ///
-    /// Each construction's rate equations are solved in program order (see [`Dyad::velocity`],
-    /// [`SliderDyad::velocity`]). A joint at an exact toggle has no finite velocity: it and every
-    /// joint built on it get NaN, and the return value is `false`.
-    ///
-    /// # Errors
-    /// [`Error::BufferLength`] when a slice is not [`Mechanism::len`] long.
-    pub fn motion(
-        &self,
-        pos: &[Vec2<T>],
-        drive: Motion<T>,
-        vel: &mut [Vec2<T>],
-        mut acc: Option<&mut [Vec2<T>]>,
-    ) -> Result<bool, Error> {
-        let n = self.len;
-        for (what, got) in [
-            ("joints", pos.len()),
-            ("velocities", vel.len()),
-            ("accelerations", acc.as_ref().map_or(n, |a| a.len())),
-        ] {
-            if got != n {
-                return Err(Error::BufferLength {
-                    what,
-                    expected: n,
-                    got,
-                });
-            }
-        }
-        let nan = Vec2::new(crate::scalar::nan::<T>(), crate::scalar::nan::<T>());
-        let zero = Vec2::zeros();
-        let mut regular = true;
-        for i in 0..n {
-            let p = pos[i];
-            // `a` is evaluated only when accelerations are wanted.
-            let (v, a): (Vec2<T>, Option<Vec2<T>>) = match self.steps[i] {
-                Construction::Fixed { .. } => (zero, Some(zero)),
-                Construction::Crank { centre, .. } => {
-                    let r = p - pos[centre];
-                    let v = vel[centre] + perp(r) * drive.omega;
-                    let a = acc.as_ref().map(|acc| {
-                        acc[centre] + perp(r) * drive.alpha - r * (drive.omega * drive.omega)
-                    });
-                    (v, a)
-                }
-                Construction::Dyad { p1, p2, .. } => {
-                    match Dyad::velocity(pos[p1], vel[p1], pos[p2], vel[p2], p) {
-                        Some(v) => {
-                            let a = acc.as_ref().map(|acc| {
-                                Dyad::acceleration(
-                                    pos[p1], vel[p1], acc[p1], pos[p2], vel[p2], acc[p2], p, v,
-                                )
-                                .unwrap_or(nan)
-                            });
-                            (v, a)
-                        }
-                        None => (nan, Some(nan)),
-                    }
-                }
-                Construction::Slider {
-                    pivot,
-                    origin,
-                    direction,
-                    ..
-                } => {
-                    let u = Self::line_direction(direction, pos).unwrap_or(nan);
-                    let (w, al) = match direction {
-                        LineDirection::Fixed(_) => (T::zero(), T::zero()),
-                        LineDirection::Link { from, to, .. } => link_rates(
-                            pos[from],
-                            pos[to],
-                            vel[from],
-                            vel[to],
-                            acc.as_ref().map(|a| (a[from], a[to])),
-                        ),
-                    };
-                    match SliderDyad::velocity(
-                        pos[pivot],
-                        vel[pivot],
-                        pos[origin],
-                        vel[origin],
-                        u,
-                        w,
-                        p,
-                    ) {
-                        Some((sdot, v)) => {
-                            let a = acc.as_ref().map(|acc| {
-                                SliderDyad::acceleration(
-                                    pos[pivot],
-                                    vel[pivot],
-                                    acc[pivot],
-                                    pos[origin],
-                                    acc[origin],
-                                    u,
-                                    w,
-                                    al,
-                                    p,
-                                    v,
-                                    sdot,
-                                )
-                                .unwrap_or(nan)
-                            });
-                            (v, a)
-                        }
-                        None => (nan, Some(nan)),
-                    }
-                }
-                Construction::Point { from, to, .. } => {
-                    let (w, al) = link_rates(
-                        pos[from],
-                        pos[to],
-                        vel[from],
-                        vel[to],
-                        acc.as_ref().map(|a| (a[from], a[to])),
-                    );
-                    let r = p - pos[from];
-                    let v = vel[from] + perp(r) * w;
-                    let a = acc
-                        .as_ref()
-                        .map(|acc| acc[from] + perp(r) * al - r * (w * w));
-                    (v, a)
-                }
-            };
-            if !(v.x.is_finite() && v.y.is_finite()) {
-                regular = false;
-            }
-            vel[i] = v;
-            if let Some(acc) = acc.as_deref_mut() {
-                acc[i] = a.unwrap_or(nan);
-            }
-        }
-        Ok(regular)
-    }
-}
-
-/// Angular velocity and acceleration of the direction `p → q`.
-///
-/// `ω = (d × ḋ)/|d|²`, `α = (d × d̈)/|d|² − 2 (d·ḋ) ω/|d|²` with `d = q − p`; exact whether or not
-/// `|d|` is constant. `α` is zero when accelerations are not given.
-#[inline]
-fn link_rates<T: RealField + Copy>(
-    p: Vec2<T>,
-    q: Vec2<T>,
-    vp: Vec2<T>,
-    vq: Vec2<T>,
-    acc: Option<(Vec2<T>, Vec2<T>)>,
-) -> (T, T) {
-    let d = q - p;
-    let dd = vq - vp;
-    let l2 = d.norm_squared();
-    let w = cross(d, dd) / l2;
-    let al = match acc {
-        Some((ap, aq)) => (cross(d, aq - ap) - lit::<T>(2.0) * d.dot(&dd) * w) / l2,
-        None => T::zero(),
-    };
-    (w, al)
 }
 
 #[cfg(test)]
@@ -709,16 +570,8 @@ mod tests {
         m.pose(th, &mut pos).unwrap();
         let mut vel = [Vec2::zeros(); 3];
         let mut acc = [Vec2::zeros(); 3];
-        m.motion(
-            &pos,
-            Motion {
-                omega: w,
-                alpha: al,
-            },
-            &mut vel,
-            Some(&mut acc),
-        )
-        .unwrap();
+        m.motion(&pos, Motion::new(w, al), &mut vel, Some(&mut acc), None)
+            .unwrap();
         // x(θ) = r cos θ + √(l² − r² sin² θ): x' and x'' in θ by hand, then chain rule.
         let (s, c) = th.sin_cos();
         let g = l * l - r * r * s * s;
@@ -756,15 +609,7 @@ mod tests {
         pos[b] = Vec2::new(0.0, 0.0);
         pos[a] = Vec2::new(0.0, 1.0);
         let regular = m
-            .motion(
-                &pos,
-                Motion {
-                    omega: 1.0,
-                    alpha: 0.0,
-                },
-                &mut vel,
-                None,
-            )
+            .motion(&pos, Motion::unit(), &mut vel, None, None)
             .unwrap();
         assert!(!regular && vel[b].x.is_nan());
     }

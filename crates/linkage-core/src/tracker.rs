@@ -21,13 +21,45 @@ const COARSE_STEP: f64 = 0.25;
 /// Cap on the substeps of one refined step, so a pathological request stays bounded in time.
 const MAX_SUBSTEPS: u32 = 1 << 16;
 
-/// Which rates a sweep computes besides positions.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Outputs {
+/// Where a sweep sample writes the rates it is asked for; absent buffers are not computed.
+/// Higher rates need the lower ones (a jerk needs an acceleration and a velocity buffer).
+#[derive(Debug, Default)]
+pub struct Rates<'a, T> {
     /// Joint velocities.
-    pub velocity: bool,
-    /// Joint accelerations (implies the velocity solve).
-    pub acceleration: bool,
+    pub velocity: Option<&'a mut [Vec2<T>]>,
+    /// Joint accelerations.
+    pub acceleration: Option<&'a mut [Vec2<T>]>,
+    /// Joint jerks.
+    pub jerk: Option<&'a mut [Vec2<T>]>,
+}
+
+impl<'a, T> Rates<'a, T> {
+    /// Positions only.
+    pub fn none() -> Self {
+        Rates {
+            velocity: None,
+            acceleration: None,
+            jerk: None,
+        }
+    }
+
+    /// Velocities only.
+    pub fn velocity(v: &'a mut [Vec2<T>]) -> Self {
+        Rates {
+            velocity: Some(v),
+            acceleration: None,
+            jerk: None,
+        }
+    }
+
+    /// Velocities and accelerations.
+    pub fn acceleration(v: &'a mut [Vec2<T>], a: &'a mut [Vec2<T>]) -> Self {
+        Rates {
+            velocity: Some(v),
+            acceleration: Some(a),
+            jerk: None,
+        }
+    }
 }
 
 /// Result of one sweep sample that assembled.
@@ -59,14 +91,14 @@ pub struct Sample<T> {
 /// and the next sample that assembles resumes from the orientation held before the gap.
 ///
 /// ```
-/// use linkage_core::{Assembly, FourBar, Outputs, Tracker, Vec2};
+/// use linkage_core::{Assembly, FourBar, Rates, Tracker, Vec2};
 /// let fb = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
 /// let m = fb.mechanism();
 /// let mut t = Tracker::new(&m).unwrap();
 /// let mut joints = [Vec2::zeros(); 5];
 /// for k in 0..4 {
 ///     // 100° steps: far from any toggle, the orientation is simply kept.
-///     let s = t.step(1.745 * k as f64, None, Outputs::default(), &mut joints, None, None).unwrap();
+///     let s = t.step(1.745 * k as f64, None, &mut joints, Rates::none()).unwrap();
 ///     assert!(s.margin > 0.1);
 /// }
 /// ```
@@ -197,22 +229,20 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         self.hist_margin[..n].copy_from_slice(&self.placed_margin[..n]);
     }
 
-    /// Solves the sample at driver angle `theta`, writing joint positions (and, as `outputs`
-    /// asks, velocities and accelerations for the driver `motion`) into the slices, each of
-    /// length [`Mechanism::len`].
+    /// Solves the sample at driver angle `theta`, writing joint positions into `joints` and,
+    /// for each buffer `rates` holds, velocities, accelerations and jerks for the driver
+    /// `motion` (each slice [`Mechanism::len`] long). Rates not asked for are not computed.
     ///
     /// # Errors
     /// [`Error::CannotAssemble`] / [`Error::Coincident`] when the sample cannot be assembled
     /// (the slices are filled with NaN); [`Error::NotFinite`] for a non-finite angle or motion;
-    /// [`Error::BufferLength`] for wrong slices, or rates requested without their slice or motion.
+    /// [`Error::BufferLength`] for wrong slices, or rates requested without a motion.
     pub fn step(
         &mut self,
         theta: T,
         motion: Option<Motion<T>>,
-        outputs: Outputs,
         joints: &mut [Vec2<T>],
-        vel: Option<&mut [Vec2<T>]>,
-        acc: Option<&mut [Vec2<T>]>,
+        rates: Rates<'_, T>,
     ) -> Result<Sample<T>, Error> {
         let n = self.mech.len();
         if joints.len() != n {
@@ -223,6 +253,11 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             });
         }
         let nan = Vec2::new(crate::scalar::nan::<T>(), crate::scalar::nan::<T>());
+        let Rates {
+            velocity,
+            acceleration,
+            jerk,
+        } = rates;
         let result = check_finite("crank angle", theta).and_then(|_| self.advance(theta, joints));
         let margin = match result {
             Ok(m) => m,
@@ -230,17 +265,14 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                 // Forget the motion: after a gap, continuation restarts from the orientation held.
                 self.nhist = 0;
                 joints.fill(nan);
-                if let Some(v) = vel {
-                    v.fill(nan);
-                }
-                if let Some(a) = acc {
-                    a.fill(nan);
+                for buf in [velocity, acceleration, jerk].into_iter().flatten() {
+                    buf.fill(nan);
                 }
                 return Err(e);
             }
         };
         let mut regular = true;
-        if outputs.velocity || outputs.acceleration {
+        if let Some(vel) = velocity {
             let drive = motion.ok_or(Error::BufferLength {
                 what: "motion (omega, alpha)",
                 expected: 1,
@@ -248,21 +280,14 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             })?;
             check_finite("omega", drive.omega)?;
             check_finite("alpha", drive.alpha)?;
-            let vel = vel.ok_or(Error::BufferLength {
-                what: "velocities",
+            check_finite("jerk", drive.jerk)?;
+            regular = self.mech.motion(joints, drive, vel, acceleration, jerk)?;
+        } else if acceleration.is_some() || jerk.is_some() {
+            return Err(Error::BufferLength {
+                what: "velocities (needed for higher rates)",
                 expected: n,
                 got: 0,
-            })?;
-            let acc = if outputs.acceleration {
-                Some(acc.ok_or(Error::BufferLength {
-                    what: "accelerations",
-                    expected: n,
-                    got: 0,
-                })?)
-            } else {
-                None
-            };
-            regular = self.mech.motion(joints, drive, vel, acc)?;
+            });
         }
         Ok(Sample { margin, regular })
     }
@@ -360,8 +385,7 @@ mod tests {
         for k in 0..=steps {
             // Start at 90°, go one full turn and a bit: passes both flat positions.
             let th = core::f64::consts::FRAC_PI_2 + 7.0 * k as f64 / steps as f64;
-            t.step(th, None, Outputs::default(), &mut j, None, None)
-                .unwrap();
+            t.step(th, None, &mut j, Rates::none()).unwrap();
             let expected = j[2] + Vec2::new(3.0, 0.0);
             worst = worst.max((j[3] - expected).norm());
         }
@@ -384,9 +408,7 @@ mod tests {
         m.dyad(a, c, 4.0, 4.0, Side::Left).unwrap();
         let mut t = Tracker::new(&m).unwrap();
         let mut j = [Vec2::zeros(); 4];
-        let e = t
-            .step(0.0, None, Outputs::default(), &mut j, None, None)
-            .unwrap_err();
+        let e = t.step(0.0, None, &mut j, Rates::none()).unwrap_err();
         match e {
             Error::CannotAssemble { joint: 3, gap } => assert!((gap - 1.0).abs() < 1e-12),
             other => panic!("unexpected {other:?}"),

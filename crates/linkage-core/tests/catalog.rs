@@ -1,7 +1,7 @@
 //! Golden values of the catalogue linkages, each with its source.
 
 use linkage_core::catalog::{self, Linkage};
-use linkage_core::{FourBar, GrashofClass, InputRange, Outputs, Tracker, Vec2};
+use linkage_core::{FourBar, GrashofClass, InputRange, Rates, Tracker, Vec2};
 use std::f64::consts::PI;
 
 /// Sweeps a catalogued mechanism over `n` angles in `[lo, hi]`, returning the trace points that
@@ -12,7 +12,7 @@ fn trace(l: &Linkage<f64>, lo: f64, hi: f64, n: usize) -> Vec<Vec2<f64>> {
     (0..n)
         .filter_map(|k| {
             let th = lo + (hi - lo) * k as f64 / (n - 1) as f64;
-            t.step(th, None, Outputs::default(), &mut j, None, None)
+            t.step(th, None, &mut j, Rates::none())
                 .ok()
                 .map(|_| j[l.trace])
         })
@@ -84,16 +84,8 @@ fn hoecken_foot_golden_points() {
         let mut j = [Vec2::zeros(); 5];
         let mut v = [Vec2::zeros(); 5];
         m.pose(th, &mut j).unwrap();
-        m.motion(
-            &j,
-            linkage_core::Motion {
-                omega: 1.0,
-                alpha: 0.0,
-            },
-            &mut v,
-            None,
-        )
-        .unwrap();
+        m.motion(&j, linkage_core::Motion::unit(), &mut v, None, None)
+            .unwrap();
         v[FourBar::<f64>::P].x
     };
     let (mut lo, mut hi) = (arg - 1e-3, arg + 1e-3);
@@ -156,8 +148,7 @@ fn pantograph_scales_the_foot_path() {
     let mut j = vec![Vec2::zeros(); l.mechanism.len()];
     for k in 0..720 {
         let th = 2.0 * PI * k as f64 / 720.0;
-        t.step(th, None, Outputs::default(), &mut j, None, None)
-            .unwrap();
+        t.step(th, None, &mut j, Rates::none()).unwrap();
         let q = j[5];
         let want = q + (j[4] - q) * 2.0;
         assert!(

@@ -4,7 +4,7 @@
 //! Cases per property: `LINKAGE_PROPTEST_CASES` (default 2000; the long run uses 1e5).
 
 use linkage_core::{
-    Assembly, FourBar, GrashofClass, InputRange, Mechanism, Motion, Outputs, Tracker, Vec2,
+    Assembly, FourBar, GrashofClass, InputRange, Mechanism, Motion, Rates, Tracker, Vec2,
 };
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -70,9 +70,7 @@ fn sweep(fb: &FourBar<f64>, thetas: &[f64]) -> Vec<Option<[Vec2<f64>; 5]>> {
         .iter()
         .map(|&th| {
             let mut j = [Vec2::zeros(); 5];
-            t.step(th, None, Outputs::default(), &mut j, None, None)
-                .ok()
-                .map(|_| j)
+            t.step(th, None, &mut j, Rates::none()).ok().map(|_| j)
         })
         .collect()
 }
@@ -134,14 +132,14 @@ proptest! {
         let rates = |th: f64| {
             let j = pose(th);
             let (mut v, mut a) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5]);
-            m.motion(&j, Motion { omega, alpha }, &mut v, Some(&mut a)).unwrap();
+            m.motion(&j, Motion::new(omega, alpha), &mut v, Some(&mut a), None).unwrap();
             (v, a)
         };
         let (v, a) = rates(theta);
         let h = 1e-5;
         let (pp, pm) = (pose(theta + h), pose(theta - h));
         // Unit-speed rates to difference the velocity in θ: v = ω·dP/dθ, a = ω²·d²P/dθ² + α·dP/dθ.
-        let unit = |th: f64| { let j = pose(th); let mut v = [Vec2::zeros(); 5]; m.motion(&j, Motion { omega: 1.0, alpha: 0.0 }, &mut v, None).unwrap(); v };
+        let unit = |th: f64| { let j = pose(th); let mut v = [Vec2::zeros(); 5]; m.motion(&j, Motion::unit(), &mut v, None, None).unwrap(); v };
         let (up, um) = (unit(theta + h), unit(theta - h));
         let u0 = unit(theta);
         for i in 2..5 {
@@ -197,10 +195,8 @@ fn f32_agrees_with_f64() {
     for k in 0..3600 {
         let th = 2.0 * PI * k as f64 / 3600.0;
         let (mut a, mut b) = ([Vec2::<f64>::zeros(); 5], [Vec2::<f32>::zeros(); 5]);
-        t64.step(th, None, Outputs::default(), &mut a, None, None)
-            .unwrap();
-        t32.step(th as f32, None, Outputs::default(), &mut b, None, None)
-            .unwrap();
+        t64.step(th, None, &mut a, Rates::none()).unwrap();
+        t32.step(th as f32, None, &mut b, Rates::none()).unwrap();
         for i in 0..5 {
             worst = worst.max((a[i] - b[i].cast::<f64>()).norm());
         }
@@ -218,21 +214,12 @@ fn tracker_rates_of_crank_pin() {
     let m: Mechanism<f64, 5> = fb.mechanism();
     let mut t = Tracker::new(&m).unwrap();
     let (mut j, mut v, mut a) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5], [Vec2::zeros(); 5]);
-    let out = Outputs {
-        velocity: true,
-        acceleration: true,
-    };
     let s = t
         .step(
             0.3,
-            Some(Motion {
-                omega: 2.0,
-                alpha: 0.5,
-            }),
-            out,
+            Some(Motion::new(2.0, 0.5)),
             &mut j,
-            Some(&mut v),
-            Some(&mut a),
+            Rates::acceleration(&mut v, &mut a),
         )
         .unwrap();
     assert!(s.regular);

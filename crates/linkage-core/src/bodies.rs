@@ -1,0 +1,260 @@
+//! The rigid bodies (links) of a mechanism program, and its mobility by Kutzbach–Gruebler.
+
+use nalgebra::RealField;
+
+use crate::mechanism::{Construction, LineDirection, Mechanism};
+
+/// Index of the frame (ground) body.
+pub const GROUND: BodyId = BodyId {
+    joint: usize::MAX,
+    slot: 0,
+};
+
+/// A body of a mechanism, named by the construction that created it and a slot (0 or 1).
+///
+/// A crank creates one body (its crank link); an RRR dyad two (its links from `p1` and `p2`);
+/// a slider two (the connecting link, slot 0, and the sliding block, slot 1); a point carried by
+/// a link joins the body that holds both its frame joints, or creates one if none does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BodyId {
+    /// The construction that created the body (`usize::MAX` for the ground).
+    pub joint: usize,
+    /// 0 or 1.
+    pub slot: u8,
+}
+
+/// How a body's motion is known.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BodyFrame {
+    /// The frame: does not move.
+    Ground,
+    /// A link whose motion is fixed by two of its joints, `origin` and `toward`.
+    Link {
+        /// Origin joint.
+        origin: usize,
+        /// Second joint, setting the link's angle.
+        toward: usize,
+    },
+    /// A slider block at `joint`, turning with its line's carrier (`None` for a fixed line).
+    Block {
+        /// The sliding joint.
+        joint: usize,
+        /// The carrying link's two joints, if the line turns.
+        carrier: Option<(usize, usize)>,
+    },
+}
+
+/// The bodies of a mechanism with capacity `N`: at most `2N + 1`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bodies<const N: usize> {
+    created: [[Option<BodyFrame>; 2]; N],
+    /// The body each carried point joined (None for other constructions).
+    joined: [Option<BodyId>; N],
+    len: usize,
+}
+
+/// Kutzbach–Gruebler count of a planar linkage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Mobility {
+    /// Number of links `n`, the ground included.
+    pub links: usize,
+    /// Lower pairs `j1` (revolute and prismatic, one degree of freedom each). A joint shared by
+    /// `k` links counts `k − 1`.
+    pub lower_pairs: usize,
+    /// Higher pairs `j2` (two degrees of freedom, e.g. a cam contact that rolls and slides).
+    pub higher_pairs: usize,
+}
+
+impl Mobility {
+    /// `F = 3(n − 1) − 2·j1 − j2`.
+    pub fn degrees_of_freedom(&self) -> i64 {
+        3 * (self.links as i64 - 1) - 2 * self.lower_pairs as i64 - self.higher_pairs as i64
+    }
+}
+
+impl<const N: usize> Bodies<N> {
+    /// Derives the bodies of `mech`.
+    pub fn of<T: RealField + Copy>(mech: &Mechanism<T, N>) -> Self {
+        let mut b = Bodies {
+            created: [[None; 2]; N],
+            joined: [None; N],
+            len: mech.len(),
+        };
+        for (i, c) in mech.constructions().iter().enumerate() {
+            match *c {
+                Construction::Fixed { .. } => b.joined[i] = Some(GROUND),
+                Construction::Crank { centre, .. } => {
+                    b.created[i][0] = Some(BodyFrame::Link {
+                        origin: centre,
+                        toward: i,
+                    });
+                }
+                Construction::Dyad { p1, p2, .. } => {
+                    b.created[i] = [
+                        Some(BodyFrame::Link {
+                            origin: p1,
+                            toward: i,
+                        }),
+                        Some(BodyFrame::Link {
+                            origin: p2,
+                            toward: i,
+                        }),
+                    ];
+                }
+                Construction::Slider {
+                    pivot, direction, ..
+                } => {
+                    let carrier = match direction {
+                        LineDirection::Fixed(_) => None,
+                        LineDirection::Link { from, to, .. } => Some((from, to)),
+                    };
+                    b.created[i] = [
+                        Some(BodyFrame::Link {
+                            origin: pivot,
+                            toward: i,
+                        }),
+                        Some(BodyFrame::Block { joint: i, carrier }),
+                    ];
+                }
+                Construction::Point { from, to, .. } => match b.holding(from, to) {
+                    Some(body) => b.joined[i] = Some(body),
+                    None => {
+                        b.created[i][0] = Some(BodyFrame::Link {
+                            origin: from,
+                            toward: to,
+                        })
+                    }
+                },
+            }
+        }
+        b
+    }
+
+    /// Every body id, the ground first, then in program order.
+    pub fn ids(&self) -> impl Iterator<Item = BodyId> + '_ {
+        core::iter::once(GROUND).chain((0..self.len).flat_map(move |i| {
+            (0..2u8).filter_map(move |slot| {
+                self.created[i][slot as usize].map(|_| BodyId { joint: i, slot })
+            })
+        }))
+    }
+
+    /// Number of bodies, the ground included.
+    pub fn count(&self) -> usize {
+        self.ids().count()
+    }
+
+    /// How body `id`'s motion is known.
+    pub fn frame(&self, id: BodyId) -> BodyFrame {
+        if id == GROUND {
+            BodyFrame::Ground
+        } else {
+            self.created[id.joint][id.slot as usize].unwrap_or(BodyFrame::Ground)
+        }
+    }
+
+    /// Whether joint `j` is a joint of body `id` (a pin of it, or carried by it).
+    pub fn contains(&self, id: BodyId, j: usize) -> bool {
+        if self.joined[j] == Some(id) {
+            return true;
+        }
+        match self.frame(id) {
+            BodyFrame::Ground => false,
+            BodyFrame::Link { origin, toward } => origin == j || toward == j,
+            BodyFrame::Block { joint, .. } => joint == j,
+        }
+    }
+
+    /// The first body holding both joints `p` and `q`.
+    fn holding(&self, p: usize, q: usize) -> Option<BodyId> {
+        self.ids()
+            .find(|&id| self.contains(id, p) && self.contains(id, q))
+    }
+
+    /// The body carrying a slider block's line: the ground for a fixed line.
+    pub fn carrier_of(&self, frame: BodyFrame) -> Option<BodyId> {
+        match frame {
+            BodyFrame::Block { carrier: None, .. } => Some(GROUND),
+            BodyFrame::Block {
+                carrier: Some((p, q)),
+                ..
+            } => self.holding(p, q),
+            _ => None,
+        }
+    }
+
+    /// Kutzbach–Gruebler count: every joint shared by `k` bodies is `k − 1` revolutes, every
+    /// slider block one prismatic pair with its line's carrier.
+    pub fn mobility(&self) -> Mobility {
+        let mut lower = 0;
+        for j in 0..self.len {
+            let k = self.ids().filter(|&id| self.contains(id, j)).count();
+            lower += k.saturating_sub(1);
+        }
+        lower += self
+            .ids()
+            .filter(|&id| matches!(self.frame(id), BodyFrame::Block { .. }))
+            .count();
+        Mobility {
+            links: self.count(),
+            lower_pairs: lower,
+            higher_pairs: 0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::catalog;
+
+    /// Thesis 2 (Gruebler for the four-bar): n = 4, j1 = 4, F = 3(4 − 1) − 2·4 = +1.
+    #[test]
+    fn four_bar_mobility_matches_thesis_2() {
+        let m = catalog::hoecken::<f64>().mechanism();
+        let b = Bodies::of(&m);
+        let mob = b.mobility();
+        assert_eq!((mob.links, mob.lower_pairs), (4, 4));
+        assert_eq!(mob.degrees_of_freedom(), 1);
+        // The coupler point P joins the coupler A–B.
+        let coupler = BodyId { joint: 3, slot: 0 };
+        assert!(b.contains(coupler, 4) && b.contains(coupler, 2) && b.contains(coupler, 3));
+    }
+
+    /// Peaucellier: 8 links, 10 revolutes (DOMAIN.md); Hart: 6 links, 7 revolutes.
+    #[test]
+    fn inversors_have_one_degree_of_freedom() {
+        let p = Bodies::of(&catalog::peaucellier::<f64>().mechanism).mobility();
+        assert_eq!((p.links, p.lower_pairs, p.degrees_of_freedom()), (8, 10, 1));
+        let h = Bodies::of(&catalog::hart::<f64>().mechanism).mobility();
+        assert_eq!((h.links, h.lower_pairs, h.degrees_of_freedom()), (6, 7, 1));
+        let g = Bodies::of(&catalog::hoecken_pantograph::<f64>(2.0).unwrap().mechanism).mobility();
+        assert_eq!((g.links, g.lower_pairs, g.degrees_of_freedom()), (8, 10, 1));
+    }
+
+    #[test]
+    fn slider_crank_and_non_rigid_point() {
+        use crate::{Reach, Vec2};
+        let mut m = Mechanism::<f64, 6>::new();
+        let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+        let a = m.crank(o, 1.0, 0.0).unwrap();
+        let s = m
+            .slider(
+                a,
+                3.0,
+                o,
+                LineDirection::Fixed(Vec2::new(1.0, 0.0)),
+                Reach::Ahead,
+            )
+            .unwrap();
+        let mob = Bodies::of(&m).mobility();
+        assert_eq!(
+            (mob.links, mob.lower_pairs, mob.degrees_of_freedom()),
+            (4, 4, 1)
+        );
+        // A point framed by two joints of different bodies is a new body pinned at both:
+        // over-constrained, which the count reports.
+        m.point(o, s, 1.0, 0.0).unwrap();
+        assert_eq!(Bodies::of(&m).mobility().degrees_of_freedom(), 0);
+    }
+}

@@ -1,0 +1,260 @@
+//! Instant centres, centres of curvature and circumcentres, with points at infinity explicit.
+
+use nalgebra::RealField;
+
+use crate::bodies::{Bodies, BodyFrame, BodyId};
+use crate::motion::direction_rates;
+use crate::scalar::{cross, eps, lit, perp, Vec2};
+
+/// A point of the projective plane: finite, at infinity in a direction, or undefined.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Centre<T> {
+    /// A finite point.
+    Finite(Vec2<T>),
+    /// A point at infinity, in this unit direction (either sense).
+    AtInfinity(Vec2<T>),
+    /// No centre: the construction is degenerate (e.g. a point at rest has no path curvature).
+    Undefined,
+}
+
+impl<T: RealField + Copy> Centre<T> {
+    /// The finite point, if it is one.
+    pub fn finite(&self) -> Option<Vec2<T>> {
+        match *self {
+            Centre::Finite(p) => Some(p),
+            _ => None,
+        }
+    }
+}
+
+/// Tolerance multiple of ε below which a rate difference counts as zero.
+const ZERO_RATE: f64 = 64.0;
+
+/// Circumcentre of three points (the first source's three-point estimate of a centre of
+/// curvature, thesis 1 §2.1.1).
+///
+/// Relative to `p1`, with `a = p0 − p1`, `b = p2 − p1`: `c = (|a|²·b⊥' − |b|²·a⊥') / (2 a × b)`
+/// written out as `((|a|² b_y − |b|² a_y), (|b|² a_x − |a|² b_x)) / (2 a × b)`. Collinear points
+/// give [`Centre::AtInfinity`] along the normal to the line (zero `a × b` to rounding);
+/// coincident ones [`Centre::Undefined`].
+pub fn circumcentre<T: RealField + Copy>(p0: Vec2<T>, p1: Vec2<T>, p2: Vec2<T>) -> Centre<T> {
+    let (a, b) = (p0 - p1, p2 - p1);
+    let (na, nb) = (a.norm_squared(), b.norm_squared());
+    let d = lit::<T>(2.0) * cross(a, b);
+    if na == T::zero() || nb == T::zero() {
+        return Centre::Undefined;
+    }
+    if d.abs() <= lit::<T>(16.0) * eps::<T>() * (na * nb).sqrt() {
+        let dir = p2 - p0;
+        let n = dir.norm();
+        return if n == T::zero() {
+            Centre::Undefined
+        } else {
+            Centre::AtInfinity(perp(dir / n))
+        };
+    }
+    Centre::Finite(p1 + Vec2::new(na * b.y - nb * a.y, nb * a.x - na * b.x) / d)
+}
+
+/// Signed curvature and centre of curvature of a path at a point moving with velocity `v` and
+/// acceleration `a`, in any timing.
+///
+/// `κ = (v × a)/|v|³`, positive when the path turns counter-clockwise in the direction of
+/// motion; the centre is `p + v⊥·|v|²/(v × a)`, which is the same for every timing of the same
+/// path (a re-timing `s(t)` scales `v × a` by `ṡ³` and `|v|²·v⊥` alike). The radius is `1/|κ|`.
+/// At a point at rest (`v = 0`, e.g. a cusp) the curvature is NaN and the centre undefined;
+/// where `v × a` vanishes to rounding (an inflection or a straight path) the centre is at
+/// infinity along the normal.
+pub fn path_curvature<T: RealField + Copy>(p: Vec2<T>, v: Vec2<T>, a: Vec2<T>) -> (T, Centre<T>) {
+    let v2 = v.norm_squared();
+    if v2 == T::zero() || !v2.is_finite() || !(a.x.is_finite() && a.y.is_finite()) {
+        return (crate::scalar::nan(), Centre::Undefined);
+    }
+    let c = cross(v, a);
+    let speed = v2.sqrt();
+    let kappa = c / (v2 * speed);
+    if c.abs() <= lit::<T>(16.0) * eps::<T>() * speed * a.norm() {
+        return (T::zero(), Centre::AtInfinity(perp(v) / speed));
+    }
+    (kappa, Centre::Finite(p + perp(v) * (v2 / c)))
+}
+
+/// Instantaneous motion of a rigid body: a reference point's position and first three
+/// derivatives, and the body's angular velocity, acceleration and jerk.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyMotion<T> {
+    /// Reference point.
+    pub origin: Vec2<T>,
+    /// Its velocity.
+    pub v: Vec2<T>,
+    /// Its acceleration.
+    pub a: Vec2<T>,
+    /// Its jerk.
+    pub j: Vec2<T>,
+    /// Angular velocity.
+    pub omega: T,
+    /// Angular acceleration.
+    pub alpha: T,
+    /// Angular jerk.
+    pub alpha_rate: T,
+    /// Rounding bound of `omega` (it is formed from joint velocities).
+    pub omega_tol: T,
+}
+
+impl<T: RealField + Copy> BodyMotion<T> {
+    /// Velocity of the body point at `p`.
+    pub fn velocity_at(&self, p: Vec2<T>) -> Vec2<T> {
+        self.v + perp(p - self.origin) * self.omega
+    }
+
+    /// Acceleration of the body point at `p`.
+    pub fn acceleration_at(&self, p: Vec2<T>) -> Vec2<T> {
+        let r = p - self.origin;
+        self.a + perp(r) * self.alpha - r * (self.omega * self.omega)
+    }
+
+    /// Jerk of the body point at `p`.
+    pub fn jerk_at(&self, p: Vec2<T>) -> Vec2<T> {
+        let r = p - self.origin;
+        let w = self.omega;
+        self.j + perp(r) * (self.alpha_rate - w * w * w) - r * (lit::<T>(3.0) * w * self.alpha)
+    }
+
+    /// Motion of body `id` from joint positions and rates (accelerations and jerks may be
+    /// zero slices when only velocities matter).
+    pub fn of<const N: usize>(
+        bodies: &Bodies<N>,
+        id: BodyId,
+        pos: &[Vec2<T>],
+        vel: &[Vec2<T>],
+        acc: &[Vec2<T>],
+        jerk: &[Vec2<T>],
+    ) -> Self {
+        let zero = Vec2::zeros();
+        let still = BodyMotion {
+            origin: zero,
+            v: zero,
+            a: zero,
+            j: zero,
+            omega: T::zero(),
+            alpha: T::zero(),
+            alpha_rate: T::zero(),
+            omega_tol: T::zero(),
+        };
+        let turn = |p: usize, q: usize| {
+            let d = pos[q] - pos[p];
+            let (w, al, jk) =
+                direction_rates(d, vel[q] - vel[p], acc[q] - acc[p], jerk[q] - jerk[p]);
+            let scale = (vel[p].norm() + vel[q].norm()) / d.norm();
+            (
+                w,
+                al,
+                jk,
+                lit::<T>(ZERO_RATE) * eps::<T>() * (w.abs() + scale),
+            )
+        };
+        let at = |k: usize, (w, al, jk, tol): (T, T, T, T)| BodyMotion {
+            origin: pos[k],
+            v: vel[k],
+            a: acc[k],
+            j: jerk[k],
+            omega: w,
+            alpha: al,
+            alpha_rate: jk,
+            omega_tol: tol,
+        };
+        match bodies.frame(id) {
+            BodyFrame::Ground => still,
+            BodyFrame::Link { origin, toward } => at(origin, turn(origin, toward)),
+            BodyFrame::Block { joint, carrier } => match carrier {
+                None => at(joint, (T::zero(), T::zero(), T::zero(), T::zero())),
+                Some((p, q)) => at(joint, turn(p, q)),
+            },
+        }
+    }
+}
+
+/// Instant centre of the relative motion of two bodies: the point with the same velocity in
+/// both, `P + (Δv)⊥/Δω` for any `P` (here `k`'s reference point).
+///
+/// When `Δω` is zero to rounding (parallel links, a translating coupler) the centre is at
+/// infinity perpendicular to the relative velocity; when both bodies move alike it is undefined.
+pub fn instant_centre<T: RealField + Copy>(k: &BodyMotion<T>, l: &BodyMotion<T>) -> Centre<T> {
+    let p = k.origin;
+    let dv = k.velocity_at(p) - l.velocity_at(p);
+    let dw = k.omega - l.omega;
+    if !(dv.x.is_finite() && dv.y.is_finite() && dw.is_finite()) {
+        return Centre::Undefined;
+    }
+    if dw.abs() <= k.omega_tol + l.omega_tol {
+        let n = dv.norm();
+        let vscale = k.v.norm() + l.v.norm();
+        return if n <= lit::<T>(ZERO_RATE) * eps::<T>() * vscale || n == T::zero() {
+            Centre::Undefined
+        } else {
+            Centre::AtInfinity(perp(dv) / n)
+        };
+    }
+    Centre::Finite(p + perp(dv) / dw)
+}
+
+/// Intersection of the lines `p + t·d` and `q + s·e`: at infinity along `d` when they are
+/// parallel to rounding. Used for the Aronhold–Kennedy construction of a four-bar's centres.
+pub fn line_intersection<T: RealField + Copy>(
+    p: Vec2<T>,
+    d: Vec2<T>,
+    q: Vec2<T>,
+    e: Vec2<T>,
+) -> Centre<T> {
+    let w = cross(d, e);
+    let (nd, ne) = (d.norm(), e.norm());
+    if nd == T::zero() || ne == T::zero() {
+        return Centre::Undefined;
+    }
+    if w.abs() <= lit::<T>(ZERO_RATE) * eps::<T>() * nd * ne {
+        return Centre::AtInfinity(d / nd);
+    }
+    Centre::Finite(p + d * (cross(q - p, e) / w))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn circumcentre_of_unit_circle_points() {
+        let c = circumcentre(
+            Vec2::new(1.0_f64, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(-1.0, 0.0),
+        );
+        assert!(c.finite().unwrap().norm() < 1e-15);
+        let line = circumcentre(
+            Vec2::new(0.0_f64, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(2.0, 2.0),
+        );
+        assert!(matches!(line, Centre::AtInfinity(_)));
+    }
+
+    #[test]
+    fn curvature_of_circle_any_timing() {
+        // Circle of radius 2 about (1, 1), at angle φ with φ̇ = 3, φ̈ = −5.
+        let (r, phi, w, al) = (2.0_f64, 0.7_f64, 3.0, -5.0);
+        let (s, c) = phi.sin_cos();
+        let p = Vec2::new(1.0 + r * c, 1.0 + r * s);
+        let v = Vec2::new(-r * s, r * c) * w;
+        let a = Vec2::new(-r * s, r * c) * al - Vec2::new(r * c, r * s) * (w * w);
+        let (k, centre) = path_curvature(p, v, a);
+        assert!((k - 0.5).abs() < 1e-15);
+        assert!((centre.finite().unwrap() - Vec2::new(1.0, 1.0)).norm() < 1e-14);
+        // Reversed travel: curvature changes sign, the centre does not.
+        let (k2, c2) = path_curvature(p, -v, a);
+        assert!((k2 + 0.5).abs() < 1e-15);
+        assert!((c2.finite().unwrap() - Vec2::new(1.0, 1.0)).norm() < 1e-14);
+        assert!(matches!(
+            path_curvature(p, Vec2::zeros(), a).1,
+            Centre::Undefined
+        ));
+    }
+}

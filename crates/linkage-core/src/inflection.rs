@@ -1,0 +1,62 @@
+//! Inflection circle and Ball point of a moving body (Euler–Savary), to third order.
+
+use nalgebra::RealField;
+
+use crate::centres::{BodyMotion, Centre};
+use crate::scalar::{lit, perp, Vec2};
+
+/// The inflection circle of a body at one instant and its Ball point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inflection<T> {
+    /// The instantaneous centre of rotation (velocity pole) `I`.
+    pub pole: Vec2<T>,
+    /// The inflection pole `J = I + a_I/ω²`, diametrically opposite `I` on the circle.
+    pub inflection_pole: Vec2<T>,
+    /// Centre of the inflection circle, `I + a_I/(2ω²)`.
+    pub centre: Vec2<T>,
+    /// Radius of the inflection circle, `|a_I|/(2ω²)`.
+    pub radius: T,
+    /// The Ball point: the point of the circle whose path has stationary zero curvature (a
+    /// four-point contact with its tangent), or [`Centre::Undefined`] when the third-order term
+    /// vanishes.
+    pub ball_point: Centre<T>,
+}
+
+/// The inflection circle and Ball point of a body moving with `m`.
+///
+/// Body points at `P = I + r` move with `v = ω r⊥` about the pole `I`, so their path normal is
+/// along `r`; the path is at an inflection when the acceleration has no normal part,
+/// `a_P·r = a_I·r − ω²|r|² = 0`: the circle through `I` with diameter `a_I/ω²` (Euler–Savary /
+/// Bresse). Its curvature is also stationary when `v × j = 0`; with `j_P = j_I + (α̇ − ω³) r⊥ −
+/// 3ωα r` that is `r·(j_I − 3(α/ω) a_I) = 0`, a line through `I`, meeting the circle again at
+/// the Ball point. Timing does not matter (rates per unit crank angle are as good as per second).
+/// `None` when the body is not turning (`ω = 0`: pole at infinity) or the rates are not finite.
+pub fn inflection<T: RealField + Copy>(m: &BodyMotion<T>) -> Option<Inflection<T>> {
+    let w = m.omega;
+    if w.abs() <= m.omega_tol || !w.is_finite() {
+        return None;
+    }
+    let pole = m.origin + perp(m.v) / w;
+    let a_i = m.acceleration_at(pole);
+    let j_i = m.jerk_at(pole);
+    if !(a_i.x.is_finite() && a_i.y.is_finite() && j_i.x.is_finite() && j_i.y.is_finite()) {
+        return None;
+    }
+    let w2 = w * w;
+    let diameter = a_i / w2;
+    let g = j_i - a_i * (lit::<T>(3.0) * m.alpha / w);
+    let gn = g.norm();
+    let ball_point = if gn == T::zero() {
+        Centre::Undefined
+    } else {
+        let e = perp(g) / gn;
+        Centre::Finite(pole + e * diameter.dot(&e))
+    };
+    Some(Inflection {
+        pole,
+        inflection_pole: pole + diameter,
+        centre: pole + diameter * lit::<T>(0.5),
+        radius: diameter.norm() * lit::<T>(0.5),
+        ball_point,
+    })
+}

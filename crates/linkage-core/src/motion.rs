@@ -1,0 +1,300 @@
+//! Rate analysis of a solved pose: velocities, accelerations and jerks of every joint.
+
+use nalgebra::RealField;
+
+use crate::dyad::solve_rows;
+use crate::error::Error;
+use crate::mechanism::{Construction, LineDirection, Mechanism, Motion};
+use crate::scalar::{cross, lit, nan, perp, Vec2};
+
+/// Angular velocity, acceleration and jerk of the direction of `d(t)`, from `d` and its first
+/// three time derivatives.
+///
+/// With `L² = d·d`, `S = d·ḋ`, `N = d × d̈`: `ω = (d × ḋ)/L²`, `α = (N − 2ωS)/L²`,
+/// `α̇ = (ḋ × d̈ + d × d⃛ − 2NS/L² − 2(αS + ω(|ḋ|² + d·d̈)) + 4ωS²/L²)/L²` — exact whether or not
+/// `|d|` is constant. Terms of orders not supplied are zero.
+#[inline]
+pub(crate) fn direction_rates<T: RealField + Copy>(
+    d: Vec2<T>,
+    d1: Vec2<T>,
+    d2: Vec2<T>,
+    d3: Vec2<T>,
+) -> (T, T, T) {
+    let two = lit::<T>(2.0);
+    let l2 = d.norm_squared();
+    let s = d.dot(&d1);
+    let w = cross(d, d1) / l2;
+    let n = cross(d, d2);
+    let al = (n - two * w * s) / l2;
+    let ds = d1.norm_squared() + d.dot(&d2);
+    let jk = (cross(d1, d2) + cross(d, d3) - two * n * s / l2 - two * (al * s + w * ds)
+        + lit::<T>(4.0) * w * s * s / l2)
+        / l2;
+    (w, al, jk)
+}
+
+/// Velocity, acceleration and jerk of a point `r` from a body origin that moves with `(v, a, j)`
+/// while the body turns with `(ω, α, α̇)`.
+#[inline]
+fn carried<T: RealField + Copy>(
+    r: Vec2<T>,
+    origin: (Vec2<T>, Vec2<T>, Vec2<T>),
+    turn: (T, T, T),
+) -> (Vec2<T>, Vec2<T>, Vec2<T>) {
+    let (w, al, jk) = turn;
+    let rp = perp(r);
+    (
+        origin.0 + rp * w,
+        origin.1 + rp * al - r * (w * w),
+        origin.2 + rp * (jk - w * w * w) - r * (lit::<T>(3.0) * w * al),
+    )
+}
+
+impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
+    /// Velocities of every joint of a solved pose and, when the slices are given,
+    /// accelerations and jerks (jerks need accelerations).
+    ///
+    /// Each construction's rate equations are solved in program order: the dyad's 2×2 system
+    /// `[(p − p1)ᵀ; (p − p2)ᵀ]` (see [`crate::Dyad::velocity`]) with right-hand sides
+    /// `(p − pi)·vi`, `(p − pi)·ai − |v − vi|²` and `(p − pi)·ji − 3(v − vi)·(a − ai)`; the
+    /// slider's scalar equation along its line; carried points by rigid-body kinematics. A joint
+    /// at an exact toggle has no finite rates: it and every joint built on it get NaN, and the
+    /// return value is `false`.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] when a slice is not [`Mechanism::len`] long, or jerks are asked
+    /// without accelerations.
+    pub fn motion(
+        &self,
+        pos: &[Vec2<T>],
+        drive: Motion<T>,
+        vel: &mut [Vec2<T>],
+        mut acc: Option<&mut [Vec2<T>]>,
+        mut jerk: Option<&mut [Vec2<T>]>,
+    ) -> Result<bool, Error> {
+        let n = self.len();
+        for (what, got) in [
+            ("joints", pos.len()),
+            ("velocities", vel.len()),
+            ("accelerations", acc.as_ref().map_or(n, |a| a.len())),
+            ("jerks", jerk.as_ref().map_or(n, |a| a.len())),
+        ] {
+            if got != n {
+                return Err(Error::BufferLength {
+                    what,
+                    expected: n,
+                    got,
+                });
+            }
+        }
+        if jerk.is_some() && acc.is_none() {
+            return Err(Error::BufferLength {
+                what: "accelerations (needed for jerks)",
+                expected: n,
+                got: 0,
+            });
+        }
+        let (want_a, want_j) = (acc.is_some(), jerk.is_some());
+        let zero = Vec2::zeros();
+        let bad = Vec2::new(nan::<T>(), nan::<T>());
+        // Accelerations and jerks of earlier joints, kept locally so every construction can read
+        // them whether or not the caller asked for them.
+        let mut al = [zero; N];
+        let mut jk = [zero; N];
+        let mut regular = true;
+        for (i, c) in self.constructions().iter().enumerate() {
+            let p = pos[i];
+            let (v, a, j) = match *c {
+                Construction::Fixed { .. } => (zero, zero, zero),
+                Construction::Crank { centre, .. } => carried(
+                    p - pos[centre],
+                    (vel[centre], al[centre], jk[centre]),
+                    (drive.omega, drive.alpha, drive.jerk),
+                ),
+                Construction::Dyad { p1, p2, .. } => {
+                    let (e1, e2) = (p - pos[p1], p - pos[p2]);
+                    match solve_rows(e1, e2, e1.dot(&vel[p1]), e2.dot(&vel[p2])) {
+                        None => (bad, bad, bad),
+                        Some(v) => {
+                            let (w1, w2) = (v - vel[p1], v - vel[p2]);
+                            let a = if want_a {
+                                solve_rows(
+                                    e1,
+                                    e2,
+                                    e1.dot(&al[p1]) - w1.norm_squared(),
+                                    e2.dot(&al[p2]) - w2.norm_squared(),
+                                )
+                                .unwrap_or(bad)
+                            } else {
+                                zero
+                            };
+                            let j = if want_j {
+                                let three = lit::<T>(3.0);
+                                solve_rows(
+                                    e1,
+                                    e2,
+                                    e1.dot(&jk[p1]) - three * w1.dot(&(a - al[p1])),
+                                    e2.dot(&jk[p2]) - three * w2.dot(&(a - al[p2])),
+                                )
+                                .unwrap_or(bad)
+                            } else {
+                                zero
+                            };
+                            (v, a, j)
+                        }
+                    }
+                }
+                Construction::Slider {
+                    pivot,
+                    origin,
+                    direction,
+                    ..
+                } => {
+                    let u = Self::line_direction(direction, pos).unwrap_or(bad);
+                    let turn = match direction {
+                        LineDirection::Fixed(_) => (T::zero(), T::zero(), T::zero()),
+                        LineDirection::Link { from, to, .. } => direction_rates(
+                            pos[to] - pos[from],
+                            vel[to] - vel[from],
+                            al[to] - al[from],
+                            jk[to] - jk[from],
+                        ),
+                    };
+                    slider_rates(
+                        p,
+                        u,
+                        turn,
+                        (pos[pivot], vel[pivot], al[pivot], jk[pivot]),
+                        (pos[origin], vel[origin], al[origin], jk[origin]),
+                        want_a,
+                        want_j,
+                    )
+                    .unwrap_or((bad, bad, bad))
+                }
+                Construction::Point { from, to, .. } => {
+                    let turn = direction_rates(
+                        pos[to] - pos[from],
+                        vel[to] - vel[from],
+                        al[to] - al[from],
+                        jk[to] - jk[from],
+                    );
+                    carried(p - pos[from], (vel[from], al[from], jk[from]), turn)
+                }
+            };
+            if !(v.x.is_finite() && v.y.is_finite()) {
+                regular = false;
+            }
+            vel[i] = v;
+            al[i] = a;
+            jk[i] = j;
+            if let Some(out) = acc.as_deref_mut() {
+                out[i] = a;
+            }
+            if let Some(out) = jerk.as_deref_mut() {
+                out[i] = j;
+            }
+        }
+        Ok(regular)
+    }
+}
+
+/// Rates of a slider joint `p = q + s·u` at distance `r` from the pivot `a`.
+///
+/// `u` turns with `(ω, α, α̇)`; differentiating `(p − a)·(p − a) = r²` up to three times gives one
+/// scalar equation per order for `ṡ`, `s̈`, `s⃛`, each divided by `(p − a)·u` (zero at a toggle,
+/// where `None` is returned).
+#[allow(clippy::type_complexity)]
+fn slider_rates<T: RealField + Copy>(
+    p: Vec2<T>,
+    u: Vec2<T>,
+    turn: (T, T, T),
+    pivot: (Vec2<T>, Vec2<T>, Vec2<T>, Vec2<T>),
+    origin: (Vec2<T>, Vec2<T>, Vec2<T>, Vec2<T>),
+    want_a: bool,
+    want_j: bool,
+) -> Option<(Vec2<T>, Vec2<T>, Vec2<T>)> {
+    let (pa, va, aa, ja) = pivot;
+    let (q, vq, aq, jq) = origin;
+    let (w, al, jk) = turn;
+    let (two, three) = (lit::<T>(2.0), lit::<T>(3.0));
+    let e = p - pa;
+    let den = e.dot(&u);
+    if den == T::zero() || !den.is_finite() {
+        return None;
+    }
+    let s = (p - q).dot(&u);
+    let up = perp(u);
+    let du = up * w;
+    let ddu = up * al - u * (w * w);
+    let dddu = up * (jk - w * w * w) - u * (three * w * al);
+    let sd = e.dot(&(va - vq - du * s)) / den;
+    let v = vq + u * sd + du * s;
+    if !want_a {
+        return Some((v, Vec2::zeros(), Vec2::zeros()));
+    }
+    let k2 = aq + du * (two * sd) + ddu * s;
+    let sdd = (e.dot(&(aa - k2)) - (v - va).norm_squared()) / den;
+    let a = k2 + u * sdd;
+    if !want_j {
+        return Some((v, a, Vec2::zeros()));
+    }
+    let k3 = jq + du * (three * sdd) + ddu * (three * sd) + dddu * s;
+    let sddd = (e.dot(&(ja - k3)) - three * (v - va).dot(&(a - aa))) / den;
+    Some((v, a, k3 + u * sddd))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::slider::Reach;
+
+    /// Jerk of a slider-crank against the third derivative of x(θ) = r cos θ + √(l² − r² sin² θ),
+    /// taken by a five-point difference of the analytic acceleration.
+    #[test]
+    fn slider_crank_jerk_matches_difference_of_acceleration() {
+        let mut m = Mechanism::<f64, 3>::new();
+        let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+        let a = m.crank(o, 2.0, 0.0).unwrap();
+        let b = m
+            .slider(
+                a,
+                5.0,
+                o,
+                LineDirection::Fixed(Vec2::new(1.0, 0.0)),
+                Reach::Ahead,
+            )
+            .unwrap();
+        let acc_at = |th: f64| {
+            let mut p = [Vec2::zeros(); 3];
+            m.pose(th, &mut p).unwrap();
+            let (mut v, mut ac) = ([Vec2::zeros(); 3], [Vec2::zeros(); 3]);
+            m.motion(&p, Motion::unit(), &mut v, Some(&mut ac), None)
+                .unwrap();
+            ac[b]
+        };
+        let th = 0.8;
+        let mut p = [Vec2::zeros(); 3];
+        m.pose(th, &mut p).unwrap();
+        let (mut v, mut ac, mut j) = ([Vec2::zeros(); 3], [Vec2::zeros(); 3], [Vec2::zeros(); 3]);
+        m.motion(&p, Motion::unit(), &mut v, Some(&mut ac), Some(&mut j))
+            .unwrap();
+        let h = 1e-3;
+        let fd = (-acc_at(th + 2.0 * h) + acc_at(th + h) * 8.0 - acc_at(th - h) * 8.0
+            + acc_at(th - 2.0 * h))
+            / (12.0 * h);
+        assert!((j[b] - fd).norm() < 1e-9, "{:?} vs {fd:?}", j[b]);
+    }
+
+    #[test]
+    fn jerk_needs_acceleration() {
+        let mut m = Mechanism::<f64, 2>::new();
+        let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+        m.crank(o, 1.0, 0.0).unwrap();
+        let p = [Vec2::zeros(), Vec2::new(1.0, 0.0)];
+        let (mut v, mut j) = ([Vec2::zeros(); 2], [Vec2::zeros(); 2]);
+        assert!(matches!(
+            m.motion(&p, Motion::unit(), &mut v, None, Some(&mut j)),
+            Err(Error::BufferLength { .. })
+        ));
+    }
+}
