@@ -410,20 +410,30 @@ impl<T: RealField + Copy> FourBar<T> {
 
     /// Fills `theta` and `joints` (`n` and `5·n` long) with a circuit sweep (see
     /// [`FourBar::circuit_sample`]), tracking the branch and passing to the other one at the
-    /// limit. Samples that cannot assemble (rounding at a limit) are NaN; returns how many
-    /// assembled.
+    /// limit; `velocity` (`5·n`), if given, receives rates per unit crank angle. Samples that
+    /// cannot assemble (rounding at a limit) are NaN; returns how many assembled.
     ///
     /// # Errors
     /// [`Error::BufferLength`] for mismatched slices; [`Error::CannotAssemble`] (joint 3) when
     /// the linkage never assembles.
-    pub fn circuit(&self, theta: &mut [T], joints: &mut [Vec2<T>]) -> Result<usize, Error> {
+    pub fn circuit(
+        &self,
+        theta: &mut [T],
+        joints: &mut [Vec2<T>],
+        mut velocity: Option<&mut [Vec2<T>]>,
+    ) -> Result<usize, Error> {
         let n = theta.len();
-        if joints.len() != 5 * n {
-            return Err(Error::BufferLength {
-                what: "joints",
-                expected: 5 * n,
-                got: joints.len(),
-            });
+        for (what, got) in [
+            ("joints", joints.len()),
+            ("velocity", velocity.as_ref().map_or(5 * n, |v| v.len())),
+        ] {
+            if got != 5 * n {
+                return Err(Error::BufferLength {
+                    what,
+                    expected: 5 * n,
+                    got,
+                });
+            }
         }
         if matches!(self.input_range(), InputRange::Never) {
             return Err(Error::CannotAssemble {
@@ -449,7 +459,11 @@ impl<T: RealField + Copy> FourBar<T> {
             }
             theta[k] = t;
             let out = &mut joints[5 * k..5 * k + 5];
-            if tracker.step(t, None, out, Rates::none()).is_ok() {
+            let rates = match velocity.as_deref_mut() {
+                Some(v) => Rates::velocity(&mut v[5 * k..5 * k + 5]),
+                None => Rates::none(),
+            };
+            if tracker.step(t, Some(Motion::unit()), out, rates).is_ok() {
                 ok += 1;
             }
         }
@@ -541,7 +555,7 @@ mod tests {
         let n = 400;
         let mut th = [0.0; 400];
         let mut j = [Vec2::zeros(); 2000];
-        let ok = fb.circuit(&mut th, &mut j).unwrap();
+        let ok = fb.circuit(&mut th, &mut j, None).unwrap();
         assert_eq!(ok, n);
         // Consecutive points close together (no branch jump), and the two halves meet.
         let p = |k: usize| j[5 * k + 4];

@@ -54,6 +54,7 @@ mod mechanism;
 mod motion;
 mod scalar;
 mod slider;
+mod straightness;
 mod tracker;
 
 /// The straight-line linkages of the source documents (DOMAIN.md), ready to sweep.
@@ -72,4 +73,5 @@ pub use inflection::{inflection, Inflection};
 pub use mechanism::{Construction, LineDirection, Mechanism, Motion};
 pub use scalar::Vec2;
 pub use slider::{Reach, SliderDyad, SliderPose};
+pub use straightness::{straight_part, StraightPart};
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};

@@ -113,25 +113,57 @@ impl FourBar {
         Ok(Mechanism::from_core(m))
     }
 
-    /// Circuit sweep of `n` samples: (theta (n,), joints (n, 5, 2)).
+    /// Circuit sweep of `n` samples: (theta (n,), joints (n, 5, 2), velocity per unit crank
+    /// angle (n, 5, 2)).
+    #[allow(clippy::type_complexity)]
     fn circuit<'py>(
         &self,
         py: Python<'py>,
         n: usize,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyAny>)> {
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyAny>,
+        Bound<'py, PyAny>,
+    )> {
         if n < 2 {
             return Err(linkage_error(format!("n must be at least 2, got {n}")));
         }
         let f = self.inner;
-        let (theta, joints) = py
+        let (theta, joints, vel) = py
             .detach(|| {
                 let mut theta = vec![0.0; n];
                 let mut joints = vec![Vec2::zeros(); 5 * n];
-                f.circuit(&mut theta, &mut joints).map(|_| (theta, joints))
+                let mut vel = vec![Vec2::zeros(); 5 * n];
+                f.circuit(&mut theta, &mut joints, Some(&mut vel))
+                    .map(|_| (theta, joints, vel))
             })
             .map_err(to_py)?;
-        let flat: Vec<f64> = joints.iter().flat_map(|p| [p.x, p.y]).collect();
-        let arr = PyArray1::from_vec(py, flat).reshape([n, 5, 2])?.into_any();
-        Ok((PyArray1::from_vec(py, theta), arr))
+        let flat = |v: Vec<Vec2<f64>>| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y]).collect() };
+        let joints = PyArray1::from_vec(py, flat(joints))
+            .reshape([n, 5, 2])?
+            .into_any();
+        let vel = PyArray1::from_vec(py, flat(vel))
+            .reshape([n, 5, 2])?
+            .into_any();
+        Ok((PyArray1::from_vec(py, theta), joints, vel))
+    }
+
+    /// Inflection circle of the coupler at `theta`: (pole, inflection pole, centre, radius,
+    /// Ball point), points as (x, y) with NaN where undefined; None where it cannot be formed.
+    #[allow(clippy::type_complexity)]
+    fn coupler_inflection(
+        &self,
+        theta: f64,
+    ) -> Option<((f64, f64), (f64, f64), (f64, f64), f64, (f64, f64))> {
+        let inf = self.inner.coupler_inflection(theta)?;
+        let xy = |p: Vec2<f64>| (p.x, p.y);
+        let ball = inf.ball_point.finite().map_or((f64::NAN, f64::NAN), xy);
+        Some((
+            xy(inf.pole),
+            xy(inf.inflection_pole),
+            xy(inf.centre),
+            inf.radius,
+            ball,
+        ))
     }
 }

@@ -7,6 +7,7 @@
 use pyo3::prelude::*;
 
 mod catalog;
+mod centres;
 mod error;
 mod fourbar;
 mod mechanism;
@@ -26,5 +27,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(catalog::catalog_four_bar, m)?)?;
     m.add_function(wrap_pyfunction!(catalog::catalog_linkage, m)?)?;
     m.add_function(wrap_pyfunction!(catalog::catalog_names, m)?)?;
+    m.add_function(wrap_pyfunction!(centres::curvature_centres, m)?)?;
+    m.add_function(wrap_pyfunction!(centres::circumcentres, m)?)?;
+    m.add_function(wrap_pyfunction!(centres::straight_run, m)?)?;
     Ok(())
 }

@@ -2,7 +2,8 @@
 //! the sweep over numpy arrays.
 
 use linkage_core::{
-    Error, LineDirection, Mechanism as CoreMechanism, Motion, Outputs, Reach, Side, Tracker, Vec2,
+    instant_centre, path_curvature, Bodies, BodyId, BodyMotion, Centre, Error, LineDirection,
+    Mechanism as CoreMechanism, Motion, Rates, Reach, Side, Tracker, Vec2,
 };
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
@@ -30,7 +31,20 @@ impl Rate<'_> {
     }
 }
 
-/// Flat sweep results (`n` samples, `j` joints), row-major.
+/// What a sweep computes besides positions.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Wanted {
+    /// Joint velocities for the given drive.
+    pub velocity: bool,
+    /// Joint accelerations for the given drive.
+    pub acceleration: bool,
+    /// Instant centres of every pair of links.
+    pub instant_centres: bool,
+    /// Path curvature of every joint.
+    pub curvature: bool,
+}
+
+/// Flat sweep results (`n` samples, `j` joints, `p` link pairs), row-major.
 pub struct SweepArrays {
     /// `n·j·2` positions (NaN where invalid).
     pub joints: Vec<f64>,
@@ -44,60 +58,119 @@ pub struct SweepArrays {
     pub velocity: Option<Vec<f64>>,
     /// `n·j·2` accelerations, if asked.
     pub acceleration: Option<Vec<f64>>,
+    /// `n·p·2` finite instant centres (NaN otherwise), if asked.
+    pub centres: Option<Vec<f64>>,
+    /// `n·p·2` directions of instant centres at infinity (NaN otherwise), if asked.
+    pub centre_directions: Option<Vec<f64>>,
+    /// `n·j·2` finite centres of curvature (NaN otherwise), if asked.
+    pub curvature_centres: Option<Vec<f64>>,
+    /// `n·j` signed curvatures, if asked.
+    pub curvature: Option<Vec<f64>>,
+}
+
+/// The pairs `(k, l)`, `k < l`, of `count` bodies.
+pub fn body_pairs(count: usize) -> Vec<(usize, usize)> {
+    (0..count)
+        .flat_map(|k| (k + 1..count).map(move |l| (k, l)))
+        .collect()
+}
+
+/// Writes centre `c` as row `k` of `dst`: its point if `finite` is asked and it is finite, its
+/// direction if `finite` is not asked and it is at infinity, NaN otherwise.
+fn put(dst: &mut [f64], k: usize, c: Centre<f64>, finite: bool) {
+    let v = match (c, finite) {
+        (Centre::Finite(p), true) | (Centre::AtInfinity(p), false) => [p.x, p.y],
+        _ => [f64::NAN; 2],
+    };
+    dst[2 * k..2 * k + 2].copy_from_slice(&v);
 }
 
 /// Sweeps `m` over `theta` with the core tracker. Pure Rust, no Python: runs with the GIL
-/// released. Rates are computed only when `outputs` asks.
+/// released. Only what `wanted` asks is computed; instant centres and curvature use rates per
+/// unit crank angle (they do not depend on timing).
 pub fn sweep_arrays<const N: usize>(
     m: &CoreMechanism<f64, N>,
     theta: &[f64],
     omega: Rate<'_>,
     alpha: Rate<'_>,
-    outputs: Outputs,
+    wanted: Wanted,
 ) -> Result<SweepArrays, Error> {
     let (n, j) = (theta.len(), m.len());
-    let rates = outputs.velocity || outputs.acceleration;
+    let rates = wanted.velocity || wanted.acceleration;
+    let bodies = Bodies::of(m);
+    let ids: Vec<BodyId> = bodies.ids().collect();
+    let pairs = body_pairs(ids.len());
+    let np = pairs.len();
+    let nan_vec = |len: usize, on: bool| on.then(|| vec![f64::NAN; len]);
     let mut out = SweepArrays {
         joints: vec![f64::NAN; n * j * 2],
         valid: vec![false; n],
         margin: vec![f64::NAN; n],
         gap: vec![0.0; n],
-        velocity: rates.then(|| vec![f64::NAN; n * j * 2]),
-        acceleration: outputs.acceleration.then(|| vec![f64::NAN; n * j * 2]),
+        velocity: nan_vec(n * j * 2, rates),
+        acceleration: nan_vec(n * j * 2, wanted.acceleration),
+        centres: nan_vec(n * np * 2, wanted.instant_centres),
+        centre_directions: nan_vec(n * np * 2, wanted.instant_centres),
+        curvature_centres: nan_vec(n * j * 2, wanted.curvature),
+        curvature: nan_vec(n * j, wanted.curvature),
     };
     let mut tracker = Tracker::new(m)?;
-    let mut pos = [Vec2::zeros(); N];
-    let mut vel = [Vec2::zeros(); N];
-    let mut acc = [Vec2::zeros(); N];
+    let zero = [Vec2::zeros(); N];
+    let (mut pos, mut vel, mut acc) = (zero, zero, zero);
+    let (mut uvel, mut uacc) = (zero, zero);
+    let mut motions = Vec::with_capacity(ids.len());
     for (k, &th) in theta.iter().enumerate() {
-        let motion = rates.then(|| Motion {
-            omega: omega.at(k),
-            alpha: alpha.at(k),
-        });
-        let sample = tracker.step(
-            th,
-            motion,
-            outputs,
-            &mut pos[..j],
-            rates.then_some(&mut vel[..j]),
-            outputs.acceleration.then_some(&mut acc[..j]),
-        );
-        match sample {
+        let motion = rates.then(|| Motion::new(omega.at(k), alpha.at(k)));
+        let buffers = match (wanted.acceleration, rates) {
+            (true, _) => Rates::acceleration(&mut vel[..j], &mut acc[..j]),
+            (false, true) => Rates::velocity(&mut vel[..j]),
+            _ => Rates::none(),
+        };
+        match tracker.step(th, motion, &mut pos[..j], buffers) {
             Ok(s) => {
                 out.valid[k] = true;
                 out.margin[k] = s.margin;
-                let row = k * j * 2;
-                write_rows(&mut out.joints[row..row + 2 * j], &pos[..j]);
-                if let Some(v) = out.velocity.as_mut() {
-                    write_rows(&mut v[row..row + 2 * j], &vel[..j]);
-                }
-                if let Some(a) = out.acceleration.as_mut() {
-                    write_rows(&mut a[row..row + 2 * j], &acc[..j]);
-                }
             }
-            Err(Error::CannotAssemble { gap, .. }) => out.gap[k] = gap,
-            Err(Error::Coincident { .. }) => out.gap[k] = f64::NAN,
+            Err(Error::CannotAssemble { gap, .. }) => {
+                out.gap[k] = gap;
+                continue;
+            }
+            Err(Error::Coincident { .. }) => {
+                out.gap[k] = f64::NAN;
+                continue;
+            }
             Err(e) => return Err(e),
+        }
+        let row = k * j * 2;
+        write_rows(&mut out.joints[row..row + 2 * j], &pos[..j]);
+        if let Some(v) = out.velocity.as_mut() {
+            write_rows(&mut v[row..row + 2 * j], &vel[..j]);
+        }
+        if let Some(a) = out.acceleration.as_mut() {
+            write_rows(&mut a[row..row + 2 * j], &acc[..j]);
+        }
+        if !(wanted.instant_centres || wanted.curvature) {
+            continue;
+        }
+        let unit_acc = wanted.curvature.then_some(&mut uacc[..j]);
+        m.motion(&pos[..j], Motion::unit(), &mut uvel[..j], unit_acc, None)?;
+        if let (Some(c), Some(d)) = (out.centres.as_mut(), out.centre_directions.as_mut()) {
+            motions.clear();
+            motions.extend(ids.iter().map(|&id| {
+                BodyMotion::of(&bodies, id, &pos[..j], &uvel[..j], &zero[..j], &zero[..j])
+            }));
+            for (q, &(a, b)) in pairs.iter().enumerate() {
+                let ic = instant_centre(&motions[a], &motions[b]);
+                put(&mut c[k * np * 2..], q, ic, true);
+                put(&mut d[k * np * 2..], q, ic, false);
+            }
+        }
+        if let (Some(c), Some(kap)) = (out.curvature_centres.as_mut(), out.curvature.as_mut()) {
+            for i in 0..j {
+                let (kappa, centre) = path_curvature(pos[i], uvel[i], uacc[i]);
+                kap[k * j + i] = kappa;
+                put(&mut c[row..], i, centre, true);
+            }
         }
     }
     Ok(out)
@@ -271,9 +344,34 @@ impl Mechanism {
             .collect()
     }
 
+    /// Body (link) members as joint index lists, the ground first.
+    fn bodies(&self) -> Vec<Vec<usize>> {
+        let b = Bodies::of(&self.inner);
+        b.ids()
+            .map(|id| {
+                (0..self.inner.len())
+                    .filter(|&j| b.contains(id, j))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Kutzbach–Gruebler count: (links, lower pairs, higher pairs, degrees of freedom).
+    fn mobility(&self) -> (usize, usize, usize, i64) {
+        let m = Bodies::of(&self.inner).mobility();
+        (
+            m.links,
+            m.lower_pairs,
+            m.higher_pairs,
+            m.degrees_of_freedom(),
+        )
+    }
+
     /// Sweeps over `theta` (contiguous float64, 1-D). `omega`, `alpha`: None, one value, or one
     /// per angle. Returns a dict of numpy arrays.
-    #[pyo3(signature = (theta, omega=None, alpha=None, velocity=false, acceleration=false))]
+    #[pyo3(signature = (theta, omega=None, alpha=None, velocity=false, acceleration=false,
+                        instant_centres=false, curvature=false))]
+    #[allow(clippy::too_many_arguments)]
     fn sweep<'py>(
         &self,
         py: Python<'py>,
@@ -282,6 +380,8 @@ impl Mechanism {
         alpha: Option<PyReadonlyArray1<'py, f64>>,
         velocity: bool,
         acceleration: bool,
+        instant_centres: bool,
+        curvature: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let th = theta
             .as_slice()
@@ -291,25 +391,36 @@ impl Mechanism {
             rate("omega", &omega, n, 0.0)?,
             rate("alpha", &alpha, n, 0.0)?,
         );
-        let outputs = Outputs {
+        let wanted = Wanted {
             velocity,
             acceleration,
+            instant_centres,
+            curvature,
         };
         let mech = self.inner.clone();
         let res = py
-            .detach(|| sweep_arrays(&mech, th, w, a, outputs))
+            .detach(|| sweep_arrays(&mech, th, w, a, wanted))
             .map_err(to_py)?;
         let j = self.inner.len();
+        let np = body_pairs(Bodies::of(&self.inner).count()).len();
         let d = PyDict::new(py);
         d.set_item("joints", to_array3(py, res.joints, n, j)?)?;
         d.set_item("valid", PyArray1::from_vec(py, res.valid))?;
         d.set_item("margin", PyArray1::from_vec(py, res.margin))?;
         d.set_item("gap", PyArray1::from_vec(py, res.gap))?;
-        if let Some(v) = res.velocity.filter(|_| velocity || acceleration) {
-            d.set_item("velocity", to_array3(py, v, n, j)?)?;
+        for (key, arr, cols) in [
+            ("velocity", res.velocity, j),
+            ("acceleration", res.acceleration, j),
+            ("instant_centres", res.centres, np),
+            ("instant_centre_directions", res.centre_directions, np),
+            ("curvature_centres", res.curvature_centres, j),
+        ] {
+            if let Some(v) = arr {
+                d.set_item(key, to_array3(py, v, n, cols)?)?;
+            }
         }
-        if let Some(v) = res.acceleration {
-            d.set_item("acceleration", to_array3(py, v, n, j)?)?;
+        if let Some(k) = res.curvature {
+            d.set_item("curvature", PyArray1::from_vec(py, k).reshape([n, j])?)?;
         }
         Ok(d)
     }

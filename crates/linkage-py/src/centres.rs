@@ -1,0 +1,108 @@
+//! Mirrors `linkage_core::centres` and `linkage_core::straightness`: vectorised over rows of
+//! points.
+
+use linkage_core::{circumcentre, path_curvature, straight_part, Centre, Vec2};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::error::linkage_error;
+
+/// Reads an (M, 2) contiguous float64 array as points.
+fn points(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<Vec2<f64>>> {
+    let s = a
+        .as_slice()
+        .map_err(|_| linkage_error(format!("{name} must be a contiguous float64 array")))?;
+    if a.as_array().ncols() != 2 {
+        return Err(linkage_error(format!("{name} must have shape (M, 2)")));
+    }
+    Ok(s.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect())
+}
+
+fn same_rows(names: &[&str], rows: &[usize]) -> PyResult<()> {
+    if rows.windows(2).any(|w| w[0] != w[1]) {
+        return Err(linkage_error(format!(
+            "{} must have the same number of points, got {rows:?}",
+            names.join(", ")
+        )));
+    }
+    Ok(())
+}
+
+fn finite_xy(c: Centre<f64>) -> [f64; 2] {
+    c.finite().map_or([f64::NAN; 2], |p| [p.x, p.y])
+}
+
+/// Centres of curvature (M, 2) (NaN where at infinity or undefined) and signed curvatures (M,).
+#[pyfunction]
+pub fn curvature_centres<'py>(
+    py: Python<'py>,
+    point: PyReadonlyArray2<'py, f64>,
+    velocity: PyReadonlyArray2<'py, f64>,
+    acceleration: PyReadonlyArray2<'py, f64>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyArray1<f64>>)> {
+    let (p, v, a) = (
+        points("point", &point)?,
+        points("velocity", &velocity)?,
+        points("acceleration", &acceleration)?,
+    );
+    same_rows(
+        &["point", "velocity", "acceleration"],
+        &[p.len(), v.len(), a.len()],
+    )?;
+    let m = p.len();
+    let (centres, kappa) = py.detach(|| {
+        let mut centres = Vec::with_capacity(2 * m);
+        let mut kappa = Vec::with_capacity(m);
+        for i in 0..m {
+            let (k, c) = path_curvature(p[i], v[i], a[i]);
+            centres.extend(finite_xy(c));
+            kappa.push(k);
+        }
+        (centres, kappa)
+    });
+    let c = PyArray1::from_vec(py, centres).reshape([m, 2])?.into_any();
+    Ok((c, PyArray1::from_vec(py, kappa)))
+}
+
+/// Circumcentres (M, 2) of rows of three points (NaN where collinear or coincident).
+#[pyfunction]
+pub fn circumcentres<'py>(
+    py: Python<'py>,
+    p0: PyReadonlyArray2<'py, f64>,
+    p1: PyReadonlyArray2<'py, f64>,
+    p2: PyReadonlyArray2<'py, f64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (a, b, c) = (points("p0", &p0)?, points("p1", &p1)?, points("p2", &p2)?);
+    same_rows(&["p0", "p1", "p2"], &[a.len(), b.len(), c.len()])?;
+    let m = a.len();
+    let out: Vec<f64> = py.detach(|| {
+        (0..m)
+            .flat_map(|i| finite_xy(circumcentre(a[i], b[i], c[i])))
+            .collect()
+    });
+    Ok(PyArray1::from_vec(py, out).reshape([m, 2])?.into_any())
+}
+
+/// The longest near-straight run of a path (see `linkage_core::straight_part`), as a dict, or
+/// None.
+#[pyfunction]
+pub fn straight_run<'py>(
+    py: Python<'py>,
+    path: PyReadonlyArray2<'py, f64>,
+    tol: f64,
+    closed: bool,
+) -> PyResult<Option<Bound<'py, PyDict>>> {
+    let p = points("path", &path)?;
+    let Some(s) = py.detach(|| straight_part(&p, tol, closed)) else {
+        return Ok(None);
+    };
+    let d = PyDict::new(py);
+    d.set_item("start", s.start)?;
+    d.set_item("count", s.count)?;
+    d.set_item("point", (s.point.x, s.point.y))?;
+    d.set_item("direction", (s.direction.x, s.direction.y))?;
+    d.set_item("max_deviation", s.max_deviation)?;
+    d.set_item("length", s.length)?;
+    Ok(Some(d))
+}
