@@ -86,7 +86,7 @@ pub fn straight_part<T: RealField + Copy>(
     closed: bool,
 ) -> Option<StraightPart<T>> {
     let n = path.len();
-    if n < 3 || tol.is_nan() || tol < T::zero() {
+    if n < 3 || !tol.is_finite() || tol < T::zero() {
         return None;
     }
     let ok = |k: usize| {
