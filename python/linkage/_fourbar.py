@@ -16,6 +16,7 @@ from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
 from linkage._sweep import Sweep
 
 JOINTS = ("O", "C", "A", "B", "P")
+LINKS = ("ground", "crank", "coupler", "rocker")
 ArrayOrFloat = Union[float, NDArray[np.float64]]
 
 
@@ -198,8 +199,9 @@ class FourBar:
 
     # -- sweeping -------------------------------------------------------------------------
     def mechanism(self) -> Mechanism:
-        """The linkage as a :class:`Mechanism` with joints O, C, A, B, P."""
-        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4)
+        """The linkage as a :class:`Mechanism` with joints O, C, A, B, P and links ground,
+        crank, coupler, rocker."""
+        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS)
 
     def sweep(
         self,
@@ -217,11 +219,13 @@ class FourBar:
 
         A full-turn crank sweeps one turn on its assembly; a limited crank goes from limit to
         limit on its assembly and back on the other, both halves including the toggle
-        positions, so the curve closes. ``s.theta`` holds the angles used.
+        positions, so the curve closes (the last sample repeats the first). Limited ranges are
+        spaced as ``(1 − cos πs)/2`` so the square-root motion at the toggles is evenly sampled.
+        ``s.theta`` holds the angles used; ``s.velocity`` is per unit crank angle (ω = 1).
         """
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
             raise TypeError(f"n must be an int, got {type(n).__name__}")
-        theta, joints = self._core.circuit(int(n))
+        theta, joints, velocity = self._core.circuit(int(n))
         valid = np.isfinite(joints[:, 4, 0])
         # The dyad margin of a four-bar is |sin| of the transmission angle at B.
         ba, bc = joints[:, 2] - joints[:, 3], joints[:, 1] - joints[:, 3]
@@ -232,5 +236,6 @@ class FourBar:
             "valid": valid,
             "margin": margin,
             "gap": np.where(valid, 0.0, np.nan),
+            "velocity": velocity,
         }
-        return Sweep(theta, raw, JOINTS, 4, ("point", "joints"))
+        return Sweep(theta, raw, JOINTS, 4, ("point", "joints", "velocity"), links=LINKS)

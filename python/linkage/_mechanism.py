@@ -9,6 +9,7 @@ from linkage import _core
 from linkage._arrays import as_angles, as_finite, as_length, as_point, as_rate
 from linkage._core import LinkageError
 from linkage._sweep import OUTPUTS, Sweep
+from linkage.geometry import Mobility, mobility
 
 DEFAULT_OUTPUTS = ("point", "joints")
 
@@ -64,13 +65,17 @@ class Mechanism:
         self._core = _core.Mechanism()
         self._names: list[str] = []
         self._trace: str | None = None
+        self._link_names: tuple[str, ...] | None = None
 
     @classmethod
-    def _from_core(cls, core: Any, names: Sequence[str], trace: int) -> Mechanism:
+    def _from_core(
+        cls, core: Any, names: Sequence[str], trace: int, links: Sequence[str] | None = None
+    ) -> Mechanism:
         m = cls()
         m._core = core
         m._names = list(names)
         m._trace = m._names[trace]
+        m._link_names = tuple(links) if links is not None else None
         return m
 
     # -- building -------------------------------------------------------------------------
@@ -84,6 +89,41 @@ class Mechanism:
 
     def __repr__(self) -> str:
         return f"<Mechanism joints {', '.join(self._names)}; trace {self.trace!r}>"
+
+    @property
+    def links(self) -> tuple[str, ...]:
+        """Names of the rigid links, the ground first: each link's joints joined by '-'.
+
+        A crank is one link, an RRR dyad two (one from each base joint), a slider two (its rod
+        and its block, named ``"<joint>-block"``); a carried point joins the link holding its
+        frame joints.
+        """
+        if self._link_names is not None:
+            return self._link_names
+        names = []
+        for k, members in enumerate(self._core.bodies()):
+            if k == 0:
+                names.append("ground")
+            elif len(members) == 1:
+                names.append(f"{self._names[members[0]]}-block")
+            else:
+                names.append("-".join(self._names[j] for j in members))
+        return tuple(names)
+
+    def link_members(self) -> tuple[tuple[str, ...], ...]:
+        """The joints of each link in :attr:`links`, by name (the ground's are its fixed
+        joints)."""
+        return tuple(tuple(self._names[j] for j in ms) for ms in self._core.bodies())
+
+    def mobility(self) -> Mobility:
+        """Kutzbach–Gruebler count of the program's links and pairs (see :func:`mobility`).
+
+        Every construction program with one crank and rigid carried points has one degree of
+        freedom, the number of drivers the constructive solver needs; a point framed by joints
+        of two different links is counted as a new link pinned to both (over-constrained).
+        """
+        links, lower, higher, _ = self._core.mobility()
+        return mobility(links, lower, higher)
 
     @property
     def trace(self) -> str | None:
@@ -205,10 +245,16 @@ class Mechanism:
         w = as_rate(omega, "omega", n)
         a = as_rate(alpha, "alpha", n)
         raw = self._core.sweep(
-            th, w, a, velocity="velocity" in out, acceleration="acceleration" in out
+            th,
+            w,
+            a,
+            velocity="velocity" in out,
+            acceleration="acceleration" in out,
+            instant_centres="instant_centres" in out,
+            curvature="curvature" in out,
         )
         trace = self._index(self.trace, "trace")
-        return Sweep(th, raw, self.joint_names, trace, out, scalar)
+        return Sweep(th, raw, self.joint_names, trace, out, scalar, links=self.links)
 
 
 def _choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:

@@ -7,8 +7,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-OUTPUTS = ("point", "joints", "velocity", "acceleration")
-"""Names accepted by ``outputs=``: the trace point, every joint, and their rates."""
+OUTPUTS = ("point", "joints", "velocity", "acceleration", "instant_centres", "curvature")
+"""Names accepted by ``outputs=``: the trace point, every joint, their rates, the instant centres
+of every pair of links, and the path curvature of every joint."""
 
 
 class Sweep:
@@ -36,6 +37,17 @@ class Sweep:
         Rates of the trace point, when requested in ``outputs``.
     joint_velocities, joint_accelerations : (N, J, 2) float64
         Rates of every joint, when requested.
+    instant_centres : (N, P, 2) float64
+        With ``"instant_centres"``: the instant centre of each pair of ``link_pairs``; NaN where
+        it is at infinity (``instant_centre_at_infinity``, direction in
+        ``instant_centre_directions``) or undefined.
+    curvature, curvature_radius : (N,) float64
+        With ``"curvature"``: signed curvature of the trace point's path (positive turning
+        counter-clockwise in the direction of increasing crank angle; 0 at an inflection; NaN
+        where the point is at rest) and its radius ``1/|curvature|``.
+    curvature_centre : (N, 2) float64
+        Centre of curvature of the trace point's path (the evolute along the sweep); NaN at an
+        inflection. Computed from rates per unit crank angle: it does not depend on timing.
     """
 
     def __init__(
@@ -46,8 +58,15 @@ class Sweep:
         trace: int,
         outputs: tuple[str, ...],
         scalar: bool = False,
+        links: tuple[str, ...] = (),
     ) -> None:
         self.joint_names = joint_names
+        self.links = links
+        """Link names, the ground first (joints of each link joined by '-')."""
+        self.link_pairs = tuple(
+            (links[k], links[m]) for k in range(len(links)) for m in range(k + 1, len(links))
+        )
+        """The pairs of links whose instant centres ``instant_centres`` holds, in order."""
         self.trace = joint_names[trace]
         self.outputs = outputs
         self._trace = trace
@@ -62,6 +81,16 @@ class Sweep:
         self.gap: NDArray[np.float64] = pick(raw["gap"])
         self._rates = {
             k: pick(raw[k]) for k in ("velocity", "acceleration") if k in raw and k in outputs
+        }
+        self._extra = {
+            k: pick(raw[k])
+            for k in (
+                "instant_centres",
+                "instant_centre_directions",
+                "curvature_centres",
+                "curvature",
+            )
+            if k in raw
         }
 
     def __len__(self) -> int:
@@ -92,6 +121,66 @@ class Sweep:
             )
         arr: NDArray[np.float64] = self._rates[kind]
         return arr
+
+    def _get(self, key: str, output: str) -> NDArray[Any]:
+        if key not in self._extra:
+            raise AttributeError(f"{output} was not computed: pass outputs=(..., {output!r})")
+        arr: NDArray[Any] = self._extra[key]
+        return arr
+
+    @property
+    def instant_centres(self) -> NDArray[np.float64]:
+        """Finite instant centres, shape (N, P, 2); NaN at infinity or undefined."""
+        return self._get("instant_centres", "instant_centres")
+
+    @property
+    def instant_centre_directions(self) -> NDArray[np.float64]:
+        """Unit directions of instant centres at infinity, shape (N, P, 2); NaN elsewhere."""
+        return self._get("instant_centre_directions", "instant_centres")
+
+    @property
+    def instant_centre_at_infinity(self) -> NDArray[np.bool_]:
+        """Whether each instant centre is at infinity (parallel lines, a translating link)."""
+        d = self.instant_centre_directions
+        at_inf: NDArray[np.bool_] = np.isfinite(d[..., 0])
+        return at_inf
+
+    def instant_centre(self, a: str, b: str) -> NDArray[np.float64]:
+        """Instant centre of links ``a`` and ``b`` (by name), shape (N, 2)."""
+        pair = (a, b) if (a, b) in self.link_pairs else (b, a)
+        try:
+            q = self.link_pairs.index(pair)
+        except ValueError:
+            raise KeyError(f"no links {a!r}, {b!r}; links are {', '.join(self.links)}") from None
+        return self.instant_centres[..., q, :]
+
+    @property
+    def joint_curvatures(self) -> NDArray[np.float64]:
+        """Signed path curvature of every joint, shape (N, J)."""
+        return self._get("curvature", "curvature")
+
+    @property
+    def joint_curvature_centres(self) -> NDArray[np.float64]:
+        """Centres of curvature of every joint's path, shape (N, J, 2)."""
+        return self._get("curvature_centres", "curvature")
+
+    @property
+    def curvature(self) -> NDArray[np.float64]:
+        """Signed curvature of the trace point's path, shape (N,)."""
+        return self.joint_curvatures[..., self._trace]
+
+    @property
+    def curvature_radius(self) -> NDArray[np.float64]:
+        """Radius of curvature of the trace point's path, ``1/|curvature|`` (inf at an
+        inflection), shape (N,)."""
+        with np.errstate(divide="ignore"):
+            r: NDArray[np.float64] = 1.0 / np.abs(self.curvature)
+        return r
+
+    @property
+    def curvature_centre(self) -> NDArray[np.float64]:
+        """Centre of curvature of the trace point's path, shape (N, 2)."""
+        return self.joint_curvature_centres[..., self._trace, :]
 
     @property
     def velocity(self) -> NDArray[np.float64]:

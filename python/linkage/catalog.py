@@ -17,10 +17,15 @@ linkage.LinkageError: unknown catalogue linkage 'nope'; choose from watt, robert
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
+import numpy as np
+
 from linkage import _core
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage.geometry import straightness
 
 FOUR_BARS: tuple[str, ...] = tuple(_core.catalog_names()[0])
 MULTI_LOOP: tuple[str, ...] = tuple(_core.catalog_names()[1])
@@ -99,3 +104,96 @@ def get(name: str) -> FourBar | Mechanism:
     if name in MULTI_LOOP:
         return _linkage(name)
     raise LinkageError(f"unknown catalogue linkage {name!r}; choose from {', '.join(names())}")
+
+
+@dataclass(frozen=True)
+class Figures:
+    """Straight-line figures of one catalogue linkage."""
+
+    name: str
+    grashof: str
+    """Grashof class, or "multi-loop"."""
+    input_range: tuple[float, float] | None
+    """Crank angles between the toggles (radians), None for a full turn; for a multi-loop
+    linkage the contiguous sampled interval that assembles around the straight part."""
+    size: float
+    """The linkage size: its longest link."""
+    tolerance: float
+    """The straightness tolerance used, ``rel_tol × size``."""
+    straight_length: float
+    """Length of the longest part of the traced path within ``tolerance`` of a line."""
+    max_deviation: float
+    """Largest distance of that part from its best-fit line."""
+    speed_variation: float
+    """``(max − min)/mean`` of the trace point's speed along that part at constant crank
+    speed."""
+
+
+def figures(rel_tol: float = 1e-3, samples: int = 20001) -> list[Figures]:
+    """For each catalogue linkage: Grashof class, input range, and the straight part of its
+    trace within ``rel_tol`` of the linkage size (0.1 % by default) — its length, deviation and
+    speed variation at constant crank speed.
+
+    Four-bars are traced over their whole circuit (:meth:`FourBar.circuit`); multi-loop
+    linkages over one crank turn sampled ``samples`` times, where they assemble.
+    """
+    rows = []
+    for name in names():
+        item = get(name)
+        if isinstance(item, FourBar):
+            size = max(item.ground, item.crank, item.coupler, item.rocker)
+            s = item.circuit(samples)
+            # The circuit repeats its first sample last: drop it to close the curve.
+            path, vel, closed = s.point[:-1], s.velocity[:-1], True
+            grashof, rng = item.grashof(), item.input_limits()
+        else:
+            theta = np.linspace(-np.pi, np.pi, samples)
+            s = item.sweep(theta, omega=1.0, outputs=("point", "joints", "velocity"))
+            size = _longest_link(item, s.joints)
+            ok = s.valid
+            full = bool(ok.all())
+            path, vel = (s.point[:-1], s.velocity[:-1]) if full else (s.point, s.velocity)
+            closed = full
+            grashof = "multi-loop"
+        tol = rel_tol * size
+        part = straightness(path, tol, closed=closed, velocity=vel)
+        if part is None:  # pragma: no cover - every catalogue linkage has a straight part
+            raise LinkageError(f"{name}: no straight part within {tol}")
+        if not isinstance(item, FourBar):
+            rng = None if full else _run_around(theta, ok, int(part.indices[0]))
+        rows.append(
+            Figures(
+                name=name,
+                grashof=grashof,
+                input_range=rng,
+                size=size,
+                tolerance=tol,
+                straight_length=part.length,
+                max_deviation=part.max_deviation,
+                speed_variation=float(part.speed_variation or 0.0),
+            )
+        )
+    return rows
+
+
+def _run_around(theta: np.ndarray, ok: np.ndarray, k: int) -> tuple[float, float]:
+    """The contiguous interval of assembling samples that contains sample ``k``."""
+    lo = hi = k
+    while lo > 0 and ok[lo - 1]:
+        lo -= 1
+    while hi < len(ok) - 1 and ok[hi + 1]:
+        hi += 1
+    return float(theta[lo]), float(theta[hi])
+
+
+def _longest_link(m: Mechanism, joints: np.ndarray) -> float:
+    """Longest distance between two joints of one moving link, at the first valid sample."""
+    names = m.joint_names
+    row = joints[np.flatnonzero(np.isfinite(joints[:, :, 0]).all(axis=1))[0]]
+    longest = 0.0
+    for members in m.link_members()[1:]:
+        idx = [names.index(j) for j in members]
+        for a in idx:
+            for b in idx:
+                longest = max(longest, float(np.linalg.norm(row[a] - row[b])))
+    return longest

@@ -12,7 +12,7 @@ import numpy as np
 
 from linkage import catalog
 from linkage._core import LinkageError
-from linkage._fourbar import FourBar
+from linkage.geometry import foot_path, three_point_centres
 
 MOTOR_RPM = 50.0
 """Thesis 1's motor speed; its 18 → 15 → 14 simple gear train turns the crank 18/14 = 9/7 times
@@ -32,7 +32,7 @@ def hoecken_report(samples: int = 3601) -> list[tuple[str, str, str, str]]:
     theta = np.linspace(0.0, 2.0 * np.pi, samples)
 
     t0 = time.perf_counter()
-    s = fb.sweep(theta, omega=omega, outputs=("point", "velocity", "acceleration"))
+    s = fb.sweep(theta, omega=omega, outputs=("point", "velocity", "acceleration", "curvature"))
     t_sweep = time.perf_counter() - t0
 
     p, v, a, j = s.point, s.velocity, s.acceleration, s.joints
@@ -50,29 +50,24 @@ def hoecken_report(samples: int = 3601) -> list[tuple[str, str, str, str]]:
     speed = np.linalg.norm(v, axis=1)
     accel = np.linalg.norm(a, axis=1)
 
-    # Stance: the contiguous run of samples within STRAIGHT_TOL_MM of the lowest point,
-    # taken around the lowest sample (the crank angle wraps, so search a doubled cycle).
-    y = p[:-1, 1]
-    n = len(y)
-    low = int(np.argmin(y))
-    near = np.concatenate([y, y]) - y.min() <= STRAIGHT_TOL_MM
-    lo = low
-    while lo > low - n + 1 and near[lo - 1 + n]:
-        lo -= 1
-    hi = low
-    while hi < low + n - 1 and near[(hi + 1) % (2 * n)]:
-        hi += 1
-    idx = np.arange(lo, hi + 1) % n
-    stance = p[idx]
-    centred = stance - stance.mean(axis=0)
-    direction = np.linalg.svd(centred, full_matrices=False)[2][0]
-    normal = np.array([-direction[1], direction[0]])
-    deviation = np.abs(centred @ normal).max()
-    length = np.ptp(centred @ direction)
-    vx = np.abs(v[idx, 0])
-    ripple = (vx.max() - vx.min()) / vx.mean()
-    lift = p[:, 1].max() - p[:, 1].min()
+    # Stance and swing: the longest run within STRAIGHT_TOL_MM of a line, on the closed path.
+    n = len(p) - 1  # the last sample repeats the first
+    fp = foot_path(p[:-1], STRAIGHT_TOL_MM, velocity=v[:-1])
+    idx = fp.stance.indices
     mu = fb.transmission_angle(theta)
+
+    # Swing curvature (analytic), and thesis 1 §2.1.1's three-point circumcentre estimate
+    # against it at 1° and 0.1° spacing, over the swing.
+    swing = np.setdiff1d(np.arange(1, n - 1), idx)
+    radius = s.curvature_radius[swing]
+    centre = s.curvature_centre
+    three_point = {}
+    for step in (10, 1):
+        est = three_point_centres(p, step)  # aligned with p[step:-step]
+        inner = swing[(swing >= step) & (swing < len(p) - step)]
+        three_point[step] = float(
+            np.nanmax(np.linalg.norm(est[inner - step] - centre[inner], axis=1))
+        )
 
     def f(x: float, digits: int = 3) -> str:
         return f"{x:.{digits}f}"
@@ -80,6 +75,7 @@ def hoecken_report(samples: int = 3601) -> list[tuple[str, str, str, str]]:
     def e(x: float) -> str:
         return f"{x:.1e}"
 
+    stance = fp.stance
     rows = [
         ("Grashof class", fb.grashof(), "", "exact"),
         ("crank speed (50 rpm motor, 18→15→14 gears)", f(crank_rpm), "rpm", "exact"),
@@ -101,20 +97,47 @@ def hoecken_report(samples: int = 3601) -> list[tuple[str, str, str, str]]:
             "mm",
             f"closure {e(closure)}",
         ),
-        (f"stance (within {STRAIGHT_TOL_MM} mm of lowest) length", f(length), "mm", "sampled 0.1°"),
-        ("stance share of crank turn", f(100.0 * len(idx) / n, 1), "%", "sampled 0.1°"),
-        ("stance max deviation from best-fit line", f(deviation, 4), "mm", f"closure {e(closure)}"),
         (
-            "stance foot speed mean / ripple",
-            f"{f(vx.mean(), 1)} / {f(100 * ripple, 1)}%",
+            f"stride (stance within {STRAIGHT_TOL_MM} mm of a line)",
+            f(fp.stride),
+            "mm",
+            "sampled 0.1°",
+        ),
+        ("stance share of crank turn", f(100.0 * fp.stance_fraction, 1), "%", "sampled 0.1°"),
+        (
+            "stance max deviation from its line",
+            f(stance.max_deviation, 4),
+            "mm",
+            f"closure {e(closure)}",
+        ),
+        (
+            "stance foot speed mean / variation",
+            f"{f(stance.mean_speed or 0.0, 1)} / {f(100 * (stance.speed_variation or 0.0), 1)}%",
             "mm/s",
             f"vel {e(vel_err)}",
         ),
-        ("lift height (swing above stance)", f(lift), "mm", f"closure {e(closure)}"),
+        ("lift height (swing above stance line)", f(fp.lift_height), "mm", f"closure {e(closure)}"),
+        (
+            "swing radius of curvature min / max",
+            f"{f(radius.min())} / {f(radius.max())}",
+            "mm",
+            f"acc {e(acc_err)}",
+        ),
+        (
+            "three-point centre error, 1° / 0.1° spacing",
+            f"{e(three_point[10])} / {e(three_point[1])}",
+            "mm",
+            "vs analytic",
+        ),
         ("peak foot speed", f(speed.max(), 1), "mm/s", f"vel {e(vel_err)}"),
         ("peak foot acceleration", f(accel.max(), 1), "mm/s²", f"acc {e(acc_err)}"),
         ("smallest dyad margin (sin transmission)", f(float(np.nanmin(s.margin)), 4), "", "exact"),
-        (f"sweep time ({samples} samples, pos+vel+acc)", f(1e3 * t_sweep, 2), "ms", "wall clock"),
+        (
+            f"sweep time ({samples} samples, pos+vel+acc+curv)",
+            f(1e3 * t_sweep, 2),
+            "ms",
+            "wall clock",
+        ),
     ]
     return rows
 
@@ -148,23 +171,29 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _catalog(_: argparse.Namespace) -> int:
+def _catalog(args: argparse.Namespace) -> int:
     rows = []
-    for name in catalog.names():
-        item = catalog.get(name)
-        if isinstance(item, FourBar):
-            lim = item.input_limits()
-            rng = (
-                "full turn"
-                if lim is None
-                else f"{math.degrees(lim[0]):.1f}° … {math.degrees(lim[1]):.1f}°"
-            )
-            rows.append((name, "four-bar", item.grashof(), rng))
+    for f in catalog.figures(rel_tol=args.tol, samples=args.samples):
+        if f.input_range is None:
+            rng = "full turn"
         else:
-            rows.append((name, f"{len(item)} joints", "multi-loop", f"trace {item.trace}"))
-    w = [max(len(r[i]) for r in rows) for i in range(4)]
-    for r in rows:
-        print("  ".join(c.ljust(x) for c, x in zip(r, w)))
+            rng = f"{math.degrees(f.input_range[0]):.1f} … {math.degrees(f.input_range[1]):.1f}"
+        rows.append(
+            (
+                f.name,
+                f.grashof,
+                rng,
+                f"{f.size:g}",
+                f"{f.straight_length:.3f}",
+                f"{f.max_deviation:.2e}",
+                f"{100 * f.speed_variation:.1f}%",
+            )
+        )
+    head = ("linkage", "class", "input (deg)", "size", "straight", "max dev", "speed var")
+    widths = [max(len(r[i]) for r in [head, *rows]) for i in range(len(head))]
+    print(f"straight part: longest run within {args.tol:g} × size of a line (mm)")
+    for r in [head, *rows]:
+        print("  ".join(c.ljust(w) for c, w in zip(r, widths)))
     return 0
 
 
@@ -178,7 +207,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         "--samples", type=int, default=3601, help="crank angles per turn (default 3601)"
     )
     run.set_defaults(func=_run)
-    cat = sub.add_parser("catalog", help="list the built-in linkages")
+    cat = sub.add_parser(
+        "catalog", help="list the built-in linkages with their straight-line figures"
+    )
+    cat.add_argument("--tol", type=float, default=1e-3, help="straightness tolerance / size")
+    cat.add_argument("--samples", type=int, default=20001, help="samples per circuit")
     cat.set_defaults(func=_catalog)
     args = parser.parse_args(argv)
     if getattr(args, "samples", 3) < 3:

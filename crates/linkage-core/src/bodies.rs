@@ -165,6 +165,11 @@ impl<const N: usize> Bodies<N> {
         }
     }
 
+    /// A joint pinning bodies `k` and `l` together, if they share one.
+    pub fn shared_joint(&self, k: BodyId, l: BodyId) -> Option<usize> {
+        (0..self.len).find(|&j| self.contains(k, j) && self.contains(l, j))
+    }
+
     /// The first body holding both joints `p` and `q`.
     fn holding(&self, p: usize, q: usize) -> Option<BodyId> {
         self.ids()

@@ -198,6 +198,21 @@ pub fn instant_centre<T: RealField + Copy>(k: &BodyMotion<T>, l: &BodyMotion<T>)
     Centre::Finite(p + perp(dv) / dw)
 }
 
+/// Instant centre of bodies `k` and `l` of a mechanism moving with `mk`, `ml`: the pin joining
+/// them if they share one (a primary centre, which stays defined even at an instant where the
+/// two bodies happen to move alike), otherwise [`instant_centre`].
+pub fn relative_centre<T: RealField + Copy, const N: usize>(
+    bodies: &Bodies<N>,
+    (k, mk): (BodyId, &BodyMotion<T>),
+    (l, ml): (BodyId, &BodyMotion<T>),
+    pos: &[Vec2<T>],
+) -> Centre<T> {
+    match bodies.shared_joint(k, l) {
+        Some(j) => Centre::Finite(pos[j]),
+        None => instant_centre(mk, ml),
+    }
+}
+
 /// Intersection of the lines `p + t·d` and `q + s·e`: at infinity along `d` when they are
 /// parallel to rounding. Used for the Aronhold–Kennedy construction of a four-bar's centres.
 pub fn line_intersection<T: RealField + Copy>(

@@ -64,7 +64,8 @@ pub mod catalog {
 
 pub use bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
 pub use centres::{
-    circumcentre, instant_centre, line_intersection, path_curvature, BodyMotion, Centre,
+    circumcentre, instant_centre, line_intersection, path_curvature, relative_centre, BodyMotion,
+    Centre,
 };
 pub use dyad::{triangle_area, Dyad, DyadFailure, DyadPose, Side};
 pub use error::Error;

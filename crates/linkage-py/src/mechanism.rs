@@ -2,7 +2,7 @@
 //! the sweep over numpy arrays.
 
 use linkage_core::{
-    instant_centre, path_curvature, Bodies, BodyId, BodyMotion, Centre, Error, LineDirection,
+    path_curvature, relative_centre, Bodies, BodyId, BodyMotion, Centre, Error, LineDirection,
     Mechanism as CoreMechanism, Motion, Rates, Reach, Side, Tracker, Vec2,
 };
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
@@ -160,7 +160,12 @@ pub fn sweep_arrays<const N: usize>(
                 BodyMotion::of(&bodies, id, &pos[..j], &uvel[..j], &zero[..j], &zero[..j])
             }));
             for (q, &(a, b)) in pairs.iter().enumerate() {
-                let ic = instant_centre(&motions[a], &motions[b]);
+                let ic = relative_centre(
+                    &bodies,
+                    (ids[a], &motions[a]),
+                    (ids[b], &motions[b]),
+                    &pos[..j],
+                );
                 put(&mut c[k * np * 2..], q, ic, true);
                 put(&mut d[k * np * 2..], q, ic, false);
             }

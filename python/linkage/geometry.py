@@ -1,0 +1,313 @@
+"""Geometry of motion: curvature, circumcentres, straight-line quality, foot paths, the
+inflection circle and Ball point, and mobility.
+
+Vectorised like shapely: points are arrays shaped ``(..., 2)``; a degenerate configuration
+gives NaN, a wrong shape raises.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage import _core
+from linkage._arrays import as_angles, as_finite
+from linkage._core import LinkageError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from linkage._fourbar import FourBar
+
+Points = NDArray[np.float64]
+
+
+def _points(value: Any, name: str) -> Points:
+    arr = np.asarray(value)
+    if arr.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must hold real numbers, got dtype {arr.dtype}")
+    if arr.ndim == 0 or arr.shape[-1] != 2:
+        raise LinkageError(f"{name} must have shape (..., 2), got {arr.shape}")
+    return np.asarray(arr, dtype=np.float64)
+
+
+def _rows(*arrays: Points) -> tuple[tuple[int, ...], list[Points]]:
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in arrays))
+    except ValueError:
+        raise LinkageError(
+            f"point arrays do not broadcast: {', '.join(str(a.shape) for a in arrays)}"
+        ) from None
+    flat = [np.ascontiguousarray(np.broadcast_to(a, shape).reshape(-1, 2)) for a in arrays]
+    return shape[:-1], flat
+
+
+@dataclass(frozen=True)
+class Mobility:
+    """Kutzbach–Gruebler count ``F = 3(n − 1) − 2·j1 − j2``."""
+
+    links: int
+    """``n``, the ground included."""
+    lower_pairs: int
+    """``j1``: revolute and prismatic pairs (one freedom each)."""
+    higher_pairs: int
+    """``j2``: pairs with two freedoms, e.g. a cam contact that rolls and slides."""
+
+    @property
+    def degrees_of_freedom(self) -> int:
+        """``F``."""
+        return 3 * (self.links - 1) - 2 * self.lower_pairs - self.higher_pairs
+
+
+def mobility(links: int, lower_pairs: int, higher_pairs: int = 0) -> Mobility:
+    """Mobility of a planar linkage by Kutzbach–Gruebler, higher pairs included.
+
+    >>> mobility(4, 4).degrees_of_freedom        # four-bar (thesis 2: F = 3(4 − 1) − 2·4)
+    1
+    >>> mobility(3, 2, 1).degrees_of_freedom     # cam, follower, frame: 2 pins + the contact
+    1
+    >>> mobility(5, 6).degrees_of_freedom        # a five-bar truss with a pinned diagonal
+    0
+    """
+    for name, v in (("links", links), ("lower_pairs", lower_pairs), ("higher_pairs", higher_pairs)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+            raise TypeError(f"{name} must be an int, got {type(v).__name__}")
+        if v < 0:
+            raise LinkageError(f"{name} must be non-negative, got {v}")
+    if links < 1:
+        raise LinkageError("links must count the ground at least")
+    return Mobility(int(links), int(lower_pairs), int(higher_pairs))
+
+
+def curvature_centre(
+    point: Any, velocity: Any, acceleration: Any
+) -> tuple[Points, NDArray[np.float64]]:
+    """Centre of curvature and signed curvature of paths from velocity and acceleration.
+
+    ``κ = (v × a)/|v|³`` (positive when turning counter-clockwise in the direction of motion) and
+    centre ``p + v⊥·|v|²/(v × a)``, the same for every timing of the same path. Returns
+    ``(centre (..., 2), curvature (...))``; the centre is NaN at an inflection (curvature 0)
+    and both are NaN where the point is at rest.
+
+    >>> c, k = curvature_centre([2, 0], [0, 3], [-4.5, 0])   # circle r = 2 about the origin
+    >>> c.round(12), float(k)
+    (array([0., 0.]), 0.5)
+    """
+    p, v, a = (
+        _points(x, n)
+        for x, n in ((point, "point"), (velocity, "velocity"), (acceleration, "acceleration"))
+    )
+    shape, (fp, fv, fa) = _rows(p, v, a)
+    centres, kappa = _core.curvature_centres(fp, fv, fa)
+    return centres.reshape(*shape, 2), kappa.reshape(shape)
+
+
+def circumcentre(p0: Any, p1: Any, p2: Any) -> Points:
+    """Centre of the circle through three points, shape ``(..., 2)``; NaN when they are
+    collinear or coincide.
+
+    >>> circumcentre([1, 0], [0, 1], [-1, 0]).round(12)
+    array([0., 0.])
+    """
+    a, b, c = (_points(x, n) for x, n in ((p0, "p0"), (p1, "p1"), (p2, "p2")))
+    shape, (fa, fb, fc) = _rows(a, b, c)
+    out: Points = _core.circumcentres(fa, fb, fc).reshape(*shape, 2)
+    return out
+
+
+def three_point_centres(path: Any, step: int = 1) -> Points:
+    """The first source's three-point estimate of the centre of curvature (thesis 1 §2.1.1):
+    the circumcentre of samples ``k − step, k, k + step`` for each interior sample ``k``.
+
+    Returns ``(N − 2·step, 2)``, aligned with ``path[step:-step]``. It converges to the analytic
+    centre (:attr:`Sweep.curvature_centre`) as the spacing shrinks.
+    """
+    p = _points(path, "path")
+    if p.ndim != 2:
+        raise LinkageError(f"path must have shape (N, 2), got {p.shape}")
+    if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or step < 1:
+        raise LinkageError(f"step must be a positive int, got {step!r}")
+    if len(p) < 2 * step + 1:
+        raise LinkageError(f"path needs at least {2 * step + 1} points for step {step}")
+    return circumcentre(p[: -2 * step], p[step:-step], p[2 * step :])
+
+
+@dataclass(frozen=True)
+class StraightPart:
+    """The longest run of samples within a tolerance of its best-fit line."""
+
+    indices: NDArray[np.intp]
+    """Sample indices of the run, in order (they wrap on a closed path)."""
+    length: float
+    """Extent of the run along its line."""
+    max_deviation: float
+    """Largest distance of a run sample from the line."""
+    point: tuple[float, float]
+    """The run's centroid, on the line."""
+    direction: tuple[float, float]
+    """Unit direction of the line, from the run's first sample toward its last."""
+    mean_speed: float | None
+    """Mean speed along the run, if velocities were given."""
+    speed_variation: float | None
+    """``(max − min)/mean`` of the speed along the run, if velocities were given; ``inf`` when
+    the run reaches a toggle (non-finite velocity there)."""
+
+    @property
+    def count(self) -> int:
+        """Number of samples in the run."""
+        return int(len(self.indices))
+
+
+def straightness(
+    path: Any, tol: float, closed: bool = False, velocity: Any = None
+) -> StraightPart | None:
+    """The near-straight part of a path: the longest run of consecutive samples that stays
+    within ``tol`` of its own least-squares line (at least 3 samples), or None.
+
+    ``closed`` lets the run wrap from the last sample to the first (pass a closed curve without
+    repeating its first sample). With ``velocity`` (same shape as ``path``, e.g. a sweep at
+    constant crank speed) the speed along the run is summarised too. NaN samples break runs.
+
+    >>> x = np.linspace(0, 10, 11)
+    >>> part = straightness(np.c_[x, 0.01 * (x - 5) ** 2], tol=0.1)
+    >>> part.count, round(part.length, 6)
+    (9, 8.0)
+    """
+    p = _points(path, "path")
+    if p.ndim != 2:
+        raise LinkageError(f"path must have shape (N, 2), got {p.shape}")
+    t = as_finite(tol, "tol")
+    if t < 0:
+        raise LinkageError(f"tol must be non-negative, got {t}")
+    run = _core.straight_run(np.ascontiguousarray(p), t, bool(closed))
+    if run is None:
+        return None
+    idx = (run["start"] + np.arange(run["count"])) % len(p)
+    mean = var = None
+    if velocity is not None:
+        v = _points(velocity, "velocity")
+        if v.shape != p.shape:
+            raise LinkageError(f"velocity must have the shape of path {p.shape}, got {v.shape}")
+        speed = np.linalg.norm(v[idx], axis=1)
+        if np.isfinite(speed).all():
+            mean = float(speed.mean())
+            var = float((speed.max() - speed.min()) / mean) if mean > 0 else float("nan")
+        else:
+            # The run reaches a toggle, where the speed at constant crank speed is unbounded.
+            mean = var = float("inf")
+    return StraightPart(
+        indices=idx,
+        length=float(run["length"]),
+        max_deviation=float(run["max_deviation"]),
+        point=tuple(run["point"]),
+        direction=tuple(run["direction"]),
+        mean_speed=mean,
+        speed_variation=var,
+    )
+
+
+@dataclass(frozen=True)
+class FootPath:
+    """A closed foot path split into its straight stance and curved swing."""
+
+    stance: StraightPart
+    """The straight part (the foot on the ground)."""
+    swing: NDArray[np.intp]
+    """Sample indices of the curved part (the foot in the air)."""
+    stride: float
+    """Length of the stance: how far the body moves per step."""
+    lift_height: float
+    """Largest distance of the swing from the stance line, on the swing's side: the obstacle
+    height a leg can step over."""
+    stance_fraction: float
+    """Share of the samples in stance (of the crank turn, for samples uniform in crank angle)."""
+
+    @property
+    def swing_fraction(self) -> float:
+        """Share of the samples in swing."""
+        return 1.0 - self.stance_fraction
+
+
+def foot_path(path: Any, tol: float, velocity: Any = None) -> FootPath:
+    """Split one closed cycle of a foot path (without a repeated end sample) into stance and
+    swing: stance is :func:`straightness` on the closed path, swing the rest.
+
+    Raises
+    ------
+    LinkageError
+        If the path has no straight part within ``tol``.
+    """
+    p = _points(path, "path")
+    stance = straightness(p, tol, closed=True, velocity=velocity)
+    if stance is None:
+        raise LinkageError(f"the path has no straight part within tol = {tol}")
+    n = len(p)
+    mask = np.ones(n, dtype=bool)
+    mask[stance.indices] = False
+    swing = np.flatnonzero(mask)
+    d = np.asarray(stance.direction)
+    normal = np.array([-d[1], d[0]])
+    offsets = (p - np.asarray(stance.point)) @ normal
+    side = np.sign(np.nanmean(offsets[swing])) if len(swing) else 1.0
+    lift = float(np.nanmax(side * offsets)) if len(swing) else 0.0
+    return FootPath(
+        stance=stance,
+        swing=swing,
+        stride=stance.length,
+        lift_height=lift,
+        stance_fraction=stance.count / n,
+    )
+
+
+@dataclass(frozen=True)
+class Inflection:
+    """Inflection circle and Ball point of a four-bar's coupler at one crank angle."""
+
+    pole: tuple[float, float]
+    """Instant centre of the coupler relative to the ground (velocity pole)."""
+    inflection_pole: tuple[float, float]
+    """The point of the circle diametrically opposite the pole."""
+    centre: tuple[float, float]
+    """Centre of the inflection circle."""
+    radius: float
+    """Radius of the inflection circle."""
+    ball_point: tuple[float, float]
+    """The Ball point (NaN if undefined): on the circle, its path has stationary zero
+    curvature — locally the best straight-line point of the coupler."""
+    ball_point_coupler: tuple[float, float]
+    """The Ball point in coupler coordinates (along A → B, to its left), ready for
+    ``FourBar(point=...)``."""
+
+
+def ball_point(fb: FourBar, theta: float) -> Inflection:
+    """Inflection circle (Euler–Savary) and Ball point of ``fb``'s coupler at crank angle
+    ``theta``, from third-order analytic rates.
+
+    >>> import linkage
+    >>> inf = ball_point(linkage.catalog.hoecken(), 3.14159)
+    >>> round(float(np.hypot(*np.subtract(inf.ball_point, inf.centre))) - inf.radius, 9)
+    0.0
+
+    Raises
+    ------
+    AssemblyError
+        Where the linkage cannot be assembled.
+    LinkageError
+        At a toggle or where the coupler is instantaneously translating (no finite pole).
+    """
+    th = float(as_angles(theta, "theta")[0][0])
+    joints = fb.sweep(th).joints
+    if not np.isfinite(joints).all():
+        raise _core.AssemblyError(f"the linkage cannot be assembled at theta = {th}")
+    res = fb._core.coupler_inflection(th)
+    if res is None:
+        raise LinkageError(
+            f"no inflection circle at theta = {th}: a toggle, or the coupler is translating"
+        )
+    pole, jpole, centre, radius, ball = res
+    a, b = joints[2], joints[3]
+    u = (b - a) / np.linalg.norm(b - a)
+    r = np.asarray(ball) - a
+    local = (float(r @ u), float(u[0] * r[1] - u[1] * r[0]))
+    return Inflection(pole, jpole, centre, float(radius), ball, local)
