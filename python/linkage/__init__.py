@@ -13,11 +13,20 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from linkage import catalog
+from linkage import catalog, geometry
 from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._sweep import OUTPUTS, Sweep
+from linkage.geometry import (
+    ball_point,
+    circumcentre,
+    curvature_centre,
+    foot_path,
+    mobility,
+    straightness,
+    three_point_centres,
+)
 
 try:
     __version__ = version("linkage-kinematics")
@@ -31,6 +40,14 @@ __all__ = [
     "LinkageError",
     "Mechanism",
     "Sweep",
+    "ball_point",
     "catalog",
+    "circumcentre",
+    "curvature_centre",
+    "foot_path",
+    "geometry",
+    "mobility",
+    "straightness",
+    "three_point_centres",
     "__version__",
 ]
