@@ -23,7 +23,8 @@
 //! # Features
 //! - `std` (default): use the platform's math library.
 //! - `libm`: use `libm` for targets without `std` (e.g. `thumbv7em-none-eabihf`).
-//! - `alloc`: conveniences that return `Vec`s.
+//! - `alloc` (implied by `std`): kinetostatics, which needs a dense linear solve sized by the
+//!   linkage. Firmware builds without it carry none of it.
 //!
 //! # Example
 //! ```
@@ -44,15 +45,21 @@ compile_error!("linkage-core needs a math backend: enable the `std` feature or t
 extern crate alloc;
 
 mod bodies;
+mod cam;
 mod catalog_impl;
 mod centres;
 mod dyad;
 mod error;
 mod fourbar;
+mod gear_train;
 mod inflection;
+#[cfg(feature = "alloc")]
+mod kinetostatics;
 mod mechanism;
 mod motion;
+mod motion_law;
 mod scalar;
+mod schedule;
 mod slider;
 mod straightness;
 mod tracker;
@@ -63,6 +70,7 @@ pub mod catalog {
 }
 
 pub use bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
+pub use cam::{CamPoint, FlatFollower, RollerFollower};
 pub use centres::{
     circumcentre, instant_centre, line_intersection, path_curvature, relative_centre, BodyMotion,
     Centre,
@@ -70,9 +78,14 @@ pub use centres::{
 pub use dyad::{triangle_area, Dyad, DyadFailure, DyadPose, Side};
 pub use error::Error;
 pub use fourbar::{Assembly, FourBar, FourBarPose, GrashofClass, InputRange};
+pub use gear_train::GearTrain;
 pub use inflection::{inflection, Inflection};
+#[cfg(feature = "alloc")]
+pub use kinetostatics::{Dynamics, ForceSolution, Inertia, Load, Reaction};
 pub use mechanism::{Construction, LineDirection, Mechanism, Motion};
+pub use motion_law::{Derivatives, Discontinuity, MotionLaw, Program, Segment};
 pub use scalar::Vec2;
+pub use schedule::ScheduleTable;
 pub use slider::{Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};

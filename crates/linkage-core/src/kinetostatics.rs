@@ -1,0 +1,381 @@
+//! Kinetostatics: joint reactions and driver torque by Newton–Euler, and the driver torque by
+//! the power method. Needs the `alloc` feature (a dense linear solve sized by the linkage).
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use nalgebra::{DMatrix, DVector, RealField};
+
+use crate::bodies::{Bodies, BodyFrame, BodyId, GROUND};
+use crate::centres::BodyMotion;
+use crate::error::{check_finite, Error};
+use crate::mechanism::{Construction, Mechanism};
+use crate::scalar::{cross, perp, Vec2};
+
+/// Mass properties of one body, its centre of mass in the body's frame: `along` its frame's
+/// axis (from the frame's origin joint toward its second joint, or along a slider's line) and
+/// `left` of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inertia<T> {
+    /// Mass.
+    pub mass: T,
+    /// Centre of mass: distance along the frame's axis.
+    pub along: T,
+    /// Centre of mass: distance to the left of the axis.
+    pub left: T,
+    /// Moment of inertia about the centre of mass.
+    pub inertia: T,
+}
+
+/// An external load on a body: a force applied at a joint of it, and a torque.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Load<T> {
+    /// The body loaded.
+    pub body: BodyId,
+    /// The joint the force acts at.
+    pub joint: usize,
+    /// The force.
+    pub force: Vec2<T>,
+    /// A torque (counter-clockwise positive).
+    pub torque: T,
+}
+
+/// The force a joint transmits between two bodies.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reaction<T> {
+    /// The joint.
+    pub joint: usize,
+    /// The body exerting the force.
+    pub from: BodyId,
+    /// The body receiving it.
+    pub to: BodyId,
+    /// The force on `to` (the force on `from` is its negative).
+    pub force: Vec2<T>,
+    /// For a slider block on its line, the couple on `to`; zero at pins.
+    pub couple: T,
+}
+
+/// Result of a kinetostatic solve at one instant.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ForceSolution<T> {
+    /// Driver torque on the crank (from the body carrying the crank's centre).
+    pub torque: T,
+    /// Every joint and slider reaction.
+    pub reactions: Vec<Reaction<T>>,
+}
+
+/// Unknown-force bookkeeping for one mechanism.
+#[derive(Clone, Debug)]
+struct Unknown {
+    joint: usize,
+    from: BodyId,
+    to: BodyId,
+    /// For a prismatic pair: the line's unit normal is the force direction, plus a couple.
+    prismatic: bool,
+}
+
+/// The dynamic problem of a mechanism: bodies, their mass properties, gravity.
+#[derive(Clone, Debug)]
+pub struct Dynamics<'m, T: RealField + Copy, const N: usize> {
+    mech: &'m Mechanism<T, N>,
+    bodies: Bodies<N>,
+    ids: Vec<BodyId>,
+    inertia: Vec<Inertia<T>>,
+    gravity: Vec2<T>,
+    unknowns: Vec<Unknown>,
+    /// Index (into `ids`) of the crank's body.
+    driver: usize,
+    /// The body the crank turns on (usually the ground).
+    driver_base: BodyId,
+}
+
+impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
+    /// Sets up the Newton–Euler system: `inertia` gives one entry per body of
+    /// [`Bodies::ids`] (the ground's is ignored); `gravity` is the acceleration of gravity.
+    ///
+    /// Unknowns: at a pin shared by bodies `b0, b1, …` the forces on `b1, …` from `b0` (the pin
+    /// is massless, so `b0` gets minus their sum); at a slider block, the normal force and couple
+    /// from its line's carrier; the driver torque. With one degree of freedom there are exactly
+    /// `3 × (moving bodies)` of them — the thesis-2 9×9 system for a four-bar.
+    ///
+    /// # Errors
+    /// [`Error::NoDriver`]; [`Error::BufferLength`] for a wrong number of inertia entries or a
+    /// linkage whose mobility is not one (then the system is not square).
+    pub fn new(
+        mech: &'m Mechanism<T, N>,
+        inertia: &[Inertia<T>],
+        gravity: Vec2<T>,
+    ) -> Result<Self, Error> {
+        let driver = mech.driver().ok_or(Error::NoDriver)?;
+        let bodies = Bodies::of(mech);
+        let ids: Vec<BodyId> = bodies.ids().collect();
+        if inertia.len() != ids.len() {
+            return Err(Error::BufferLength {
+                what: "inertia (one per body, ground first)",
+                expected: ids.len(),
+                got: inertia.len(),
+            });
+        }
+        for i in inertia {
+            for (what, v) in [
+                ("mass", i.mass),
+                ("centre of mass along", i.along),
+                ("centre of mass left", i.left),
+                ("moment of inertia", i.inertia),
+            ] {
+                check_finite(what, v)?;
+            }
+        }
+        check_finite("gravity x", gravity.x)?;
+        check_finite("gravity y", gravity.y)?;
+        let mut unknowns = Vec::new();
+        for j in 0..mech.len() {
+            let incident: Vec<BodyId> = ids
+                .iter()
+                .copied()
+                .filter(|&b| bodies.contains(b, j))
+                .collect();
+            for &to in incident.iter().skip(1) {
+                unknowns.push(Unknown {
+                    joint: j,
+                    from: incident[0],
+                    to,
+                    prismatic: false,
+                });
+            }
+        }
+        for &b in &ids {
+            if let BodyFrame::Block { joint, .. } = bodies.frame(b) {
+                let carrier = bodies.carrier_of(bodies.frame(b)).unwrap_or(GROUND);
+                unknowns.push(Unknown {
+                    joint,
+                    from: carrier,
+                    to: b,
+                    prismatic: true,
+                });
+            }
+        }
+        let pins = unknowns.iter().filter(|u| !u.prismatic).count();
+        let size = 2 * pins + 2 * (unknowns.len() - pins) + 1;
+        if size != 3 * (ids.len() - 1) {
+            return Err(Error::BufferLength {
+                what: "kinetostatic unknowns (the linkage's mobility must be one)",
+                expected: 3 * (ids.len() - 1),
+                got: size,
+            });
+        }
+        let centre = match mech.constructions()[driver] {
+            Construction::Crank { centre, .. } => centre,
+            _ => unreachable!("the driver is a crank"),
+        };
+        let driver_base = ids
+            .iter()
+            .copied()
+            .find(|&b| bodies.contains(b, centre))
+            .unwrap_or(GROUND);
+        let driver_body = BodyId {
+            joint: driver,
+            slot: 0,
+        };
+        let driver = ids.iter().position(|&b| b == driver_body).unwrap_or(0);
+        Ok(Dynamics {
+            mech,
+            bodies,
+            ids,
+            inertia: inertia.to_vec(),
+            gravity,
+            unknowns,
+            driver,
+            driver_base,
+        })
+    }
+
+    /// The bodies, ground first (the order of the inertia entries).
+    pub fn body_ids(&self) -> &[BodyId] {
+        &self.ids
+    }
+
+    /// Centre of mass of body `k` (index into [`Dynamics::body_ids`]) at a pose.
+    fn centre_of_mass(&self, k: usize, pos: &[Vec2<T>]) -> Vec2<T> {
+        let inert = self.inertia[k];
+        let (origin, axis) = match self.bodies.frame(self.ids[k]) {
+            BodyFrame::Ground => (Vec2::zeros(), Vec2::new(T::one(), T::zero())),
+            BodyFrame::Link { origin, toward } => (pos[origin], pos[toward] - pos[origin]),
+            BodyFrame::Block { joint, carrier } => (
+                pos[joint],
+                carrier.map_or(Vec2::new(T::one(), T::zero()), |(p, q)| pos[q] - pos[p]),
+            ),
+        };
+        let n = axis.norm();
+        let u = if n > T::zero() {
+            axis / n
+        } else {
+            Vec2::new(T::one(), T::zero())
+        };
+        origin + u * inert.along + perp(u) * inert.left
+    }
+
+    /// Unit normal of a slider block's line.
+    fn line_normal(&self, b: BodyId, pos: &[Vec2<T>]) -> Vec2<T> {
+        let i = b.joint;
+        match self.mech.constructions()[i] {
+            Construction::Slider { direction, .. } => {
+                let u = Mechanism::<T, N>::line_direction(direction, pos)
+                    .unwrap_or(Vec2::new(T::one(), T::zero()));
+                perp(u)
+            }
+            _ => Vec2::new(T::zero(), T::one()),
+        }
+    }
+
+    /// Newton–Euler solve at one instant from joint positions, velocities and accelerations
+    /// (for the actual drive, in time).
+    ///
+    /// For each moving body: `Σ F = m a_G − m g − F_ext` and
+    /// `Σ (r − G) × F + couples = I α − Σ (r_ext − G) × F_ext − τ_ext`.
+    ///
+    /// # Errors
+    /// [`Error::Coincident`] (joint = the driver) when the system is singular: a toggle, where
+    /// statics cannot decide the reactions.
+    pub fn solve(
+        &self,
+        pos: &[Vec2<T>],
+        vel: &[Vec2<T>],
+        acc: &[Vec2<T>],
+        loads: &[Load<T>],
+    ) -> Result<ForceSolution<T>, Error> {
+        let nb = self.ids.len();
+        let size = 3 * (nb - 1);
+        let mut a = DMatrix::<T>::zeros(size, size);
+        let mut rhs = DVector::<T>::zeros(size);
+        let zero = vec![Vec2::zeros(); pos.len()];
+        let row_of = |b: BodyId| {
+            self.ids
+                .iter()
+                .position(|&x| x == b)
+                .filter(|&k| k > 0)
+                .map(|k| 3 * (k - 1))
+        };
+        let centres: Vec<Vec2<T>> = (0..nb).map(|k| self.centre_of_mass(k, pos)).collect();
+        // Inertial and gravity terms.
+        for (k, (&id, &g)) in self.ids.iter().zip(&centres).enumerate().skip(1) {
+            let m = BodyMotion::of(&self.bodies, id, pos, vel, acc, &zero);
+            let inert = self.inertia[k];
+            let a_g = m.acceleration_at(g);
+            let r = 3 * (k - 1);
+            let f = a_g * inert.mass - self.gravity * inert.mass;
+            rhs[r] = f.x;
+            rhs[r + 1] = f.y;
+            rhs[r + 2] = inert.inertia * m.alpha;
+        }
+        for l in loads {
+            if let Some(r) = row_of(l.body) {
+                let k = r / 3 + 1;
+                rhs[r] -= l.force.x;
+                rhs[r + 1] -= l.force.y;
+                rhs[r + 2] -= cross(pos[l.joint] - centres[k], l.force) + l.torque;
+            }
+        }
+        // Unknown reactions: columns 2q, 2q + 1; the torque last.
+        for (q, u) in self.unknowns.iter().enumerate() {
+            let p = pos[u.joint];
+            let (c0, c1) = (2 * q, 2 * q + 1);
+            for (body, sign) in [(u.to, T::one()), (u.from, -T::one())] {
+                let Some(r) = row_of(body) else { continue };
+                let g = centres[r / 3 + 1];
+                if u.prismatic {
+                    let n = self.line_normal(u.to, pos);
+                    a[(r, c0)] += n.x * sign;
+                    a[(r + 1, c0)] += n.y * sign;
+                    a[(r + 2, c0)] += cross(p - g, n) * sign;
+                    a[(r + 2, c1)] += sign;
+                } else {
+                    a[(r, c0)] += sign;
+                    a[(r + 1, c1)] += sign;
+                    let d = p - g;
+                    // (d × F)_z = d.x F.y − d.y F.x
+                    a[(r + 2, c0)] += -d.y * sign;
+                    a[(r + 2, c1)] += d.x * sign;
+                }
+            }
+        }
+        let t = size - 1;
+        if let Some(r) = row_of(self.ids[self.driver]) {
+            a[(r + 2, t)] += T::one();
+        }
+        if let Some(r) = row_of(self.driver_base) {
+            a[(r + 2, t)] -= T::one();
+        }
+        let x = a.lu().solve(&rhs).ok_or(Error::Coincident {
+            joint: self.mech.driver().unwrap_or(0),
+        })?;
+        if !x.iter().all(|v| v.is_finite()) {
+            return Err(Error::Coincident {
+                joint: self.mech.driver().unwrap_or(0),
+            });
+        }
+        let reactions = self
+            .unknowns
+            .iter()
+            .enumerate()
+            .map(|(q, u)| {
+                let (f, couple) = if u.prismatic {
+                    (self.line_normal(u.to, pos) * x[2 * q], x[2 * q + 1])
+                } else {
+                    (Vec2::new(x[2 * q], x[2 * q + 1]), T::zero())
+                };
+                Reaction {
+                    joint: u.joint,
+                    from: u.from,
+                    to: u.to,
+                    force: f,
+                    couple,
+                }
+            })
+            .collect();
+        Ok(ForceSolution {
+            torque: x[t],
+            reactions,
+        })
+    }
+
+    /// Driver torque by the power method: the driver's power equals the rate of change of
+    /// kinetic energy plus the power against gravity and the external loads,
+    /// `T (ω_crank − ω_base) = Σ (m a_G·v_G + I α ω) − Σ m g·v_G − Σ F_ext·v_P − Σ τ_ext ω`.
+    /// No joint force enters. NaN when the crank is at rest relative to its base.
+    pub fn power_torque(
+        &self,
+        pos: &[Vec2<T>],
+        vel: &[Vec2<T>],
+        acc: &[Vec2<T>],
+        loads: &[Load<T>],
+    ) -> T {
+        let zero = vec![Vec2::zeros(); pos.len()];
+        let motions: Vec<BodyMotion<T>> = self
+            .ids
+            .iter()
+            .map(|&b| BodyMotion::of(&self.bodies, b, pos, vel, acc, &zero))
+            .collect();
+        let mut power = T::zero();
+        for (k, &m) in motions.iter().enumerate().skip(1) {
+            let inert = self.inertia[k];
+            let g = self.centre_of_mass(k, pos);
+            let (v_g, a_g) = (m.velocity_at(g), m.acceleration_at(g));
+            power +=
+                inert.mass * (a_g - self.gravity).dot(&v_g) + inert.inertia * m.alpha * m.omega;
+        }
+        for l in loads {
+            if let Some(k) = self.ids.iter().position(|&b| b == l.body) {
+                let m = motions[k];
+                power -= l.force.dot(&m.velocity_at(pos[l.joint])) + l.torque * m.omega;
+            }
+        }
+        let base = self
+            .ids
+            .iter()
+            .position(|&b| b == self.driver_base)
+            .unwrap_or(0);
+        let rel = motions[self.driver].omega - motions[base].omega;
+        power / rel
+    }
+}
