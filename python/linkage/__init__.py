@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from linkage import catalog, geometry
+from linkage import cam, catalog, drive, forces, geometry
 from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -41,10 +41,13 @@ __all__ = [
     "Mechanism",
     "Sweep",
     "ball_point",
+    "cam",
     "catalog",
     "circumcentre",
     "curvature_centre",
+    "drive",
     "foot_path",
+    "forces",
     "geometry",
     "mobility",
     "straightness",

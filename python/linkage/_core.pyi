@@ -18,6 +18,15 @@ __all__ = [
     "curvature_centres",
     "circumcentres",
     "straight_run",
+    "motion_law_names",
+    "motion_law_eval",
+    "program_eval",
+    "program_discontinuities",
+    "gear_train_simple",
+    "gear_train_compound",
+    "schedule_eval",
+    "cam_geometry",
+    "forces",
 ]
 
 CAPACITY: int
@@ -102,3 +111,41 @@ def circumcentres(
     p0: NDArray[np.float64], p1: NDArray[np.float64], p2: NDArray[np.float64]
 ) -> NDArray[np.float64]: ...
 def straight_run(path: NDArray[np.float64], tol: float, closed: bool) -> dict[str, Any] | None: ...
+def motion_law_names() -> list[str]: ...
+def motion_law_eval(name: str, u: NDArray[np.float64]) -> NDArray[np.float64]: ...
+def program_eval(
+    start: float,
+    durations: list[float],
+    rises: list[float],
+    laws: list[str | None],
+    t: NDArray[np.float64],
+) -> NDArray[np.float64]: ...
+def program_discontinuities(
+    start: float, durations: list[float], rises: list[float], laws: list[str | None], tol: float
+) -> list[tuple[int, int, float]]: ...
+def gear_train_simple(teeth: list[int]) -> tuple[float, int]: ...
+def gear_train_compound(stages: list[tuple[int, int]]) -> tuple[float, int]: ...
+def schedule_eval(
+    dt: float,
+    advance: float,
+    theta: NDArray[np.float64],
+    omega: NDArray[np.float64],
+    t: NDArray[np.float64],
+    single: bool,
+) -> NDArray[np.float64]: ...
+def cam_geometry(
+    phi: NDArray[np.float64],
+    y: NDArray[np.float64],
+    base_radius: float,
+    roller_radius: float | None = None,
+    offset: float = 0.0,
+) -> dict[str, NDArray[np.float64]]: ...
+def forces(
+    mech: Mechanism,
+    theta: NDArray[np.float64],
+    omega: NDArray[np.float64],
+    alpha: NDArray[np.float64],
+    inertia: list[tuple[float, float, float, float]],
+    gravity: tuple[float, float],
+    loads: list[tuple[int, int, NDArray[np.float64], NDArray[np.float64]]],
+) -> dict[str, Any]: ...

@@ -205,14 +205,17 @@ class FourBar:
 
     def sweep(
         self,
-        theta: Any,
+        theta: Any = None,
         omega: Any = None,
         alpha: Any = None,
         outputs: Iterable[str] = DEFAULT_OUTPUTS,
+        *,
+        time: Any = None,
+        drive: Any = None,
     ) -> Sweep:
-        """Solve at each crank angle; see :meth:`Mechanism.sweep`. ``s.point`` is the coupler
-        point, ``s.joints`` holds O, C, A, B, P."""
-        return self.mechanism().sweep(theta, omega, alpha, outputs)
+        """Solve at each crank angle, or at each time of a drive; see :meth:`Mechanism.sweep`.
+        ``s.point`` is the coupler point, ``s.joints`` holds O, C, A, B, P."""
+        return self.mechanism().sweep(theta, omega, alpha, outputs, time=time, drive=drive)
 
     def circuit(self, n: int = 721) -> Sweep:
         """The whole coupler curve of the circuit in ``n`` samples.

@@ -221,10 +221,13 @@ class Mechanism:
     # -- solving --------------------------------------------------------------------------
     def sweep(
         self,
-        theta: Any,
+        theta: Any = None,
         omega: Any = None,
         alpha: Any = None,
         outputs: Iterable[str] = DEFAULT_OUTPUTS,
+        *,
+        time: Any = None,
+        drive: Any = None,
     ) -> Sweep:
         """Solve the mechanism at each crank angle of ``theta`` (radians, scalar or 1-D).
 
@@ -236,9 +239,24 @@ class Mechanism:
         ``outputs`` names what to compute besides positions: ``"velocity"`` and
         ``"acceleration"`` need ``omega`` (rad/s; scalar or one per angle); ``alpha`` (rad/s²)
         defaults to 0, constant crank speed. Position-only sweeps do no rate work.
+
+        In time: ``sweep(time=t, drive=d)`` takes ``θ, ω, α`` from a drive
+        (:mod:`linkage.drive`) at the times ``t``; ``s.time`` keeps them.
         """
         if not self._names:
             raise LinkageError("the mechanism has no joints")
+        times = None
+        if drive is not None or time is not None:
+            if drive is None or time is None:
+                raise LinkageError("a sweep in time needs both time= and drive=")
+            if theta is not None or omega is not None or alpha is not None:
+                raise LinkageError("give either theta (with omega, alpha) or time= and drive=")
+            if not hasattr(drive, "angles"):
+                raise TypeError(f"drive must have an angles(t) method, got {type(drive).__name__}")
+            times, _ = as_angles(time, "time")
+            theta, omega, alpha = drive.angles(times)
+        elif theta is None:
+            raise TypeError("sweep() needs theta (crank angles) or time= and drive=")
         out = check_outputs(outputs, omega)
         th, scalar = as_angles(theta, "theta")
         n = th.shape[0]
@@ -254,7 +272,9 @@ class Mechanism:
             curvature="curvature" in out,
         )
         trace = self._index(self.trace, "trace")
-        return Sweep(th, raw, self.joint_names, trace, out, scalar, links=self.links)
+        s = Sweep(th, raw, self.joint_names, trace, out, scalar, links=self.links)
+        s.time = times
+        return s
 
 
 def _choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:

@@ -61,6 +61,8 @@ class Sweep:
         links: tuple[str, ...] = (),
     ) -> None:
         self.joint_names = joint_names
+        self.time: NDArray[np.float64] | None = None
+        """Times of the samples, for a sweep driven in time (else None)."""
         self.links = links
         """Link names, the ground first (joints of each link joined by '-')."""
         self.link_pairs = tuple(

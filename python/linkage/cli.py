@@ -12,6 +12,9 @@ import numpy as np
 
 from linkage import catalog
 from linkage._core import LinkageError
+from linkage._fourbar import FourBar
+from linkage.drive import Program, Segment
+from linkage.forces import LinkMass, PointLoad, forces
 from linkage.geometry import foot_path, three_point_centres
 
 MOTOR_RPM = 50.0
@@ -19,6 +22,12 @@ MOTOR_RPM = 50.0
 faster (the 15-tooth idler only reverses twice)."""
 GEAR_RATIO = 18.0 / 14.0
 STRAIGHT_TOL_MM = 0.1
+THESIS_TWO_MASSES = {
+    "crank": LinkMass(0.0036, (0.005, 0.0), 0.122432e-6),
+    "coupler": LinkMass(0.0210, (0.0312566, 0.0), 2.17781e-6),
+    "rocker": LinkMass(0.0060, (0.0125, 0.0), 0.774427e-6),
+}
+"""Thesis 2's link masses (kg), centres of mass (m along each link) and inertias (kg·m²)."""
 
 
 def hoecken_report(samples: int = 3601) -> list[tuple[str, str, str, str]]:
@@ -74,6 +83,31 @@ def hoecken_report(samples: int = 3601) -> list[tuple[str, str, str, str]]:
 
     def e(x: float) -> str:
         return f"{x:.1e}"
+
+    # Thesis 1's 3-4-5 drive (91° → 271° in 1 s, then on to 451°): peak foot speed and
+    # acceleration against time, for comparison with its CAD (262 mm/s, 2204 mm/s²) and listing
+    # (297.46 mm/s, 2677 mm/s²).
+    program = Program(math.radians(91), [Segment(1.0, math.pi, "3-4-5")] * 2)
+    t_law = np.linspace(0.0, 2.0, 4001)
+    s_law = fb.sweep(time=t_law, drive=program, outputs=("velocity", "acceleration"))
+    law_speed = float(np.linalg.norm(s_law.velocity, axis=1).max())
+    law_accel = float(np.linalg.norm(s_law.acceleration, axis=1).max())
+    crank_peak = float(np.degrees(program.angles(t_law)[1].max()))
+
+    # Thesis 2's leg (same proportions, metres) at 20 rpm clockwise with its 0.5·9.81 N foot
+    # force: crank torque by Newton–Euler, checked by the power method.
+    leg_m = FourBar(ground=0.020, crank=0.010, coupler=0.025, rocker=0.025, point=(0.050, 0))
+    t1 = time.perf_counter()
+    torque = forces(
+        leg_m,
+        np.radians(np.arange(0.0, 360.0, 0.5)),
+        omega=-20 * 2 * math.pi / 60,
+        masses=THESIS_TWO_MASSES,
+        gravity=(0.0, 0.0),
+        loads=[PointLoad("coupler", "P", (0.5 * 9.81, 0.0))],
+    )
+    t_forces = time.perf_counter() - t1
+    torque_check = float(np.abs(torque.torque - torque.power_torque).max())
 
     stance = fp.stance
     rows = [
@@ -132,6 +166,25 @@ def hoecken_report(samples: int = 3601) -> list[tuple[str, str, str, str]]:
         ("peak foot speed", f(speed.max(), 1), "mm/s", f"vel {e(vel_err)}"),
         ("peak foot acceleration", f(accel.max(), 1), "mm/s²", f"acc {e(acc_err)}"),
         ("smallest dyad margin (sin transmission)", f(float(np.nanmin(s.margin)), 4), "", "exact"),
+        ("3-4-5 drive: peak crank speed", f(crank_peak, 1), "deg/s", "exact"),
+        (
+            "3-4-5 drive: peak foot speed / acceleration",
+            f"{f(law_speed, 1)} / {f(law_accel, 0)}",
+            "mm/s, mm/s²",
+            "sampled 0.5 ms",
+        ),
+        (
+            "thesis 2 leg torque mean |T| / peak",
+            f"{torque.mean_abs_torque:.4f} / {torque.peak_torque:.4f}",
+            "N·m",
+            f"vs power {e(torque_check)}",
+        ),
+        (
+            "torque time (720 samples, Newton–Euler + power)",
+            f(1e3 * t_forces, 2),
+            "ms",
+            "wall clock",
+        ),
         (
             f"sweep time ({samples} samples, pos+vel+acc+curv)",
             f(1e3 * t_sweep, 2),

@@ -6,10 +6,13 @@
 
 use pyo3::prelude::*;
 
+mod cam;
 mod catalog;
 mod centres;
+mod drives;
 mod error;
 mod fourbar;
+mod kinetostatics;
 mod mechanism;
 
 /// Maximum joints of a mechanism built from Python.
@@ -30,5 +33,14 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(centres::curvature_centres, m)?)?;
     m.add_function(wrap_pyfunction!(centres::circumcentres, m)?)?;
     m.add_function(wrap_pyfunction!(centres::straight_run, m)?)?;
+    m.add_function(wrap_pyfunction!(drives::motion_law_names, m)?)?;
+    m.add_function(wrap_pyfunction!(drives::motion_law_eval, m)?)?;
+    m.add_function(wrap_pyfunction!(drives::program_eval, m)?)?;
+    m.add_function(wrap_pyfunction!(drives::program_discontinuities, m)?)?;
+    m.add_function(wrap_pyfunction!(drives::gear_train_simple, m)?)?;
+    m.add_function(wrap_pyfunction!(drives::gear_train_compound, m)?)?;
+    m.add_function(wrap_pyfunction!(drives::schedule_eval, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::cam_geometry, m)?)?;
+    m.add_function(wrap_pyfunction!(kinetostatics::forces, m)?)?;
     Ok(())
 }

@@ -243,7 +243,7 @@ fn parse_reach(reach: &str) -> PyResult<Reach> {
 #[pyclass(module = "linkage._core")]
 #[derive(Clone)]
 pub struct Mechanism {
-    inner: CoreMechanism<f64, CAPACITY>,
+    pub(crate) inner: CoreMechanism<f64, CAPACITY>,
 }
 
 impl Mechanism {

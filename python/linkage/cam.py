@@ -1,0 +1,179 @@
+"""Disc cams with translating roller or flat-faced followers: pitch curve, profile, pressure
+angle, radius of curvature, with undercut and pressure-angle checks.
+
+The follower's motion is a :class:`linkage.drive.Program` in cam angle (radians → length) that
+spans exactly one turn. The cam turns counter-clockwise; coordinates are in the cam's frame.
+
+>>> import numpy as np
+>>> from linkage.cam import DiscCam, leg_lift_cam
+>>> p = leg_lift_cam().profile(361)
+>>> round(float(p.displacement.max()), 6), p.undercut
+(1.4, False)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage import _core
+from linkage._arrays import as_finite, as_length
+from linkage._core import LinkageError
+from linkage.drive import Program, Segment
+
+Array = NDArray[np.float64]
+
+
+@dataclass
+class CamProfile:
+    """A cam's geometry sampled over one turn."""
+
+    phi: Array
+    """Cam angles (rad)."""
+    displacement: Array
+    """Follower displacement ``s(φ)``."""
+    pitch: Array
+    """Pitch curve (roller centres; for a flat face, its point on the axis), shape (n, 2)."""
+    profile: Array
+    """Cam profile, shape (n, 2)."""
+    pressure_angle: Array
+    """Pressure angle (rad, signed); zero for a flat-faced follower."""
+    pitch_radius: Array
+    """Signed radius of curvature of the pitch curve (positive where convex)."""
+    profile_radius: Array
+    """Signed radius of curvature of the profile (a convex part with a negative value is
+    undercut)."""
+    problems: list[str] = field(default_factory=list)
+    """Undercut and pressure-angle findings, in words; empty when the cam is sound."""
+
+    @property
+    def undercut(self) -> bool:
+        """Whether the profile is undercut (loops or cusps: the follower cannot trace it)."""
+        return any(p.startswith("undercut") for p in self.problems)
+
+    @property
+    def max_pressure_angle(self) -> float:
+        """Largest |pressure angle| (rad)."""
+        return float(np.max(np.abs(self.pressure_angle)))
+
+    def check(self) -> CamProfile:
+        """Return self, or raise LinkageError listing the problems."""
+        if self.problems:
+            raise LinkageError("; ".join(self.problems))
+        return self
+
+
+class DiscCam:
+    """A disc cam driving a translating follower.
+
+    Parameters
+    ----------
+    program : Program
+        Follower displacement against cam angle (rad), spanning one turn (period 2π) and
+        returning to its start.
+    base_radius : float
+        Radius of the cam's base circle (the profile's smallest radius on a dwell at s = 0).
+    roller_radius : float, optional
+        Radius of a roller follower; omit for a flat-faced follower.
+    offset : float
+        Offset of a roller follower's axis from the cam centre.
+    pressure_limit : float
+        Largest acceptable |pressure angle| (rad), 30° by default.
+    """
+
+    def __init__(
+        self,
+        program: Program,
+        base_radius: float,
+        roller_radius: float | None = None,
+        offset: float = 0.0,
+        pressure_limit: float = math.radians(30.0),
+    ) -> None:
+        if not isinstance(program, Program):
+            raise TypeError(
+                f"program must be a linkage.drive.Program, got {type(program).__name__}"
+            )
+        if abs(program.period - 2 * math.pi) > 1e-9:
+            raise LinkageError(
+                f"a cam program must span one turn (2π rad), got {program.period:.9g} rad"
+            )
+        rise = sum(s.rise for s in program.segments)
+        if abs(rise) > 1e-12 * max(1.0, sum(abs(s.rise) for s in program.segments)):
+            raise LinkageError(f"a cam program must return to its start, it rises by {rise:g}")
+        self.program = program
+        self.base_radius = as_length(base_radius, "base_radius")
+        self.roller_radius = (
+            None if roller_radius is None else as_length(roller_radius, "roller_radius")
+        )
+        self.offset = as_finite(offset, "offset")
+        if (
+            self.roller_radius is not None
+            and abs(self.offset) >= self.base_radius + self.roller_radius
+        ):
+            raise LinkageError("offset must be smaller than base_radius + roller_radius")
+        self.pressure_limit = as_finite(pressure_limit, "pressure_limit")
+
+    def profile(self, n: int = 721) -> CamProfile:
+        """Sample the cam at ``n`` angles over one turn and check it."""
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 8:
+            raise LinkageError(f"n must be an int ≥ 8, got {n!r}")
+        phi = np.linspace(0.0, 2 * math.pi, int(n))
+        s, v, a, _ = self.program.eval(phi)
+        y = np.ascontiguousarray(np.c_[s, v, a])
+        raw = _core.cam_geometry(phi, y, self.base_radius, self.roller_radius, self.offset)
+        prof = CamProfile(
+            phi=phi,
+            displacement=s,
+            pitch=raw["pitch"],
+            profile=raw["profile"],
+            pressure_angle=raw["pressure_angle"],
+            pitch_radius=raw["pitch_radius"],
+            profile_radius=raw["profile_radius"],
+        )
+        prof.problems = self._problems(prof)
+        return prof
+
+    def _problems(self, p: CamProfile) -> list[str]:
+        out = []
+        deg = np.degrees(p.phi)
+        if self.roller_radius is not None:
+            convex = p.pitch_radius > 0
+            bad = convex & (p.pitch_radius < self.roller_radius)
+            if bad.any():
+                k = int(np.flatnonzero(bad)[np.argmin(p.pitch_radius[bad])])
+                out.append(
+                    f"undercut: the pitch curve's radius of curvature {p.pitch_radius[k]:.4g} is "
+                    f"smaller than the roller radius {self.roller_radius:g} at cam angle "
+                    f"{deg[k]:.1f}°; enlarge the base circle or use a smaller roller"
+                )
+        else:
+            bad = p.profile_radius < 0
+            if bad.any():
+                k = int(np.argmin(p.profile_radius))
+                out.append(
+                    f"undercut: the profile's radius of curvature Rb + s + s'' is "
+                    f"{p.profile_radius[k]:.4g} < 0 at cam angle {deg[k]:.1f}° (a cusp); "
+                    f"enlarge the base circle"
+                )
+        k = int(np.argmax(np.abs(p.pressure_angle)))
+        if abs(p.pressure_angle[k]) > self.pressure_limit:
+            out.append(
+                f"pressure angle {math.degrees(abs(p.pressure_angle[k])):.1f}° exceeds the "
+                f"limit {math.degrees(self.pressure_limit):.1f}° at cam angle {deg[k]:.1f}°; "
+                f"enlarge the base circle or lengthen the rise"
+            )
+        return out
+
+
+def leg_lift_cam(roller_radius: float = 2.0, base_radius: float = 6.5) -> DiscCam:
+    """Thesis 2's leg-lift cam: a 1.4 mm simple-harmonic rise over half a turn and the return
+    over the other half (mm). The source's drawing gives 13 mm across the cam; read here as the
+    base-circle diameter, with a 2 mm roller — both assumptions, as the source does not say."""
+    prog = Program(
+        0.0,
+        [Segment(math.pi, 1.4, "simple-harmonic"), Segment(math.pi, -1.4, "simple-harmonic")],
+    )
+    return DiscCam(prog, base_radius, roller_radius=roller_radius)

@@ -1,0 +1,346 @@
+"""Drives: motion laws, piecewise programs, gear trains, and crank-speed schedules.
+
+A drive turns time into crank angle, speed and acceleration (``drive.angles(t)`` gives
+``θ, ω, α`` arrays); pass it to ``sweep(time=..., drive=...)`` to get a linkage against time.
+
+>>> import numpy as np
+>>> from linkage.drive import Program, Segment, GearTrain
+>>> train = GearTrain.simple([18, 15, 14])              # thesis 1's train
+>>> round(train.ratio, 6), round(train.output_speed(50.0), 3)
+(1.285714, 64.286)
+>>> p = Program(np.radians(91), [Segment(1.0, np.pi, "3-4-5"), Segment(1.0, np.pi, "3-4-5")])
+>>> theta, omega, alpha = p.angles(np.array([0.5]))
+>>> round(float(np.degrees(omega[0])), 6)               # peak 180°·15/8
+337.5
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage import _core
+from linkage._arrays import as_angles, as_finite, as_length
+from linkage._core import LinkageError
+
+Array = NDArray[np.float64]
+LAWS: tuple[str, ...] = tuple(_core.motion_law_names())
+"""Names of the motion laws."""
+
+
+def motion_law(name: str, u: Any) -> tuple[Array, Array, Array, Array]:
+    """A dimensionless rise law on ``u ∈ [0, 1]``: ``(s, s', s'', s''')``, derivatives in ``u``.
+
+    Laws: constant-velocity, constant-acceleration, simple-harmonic, cycloidal, 3-4-5, 4-5-6-7,
+    modified-trapezoid. A rise ``L`` over ``β`` scales them as ``L·s``, ``L·s'/β``,
+    ``L·s''/β²``, ``L·s'''/β³``.
+
+    >>> s, v, a, j = motion_law("cycloidal", [0.25])
+    >>> round(float(a[0]), 12) == round(2 * np.pi, 12)   # peak 2π·L/β²
+    True
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a str, got {type(name).__name__}")
+    uu, scalar = as_angles(u, "u")
+    out = _core.motion_law_eval(name, uu)
+    cols = tuple(out[:, k] for k in range(4))
+    return cols  # type: ignore[return-value]
+
+
+@dataclass(frozen=True)
+class Segment:
+    """Over ``duration`` the output moves by ``rise`` following ``law`` (a dwell when ``law``
+    is None or ``rise`` is 0)."""
+
+    duration: float
+    rise: float = 0.0
+    law: str | None = None
+
+    def __post_init__(self) -> None:
+        as_length(self.duration, "duration")
+        as_finite(self.rise, "rise")
+        if self.law is not None and self.law not in LAWS:
+            raise LinkageError(f"unknown motion law {self.law!r}; choose from {', '.join(LAWS)}")
+
+
+class Drive(Protocol):
+    """Anything that gives crank angle, speed and acceleration against time."""
+
+    def angles(self, t: Any) -> tuple[Array, Array, Array]:
+        """``(θ, ω, α)`` at times ``t``."""
+        ...
+
+
+class Program:
+    """A piecewise motion program: ``start`` then ``segments`` in sequence, repeating (the
+    output advancing by the sum of the rises each period). As a drive its output is the crank
+    angle in radians against time in seconds.
+
+    >>> rdr = Program(0.0, [Segment(1.0, 2.0, "simple-harmonic"), Segment(0.5),
+    ...                     Segment(1.0, -2.0, "simple-harmonic"), Segment(0.5)])
+    >>> [(after, order) for after, order, _ in rdr.discontinuities()]
+    [(0, 2), (1, 2), (2, 2), (3, 2)]
+    """
+
+    def __init__(self, start: float, segments: Sequence[Segment]) -> None:
+        self.start = as_finite(start, "start")
+        segs = list(segments)
+        if not segs:
+            raise LinkageError("a program needs at least one segment")
+        for s in segs:
+            if not isinstance(s, Segment):
+                raise TypeError(f"segments must be Segment, got {type(s).__name__}")
+        self.segments = tuple(segs)
+
+    def _args(self) -> tuple[float, list[float], list[float], list[str | None]]:
+        return (
+            self.start,
+            [float(s.duration) for s in self.segments],
+            [float(s.rise) for s in self.segments],
+            [s.law for s in self.segments],
+        )
+
+    @property
+    def period(self) -> float:
+        """Duration of one period."""
+        return float(sum(s.duration for s in self.segments))
+
+    def eval(self, t: Any) -> tuple[Array, Array, Array, Array]:
+        """Value and first three derivatives at ``t``."""
+        tt, _ = as_angles(t, "t")
+        out = _core.program_eval(*self._args(), tt)
+        return out[:, 0], out[:, 1], out[:, 2], out[:, 3]
+
+    def angles(self, t: Any) -> tuple[Array, Array, Array]:
+        """``(θ, ω, α)`` at times ``t``."""
+        y, v, a, _ = self.eval(t)
+        return y, v, a
+
+    def discontinuities(self, tol: float = 1e-9) -> list[tuple[int, int, float]]:
+        """Jumps at the joins (the last to the first included): ``(after segment, order,
+        jump)`` with order 1 velocity, 2 acceleration, 3 jerk."""
+        raw = _core.program_discontinuities(*self._args(), as_finite(tol, "tol"))
+        return [(int(after), int(order), float(jump)) for after, order, jump in raw]
+
+
+@dataclass(frozen=True)
+class ConstantSpeed:
+    """Constant crank speed ``omega`` (rad/s) from ``theta0``."""
+
+    omega: float
+    theta0: float = 0.0
+
+    def angles(self, t: Any) -> tuple[Array, Array, Array]:
+        """``(θ, ω, α)`` at times ``t``."""
+        tt, _ = as_angles(t, "t")
+        w = as_finite(self.omega, "omega")
+        return as_finite(self.theta0, "theta0") + w * tt, np.full_like(tt, w), np.zeros_like(tt)
+
+
+class GearTrain:
+    """External spur gears: speed ratio ``output/input`` and sense."""
+
+    def __init__(self, ratio: float, sign: int) -> None:
+        self.ratio = float(ratio)
+        self.sign = int(sign)
+
+    @classmethod
+    def simple(cls, teeth: Sequence[int]) -> GearTrain:
+        """Gears in mesh order, one per shaft: ratio ``z_first/z_last``; each mesh reverses."""
+        return cls(*_core.gear_train_simple([_teeth(z) for z in teeth]))
+
+    @classmethod
+    def compound(cls, stages: Sequence[tuple[int, int]]) -> GearTrain:
+        """``(driver, driven)`` meshes, driven and next driver sharing a shaft."""
+        return cls(*_core.gear_train_compound([(_teeth(a), _teeth(b)) for a, b in stages]))
+
+    def output_speed(self, input_speed: float) -> float:
+        """Signed output speed for an input speed."""
+        return float(input_speed) * self.ratio * self.sign
+
+    def __repr__(self) -> str:
+        return f"GearTrain(ratio={self.ratio:g}, sign={self.sign:+d})"
+
+
+def _teeth(z: Any) -> int:
+    if isinstance(z, bool) or not isinstance(z, (int, np.integer)):
+        raise TypeError(f"tooth counts must be ints, got {type(z).__name__}")
+    if z <= 0:
+        raise LinkageError(f"tooth counts must be positive, got {z}")
+    return int(z)
+
+
+@dataclass(frozen=True)
+class Geared:
+    """A motor drive seen through a gear train: the crank turns ``train.ratio`` times as fast
+    (with the train's sense)."""
+
+    motor: Drive
+    train: GearTrain
+
+    def angles(self, t: Any) -> tuple[Array, Array, Array]:
+        """``(θ, ω, α)`` of the crank at times ``t``."""
+        th, w, a = self.motor.angles(t)
+        k = self.train.ratio * self.train.sign
+        return k * th, k * w, k * a
+
+
+@dataclass(frozen=True)
+class CrankSchedule:
+    """A periodic crank schedule ``θ(t)`` for one crank turn per period, stored as a compact
+    table of crank angle and speed at uniform times (see :func:`crank_schedule`).
+
+    ``theta`` and ``omega`` are ``float32`` — the arrays to put in firmware, interpolated there
+    by ``linkage_core::ScheduleTable`` (cubic Hermite: θ and ω continuous).
+    """
+
+    dt: float
+    """Time between table entries (s)."""
+    theta: NDArray[np.float32]
+    """Crank angle at ``k·dt`` (rad), starting at the stance's first angle."""
+    omega: NDArray[np.float32]
+    """Crank speed at ``k·dt`` (rad/s)."""
+    foot_speed: float
+    """The target foot speed along the stance line."""
+    duty_factor: float
+    """Share of the period in stance."""
+    stance_angles: tuple[float, float]
+    """Crank angles where stance starts and ends (the end may exceed 2π)."""
+    speed_ripple: float
+    """``(max − min)/target`` of the foot speed along the stance line in stance, with the
+    table interpolated in f64."""
+    peak_alpha: float
+    """Largest crank acceleration over the period (rad/s²)."""
+
+    @property
+    def period(self) -> float:
+        """One period (s)."""
+        return self.dt * len(self.theta)
+
+    def angles(self, t: Any, single: bool = False) -> tuple[Array, Array, Array]:
+        """``(θ, ω, α)`` at times ``t``, interpolated by the core in f64, or in f32 as firmware
+        would (``single=True``)."""
+        tt, _ = as_angles(t, "t")
+        out = _core.schedule_eval(
+            self.dt,
+            2 * np.pi,
+            np.asarray(self.theta, dtype=np.float64),
+            np.asarray(self.omega, dtype=np.float64),
+            tt,
+            bool(single),
+        )
+        return out[:, 0], out[:, 1], out[:, 2]
+
+
+def crank_schedule(
+    leg: Any,
+    foot_speed: float,
+    duty_factor: float,
+    samples: int = 720,
+    tol: float | None = None,
+    resolution: int = 7201,
+) -> CrankSchedule:
+    """A crank speed schedule that keeps a leg's foot at constant speed along its stance line.
+
+    In stance (the straight part of the foot path within ``tol``, default 0.2 % of the path's
+    extent) the crank runs at ``ω(θ) = V/|u(θ)|``, ``u`` the foot's velocity along the stance
+    line per radian of crank, so the stance lasts ``stride/V``. With duty factor ``β`` the period
+    is ``T = stride/(V·β)``; the swing covers the remaining crank angle in ``(1 − β)T`` with a
+    speed that starts and ends at the stance speeds (continuous ω) plus a parabolic bump sized to
+    close the turn — bounded acceleration. ``leg`` is a :class:`FourBar` or :class:`Mechanism`
+    whose trace point is the foot.
+
+    Raises
+    ------
+    LinkageError
+        For bad numbers, a foot path with no straight part, or a swing that would need the crank
+        to stop or reverse (duty factor too low for that stance).
+    """
+    v_target = as_length(foot_speed, "foot_speed")
+    beta = as_finite(duty_factor, "duty_factor")
+    if not 0 < beta < 1:
+        raise LinkageError(f"duty_factor must be between 0 and 1, got {beta}")
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 8:
+        raise LinkageError(f"samples must be an int ≥ 8, got {samples!r}")
+    from linkage.geometry import foot_path
+
+    theta = np.linspace(0.0, 2 * np.pi, int(resolution))
+    s = leg.sweep(theta, omega=1.0, outputs=("point", "velocity"))
+    if not s.valid.all():
+        raise LinkageError("the leg must assemble over a whole crank turn")
+    path, vel = s.point[:-1], s.velocity[:-1]
+    extent = float(np.ptp(path, axis=0).max())
+    fp = foot_path(path, tol if tol is not None else 2e-3 * extent)
+    idx = fp.stance.indices
+    d = np.asarray(fp.stance.direction)
+    # Stance crank angles, unwrapped so they increase.
+    th_st = theta[idx] + 2 * np.pi * (idx < idx[0])
+    u = np.abs(vel[idx] @ d)
+    if (u <= 0).any():
+        raise LinkageError("the foot stops along the stance line; no constant-speed schedule")
+    # t(θ) in stance: dt = |u| dθ / V.
+    t_st = np.concatenate([[0.0], np.cumsum(0.5 * (u[1:] + u[:-1]) * np.diff(th_st))]) / v_target
+    stance_time = float(t_st[-1])
+    period = stance_time / beta
+    swing_time = period - stance_time
+    w0, w1 = v_target / u[0], v_target / u[-1]
+    swing_angle = 2 * np.pi - (th_st[-1] - th_st[0])
+    bump = swing_angle / swing_time - 0.5 * (w0 + w1)
+    # ω(τ) = w1 + (w0 − w1)τ + 6·bump·τ(1 − τ), τ = t/T_sw ∈ [0, 1]; its minimum sits at an end
+    # or at the vertex of the parabola.
+    tau = np.linspace(0.0, 1.0, 1001)
+    w_swing = w1 + (w0 - w1) * tau + 6 * bump * tau * (1 - tau)
+    if w_swing.min() <= 0:
+        raise LinkageError(
+            f"duty factor {beta} needs the crank to stop during the swing (minimum speed "
+            f"{w_swing.min():.3g} rad/s); raise the duty factor or lower the foot speed"
+        )
+
+    def at(t: NDArray[np.float64]) -> tuple[Array, Array]:
+        th_out = np.empty_like(t)
+        w_out = np.empty_like(t)
+        st = t <= stance_time
+        th_out[st] = np.interp(t[st], t_st, th_st)
+        w_out[st] = v_target / np.interp(th_out[st], th_st, u)
+        tt = (t[~st] - stance_time) / swing_time
+        th_out[~st] = th_st[-1] + swing_time * (
+            w1 * tt + 0.5 * (w0 - w1) * tt**2 + 6 * bump * (tt**2 / 2 - tt**3 / 3)
+        )
+        w_out[~st] = w1 + (w0 - w1) * tt + 6 * bump * tt * (1 - tt)
+        return th_out, w_out
+
+    dt = period / samples
+    t_tab = dt * np.arange(samples, dtype=np.float64)
+    th_tab, w_tab = at(t_tab)
+    sched = CrankSchedule(
+        dt=dt,
+        theta=th_tab.astype(np.float32),
+        omega=w_tab.astype(np.float32),
+        foot_speed=v_target,
+        duty_factor=beta,
+        stance_angles=(float(th_st[0]), float(th_st[-1])),
+        speed_ripple=0.0,
+        peak_alpha=0.0,
+    )
+    # Measure what the table delivers: foot speed along the stance line in stance, and the
+    # crank acceleration over the period, with the table interpolated in f64.
+    t_fine = np.linspace(0.0, period, 20 * samples, endpoint=False)
+    th_f, w_f, a_f = sched.angles(t_fine)
+    in_stance = t_fine <= stance_time
+    sv = leg.sweep(th_f[in_stance], omega=w_f[in_stance], outputs=("point", "velocity"))
+    speed = sv.velocity @ d
+    ripple = float((speed.max() - speed.min()) / v_target)
+    return CrankSchedule(
+        dt=dt,
+        theta=sched.theta,
+        omega=sched.omega,
+        foot_speed=v_target,
+        duty_factor=beta,
+        stance_angles=sched.stance_angles,
+        speed_ripple=ripple,
+        peak_alpha=float(np.abs(a_f).max()),
+    )
