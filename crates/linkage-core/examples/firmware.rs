@@ -3,7 +3,7 @@
 //! `thumbv7em-none-eabihf` in CI, which proves both precisions compile for the target.
 #![cfg_attr(not(feature = "std"), no_std)]
 
-use linkage_core::{catalog, FourBar, Rates, Tracker, Vec2};
+use linkage_core::{catalog, FourBar, Rates, ScheduleTable, Tracker, Vec2};
 use nalgebra::RealField;
 
 /// Foot height of the Hoecken leg at crank angle `theta` (mm), `NaN` if it cannot assemble.
@@ -42,6 +42,29 @@ pub fn sweep_extent_f32(n: u32) -> f32 {
 /// [`sweep_extent`] in `f64`.
 pub fn sweep_extent_f64(n: u32) -> f64 {
     sweep_extent::<f64>(n)
+}
+
+/// A crank-speed schedule as firmware keeps it: two `f32` arrays in flash (here a constant
+/// 2π rad/s over a 1 s period in 8 entries; `linkage.drive.crank_schedule` writes real ones).
+static SCHEDULE_THETA: [f32; 8] = [
+    0.0, 0.785_398, 1.570_796, 2.356_194, 3.141_593, 3.926_991, 4.712_389, 5.497_787,
+];
+static SCHEDULE_OMEGA: [f32; 8] = [6.283_185; 8];
+
+/// Crank angle set-point and feed-forward speed at time `t` (s) from the schedule table.
+pub fn crank_setpoint(t: f32) -> (f32, f32) {
+    match ScheduleTable::new(
+        0.125,
+        core::f32::consts::TAU,
+        &SCHEDULE_THETA,
+        &SCHEDULE_OMEGA,
+    ) {
+        Ok(table) => {
+            let (theta, omega, _) = table.at(t);
+            (theta, omega)
+        }
+        Err(_) => (f32::NAN, f32::NAN),
+    }
 }
 
 #[cfg(not(feature = "std"))]
