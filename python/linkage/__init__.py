@@ -13,11 +13,12 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from linkage import cam, catalog, drive, forces, geometry
+from linkage import cam, catalog, drive, forces, geometry, walker
 from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._sweep import OUTPUTS, Sweep
+from linkage.walker import Leg, Walker, gait_phases
 from linkage.geometry import (
     ball_point,
     circumcentre,
@@ -37,9 +38,11 @@ __all__ = [
     "OUTPUTS",
     "AssemblyError",
     "FourBar",
+    "Leg",
     "LinkageError",
     "Mechanism",
     "Sweep",
+    "Walker",
     "ball_point",
     "cam",
     "catalog",
@@ -47,10 +50,12 @@ __all__ = [
     "curvature_centre",
     "drive",
     "foot_path",
+    "gait_phases",
     "forces",
     "geometry",
     "mobility",
     "straightness",
     "three_point_centres",
+    "walker",
     "__version__",
 ]

@@ -27,6 +27,7 @@ __all__ = [
     "schedule_eval",
     "cam_geometry",
     "forces",
+    "support_margins",
 ]
 
 CAPACITY: int
@@ -149,3 +150,6 @@ def forces(
     gravity: tuple[float, float],
     loads: list[tuple[int, int, NDArray[np.float64], NDArray[np.float64]]],
 ) -> dict[str, Any]: ...
+def support_margins(
+    points: NDArray[np.float64], cg: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.uint64]]: ...

@@ -17,6 +17,7 @@ linkage.LinkageError: unknown catalogue linkage 'nope'; choose from watt, robert
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,7 +26,9 @@ from linkage import _core
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage.drive import Program, Segment
 from linkage.geometry import straightness
+from linkage.walker import Leg, Walker, gait_phases
 
 FOUR_BARS: tuple[str, ...] = tuple(_core.catalog_names()[0])
 MULTI_LOOP: tuple[str, ...] = tuple(_core.catalog_names()[1])
@@ -197,3 +200,63 @@ def _longest_link(m: Mechanism, joints: np.ndarray) -> float:
             for b in idx:
                 longest = max(longest, float(np.linalg.norm(row[a] - row[b])))
     return longest
+
+
+def quadruped_hoecken() -> Walker:
+    """Thesis 1's quadruped: four Hoecken legs (mm) in vertical planes, each foot on a vertical
+    bar 100 mm below the coupler point (the prototype's guided legs), legs A (left front),
+    B (right front), C (left hind), D (right hind) at x = ±70, y = ±50 mm, diagonal pairs A & D
+    and B & C in antiphase, 20 mm square pads (the widened feet), centre of gravity at the
+    centre. Body dimensions are this model's assumption; the source gives the legs."""
+    legs = []
+    phases = gait_phases("diagonal", ["A", "B", "C", "D"])
+    for (name, x, y), phase in zip(
+        [("A", 70.0, 50.0), ("B", 70.0, -50.0), ("C", -70.0, 50.0), ("D", -70.0, -50.0)], phases
+    ):
+        legs.append(
+            Leg(
+                name,
+                hoecken(),
+                mount=(x - 20.0, y, 0.0),
+                phase=float(phase),
+                foot_offset=(0.0, -100.0),
+                pad=20.0,
+            )
+        )
+    return Walker(legs, cg=(0.0, 0.0), ground_tol=0.1)
+
+
+def hexapod_tripod() -> Walker:
+    """Thesis 2's hexapod (m): six legs, each the Hoecken four-bar (0.020 / 0.010 / 0.025 /
+    0.025, foot 0.050 along the coupler) in the horizontal plane, the foot lifted 1.4 mm by a
+    simple-harmonic cam during the half turn off the straight part; tripod gait {L1, R2, L3}
+    against {R1, L2, R3}. Legs at x = 0.06, 0, −0.06 m and 0.02 m either side of the midline,
+    5 mm pads, centre of gravity at the centre (the body layout is this model's assumption)."""
+    h = 0.0014
+    lift = Program(
+        h,
+        [
+            Segment(math.pi / 2, -h, "simple-harmonic"),
+            Segment(math.pi),
+            Segment(math.pi / 2, h, "simple-harmonic"),
+        ],
+    )
+    names = ["L1", "L2", "L3", "R1", "R2", "R3"]
+    phases = gait_phases("tripod", names)
+    legs = []
+    for name, phase in zip(names, phases):
+        x = {"1": 0.06, "2": 0.0, "3": -0.06}[name[1]]
+        right = name[0] == "R"
+        legs.append(
+            Leg(
+                name,
+                FourBar(ground=0.020, crank=0.010, coupler=0.025, rocker=0.025, point=(0.050, 0.0)),
+                mount=(x - 0.020, -0.02 if right else 0.02, 0.0),
+                phase=float(phase),
+                plane="horizontal",
+                mirror=right,
+                lift=lift,
+                pad=0.005,
+            )
+        )
+    return Walker(legs, cg=(0.0, 0.0), ground_tol=1e-5)

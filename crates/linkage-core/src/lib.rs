@@ -62,6 +62,7 @@ mod scalar;
 mod schedule;
 mod slider;
 mod straightness;
+mod support;
 mod tracker;
 
 /// The straight-line linkages of the source documents (DOMAIN.md), ready to sweep.
@@ -88,4 +89,5 @@ pub use scalar::Vec2;
 pub use schedule::ScheduleTable;
 pub use slider::{Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
+pub use support::{convex_hull, stability_margin};
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};

@@ -14,6 +14,7 @@ mod error;
 mod fourbar;
 mod kinetostatics;
 mod mechanism;
+mod support;
 
 /// Maximum joints of a mechanism built from Python.
 pub const CAPACITY: usize = 64;
@@ -42,5 +43,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drives::schedule_eval, m)?)?;
     m.add_function(wrap_pyfunction!(cam::cam_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(kinetostatics::forces, m)?)?;
+    m.add_function(wrap_pyfunction!(support::support_margins, m)?)?;
     Ok(())
 }

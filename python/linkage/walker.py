@@ -1,0 +1,455 @@
+"""Walking machines: legs on a body, gaits as crank phases, ground contact, support polygons,
+static stability margin, body motion and foot slip.
+
+Each leg is a one-degree-of-freedom linkage whose trace point is the foot, mounted on the body in
+a vertical ("sagittal") plane — the linkage's x forward, y up — or in the horizontal plane with
+a cam lifting the foot (thesis 2's hexapod). The body frame has x forward, y to the left, z up;
+the body is held level at constant height, and the ground is the lowest level any foot reaches.
+
+>>> import numpy as np, linkage
+>>> w = linkage.catalog.quadruped_hoecken()
+>>> sim = w.simulate(np.linspace(0, 2 * np.pi, 721))
+>>> [round(float(d), 2) for d in sim.duty_factor]    # every leg: 58 % of the turn in stance
+[0.58, 0.58, 0.58, 0.58]
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage import _core
+from linkage._arrays import as_angles, as_finite, as_point
+from linkage._core import LinkageError
+from linkage._fourbar import FourBar
+from linkage._mechanism import Mechanism
+from linkage.drive import Program
+
+Array = NDArray[np.float64]
+PLANES = ("sagittal", "horizontal")
+
+
+@dataclass(frozen=True)
+class Leg:
+    """One leg: a linkage whose trace point is the foot, where it sits on the body, its crank
+    phase, and its foot pad."""
+
+    name: str
+    linkage: FourBar | Mechanism
+    mount: tuple[float, float, float]
+    """Body-frame position of the linkage's origin (x forward, y left, z up)."""
+    phase: float = 0.0
+    """Crank phase (rad): the leg's crank angle is the drive's plus this."""
+    plane: str = "sagittal"
+    """"sagittal": the linkage's (x, y) is the body's (x, z); "horizontal": the body's (x, y),
+    with ``lift`` giving the foot height."""
+    mirror: bool = False
+    """Flip the linkage's y (a right-side leg of a horizontal pair, or a mirrored sagittal leg)."""
+    foot_offset: tuple[float, float] = (0.0, 0.0)
+    """A rigid offset from the trace point to the foot, in the linkage's plane (a vertical bar
+    guided on the body, as in thesis 1's prototype)."""
+    lift: Program | None = None
+    """Foot height against the leg's crank angle (a cam program spanning one turn)."""
+    pad: float = 0.0
+    """Side of the square foot pad (0: a point foot)."""
+
+    def __post_init__(self) -> None:
+        if self.plane not in PLANES:
+            raise LinkageError(
+                f"leg {self.name!r}: plane must be one of {PLANES}, got {self.plane!r}"
+            )
+        if not isinstance(self.linkage, (FourBar, Mechanism)):
+            raise TypeError(f"leg {self.name!r}: linkage must be a FourBar or Mechanism")
+        if len(self.mount) != 3:
+            raise LinkageError(f"leg {self.name!r}: mount must be (x, y, z)")
+        for v in self.mount:
+            as_finite(v, "mount")
+        as_finite(self.phase, "phase")
+        as_point(self.foot_offset, "foot_offset")
+        if as_finite(self.pad, "pad") < 0:
+            raise LinkageError(f"leg {self.name!r}: pad must be non-negative")
+        if self.plane == "horizontal" and self.lift is None:
+            raise LinkageError(f"leg {self.name!r}: a horizontal leg needs a lift program")
+
+    def feet(self, theta: Array, omega: Array) -> tuple[Array, Array]:
+        """Foot positions and velocities in the body frame, (N, 3) each, at crank angles
+        ``theta`` (the drive's; the leg adds its phase) turning at ``omega``."""
+        th = theta + self.phase
+        s = self.linkage.sweep(th, omega=omega, outputs=("point", "velocity"))
+        if not s.valid.all():
+            raise LinkageError(f"leg {self.name!r} cannot be assembled over the whole cycle")
+        side = -1.0 if self.mirror else 1.0
+        px = s.point[:, 0] + self.foot_offset[0]
+        py = side * (s.point[:, 1] + self.foot_offset[1])
+        vx, vy = s.velocity[:, 0], side * s.velocity[:, 1]
+        mx, my, mz = self.mount
+        pos = np.empty((len(th), 3))
+        vel = np.zeros((len(th), 3))
+        if self.plane == "sagittal":
+            pos[:] = np.c_[mx + px, np.full_like(px, my), mz + py]
+            vel[:, 0], vel[:, 2] = vx, vy
+        else:
+            pos[:] = np.c_[mx + px, my + py, np.full_like(px, mz)]
+            vel[:, 0], vel[:, 1] = vx, vy
+        if self.lift is not None:
+            h, dh, _, _ = self.lift.eval(np.mod(th, 2 * math.pi))
+            pos[:, 2] += h
+            vel[:, 2] += dh * omega
+        return pos, vel
+
+
+@dataclass
+class Simulation:
+    """A walker over one or more cycles: every array has one row per sample."""
+
+    theta: Array
+    """The drive's crank angle."""
+    time: Array
+    """Time of each sample (crank angle / ω for a constant-speed sweep by angle)."""
+    legs: tuple[str, ...]
+    feet: Array
+    """Foot positions in the body frame, (N, L, 3)."""
+    foot_velocity: Array
+    """Foot velocities in the body frame, (N, L, 3)."""
+    stance: NDArray[np.bool_]
+    """Which feet are on the ground, (N, L)."""
+    ground: float
+    """Ground height in the body frame (the lowest foot level)."""
+    body_velocity: Array
+    """Forward body speed: minus the mean stance-foot velocity along x (NaN with no foot
+    down)."""
+    body_position: Array
+    """Forward body travel since the first sample."""
+    support: Array
+    """Support polygon (convex hull of the stance pads) per sample, counter-clockwise,
+    NaN-padded, (N, K, 2) in the ground plane (x, y)."""
+    support_count: NDArray[np.uint64]
+    """Vertices of each support polygon."""
+    margin: Array
+    """Signed distance of the centre of gravity's ground projection from the support polygon's
+    boundary: positive inside (statically stable), negative outside, ``-inf`` with no foot on
+    the ground."""
+    slip_velocity: Array
+    """Velocity over the ground of each stance foot along x: foot velocity plus body velocity,
+    (N, L); NaN in swing. Zero when every stance foot moves alike."""
+    spread: Array
+    """Largest minus smallest stance-foot velocity along x, per sample (0 with < 2 feet down)."""
+    cycle: float = field(default=2 * math.pi)
+
+    @property
+    def min_margin(self) -> float:
+        """The smallest stability margin."""
+        return float(np.nanmin(self.margin))
+
+    @property
+    def min_margin_at(self) -> float:
+        """Crank angle of the smallest stability margin."""
+        return float(self.theta[int(np.nanargmin(self.margin))])
+
+    @property
+    def duty_factor(self) -> Array:
+        """Share of the samples each leg spends in stance."""
+        d: Array = self.stance.mean(axis=0)
+        return d
+
+    @property
+    def pr_ratio(self) -> Array:
+        """Protraction (swing) to retraction (stance) time ratio p/r per leg."""
+        d = self.duty_factor
+        with np.errstate(divide="ignore"):
+            r: Array = (1 - d) / d
+        return r
+
+    @property
+    def stride(self) -> Array:
+        """Foot travel along x during stance (the body's advance per step), per leg."""
+        out = np.full(len(self.legs), np.nan)
+        for i in range(len(self.legs)):
+            x = self.feet[self.stance[:, i], i, 0]
+            if len(x):
+                out[i] = float(np.ptp(x))
+        return out
+
+    @property
+    def lift_height(self) -> Array:
+        """Highest foot point above the ground, per leg: the obstacle it can step over."""
+        h: Array = self.feet[:, :, 2].max(axis=0) - self.ground
+        return h
+
+    @property
+    def slip_distance(self) -> Array:
+        """Distance each foot slides over the ground while in stance, over the simulation."""
+        dt = np.gradient(self.time)
+        s = np.where(self.stance, np.abs(np.nan_to_num(self.slip_velocity)), 0.0)
+        d: Array = (s * dt[:, None]).sum(axis=0)
+        return d
+
+    def gait_diagram(self) -> list[tuple[str, list[tuple[float, float]]]]:
+        """Stance bars per leg: ``(leg, [(start, end), ...])`` in time (the source's Fig. 4.4)."""
+        out = []
+        for i, name in enumerate(self.legs):
+            s = np.r_[False, self.stance[:, i], False].astype(int)
+            starts = np.flatnonzero(np.diff(s) == 1)
+            ends = np.flatnonzero(np.diff(s) == -1) - 1
+            out.append(
+                (name, [(float(self.time[a]), float(self.time[b])) for a, b in zip(starts, ends)])
+            )
+        return out
+
+
+class Walker:
+    """A body carrying legs, all driven by one crank drive (each leg at its own phase).
+
+    Parameters
+    ----------
+    legs : sequence of Leg
+    cg : (x, y)
+        Ground projection of the centre of gravity in the body frame.
+    ground_tol : float, optional
+        A foot within this height of the ground is in stance; default 0.25 % of the largest
+        foot-path extent.
+    body_underside : float, optional
+        Height of the body's underside in the body frame, for the body clearance (default: the
+        lowest mount).
+    """
+
+    def __init__(
+        self,
+        legs: Sequence[Leg],
+        cg: Sequence[float] = (0.0, 0.0),
+        ground_tol: float | None = None,
+        body_underside: float | None = None,
+    ) -> None:
+        self.legs = tuple(legs)
+        if not self.legs:
+            raise LinkageError("a walker needs at least one leg")
+        names = [leg.name for leg in self.legs]
+        if len(set(names)) != len(names):
+            raise LinkageError(f"leg names must be unique, got {names}")
+        for leg in self.legs:
+            if not isinstance(leg, Leg):
+                raise TypeError(f"legs must be Leg, got {type(leg).__name__}")
+        self.cg = as_point(cg, "cg")
+        self.ground_tol = None if ground_tol is None else as_finite(ground_tol, "ground_tol")
+        self.body_underside = (
+            min(leg.mount[2] for leg in self.legs)
+            if body_underside is None
+            else as_finite(body_underside, "body_underside")
+        )
+
+    def with_phases(self, phases: Sequence[float]) -> Walker:
+        """The same walker with new crank phases (one per leg)."""
+        if len(phases) != len(self.legs):
+            raise LinkageError(f"need {len(self.legs)} phases, got {len(phases)}")
+        legs = [replace(leg, phase=float(p)) for leg, p in zip(self.legs, phases)]
+        return Walker(legs, self.cg, self.ground_tol, self.body_underside)
+
+    @property
+    def phases(self) -> Array:
+        """Crank phase of each leg."""
+        return np.array([leg.phase for leg in self.legs])
+
+    def simulate(
+        self,
+        theta: Any = None,
+        omega: float = 1.0,
+        *,
+        time: Any = None,
+        drive: Any = None,
+        per_leg_time: bool = False,
+    ) -> Simulation:
+        """Simulate at crank angles ``theta`` (constant speed ``omega``, rad/s) or at times
+        ``time`` of a ``drive``.
+
+        With ``per_leg_time`` (a periodic drive with a ``period``, such as a crank schedule),
+        each leg runs the drive shifted in time by its phase's share of the period instead of
+        adding the phase to the angle: how one would run one motor per leg on the same schedule.
+        """
+        if drive is not None or time is not None:
+            if drive is None or time is None or theta is not None:
+                raise LinkageError("give either theta, or time= with drive=")
+            t, _ = as_angles(time, "time")
+            th, w, _ = drive.angles(t)
+        else:
+            if theta is None:
+                raise TypeError("simulate() needs theta or time= and drive=")
+            th, _ = as_angles(theta, "theta")
+            w0 = as_finite(omega, "omega")
+            if w0 == 0:
+                raise LinkageError("omega must be non-zero")
+            t, w = th / w0, np.full_like(th, w0)
+        n, m = len(th), len(self.legs)
+        feet = np.empty((n, m, 3))
+        vel = np.empty((n, m, 3))
+        for i, leg in enumerate(self.legs):
+            if per_leg_time:
+                if drive is None or not hasattr(drive, "period"):
+                    raise LinkageError("per_leg_time needs a periodic drive (with a period)")
+                shift = leg.phase / (2 * math.pi) * drive.period
+                thi, wi, _ = drive.angles(t + shift)
+                feet[:, i], vel[:, i] = replace(leg, phase=0.0).feet(thi, wi)
+            else:
+                feet[:, i], vel[:, i] = leg.feet(th, w)
+        return self._evaluate(th, t, feet, vel)
+
+    def _evaluate(self, th: Array, t: Array, feet: Array, vel: Array) -> Simulation:
+        """Ground contact, body motion, support polygons, margins and slip from foot tracks."""
+        n, m = feet.shape[:2]
+        z = feet[:, :, 2]
+        ground = float(z.min())
+        extent = float(np.ptp(feet.reshape(-1, 3), axis=0).max())
+        tol = self.ground_tol if self.ground_tol is not None else 2.5e-3 * extent
+        stance = z <= ground + tol
+        vx = np.where(stance, vel[:, :, 0], np.nan)
+        with np.errstate(invalid="ignore"), _quiet():
+            body_v = -np.nanmean(vx, axis=1)
+            spread = np.where(
+                stance.sum(axis=1) >= 2, np.nanmax(vx, axis=1) - np.nanmin(vx, axis=1), 0.0
+            )
+        dt = np.diff(t)
+        bv = np.nan_to_num(body_v)
+        body_x = np.r_[0.0, np.cumsum(0.5 * (bv[1:] + bv[:-1]) * dt)]
+        # Support polygon: pad corners of every stance foot.
+        half = np.array([leg.pad / 2 for leg in self.legs])
+        corners = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float)
+        pts = feet[:, :, None, :2] + corners[None, None] * half[None, :, None, None]
+        pts = np.where(stance[:, :, None, None], pts, np.nan).reshape(n, 4 * m, 2)
+        cg = np.ascontiguousarray(np.broadcast_to(np.asarray(self.cg), (n, 2)))
+        margin, hull, count = _core.support_margins(np.ascontiguousarray(pts), cg)
+        # No foot on the ground: no support at all, the worst possible margin.
+        margin = np.where(count == 0, -np.inf, margin)
+        return Simulation(
+            theta=th,
+            time=t,
+            legs=tuple(leg.name for leg in self.legs),
+            feet=feet,
+            foot_velocity=vel,
+            stance=stance,
+            ground=ground,
+            body_velocity=body_v,
+            body_position=body_x,
+            support=hull,
+            support_count=count,
+            margin=margin,
+            slip_velocity=vx + body_v[:, None],
+            spread=spread,
+        )
+
+    def body_clearance(self, samples: int = 721) -> float:
+        """Height of the body's underside above the ground (the obstacle the body clears)."""
+        sim = self.simulate(np.linspace(0, 2 * math.pi, samples))
+        return float(self.body_underside - sim.ground)
+
+    def search_phases(
+        self,
+        objective: str = "margin",
+        step: float = math.radians(15.0),
+        samples: int = 360,
+        rounds: int = 3,
+        max_evals: int = 5000,
+    ) -> tuple[Array, float]:
+        """Crank phases (the first leg's kept) that maximise the minimum stability margin
+        (``"margin"``) or minimise the total foot slip per cycle among statically stable
+        phasings (``"slip"``: a phasing whose margin ever drops below zero is rejected — all legs
+        in phase slip least but fall over), by coordinate search over a grid of ``step``.
+        The search is exhaustive over the grid when it has at most ``max_evals`` phasings,
+        otherwise a coordinate search from the current phases. Legs' tracks are computed once
+        and shifted, so a phasing costs one support-polygon pass. Returns ``(phases, objective
+        value)``."""
+        if objective not in ("margin", "slip"):
+            raise LinkageError(f"objective must be 'margin' or 'slip', got {objective!r}")
+        g = int(round(2 * math.pi / as_finite(step, "step")))
+        if g < 2 or abs(g * step - 2 * math.pi) > 1e-9:
+            raise LinkageError("step must divide a full turn (2π/step a whole number ≥ 2)")
+        per = max(1, int(math.ceil(samples / g)))
+        n = g * per
+        theta = np.linspace(0, 2 * math.pi, n, endpoint=False)
+        # Every leg's track at phase 0 over one turn; a phase on the grid is a cyclic shift.
+        base = [replace(leg, phase=0.0).feet(theta, np.ones(n)) for leg in self.legs]
+        t = theta.copy()
+
+        def score(k: Sequence[int]) -> float:
+            feet = np.stack([np.roll(base[i][0], -k[i] * per, axis=0) for i in range(len(k))], 1)
+            vel = np.stack([np.roll(base[i][1], -k[i] * per, axis=0) for i in range(len(k))], 1)
+            sim = self._evaluate(theta, t, feet, vel)
+            if objective == "margin":
+                return sim.min_margin
+            if sim.min_margin < 0:
+                return -math.inf
+            return -float(sim.slip_distance.sum())
+
+        start = [int(round(p / step)) % g for p in self.phases]
+        free = len(self.legs) - 1
+        if g**free <= max_evals:
+            # Exhaustive over the grid (the first leg fixed).
+            best_k, best_val = start, score(start)
+            for combo in itertools.product(range(g), repeat=free):
+                k = [start[0], *combo]
+                v = score(k)
+                if v > best_val + 1e-12:
+                    best_k, best_val = k, v
+        else:
+            best_k, best_val = start, score(start)
+            for _ in range(rounds):
+                improved = False
+                for i in range(1, len(self.legs)):
+                    for c in range(g):
+                        k = list(best_k)
+                        k[i] = c
+                        v = score(k)
+                        if v > best_val + 1e-12:
+                            best_k, best_val, improved = k, v, True
+                if not improved:
+                    break
+        phases = np.array([k * step for k in best_k])
+        return phases, best_val if objective == "margin" else -best_val
+
+
+class _quiet:
+    """Silence numpy's all-NaN slice warnings (swing-only samples are expected)."""
+
+    def __enter__(self) -> None:
+        import warnings
+
+        self._w = warnings.catch_warnings()
+        self._w.__enter__()
+        warnings.simplefilter("ignore", RuntimeWarning)
+
+    def __exit__(self, *exc: Any) -> None:
+        self._w.__exit__(*exc)
+
+
+GAITS = {
+    "tripod": {"L1": 0.0, "R2": 0.0, "L3": 0.0, "R1": 0.5, "L2": 0.5, "R3": 0.5},
+    # Wilson's rules: a wave of protractions runs hind to front on each side, contralateral
+    # legs of a segment in antiphase. Wave: one leg swings at a time (duty factor 5/6).
+    "wave": {"L3": 0.0, "L2": 1 / 6, "L1": 2 / 6, "R3": 3 / 6, "R2": 4 / 6, "R1": 5 / 6},
+    # Ripple: the wave on each side with a third of a cycle between neighbours.
+    "ripple": {"L3": 0.0, "L2": 1 / 3, "L1": 2 / 3, "R3": 0.5, "R2": 5 / 6, "R1": 1 / 6},
+    # Quadrupeds, legs A (left front), B (right front), C (left hind), D (right hind).
+    "diagonal": {"A": 0.0, "D": 0.0, "B": 0.5, "C": 0.5},
+    "crawl": {"C": 0.0, "A": 0.25, "D": 0.5, "B": 0.75},
+}
+
+
+def gait_phases(gait: str, legs: Sequence[str]) -> Array:
+    """Crank phases (rad) of a named gait for the given leg names.
+
+    Gaits: "tripod" ({L1, R2, L3} against {R1, L2, R3}), "wave" and "ripple" (Wilson's rules),
+    for legs L1–L3 / R1–R3 front to hind; "diagonal" (trot: A & D against B & C, thesis 1) and
+    "crawl" for quadruped legs A–D. A leg's phase is ``−2π × (its share of the cycle)``: a leg
+    whose protraction comes later runs behind.
+    """
+    if gait not in GAITS:
+        raise LinkageError(f"unknown gait {gait!r}; choose from {', '.join(GAITS)}")
+    table = GAITS[gait]
+    missing = [leg for leg in legs if leg not in table]
+    if missing:
+        raise LinkageError(f"gait {gait!r} has no phase for legs {missing}")
+    return np.array([-2 * math.pi * table[leg] for leg in legs])
