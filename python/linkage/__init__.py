@@ -18,7 +18,6 @@ from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._sweep import OUTPUTS, Sweep
-from linkage.walker import Leg, Walker, gait_phases
 from linkage.geometry import (
     ball_point,
     circumcentre,
@@ -28,6 +27,7 @@ from linkage.geometry import (
     straightness,
     three_point_centres,
 )
+from linkage.walker import Leg, Walker, gait_phases
 
 try:
     __version__ = version("linkage-kinematics")

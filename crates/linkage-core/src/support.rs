@@ -21,19 +21,19 @@ pub fn convex_hull<T: RealField + Copy>(points: &mut [Vec2<T>], out: &mut [Vec2<
     });
     let mut k = 0;
     // Lower hull, then upper hull.
-    for i in 0..n {
-        while k >= 2 && cross(out[k - 1] - out[k - 2], points[i] - out[k - 2]) <= T::zero() {
+    for &p in points.iter() {
+        while k >= 2 && cross(out[k - 1] - out[k - 2], p - out[k - 2]) <= T::zero() {
             k -= 1;
         }
-        out[k] = points[i];
+        out[k] = p;
         k += 1;
     }
     let lower = k + 1;
-    for i in (0..n.saturating_sub(1)).rev() {
-        while k >= lower && cross(out[k - 1] - out[k - 2], points[i] - out[k - 2]) <= T::zero() {
+    for &p in points[..n.saturating_sub(1)].iter().rev() {
+        while k >= lower && cross(out[k - 1] - out[k - 2], p - out[k - 2]) <= T::zero() {
             k -= 1;
         }
-        out[k] = points[i];
+        out[k] = p;
         k += 1;
     }
     // The last point repeats the first (except for a single point).
