@@ -27,7 +27,7 @@ from linkage.geometry import (
     straightness,
     three_point_centres,
 )
-from linkage.walker import Leg, Walker, gait_phases
+from linkage.walker import Leg, Walker, gait_phases, search_duty_factor
 
 try:
     __version__ = version("linkage-kinematics")
@@ -54,6 +54,7 @@ __all__ = [
     "forces",
     "geometry",
     "mobility",
+    "search_duty_factor",
     "straightness",
     "three_point_centres",
     "walker",

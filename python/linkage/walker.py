@@ -411,6 +411,40 @@ class Walker:
         return phases, best_val if objective == "margin" else -best_val
 
 
+def search_duty_factor(
+    walker: Walker,
+    foot_speed: float,
+    objective: str = "margin",
+    duty_factors: Sequence[float] = tuple(np.linspace(0.5, 0.75, 11)),
+    samples: int = 721,
+) -> tuple[float, float]:
+    """The duty factor of a crank-speed schedule (every leg on its own motor, shifted by its
+    phase) that maximises the minimum stability margin (``"margin"``) or minimises the slip per
+    cycle among stable runs (``"slip"``). Duty factors whose schedule is infeasible are skipped.
+    Returns ``(duty factor, objective value)``."""
+    from linkage.drive import crank_schedule
+
+    if objective not in ("margin", "slip"):
+        raise LinkageError(f"objective must be 'margin' or 'slip', got {objective!r}")
+    best: tuple[float, float] | None = None
+    for beta in duty_factors:
+        try:
+            sched = crank_schedule(walker.legs[0].linkage, foot_speed, float(beta))
+        except LinkageError:
+            continue
+        t = np.linspace(0.0, sched.period, samples)
+        sim = walker.simulate(time=t, drive=sched, per_leg_time=True)
+        if objective == "margin":
+            value = sim.min_margin
+        else:
+            value = -float(sim.slip_distance.sum()) if sim.min_margin >= 0 else -math.inf
+        if best is None or value > best[1]:
+            best = (float(beta), value)
+    if best is None:
+        raise LinkageError("no duty factor gives a feasible schedule")
+    return best[0], best[1] if objective == "margin" else -best[1]
+
+
 class _quiet:
     """Silence numpy's all-NaN slice warnings (swing-only samples are expected)."""
 
