@@ -17,8 +17,8 @@ $(STAMP): $(SOURCES)
 	$(BIN)/python -m pip install --quiet -e ".[test]"
 	touch $@
 
-run: $(STAMP) ## Set up (venv, build) and run the main job: `linkage run`.
-	$(BIN)/linkage run
+run: $(STAMP) ## Set up (venv, build) and run the main job: `linkage run` (report in ./linkage-report/).
+	$(BIN)/linkage run --force
 
 test: $(STAMP) ## Set up and run every test: Rust unit/property/doc tests, pytest + doctests, stubs, types.
 	cargo test -p linkage-core --release

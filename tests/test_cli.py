@@ -1,45 +1,221 @@
-"""The ``linkage`` command: the main job prints real figures; errors exit non-zero."""
+"""The ``linkage`` command and its scenes: the default run and every example write the files
+they promise; only the asked-for stages run; bad scenes fail with located messages and write
+nothing."""
 
 from __future__ import annotations
 
-import re
+import json
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
+import pytest
+from PIL import Image
 
-from linkage.cli import hoecken_report, main
+from linkage.cli import main
 
-
-def test_run_prints_hoecken_table(capsys):
-    assert main(["run", "--samples", "721"]) == 0
-    out = capsys.readouterr().out
-    assert "crank-rocker" in out and "64.286" in out
-    # The stride: the stance within 0.1 mm of a line covers at least the exact straight points
-    # x = 0 … 40 (their bulge between is 0.0975 mm; hand-computed in the core's golden test).
-    m = re.search(r"stride \(stance within 0.1 mm of a line\)\s+([0-9.]+)", out)
-    assert m and 40.0 < float(m.group(1)) < 48.0
-
-
-def test_report_figures_are_consistent():
-    rows = {r[0]: r for r in hoecken_report(1441)}
-    lo, hi = (float(x) for x in rows["foot path y range"][1].split(" … "))
-    # Printed to 3 decimals: agree to half a unit of the last digit.
-    assert abs(lo - 40.0) <= 5e-4 and abs(hi - 2 * np.sqrt(600)) <= 5e-4
-    # The stance line sits within its 0.1 mm tolerance of y = 40, so the lift above it is the
-    # path's height less at most that.
-    lift = float(rows["lift height (swing above stance line)"][1])
-    assert (hi - lo) - 0.1 <= lift <= (hi - lo) + 5e-4
+EXAMPLES = sorted((Path(__file__).parent.parent / "examples").glob("*.toml"))
+PLOTS = {
+    "trajectory": ["trajectory.png"],
+    "velocity": ["rates.png"],
+    "acceleration": ["rates.png"],
+    "torque": ["torque.png"],
+    "cam": ["cam.png"],
+    "gait": ["gait.png"],
+    "stability": ["stability.png"],
+    "slip": ["slip.png"],
+    "animation": ["animation.gif"],
+}
 
 
-def test_console_script_and_module_agree():
-    out = subprocess.run(
-        [sys.executable, "-m", "linkage", "catalog"], capture_output=True, text=True, check=True
-    ).stdout
-    for name in ("hoecken", "evans_a", "peaucellier", "hart", "hoecken_pantograph"):
-        assert name in out
+def expected_files(outputs):
+    files = {"data.csv", "data.npz", "summary.json"}
+    for o in outputs:
+        files.update(PLOTS.get(o, []))
+    return files
 
 
-def test_run_with_scene_is_a_clear_error(capsys):
-    assert main(["run", "scene.toml"]) == 2
-    assert "scene files are not supported yet" in capsys.readouterr().err
+def check_images(folder: Path):
+    for png in folder.glob("*.png"):
+        with Image.open(png) as im:
+            assert im.width >= 300 and im.height >= 150, png
+            pixels = np.asarray(im.convert("L"), dtype=float)
+            assert pixels.std() > 5, f"{png} is blank"
+    for gif in folder.glob("*.gif"):
+        with Image.open(gif) as im:
+            assert im.n_frames >= 2, gif
+
+
+def run(tmp_path, *args):
+    out = tmp_path / "report"
+    code = main(["run", *args, "--out", str(out), "--samples", "61", "--frames", "4"])
+    return code, out
+
+
+def test_default_run_writes_its_report(tmp_path, capsys):
+    code, out = run(tmp_path)
+    assert code == 0
+    text = capsys.readouterr().out
+    assert "quadruped-hoecken" in text and "minimum stability margin" in text
+    summary = json.loads((out / "summary.json").read_text())
+    assert set(summary["files"]) == expected_files(summary["outputs"])
+    assert {p.name for p in out.iterdir()} == expected_files(summary["outputs"])
+    check_images(out)
+    # The default is the source's quadruped: two or four feet down, statically stable.
+    figures = {f["figure"]: f["value"] for f in summary["figures"]}
+    assert figures["feet down (min / max)"] == "2 / 4"
+    assert float(figures["minimum stability margin"]) > 0
+
+
+@pytest.mark.parametrize("scene", EXAMPLES, ids=lambda p: p.stem)
+def test_every_example_scene(scene, tmp_path):
+    code, out = run(tmp_path, str(scene))
+    assert code == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert {p.name for p in out.iterdir()} == expected_files(summary["outputs"])
+    check_images(out)
+    data = np.load(out / "data.npz")
+    assert len(data["time"]) == 61
+
+
+def test_trajectory_only_runs_no_other_stage(tmp_path):
+    scene = tmp_path / "t.toml"
+    scene.write_text(
+        'name = "t"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+        '[drive]\nkind = "constant"\nomega = 1.0\n'
+    )
+    code, out = run(tmp_path, str(scene))
+    assert code == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert set(summary["stages_s"]) == {"build", "trajectory", "report"}
+    assert {p.name for p in out.iterdir()} == {
+        "trajectory.png",
+        "data.csv",
+        "data.npz",
+        "summary.json",
+    }
+    data = np.load(out / "data.npz")
+    assert "velocity" not in data and "torque" not in data
+
+
+BAD = [
+    ('outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n', 1, "drive", "missing"),
+    (
+        'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoeken"\n[drive]\nkind = "constant"\nomega = 1\n',
+        3,
+        "catalog",
+        "did you mean 'hoecken'",
+    ),
+    (
+        'outputs = ["trajectory"]\n[mechanism]\nground = 20\ncrank = -10\ncoupler = 25\nrocker = 25\n[drive]\nkind = "constant"\nomega = 1\n',
+        4,
+        "crank",
+        "must be positive",
+    ),
+    (
+        'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n[drive]\nkind = "constant"\nrpm = "fast"\n',
+        6,
+        "rpm",
+        "must be a finite number",
+    ),
+    (
+        'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n[drive]\nkind = "constant"\nrpm = 50\nduty_factor = 0.5\n',
+        7,
+        "duty_factor",
+        "contradictory drive",
+    ),
+    (
+        'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n[drive]\nkind = "constant"\nrpm = 50\nomega = 5\n',
+        6,
+        "rpm",
+        "exactly one of rpm",
+    ),
+    (
+        'outputs = ["trajectory", "torque"]\n[mechanism]\ncatalog = "hoecken"\n[drive]\nkind = "constant"\nomega = 1\n',
+        1,
+        "outputs",
+        "needs link masses",
+    ),
+    (
+        'outputs = ["trajectry"]\n[mechanism]\ncatalog = "hoecken"\n[drive]\nkind = "constant"\nomega = 1\n',
+        1,
+        "outputs",
+        "did you mean 'trajectory'",
+    ),
+    (
+        'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\nscael = 2\n[drive]\nkind = "constant"\nomega = 1\n',
+        4,
+        "scael",
+        "did you mean 'scale'",
+    ),
+    (
+        'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n[drive]\nkind = "program"\n',
+        4,
+        "segments",
+        "missing",
+    ),
+    ('outputs = ["trajectory"\n', 1, "", "not valid TOML"),
+]
+
+
+@pytest.mark.parametrize("text, line, key, message", BAD)
+def test_bad_scenes_fail_with_file_line_and_key(tmp_path, capsys, text, line, key, message):
+    scene = tmp_path / "bad.toml"
+    scene.write_text(text)
+    out = tmp_path / "report"
+    assert main(["run", str(scene), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert f"{scene}:{line}:" in err, err
+    assert key in err and message in err, err
+    assert not out.exists()
+    assert main(["check", str(scene)]) == 2
+
+
+def test_existing_report_is_not_overwritten_without_force(tmp_path, capsys):
+    out = tmp_path / "report"
+    out.mkdir()
+    keep = out / "mine.txt"
+    keep.write_text("user data")
+    assert main(["run", "--out", str(out), "--samples", "31", "--frames", "2"]) == 2
+    assert "--force" in capsys.readouterr().err
+    assert keep.read_text() == "user data"
+    assert main(["run", "--out", str(out), "--samples", "31", "--frames", "2", "--force"]) == 0
+    assert not keep.exists() and (out / "summary.json").exists()
+
+
+def test_check_and_module_entry(tmp_path):
+    ok = subprocess.run(
+        [sys.executable, "-m", "linkage", "check", str(EXAMPLES[0])], capture_output=True, text=True
+    )
+    assert ok.returncode == 0 and ok.stdout.startswith("ok: ")
+    cat = subprocess.run(
+        [sys.executable, "-m", "linkage", "catalog", "--samples", "2001"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    for name in (
+        "hoecken",
+        "evans_a",
+        "peaucellier",
+        "hart",
+        "hoecken_pantograph",
+        "quadruped_hoecken",
+    ):
+        assert name in cat.stdout
+    missing = subprocess.run(
+        [sys.executable, "-m", "linkage", "run", str(tmp_path / "nope.toml")],
+        capture_output=True,
+        text=True,
+    )
+    assert missing.returncode == 2 and "cannot read the scene" in missing.stderr
+
+
+def test_quiet_prints_nothing(tmp_path, capsys):
+    assert (
+        main(["run", "--out", str(tmp_path / "r"), "--samples", "31", "--frames", "2", "--quiet"])
+        == 0
+    )
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err == ""
