@@ -6,7 +6,9 @@ STAMP  := $(VENV)/.installed
 SOURCES := Cargo.toml pyproject.toml $(shell find crates python -name '*.rs' -o -name '*.py' -o -name '*.pyi' -o -name Cargo.toml)
 FIRMWARE := thumbv7em-none-eabihf
 
-.PHONY: help run test check firmware clean
+SIZE := $(shell command -v llvm-size || ls $$HOME/.rustup/toolchains/*/lib/rustlib/*/bin/llvm-size 2>/dev/null | head -n 1)
+
+.PHONY: help run test check firmware firmware-size bench fuzz clean
 
 help: ## List the targets.
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | expand -t 12
@@ -26,16 +28,33 @@ test: $(STAMP) ## Set up and run every test: Rust unit/property/doc tests, pytes
 	$(BIN)/python -m mypy.stubtest linkage._core
 	$(BIN)/mypy
 
-check: $(STAMP) firmware ## Formatting, lints (clippy -D warnings, ruff) and the firmware build.
+check: $(STAMP) firmware firmware-size ## Formatting, lints (clippy -D warnings, ruff) and the firmware builds.
 	cargo fmt --all --check
 	cargo clippy --workspace --all-targets -- -D warnings
-	$(BIN)/ruff check python tests
-	$(BIN)/ruff format --check python tests
+	$(BIN)/ruff check python tests bench
+	$(BIN)/ruff format --check python tests bench
 
 firmware: ## Build the core and a firmware example (f32 + f64) for thumbv7em-none-eabihf: no std, no heap.
 	rustup target add $(FIRMWARE)
 	cargo build -p linkage-core --no-default-features --features libm --target $(FIRMWARE)
 	cargo build -p linkage-core --example firmware --no-default-features --features libm --target $(FIRMWARE) --release
+
+firmware-size: ## Link a minimal Cortex-M4F image that solves and sweeps a four-bar (f32, f64); print its size.
+	rustup target add $(FIRMWARE)
+	cd bench/firmware-size && cargo build --release --quiet
+	$(if $(SIZE),$(SIZE) bench/firmware-size/target/$(FIRMWARE)/release/firmware-size,@echo "(llvm-size not found: size not printed)")
+	cd bench/firmware-size && cargo build --release --quiet --features double
+	$(if $(SIZE),$(SIZE) bench/firmware-size/target/$(FIRMWARE)/release/firmware-size,@echo "(llvm-size not found: size not printed)")
+
+bench: $(STAMP) ## Work-precision benchmark (mpmath, numpy, pylinkage, four-bar crate), stability report, firmware size.
+	$(BIN)/python -m pip install --quiet "pylinkage>=1.3"
+	$(BIN)/python bench/work_precision.py
+	$(BIN)/python bench/stability.py
+	$(MAKE) firmware-size
+
+fuzz: $(STAMP) ## Long fuzzing runs: 1e5 proptest cases per property, 2e4 hypothesis examples per boundary test.
+	LINKAGE_PROPTEST_CASES=100000 cargo test -p linkage-core --release --test properties --test centres
+	LINKAGE_FUZZ_EXAMPLES=20000 $(BIN)/pytest tests/test_fuzz.py -q
 
 clean: ## Remove the venv and build products.
 	rm -rf $(VENV) target python/linkage/_core*.so

@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_length, as_point
+from linkage._arrays import as_angles, as_finite, as_length, as_point
 from linkage._core import LinkageError
 from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
 from linkage._sweep import Sweep
@@ -216,6 +216,37 @@ class FourBar:
         """Solve at each crank angle, or at each time of a drive; see :meth:`Mechanism.sweep`.
         ``s.point`` is the coupler point, ``s.joints`` holds O, C, A, B, P."""
         return self.mechanism().sweep(theta, omega, alpha, outputs, time=time, drive=drive)
+
+    def uniform_sweep(
+        self,
+        theta0: float,
+        dtheta: float,
+        n: int,
+        mode: str = "table",
+        block: int = 64,
+        threads: int = 1,
+    ) -> NDArray[np.float64]:
+        """The fast path: coupler points ``(n, 2)`` at ``theta0 + k·dtheta``, on the declared
+        assembly (no branch tracking — for cranks that turn fully without a toggle), NaN where
+        it cannot assemble.
+
+        ``mode`` makes the crank directions: ``"trig"`` (sin/cos of every angle), ``"table"``
+        (exact anchors every ``block`` samples times a table of the step's multiples) or
+        ``"recurrence"`` (rotation by the step, re-anchored every ``block``). ``threads`` splits
+        the samples; every mode gives the same bits for any thread count.
+        """
+        for name, v in (("n", n), ("block", block), ("threads", threads)):
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
+                raise LinkageError(f"{name} must be a positive int, got {v!r}")
+        out: NDArray[np.float64] = self._core.uniform_sweep(
+            as_finite(theta0, "theta0"),
+            as_finite(dtheta, "dtheta"),
+            int(n),
+            mode,
+            int(block),
+            int(threads),
+        )
+        return out
 
     def circuit(self, n: int = 721) -> Sweep:
         """The whole coupler curve of the circuit in ``n`` samples.

@@ -2,7 +2,7 @@
 
 use nalgebra::RealField;
 
-use crate::scalar::{cross, eps, lit, perp, Vec2};
+use crate::scalar::{cross, eps, length, lit, perp, Vec2};
 
 /// Which of the two mirror-image solutions of a dyad: the side of the directed line from the
 /// first base joint to the second on which the new joint lies.
@@ -66,6 +66,21 @@ pub fn triangle_area<T: RealField + Copy>(a: T, b: T, c: T, tol: T) -> Result<T,
     }
     let prod = (a + (b + c)) * f2 * (c + amb) * (a + (b - c));
     Ok(prod.sqrt() * lit::<T>(0.25))
+}
+
+/// A power of two within a factor 2³² of `x` (1 for `x` in `[2⁻³², 2³²]`): dividing by it is
+/// exact, so it rescales without rounding.
+#[inline]
+pub(crate) fn pow2_scale<T: RealField + Copy>(x: T) -> T {
+    let step = lit::<T>(4_294_967_296.0); // 2³²
+    let mut s = T::one();
+    while x / s > step && (s * step).is_finite() {
+        s *= step;
+    }
+    while x / s < T::one() / step && s / step > T::zero() {
+        s /= step;
+    }
+    s
 }
 
 /// A solved dyad: both mirror-image candidates are `foot ± offset`.
@@ -135,7 +150,7 @@ impl<T: RealField + Copy> Dyad<T> {
     pub fn solve(&self, p1: Vec2<T>, p2: Vec2<T>, slack: T) -> Result<DyadPose<T>, DyadFailure<T>> {
         let (r1, r2) = (self.r1, self.r2);
         let dv = p2 - p1;
-        let d = dv.norm();
+        let d = length(dv);
         let scale = d + r1 + r2 + p1.amax() + p2.amax();
         let tol = eps::<T>() * lit::<T>(8.0) * scale + slack;
         if d == T::zero() {
@@ -146,14 +161,19 @@ impl<T: RealField + Copy> Dyad<T> {
                 Err(DyadFailure::Undetermined)
             };
         }
-        let area = triangle_area(d, r1, r2, tol).map_err(DyadFailure::Gap)?;
+        // Work in units of a power of two near the longest side, so that no product in Kahan's
+        // formula or in the margin overflows or underflows whatever the linkage's scale, and the
+        // scaling itself is exact (it changes no bit of an ordinary-sized linkage).
+        let s = pow2_scale(d.max(r1).max(r2));
+        let (ds, r1s, r2s) = (d / s, r1 / s, r2 / s);
+        let area = triangle_area(ds, r1s, r2s, tol / s).map_err(|g| DyadFailure::Gap(g * s))?;
         let u = dv / d;
-        let x = (d + (r1 - r2) * (r1 + r2) / d) * lit::<T>(0.5);
-        let h = lit::<T>(2.0) * area / d;
+        let x = (d + (r1 - r2) * ((r1 + r2) / d)) * lit::<T>(0.5);
+        let h = lit::<T>(2.0) * (area / ds) * s;
         Ok(DyadPose {
             foot: p1 + u * x,
             offset: perp(u) * h,
-            margin: lit::<T>(2.0) * area / (r1 * r2),
+            margin: lit::<T>(2.0) * area / (r1s * r2s),
         })
     }
 

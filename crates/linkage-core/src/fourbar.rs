@@ -180,7 +180,7 @@ impl<T: RealField + Copy> FourBar<T> {
         for (what, v) in [("o.x", o.x), ("o.y", o.y), ("c.x", c.x), ("c.y", c.y)] {
             check_finite(what, v)?;
         }
-        check_length("ground", (c - o).norm())?;
+        check_length("ground", crate::scalar::length(c - o))?;
         Ok(FourBar {
             o,
             c,
@@ -195,7 +195,7 @@ impl<T: RealField + Copy> FourBar<T> {
 
     /// Ground length `|OC|`.
     pub fn ground(&self) -> T {
-        (self.c - self.o).norm()
+        crate::scalar::length(self.c - self.o)
     }
 
     /// The four-bar as a [`Mechanism`] program: `O, C` fixed, `A` crank, `B` dyad, `P` point.

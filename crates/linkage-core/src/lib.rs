@@ -64,6 +64,7 @@ mod slider;
 mod straightness;
 mod support;
 mod tracker;
+mod uniform_sweep;
 
 /// The straight-line linkages of the source documents (DOMAIN.md), ready to sweep.
 pub mod catalog {
@@ -91,3 +92,4 @@ pub use slider::{Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
 pub use support::{convex_hull, stability_margin};
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
+pub use uniform_sweep::{AngleMode, MAX_TABLE};

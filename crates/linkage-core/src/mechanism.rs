@@ -275,7 +275,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                     LineDirection::Fixed(u) => {
                         check_finite("slider direction x", u.x)?;
                         check_finite("slider direction y", u.y)?;
-                        let n = u.norm();
+                        let n = crate::scalar::length(u);
                         if n == T::zero() {
                             return Err(Error::InvalidLength {
                                 what: "slider direction",
@@ -396,7 +396,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
             LineDirection::Fixed(u) => Some(u),
             LineDirection::Link { from, to, angle } => {
                 let d = pos[to] - pos[from];
-                let n = d.norm();
+                let n = crate::scalar::length(d);
                 if n == T::zero() || !n.is_finite() {
                     return None;
                 }
@@ -411,6 +411,31 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     ///
     /// `slack` widens the toggle tolerance (length units, see [`Dyad::solve`]).
     pub(crate) fn candidates(
+        &self,
+        i: usize,
+        theta: T,
+        pos: &[Vec2<T>],
+        slack: T,
+    ) -> Result<Candidates<T>, Error> {
+        let c = self.solve_step(i, theta, pos, slack)?;
+        // Numbers so large that the arithmetic overflows give no position, not garbage.
+        let finite = |p: Vec2<T>| p.x.is_finite() && p.y.is_finite();
+        let ok = match c {
+            Candidates::One(p) => finite(p),
+            Candidates::Two { foot, offset, .. } => finite(foot) && finite(offset),
+        };
+        if ok {
+            Ok(c)
+        } else {
+            Err(Error::NotFinite {
+                what: "joint position (the linkage's numbers overflow)",
+                value: f64::NAN,
+            })
+        }
+    }
+
+    /// The construction's candidates, before the finiteness check.
+    fn solve_step(
         &self,
         i: usize,
         theta: T,
@@ -467,7 +492,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                 left,
             } => {
                 let d = pos[to] - pos[from];
-                let n = d.norm();
+                let n = crate::scalar::length(d);
                 if n == T::zero() {
                     return Err(Error::Coincident { joint: i });
                 }

@@ -40,3 +40,9 @@ pub(crate) fn eps<T: RealField + Copy>() -> T {
 pub(crate) fn nan<T: RealField + Copy>() -> T {
     T::zero() / T::zero()
 }
+
+/// Euclidean length without overflow or underflow of the squares (`hypot`).
+#[inline]
+pub(crate) fn length<T: RealField + Copy>(v: Vec2<T>) -> T {
+    v.x.hypot(v.y)
+}

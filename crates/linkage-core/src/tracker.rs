@@ -105,9 +105,12 @@ pub struct Sample<T> {
 #[derive(Clone, Debug)]
 pub struct Tracker<'m, T: RealField + Copy, const N: usize> {
     mech: &'m Mechanism<T, N>,
-    sign: [T; N],
-    /// `hist[0]`: last assembled sample, `hist[1]`: the one before.
+    /// Orientation of each branch joint, `+1` or `-1` (compact, as it is saved per step).
+    sign: [i8; N],
+    /// `hist[newest]`: last assembled sample, `hist[1 - newest]`: the one before (a two-slot
+    /// ring, so committing a sample copies only the mechanism's joints).
     hist: [[Vec2<T>; N]; 2],
+    newest: usize,
     hist_theta: [T; 2],
     hist_margin: [T; N],
     /// Margins of the joints as last placed (committed into `hist_margin` with the sample).
@@ -141,14 +144,15 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         }
         check_finite("toggle_margin", toggle_margin)?;
         crate::error::check_length("max_step", max_step)?;
-        let mut sign = [T::one(); N];
+        let mut sign = [1i8; N];
         for (s, c) in sign.iter_mut().zip(mech.constructions()) {
-            *s = c.initial_sign();
+            *s = if c.initial_sign() < T::zero() { -1 } else { 1 };
         }
         Ok(Tracker {
             mech,
             sign,
             hist: [[Vec2::zeros(); N]; 2],
+            newest: 0,
             hist_theta: [T::zero(); 2],
             hist_margin: [T::one(); N],
             placed_margin: [T::one(); N],
@@ -161,18 +165,18 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     /// Current orientation of joint `i`: `+1` for [`crate::Side::Left`] / [`crate::Reach::Ahead`],
     /// `-1` for the other, `+1` for joints without a branch.
     pub fn branch(&self, i: usize) -> T {
-        self.sign[i]
+        if self.sign[i] < 0 {
+            -T::one()
+        } else {
+            T::one()
+        }
     }
 
     /// Forces the orientation of joint `i` (`+1` / `-1`) and forgets the motion history, so the
     /// next sample starts afresh there. Used to pass to the other branch at a toggle, as a
     /// circuit sweep does.
     pub fn set_branch(&mut self, i: usize, sign: T) {
-        self.sign[i] = if sign < T::zero() {
-            -T::one()
-        } else {
-            T::one()
-        };
+        self.sign[i] = if sign < T::zero() { -1 } else { 1 };
         self.nhist = 0;
     }
 
@@ -182,10 +186,13 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         let mech = self.mech;
         let mut margin = T::one();
         let mut near_any = false;
-        let ratio = if self.nhist >= 2 && self.hist_theta[0] != self.hist_theta[1] {
-            (theta - self.hist_theta[0]) / (self.hist_theta[0] - self.hist_theta[1])
-        } else {
-            T::zero()
+        // Extrapolation ratio for continuation near a toggle (computed only when needed).
+        let ratio = || {
+            if self.hist_theta[0] != self.hist_theta[1] {
+                (theta - self.hist_theta[0]) / (self.hist_theta[0] - self.hist_theta[1])
+            } else {
+                T::zero()
+            }
         };
         for i in 0..mech.len() {
             joints[i] = match mech.candidates(i, theta, joints, T::zero())? {
@@ -200,18 +207,22 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                     let near = self.nhist > 0
                         && (m < self.toggle_margin || self.hist_margin[i] < self.toggle_margin);
                     near_any |= near;
-                    let mut s = self.sign[i];
+                    let mut s = if self.sign[i] < 0 {
+                        -T::one()
+                    } else {
+                        T::one()
+                    };
                     if near && self.nhist >= 2 {
-                        let prev = self.hist[0][i];
-                        let predicted = prev + (prev - self.hist[1][i]) * ratio;
+                        let prev = self.hist[self.newest][i];
+                        let predicted = prev + (prev - self.hist[1 - self.newest][i]) * ratio();
                         let kept = foot + offset * s;
                         let flipped = foot - offset * s;
                         if (flipped - predicted).norm_squared() < (kept - predicted).norm_squared()
                         {
                             s = -s;
+                            self.sign[i] = -self.sign[i];
                         }
                     }
-                    self.sign[i] = s;
                     foot + offset * s
                 }
             };
@@ -222,8 +233,8 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     /// Records an assembled sample as the newest history entry.
     fn commit(&mut self, theta: T, joints: &[Vec2<T>]) {
         let n = self.mech.len();
-        self.hist[1] = self.hist[0];
-        self.hist[0][..n].copy_from_slice(joints);
+        self.newest = 1 - self.newest;
+        self.hist[self.newest][..n].copy_from_slice(joints);
         self.hist_theta = [theta, self.hist_theta[0]];
         self.nhist = (self.nhist + 1).min(2);
         self.hist_margin[..n].copy_from_slice(&self.placed_margin[..n]);
@@ -302,7 +313,12 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         }
         let saved_sign = self.sign;
         let start = self.hist_theta[0];
-        let hops = Self::count(theta - start, lit(COARSE_STEP));
+        // The common case is a single hop.
+        let hops = if (theta - start).abs() <= lit(COARSE_STEP) {
+            1
+        } else {
+            Self::count(theta - start, lit(COARSE_STEP))
+        };
         let mut result = Ok(T::one());
         for k in 1..=hops {
             let t = Self::between(start, theta, k, hops);

@@ -7,12 +7,7 @@ use linkage_core::{
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
-fn cases() -> u32 {
-    std::env::var("LINKAGE_PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(2000)
-}
+mod common;
 
 /// Positions, velocities, accelerations and jerks of every joint.
 type Rates4 = (
@@ -96,7 +91,7 @@ fn random_four_bar() -> impl Strategy<Value = (FourBar<f64>, f64)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(cases()))]
+    #![proptest_config(common::config("proptest-regressions/centres.txt"))]
 
     /// Kennedy: the three instant centres of any three links are collinear; the velocity-based
     /// centres equal the Aronhold–Kennedy line construction; every joint's velocity relative to

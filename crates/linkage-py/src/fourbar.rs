@@ -1,6 +1,6 @@
 //! Mirrors `linkage_core::fourbar`.
 
-use linkage_core::{Assembly, FourBar as CoreFourBar, InputRange, Vec2};
+use linkage_core::{AngleMode, Assembly, FourBar as CoreFourBar, InputRange, Vec2};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
@@ -165,5 +165,63 @@ impl FourBar {
             inf.radius,
             ball,
         ))
+    }
+
+    /// Coupler points `(n, 2)` at `theta0 + k·dtheta` by the fast kernel: `mode` "trig",
+    /// "table" or "recurrence" (with `block`), on `threads` threads (the same bits for any
+    /// count).
+    #[pyo3(signature = (theta0, dtheta, n, mode="table", block=64, threads=1))]
+    #[allow(clippy::too_many_arguments)]
+    fn uniform_sweep<'py>(
+        &self,
+        py: Python<'py>,
+        theta0: f64,
+        dtheta: f64,
+        n: usize,
+        mode: &str,
+        block: usize,
+        threads: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let mode = match mode {
+            "trig" => AngleMode::Trig,
+            "table" => AngleMode::Table { block },
+            "recurrence" => AngleMode::Recurrence { block },
+            other => {
+                return Err(linkage_error(format!(
+                    "mode must be 'trig', 'table' or 'recurrence', got {other:?}"
+                )))
+            }
+        };
+        if threads == 0 {
+            return Err(linkage_error("threads must be at least 1"));
+        }
+        let f = self.inner;
+        let flat: Vec<f64> = py
+            .detach(|| {
+                // The output buffer is the numpy array's: the kernel writes points straight in.
+                let mut flat = vec![0.0_f64; 2 * n];
+                let points: &mut [Vec2<f64>] = bytemuck::cast_slice_mut(&mut flat);
+                let chunk = n.div_ceil(threads).max(1);
+                std::thread::scope(|scope| {
+                    let handles: Vec<_> = points
+                        .chunks_mut(chunk)
+                        .enumerate()
+                        .map(|(t, part)| {
+                            scope.spawn(move || {
+                                f.uniform_sweep(theta0, dtheta, t * chunk, mode, part)
+                                    .map_err(|e| e.to_string())
+                            })
+                        })
+                        .collect();
+                    handles.into_iter().try_for_each(|h| {
+                        h.join().unwrap_or_else(|_| {
+                            Err("internal error: a sweep thread panicked".into())
+                        })
+                    })
+                })
+                .map(|_| flat)
+            })
+            .map_err(linkage_error)?;
+        Ok(PyArray1::from_vec(py, flat).reshape([n, 2])?.into_any())
     }
 }

@@ -102,13 +102,16 @@ pub fn sweep_arrays<const N: usize>(
     let pairs = body_pairs(ids.len());
     let np = pairs.len();
     let nan_vec = |len: usize, on: bool| on.then(|| vec![f64::NAN; len]);
+    // Positions and rates are appended sample by sample (NaN rows where a sample does not
+    // assemble), so each output byte is written once.
+    let grow = |on: bool| on.then(|| Vec::with_capacity(n * j * 2));
     let mut out = SweepArrays {
-        joints: vec![f64::NAN; n * j * 2],
+        joints: Vec::with_capacity(n * j * 2),
         valid: vec![false; n],
         margin: vec![f64::NAN; n],
         gap: vec![0.0; n],
-        velocity: nan_vec(n * j * 2, rates),
-        acceleration: nan_vec(n * j * 2, wanted.acceleration),
+        velocity: grow(rates),
+        acceleration: grow(wanted.acceleration),
         centres: nan_vec(n * np * 2, wanted.instant_centres),
         centre_directions: nan_vec(n * np * 2, wanted.instant_centres),
         curvature_centres: nan_vec(n * j * 2, wanted.curvature),
@@ -131,23 +134,36 @@ pub fn sweep_arrays<const N: usize>(
                 out.valid[k] = true;
                 out.margin[k] = s.margin;
             }
-            Err(Error::CannotAssemble { gap, .. }) => {
-                out.gap[k] = gap;
-                continue;
-            }
-            Err(Error::Coincident { .. }) => {
-                out.gap[k] = f64::NAN;
+            Err(
+                e @ (Error::CannotAssemble { .. }
+                | Error::Coincident { .. }
+                | Error::NotFinite { .. }),
+            ) => {
+                out.gap[k] = match e {
+                    Error::CannotAssemble { gap, .. } => gap,
+                    _ => f64::NAN,
+                };
+                for buf in [
+                    Some(&mut out.joints),
+                    out.velocity.as_mut(),
+                    out.acceleration.as_mut(),
+                ]
+                .into_iter()
+                .flatten()
+                {
+                    buf.extend(core::iter::repeat_n(f64::NAN, 2 * j));
+                }
                 continue;
             }
             Err(e) => return Err(e),
         }
         let row = k * j * 2;
-        write_rows(&mut out.joints[row..row + 2 * j], &pos[..j]);
+        push_rows(&mut out.joints, &pos[..j]);
         if let Some(v) = out.velocity.as_mut() {
-            write_rows(&mut v[row..row + 2 * j], &vel[..j]);
+            push_rows(v, &vel[..j]);
         }
         if let Some(a) = out.acceleration.as_mut() {
-            write_rows(&mut a[row..row + 2 * j], &acc[..j]);
+            push_rows(a, &acc[..j]);
         }
         if !(wanted.instant_centres || wanted.curvature) {
             continue;
@@ -182,11 +198,8 @@ pub fn sweep_arrays<const N: usize>(
 }
 
 #[inline]
-fn write_rows(dst: &mut [f64], src: &[Vec2<f64>]) {
-    for (d, p) in dst.chunks_exact_mut(2).zip(src) {
-        d[0] = p.x;
-        d[1] = p.y;
-    }
+fn push_rows(dst: &mut Vec<f64>, src: &[Vec2<f64>]) {
+    dst.extend(src.iter().flat_map(|p| [p.x, p.y]));
 }
 
 /// Reads an optional rate array: absent is `default`, length 1 is a scalar, length `n` per sample.
