@@ -219,3 +219,12 @@ def test_quiet_prints_nothing(tmp_path, capsys):
     )
     captured = capsys.readouterr()
     assert captured.out == "" and captured.err == ""
+
+
+def test_default_scene_equals_the_example_file():
+    from linkage import scene
+
+    default = scene.parse(scene.DEFAULT_SCENE, None)
+    example = scene.load(Path(__file__).parent.parent / "examples" / "quadruped_hoecken.toml")
+    default.path = example.path = None
+    assert default == example

@@ -16,23 +16,6 @@ from pathlib import Path
 from linkage import catalog
 from linkage._core import LinkageError
 
-DEFAULT_SCENE = """
-name = "quadruped-hoecken"
-description = "Thesis 1 quadruped, Hoecken legs, 50 rpm motor through 18-15-14 gears"
-units = "mm"
-outputs = ["trajectory", "gait", "stability", "slip", "animation"]
-
-[walker]
-model = "quadruped_hoecken"
-
-[drive]
-kind = "constant"
-rpm = 50.0
-gears = [18, 15, 14]
-cycles = 2
-samples = 721
-"""
-
 
 def print_table(title: str, rows: Sequence[tuple[str, str, str, str]]) -> None:
     """Print rows as an aligned four-column table."""
@@ -71,7 +54,7 @@ def _load(path: str | None):  # type: ignore[no-untyped-def]
     from linkage import scene
 
     if path is None:
-        return scene.parse(DEFAULT_SCENE, None, name="quadruped-hoecken")
+        return scene.parse(scene.DEFAULT_SCENE, None, name="quadruped-hoecken")
     return scene.load(path)
 
 

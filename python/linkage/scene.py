@@ -52,6 +52,25 @@ OUTPUTS = (
 )
 """What a scene can ask for."""
 
+# `linkage run` with no scene: thesis 1's quadruped under its drive (also
+# examples/quadruped_hoecken.toml, kept equal by a test).
+DEFAULT_SCENE = """
+name = "quadruped-hoecken"
+description = "Thesis 1 quadruped, Hoecken legs, 50 rpm motor through 18-15-14 gears"
+units = "mm"
+outputs = ["trajectory", "gait", "stability", "slip", "animation"]
+
+[walker]
+model = "quadruped_hoecken"
+
+[drive]
+kind = "constant"
+rpm = 50.0
+gears = [18, 15, 14]
+cycles = 2
+samples = 721
+"""
+
 WALKER_OUTPUTS = {"gait", "stability", "slip"}
 MECHANISM_OUTPUTS = {
     "velocity",
