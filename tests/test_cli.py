@@ -156,6 +156,24 @@ BAD = [
         "missing",
     ),
     ('outputs = ["trajectory"\n', 1, "", "not valid TOML"),
+    (
+        'outputs = ["gait"]\n[walker]\nlegs = [\n  { name = "L", catalog = "hokken", mount = [0, 0, 0] },\n]\n[drive]\nkind = "constant"\nomega = 1\n',
+        4,
+        "catalog",
+        "did you mean 'hoecken'",
+    ),
+    (
+        'outputs = ["gait"]\n[walker]\nlegs = [\n  { name = "L", catalog = "hoecken" },\n]\n[drive]\nkind = "constant"\nomega = 1\n',
+        4,
+        "mount",
+        "missing",
+    ),
+    (
+        'outputs = ["gait"]\n[walker]\nmodel = "hexapod_tripod"\ngait = "tripod"\nphases_deg = [0, 180]\n[drive]\nkind = "constant"\nomega = 1\n',
+        5,
+        "phases_deg",
+        "not both",
+    ),
 ]
 
 

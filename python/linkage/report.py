@@ -124,7 +124,7 @@ def write(res: Result, folder: Path, frames: int = 48) -> list[Path]:
 
     sim = res.simulation
     if sim is not None and scene.wants("gait"):
-        fig, ax = plt.subplots(figsize=(6, 0.5 + 0.4 * len(sim.legs)))
+        fig, ax = plt.subplots(figsize=(6, max(2.0, 0.5 + 0.4 * len(sim.legs))))
         for i, (_leg, bars) in enumerate(sim.gait_diagram()):
             ax.broken_barh(
                 [(a, max(b - a, t[1] - t[0])) for a, b in bars], (i - 0.35, 0.7), color="k"

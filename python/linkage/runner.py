@@ -111,12 +111,64 @@ def build_mechanism(scene: Scene) -> FourBar | Mechanism:
 
 
 def build_walker(scene: Scene) -> Walker:
-    """The scene's walker."""
+    """The scene's walker: a catalogue model, or legs built from catalogue four-bars."""
+    from dataclasses import replace
+
+    from linkage.walker import Leg
+
     w = scene.walker or {}
-    walker: Walker = getattr(catalog, w["model"])()
+    if "model" in w:
+        walker: Walker = getattr(catalog, w["model"])()
+    else:
+        legs = []
+        for spec in w["legs"]:
+            fb = catalog.get(spec["catalog"])
+            assert isinstance(fb, FourBar)
+            k = float(spec.get("scale", 1.0))
+            if k != 1.0:
+                fb = FourBar(
+                    ground=fb.ground * k,
+                    crank=fb.crank * k,
+                    coupler=fb.coupler * k,
+                    rocker=fb.rocker * k,
+                    point=(fb.point[0] * k, fb.point[1] * k),
+                    assembly=fb.assembly,
+                )
+            lift = None
+            if "lift" in spec:
+                segs = [
+                    Segment(math.radians(s["duration_deg"]), s.get("rise", 0.0), s.get("law"))
+                    for s in spec["lift"]
+                ]
+                lift = Program(0.0, segs)
+            legs.append(
+                Leg(
+                    spec["name"],
+                    fb,
+                    mount=tuple(float(v) for v in spec["mount"]),  # type: ignore[arg-type]
+                    phase=math.radians(spec.get("phase_deg", 0.0)),
+                    plane=spec.get("plane", "sagittal"),
+                    mirror=bool(spec.get("mirror", False)),
+                    foot_offset=tuple(spec.get("foot_offset", (0.0, 0.0))),
+                    lift=lift,
+                    pad=float(spec.get("pad", 0.0)),
+                )
+            )
+        walker = Walker(legs)
+    names = [leg.name for leg in walker.legs]
     if "gait" in w:
-        phases = gait_phases(w["gait"], [leg.name for leg in walker.legs])
-        walker = walker.with_phases([float(p) for p in phases])
+        walker = walker.with_phases([float(p) for p in gait_phases(w["gait"], names)])
+    if "phases_deg" in w:
+        if len(w["phases_deg"]) != len(names):
+            raise SceneError(f"[walker] phases_deg: need {len(names)} phases ({', '.join(names)})")
+        walker = walker.with_phases([math.radians(p) for p in w["phases_deg"]])
+    if "pad" in w:
+        walker = Walker(
+            [replace(leg, pad=float(w["pad"])) for leg in walker.legs],
+            walker.cg,
+            walker.ground_tol,
+            walker.body_underside,
+        )
     if "cg" in w or "ground_tol" in w:
         walker = Walker(
             walker.legs,

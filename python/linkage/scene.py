@@ -152,7 +152,27 @@ JOINT = {
     "along": "number",
     "left": "number",
 }
-WALKER = {"model": "str", "gait": "str", "cg": "pair", "ground_tol": "positive"}
+WALKER = {
+    "model": "str",
+    "legs": "tables",
+    "gait": "str",
+    "phases_deg": "list",
+    "pad": "number",
+    "cg": "pair",
+    "ground_tol": "positive",
+}
+LEG = {
+    "name": "str",
+    "catalog": "str",
+    "scale": "positive",
+    "mount": "list",
+    "phase_deg": "number",
+    "plane": "str",
+    "mirror": "bool",
+    "foot_offset": "pair",
+    "pad": "number",
+    "lift": "tables",
+}
 DRIVE = {
     "kind": "str",
     "rpm": "number",
@@ -377,12 +397,54 @@ def _walker(w: Mapping[str, Any], where: _Locator) -> dict[str, Any]:
     sec = ("walker",)
     _keys(w, WALKER, where, sec)
     models = ("quadruped_hoecken", "hexapod_tripod")
-    if "model" not in w:
-        raise where.error(sec, "model", f"missing: one of {', '.join(models)}")
-    if w["model"] not in models:
+    if ("model" in w) == ("legs" in w):
+        raise where.error(
+            sec, "model", f"give a model ({', '.join(models)}) or [[walker.legs]], not both"
+        )
+    if "model" in w and w["model"] not in models:
         raise where.error(
             sec, "model", f"unknown walker {w['model']!r}{_did_you_mean(w['model'], models)}"
         )
+    if "legs" in w:
+        from linkage import catalog
+        from linkage.drive import LAWS
+
+        names = []
+        for idx, leg in enumerate(w["legs"]):
+            lp = ("walker", "legs", idx)
+            _keys(leg, LEG, where, lp)
+            for req in ("name", "catalog", "mount"):
+                if req not in leg:
+                    raise where.error(lp, req, "missing")
+            if leg["name"] in names:
+                raise where.error(lp, "name", f"leg {leg['name']!r} is defined twice")
+            names.append(leg["name"])
+            if leg["catalog"] not in catalog.FOUR_BARS:
+                raise where.error(
+                    lp,
+                    "catalog",
+                    f"a leg must be a catalogue four-bar, got {leg['catalog']!r}"
+                    + _did_you_mean(leg["catalog"], catalog.FOUR_BARS),
+                )
+            mount = leg["mount"]
+            if len(mount) != 3 or not all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                for v in mount
+            ):
+                raise where.error(lp, "mount", f"must be [x, y, z] finite numbers, got {mount!r}")
+            plane = leg.get("plane", "sagittal")
+            if plane not in ("sagittal", "horizontal"):
+                raise where.error(lp, "plane", f"must be 'sagittal' or 'horizontal', got {plane!r}")
+            if plane == "horizontal" and "lift" not in leg:
+                raise where.error(lp, "lift", "a horizontal leg needs a lift program (cam)")
+            for k, seg in enumerate(leg.get("lift", [])):
+                _keys(seg, CAM_SEGMENT, where, (*lp, "lift", k))
+                if "law" in seg and seg["law"] not in LAWS:
+                    raise where.error(lp, "lift", f"unknown motion law {seg['law']!r}")
+            if leg.get("pad", 0.0) < 0:
+                raise where.error(lp, "pad", "must be non-negative")
+    if "gait" in w and "phases_deg" in w:
+        raise where.error(sec, "phases_deg", "give a gait or phases_deg, not both")
     if "gait" in w:
         from linkage.walker import GAITS
 
@@ -390,6 +452,14 @@ def _walker(w: Mapping[str, Any], where: _Locator) -> dict[str, Any]:
             raise where.error(
                 sec, "gait", f"unknown gait {w['gait']!r}{_did_you_mean(w['gait'], GAITS)}"
             )
+    if "phases_deg" in w:
+        ph = w["phases_deg"]
+        if not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in ph
+        ):
+            raise where.error(sec, "phases_deg", "must be finite numbers (degrees), one per leg")
+    if w.get("pad", 0.0) < 0:
+        raise where.error(sec, "pad", "must be non-negative")
     return dict(w)
 
 
@@ -554,6 +624,7 @@ class _Locator:
     def line(self, path: Sequence[Any], key: str) -> int | None:
         names = [p for p in path if isinstance(p, str)]
         index = next((p for p in path if isinstance(p, int)), None)
+        pattern = re.compile(r"(^|[\s{,])" + re.escape(str(key)) + r"\s*=")
         start, end = 0, len(self.lines)
         if names:
             header = re.compile(r"^\s*\[\[?\s*" + re.escape(".".join(names)) + r"\s*\]\]?\s*$")
@@ -565,12 +636,19 @@ class _Locator:
                 ]
                 end = nxt[0] if nxt else len(self.lines)
             else:
-                # An inline table or a table written with dotted keys: look for the last name.
-                key = key or names[-1]
+                # An inline array of tables (`legs = [ {…}, {…} ]`): the entry's own line.
+                owner = re.compile(r"(^|[\s{,])" + re.escape(names[-1]) + r"\s*=")
+                at = next((i for i, line in enumerate(self.lines) if owner.search(line)), None)
+                if at is not None:
+                    entry = at
+                    if index is not None:
+                        braces = [i for i in range(at, len(self.lines)) if "{" in self.lines[i]]
+                        entry = braces[index] if index < len(braces) else at
+                    line = self.lines[entry]
+                    return entry + 1 if pattern.search(line) or index is not None else at + 1
         else:
             first = [i for i, line in enumerate(self.lines) if re.match(r"^\s*\[", line)]
             end = first[0] if first else len(self.lines)
-        pattern = re.compile(r"(^|[\s{,])" + re.escape(str(key)) + r"\s*=")
         for i in range(start, end):
             if pattern.search(self.lines[i]):
                 return i + 1
