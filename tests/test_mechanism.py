@@ -178,3 +178,16 @@ def test_multi_loop_rates_match_central_differences(build, lo, hi):
     np.testing.assert_allclose(
         s.joint_accelerations[2:-2], d2p * w**2 + dp * a, rtol=0, atol=1e-7 * scale
     )
+
+
+def test_jansen_leg():
+    """Theo Jansen's holy numbers: a full-turn crank, one degree of freedom, and the foot's
+    flat-bottomed path (measured 67.9 × 22.5 in his units)."""
+    m = linkage.catalog.jansen()
+    assert m.mobility().degrees_of_freedom == 1
+    s = m.sweep(np.linspace(0, 2 * np.pi, 721))
+    assert s.valid.all()
+    width, height = np.ptp(s.point, axis=0)
+    assert 60 < width < 75 and 18 < height < 26
+    part = linkage.straightness(s.point[:-1], 0.5, closed=True)
+    assert part is not None and part.length > 30

@@ -95,6 +95,12 @@ def hoecken_pantograph(scale: float = 2.0) -> Mechanism:
     return _linkage("hoecken_pantograph", scale)
 
 
+def jansen() -> Mechanism:
+    """Theo Jansen's Strandbeest leg ("holy numbers"): crank 15 about the origin, frame pivot at
+    (−38, −7.8), five dyads in sequence; the foot F traces a flat-bottomed path."""
+    return _linkage("jansen")
+
+
 def names() -> tuple[str, ...]:
     """Every catalogue name."""
     return FOUR_BARS + MULTI_LOOP

@@ -235,6 +235,10 @@ mod tests {
         assert_eq!((h.links, h.lower_pairs, h.degrees_of_freedom()), (6, 7, 1));
         let g = Bodies::of(&catalog::hoecken_pantograph::<f64>(2.0).unwrap().mechanism).mobility();
         assert_eq!((g.links, g.lower_pairs, g.degrees_of_freedom()), (8, 10, 1));
+        // Jansen's leg: frame, crank and two links per dyad (the rigid triangles b-d-e and
+        // g-h-i are here pairs of binary links pinned together, which Gruebler counts alike).
+        let j = Bodies::of(&catalog::jansen::<f64>().mechanism).mobility();
+        assert_eq!(j.degrees_of_freedom(), 1);
     }
 
     #[test]

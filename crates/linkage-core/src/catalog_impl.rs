@@ -41,7 +41,7 @@ pub const FOUR_BARS: [&str; 7] = [
 ];
 
 /// Names of the catalogued multi-loop linkages.
-pub const MULTI_LOOP: [&str; 3] = ["peaucellier", "hart", "hoecken_pantograph"];
+pub const MULTI_LOOP: [&str; 4] = ["peaucellier", "hart", "hoecken_pantograph", "jansen"];
 
 fn four_bar<T: RealField + Copy>(
     dims: [f64; 4],
@@ -220,12 +220,40 @@ pub fn hoecken_pantograph<T: RealField + Copy>(scale: T) -> Result<Linkage<T>, E
     })
 }
 
+/// Theo Jansen's Strandbeest leg with his "holy numbers" (a = 38, b = 41.5, c = 39.3,
+/// d = 40.1, e = 55.8, f = 39.4, g = 36.7, h = 65.7, i = 49, j = 50, k = 61.9, l = 7.8, m = 15):
+/// crank `O A` (m) about the origin, frame pivot `Q` at (−a, −l), and five dyads in sequence —
+/// `B` (j from A, b from Q, above), `C` (k, c, below), `D` (e from B, d from Q), `E` (f from D,
+/// g from C) and the foot `F` (h from E, i from C). Eight links, one degree of freedom; the foot
+/// runs a flat-bottomed path about 68 wide and 22 high. An extra catalogue leg for walkers.
+pub fn jansen<T: RealField + Copy>() -> Linkage<T> {
+    let c = lit::<T>;
+    let mechanism = program(|m| {
+        let o = m.fixed(Vec2::new(c(0.0), c(0.0)))?;
+        let q = m.fixed(Vec2::new(c(-38.0), c(-7.8)))?;
+        let a = m.crank(o, c(15.0), c(0.0))?;
+        let b = m.dyad(a, q, c(50.0), c(41.5), Side::Right)?;
+        let cc = m.dyad(a, q, c(61.9), c(39.3), Side::Left)?;
+        let d = m.dyad(b, q, c(55.8), c(40.1), Side::Right)?;
+        let e = m.dyad(d, cc, c(39.4), c(36.7), Side::Right)?;
+        m.dyad(e, cc, c(65.7), c(49.0), Side::Right)?;
+        Ok(())
+    });
+    Linkage {
+        name: "jansen",
+        mechanism,
+        joint_names: &["O", "Q", "A", "B", "C", "D", "E", "F"],
+        trace: 7,
+    }
+}
+
 /// A catalogued multi-loop linkage by name (see [`MULTI_LOOP`]); the pantograph at scale 2.
 pub fn linkage_by_name<T: RealField + Copy>(name: &str) -> Option<Linkage<T>> {
     match name {
         "peaucellier" => Some(peaucellier()),
         "hart" => Some(hart()),
         "hoecken_pantograph" => hoecken_pantograph(lit(2.0)).ok(),
+        "jansen" => Some(jansen()),
         _ => None,
     }
 }

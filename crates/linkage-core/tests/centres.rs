@@ -167,6 +167,7 @@ fn kennedy_on_multi_loop_linkages() {
         (catalog::peaucellier::<f64>(), 0.7),
         (catalog::hart::<f64>(), 0.8),
         (catalog::hoecken_pantograph::<f64>(2.0).unwrap(), 2.0),
+        (catalog::jansen::<f64>(), 1.0),
     ] {
         let m = &l.mechanism;
         let (p, v, a, j) = rates(m, theta).unwrap();
