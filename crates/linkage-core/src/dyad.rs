@@ -73,6 +73,9 @@ pub fn triangle_area<T: RealField + Copy>(a: T, b: T, c: T, tol: T) -> Result<T,
 #[inline]
 pub(crate) fn pow2_scale<T: RealField + Copy>(x: T) -> T {
     let step = lit::<T>(4_294_967_296.0); // 2³²
+    if x <= step && x * step >= T::one() {
+        return T::one();
+    }
     let mut s = T::one();
     while x / s > step && (s * step).is_finite() {
         s *= step;
@@ -165,10 +168,15 @@ impl<T: RealField + Copy> Dyad<T> {
         // formula or in the margin overflows or underflows whatever the linkage's scale, and the
         // scaling itself is exact (it changes no bit of an ordinary-sized linkage).
         let s = pow2_scale(d.max(r1).max(r2));
-        let (ds, r1s, r2s) = (d / s, r1 / s, r2 / s);
-        let area = triangle_area(ds, r1s, r2s, tol / s).map_err(|g| DyadFailure::Gap(g * s))?;
-        let u = dv / d;
-        let x = (d + (r1 - r2) * ((r1 + r2) / d)) * lit::<T>(0.5);
+        let (ds, r1s, r2s, tols) = if s == T::one() {
+            (d, r1, r2, tol)
+        } else {
+            (d / s, r1 / s, r2 / s, tol / s)
+        };
+        let area = triangle_area(ds, r1s, r2s, tols).map_err(|g| DyadFailure::Gap(g * s))?;
+        let inv_d = T::one() / d;
+        let u = dv * inv_d;
+        let x = (d + (r1 - r2) * ((r1 + r2) * inv_d)) * lit::<T>(0.5);
         let h = lit::<T>(2.0) * (area / ds) * s;
         Ok(DyadPose {
             foot: p1 + u * x,
