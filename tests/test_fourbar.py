@@ -285,3 +285,37 @@ def test_per_sample_omega_and_alpha(hoecken):
         )
         np.testing.assert_allclose(s.velocity[i], si.velocity[0], rtol=0, atol=1e-12)
         np.testing.assert_allclose(s.acceleration[i], si.acceleration[0], rtol=0, atol=1e-12)
+
+
+def test_fast_sweep_simd_paths_give_the_portable_bits(tmp_path):
+    """The fast sweep dispatches to AVX-512 or AVX2 builds of the same kernel when the CPU has
+    them; the arithmetic is identical, so the bits must be too (LINKAGE_PORTABLE=1 forces the
+    portable code in a child process)."""
+    import subprocess
+    import sys
+
+    code = (
+        "import numpy as np, linkage, sys; fb = linkage.catalog.hoecken(); "
+        "np.save(sys.argv[1], np.concatenate([fb.uniform_sweep(0.1, 1e-3, 5000, m) "
+        "for m in ('trig', 'table', 'recurrence')]))"
+    )
+    fast, portable = tmp_path / "fast.npy", tmp_path / "portable.npy"
+    subprocess.run([sys.executable, "-c", code, str(fast)], check=True)
+    import os
+
+    env = dict(os.environ, LINKAGE_PORTABLE="1")
+    subprocess.run([sys.executable, "-c", code, str(portable)], check=True, env=env)
+    np.testing.assert_array_equal(np.load(fast), np.load(portable))
+
+
+def test_fast_sweep_matches_tracked_sweep_and_checks_arguments(hoecken):
+    theta0, dt, n = 0.2, 0.01, 700
+    fast = hoecken.uniform_sweep(theta0, dt, n, "table", threads=2)
+    slow = hoecken.sweep(theta0 + dt * np.arange(n)).point
+    np.testing.assert_allclose(fast, slow, atol=1e-12)
+    with pytest.raises(linkage.LinkageError, match="mode"):
+        hoecken.uniform_sweep(0.0, 0.1, 10, "simd")
+    with pytest.raises(linkage.LinkageError, match="threads"):
+        hoecken.uniform_sweep(0.0, 0.1, 10, threads=0)
+    with pytest.raises(linkage.LinkageError, match="at most 256"):
+        hoecken.uniform_sweep(0.0, 0.1, 10, "table", block=1000)

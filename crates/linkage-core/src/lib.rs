@@ -37,6 +37,7 @@
 //! assert!((pose.coupler_point - pose.a).norm() - 50.0 < 1e-12);
 //! ```
 #![cfg_attr(not(feature = "std"), no_std)]
+#![forbid(unsafe_code)]
 
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("linkage-core needs a math backend: enable the `std` feature or the `libm` feature");

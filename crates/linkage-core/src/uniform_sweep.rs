@@ -44,6 +44,9 @@ impl<T: RealField + Copy> FourBar<T> {
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite `theta0`/`dtheta`; [`Error::InvalidLength`] for a
     /// zero block.
+    // Always inlined, so a caller compiled for wider vectors (the Python binding's AVX2 path)
+    // gets this kernel compiled for them too.
+    #[inline(always)]
     pub fn uniform_sweep(
         &self,
         theta0: T,
@@ -132,7 +135,7 @@ impl<T: RealField + Copy> FourBar<T> {
     /// The closed-form kernel over a block of crank directions: branch-free, so it
     /// vectorises. A sample that cannot close gets a negative Kahan product, whose square root
     /// is NaN, which then runs through to the output.
-    #[inline]
+    #[inline(always)]
     fn coupler_block(&self, cos: &[T], sin: &[T], out: &mut [Vec2<T>]) {
         let (o, c) = (self.o, self.c);
         let (r, r1, r2) = (self.crank, self.coupler, self.rocker);

@@ -8,6 +8,69 @@ use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
 use crate::CAPACITY;
 
+/// The fast sweep, compiled again for AVX-512 and for AVX2 + FMA and chosen at run time by what
+/// the CPU has: the kernel is branch-free, so wider vectors make it ~3× faster (measured from
+/// Python: 6.6 → 3.9 → 2.3 ns/sample). The arithmetic is the same in every build — Rust does not
+/// contract `a * b + c` into a fused multiply-add — so every path gives the same bits (tested).
+/// `LINKAGE_PORTABLE=1` in the environment keeps the portable code.
+fn fast_sweep(
+    f: &CoreFourBar<f64>,
+    theta0: f64,
+    dtheta: f64,
+    first: usize,
+    mode: AngleMode,
+    out: &mut [Vec2<f64>],
+) -> Result<(), linkage_core::Error> {
+    // LINKAGE_PORTABLE=1 keeps the portable build's code (for comparisons and tests).
+    #[cfg(target_arch = "x86_64")]
+    let wide = std::env::var_os("LINKAGE_PORTABLE").is_none();
+    #[cfg(target_arch = "x86_64")]
+    if wide
+        && std::arch::is_x86_feature_detected!("avx512f")
+        && std::arch::is_x86_feature_detected!("avx512dq")
+        && std::arch::is_x86_feature_detected!("avx512vl")
+    {
+        #[allow(unsafe_code)]
+        // SAFETY: the only precondition of calling a `target_feature` function is that the CPU
+        // supports those features, checked just above.
+        return unsafe { fast_sweep_avx512(f, theta0, dtheta, first, mode, out) };
+    }
+    #[cfg(target_arch = "x86_64")]
+    if wide
+        && std::arch::is_x86_feature_detected!("avx2")
+        && std::arch::is_x86_feature_detected!("fma")
+    {
+        #[allow(unsafe_code)]
+        // SAFETY: the only precondition of calling a `target_feature` function is that the CPU
+        // supports those features, checked just above.
+        return unsafe { fast_sweep_avx2(f, theta0, dtheta, first, mode, out) };
+    }
+    f.uniform_sweep(theta0, dtheta, first, mode, out)
+}
+
+/// The same sweep compiled with extra target features (each name is one instantiation).
+macro_rules! sweep_with_features {
+    ($($name:ident = $features:literal;)*) => {$(
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $features)]
+        fn $name(
+            f: &CoreFourBar<f64>,
+            theta0: f64,
+            dtheta: f64,
+            first: usize,
+            mode: AngleMode,
+            out: &mut [Vec2<f64>],
+        ) -> Result<(), linkage_core::Error> {
+            f.uniform_sweep(theta0, dtheta, first, mode, out)
+        }
+    )*};
+}
+
+sweep_with_features! {
+    fast_sweep_avx512 = "avx512f,avx512dq,avx512vl,avx2,fma";
+    fast_sweep_avx2 = "avx2,fma";
+}
+
 /// A four-bar linkage (see `linkage.FourBar` for the documented Python class).
 #[pyclass(module = "linkage._core", frozen)]
 #[derive(Clone)]
@@ -208,7 +271,7 @@ impl FourBar {
                         .enumerate()
                         .map(|(t, part)| {
                             scope.spawn(move || {
-                                f.uniform_sweep(theta0, dtheta, t * chunk, mode, part)
+                                fast_sweep(&f, theta0, dtheta, t * chunk, mode, part)
                                     .map_err(|e| e.to_string())
                             })
                         })
