@@ -287,25 +287,24 @@ def test_per_sample_omega_and_alpha(hoecken):
         np.testing.assert_allclose(s.acceleration[i], si.acceleration[0], rtol=0, atol=1e-12)
 
 
-def test_fast_sweep_simd_paths_give_the_portable_bits(tmp_path):
+def test_fast_sweep_simd_paths_give_the_portable_bits(hoecken, monkeypatch):
     """The fast sweep dispatches to AVX-512 or AVX2 builds of the same kernel when the CPU has
     them; the arithmetic is identical, so the bits must be too (LINKAGE_PORTABLE=1 forces the
-    portable code in a child process)."""
-    import subprocess
-    import sys
+    portable code)."""
 
-    code = (
-        "import numpy as np, linkage, sys; fb = linkage.catalog.hoecken(); "
-        "np.save(sys.argv[1], np.concatenate([fb.uniform_sweep(0.1, 1e-3, 5000, m) "
-        "for m in ('trig', 'table', 'recurrence')]))"
-    )
-    fast, portable = tmp_path / "fast.npy", tmp_path / "portable.npy"
-    subprocess.run([sys.executable, "-c", code, str(fast)], check=True)
-    import os
+    def sweeps():
+        return [hoecken.uniform_sweep(0.1, 1e-3, 5000, m) for m in ("trig", "table", "recurrence")]
 
-    env = dict(os.environ, LINKAGE_PORTABLE="1")
-    subprocess.run([sys.executable, "-c", code, str(portable)], check=True, env=env)
-    np.testing.assert_array_equal(np.load(fast), np.load(portable))
+    monkeypatch.delenv("LINKAGE_PORTABLE", raising=False)
+    isa = linkage.FourBar.uniform_sweep_isa()
+    assert isa in ("avx512", "avx2", "portable")
+    fast = sweeps()
+    monkeypatch.setenv("LINKAGE_PORTABLE", "1")
+    assert linkage.FourBar.uniform_sweep_isa() == "portable"
+    for a, b in zip(fast, sweeps()):
+        np.testing.assert_array_equal(a, b)
+    monkeypatch.setenv("LINKAGE_PORTABLE", "0")
+    assert linkage.FourBar.uniform_sweep_isa() == isa
 
 
 def test_fast_sweep_matches_tracked_sweep_and_checks_arguments(hoecken):
@@ -319,3 +318,31 @@ def test_fast_sweep_matches_tracked_sweep_and_checks_arguments(hoecken):
         hoecken.uniform_sweep(0.0, 0.1, 10, threads=0)
     with pytest.raises(linkage.LinkageError, match="at most 256"):
         hoecken.uniform_sweep(0.0, 0.1, 10, "table", block=1000)
+
+
+def test_fast_sweep_into_out_array(hoecken):
+    n = 1000
+    fresh = hoecken.uniform_sweep(0.3, 0.006, n, "table", threads=2)
+    out = np.full((n, 2), 7.0)
+    got = hoecken.uniform_sweep(0.3, 0.006, n, "table", threads=2, out=out)
+    assert got is out
+    np.testing.assert_array_equal(out, fresh)
+    # Bad `out` arrays are refused before anything is written.
+    keep = np.full((n, 2), 7.0)
+    with pytest.raises(linkage.LinkageError, match=r"shape \(1000, 2\)"):
+        hoecken.uniform_sweep(0.3, 0.006, n, out=np.zeros((n, 3)))
+    with pytest.raises(TypeError, match="float64"):
+        hoecken.uniform_sweep(0.3, 0.006, n, out=np.zeros((n, 2), np.float32))
+    with pytest.raises(TypeError, match="float64"):
+        hoecken.uniform_sweep(0.3, 0.006, n, out=[[0.0, 0.0]] * n)
+    with pytest.raises(linkage.LinkageError, match="C-contiguous"):
+        hoecken.uniform_sweep(0.3, 0.006, n, out=np.zeros((2, n)).T)
+    frozen = keep.copy()
+    frozen.flags.writeable = False
+    with pytest.raises(linkage.LinkageError, match="writeable"):
+        hoecken.uniform_sweep(0.3, 0.006, n, out=frozen)
+    with pytest.raises(linkage.LinkageError, match="mode"):
+        hoecken.uniform_sweep(0.3, 0.006, n, "simd", out=keep)
+    with pytest.raises(linkage.LinkageError, match="dtheta"):
+        hoecken.uniform_sweep(0.3, np.nan, n, out=keep)
+    assert (keep == 7.0).all()

@@ -28,6 +28,7 @@ __all__ = [
     "cam_geometry",
     "forces",
     "support_margins",
+    "sweep_simd",
 ]
 
 CAPACITY: int
@@ -94,6 +95,7 @@ class FourBar:
         mode: str = "table",
         block: int = 64,
         threads: int = 1,
+        out: NDArray[np.float64] | None = None,
     ) -> NDArray[np.float64]: ...
     def circuit(
         self, n: int
@@ -111,6 +113,7 @@ class FourBar:
         | None
     ): ...
 
+def sweep_simd() -> str: ...
 def catalog_names() -> tuple[list[str], list[str]]: ...
 def catalog_four_bar(name: str) -> FourBar: ...
 def catalog_linkage(name: str, scale: float = 2.0) -> tuple[Mechanism, list[str], int]: ...

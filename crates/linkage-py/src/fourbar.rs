@@ -1,7 +1,7 @@
 //! Mirrors `linkage_core::fourbar`.
 
 use linkage_core::{AngleMode, Assembly, FourBar as CoreFourBar, InputRange, Vec2};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use crate::error::{linkage_error, to_py};
@@ -21,31 +21,64 @@ fn fast_sweep(
     mode: AngleMode,
     out: &mut [Vec2<f64>],
 ) -> Result<(), linkage_core::Error> {
+    match simd_level() {
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512 => {
+            #[allow(unsafe_code)]
+            // SAFETY: the only precondition of calling a `target_feature` function is that the
+            // CPU supports those features, which `simd_level` checked.
+            unsafe {
+                fast_sweep_avx512(f, theta0, dtheta, first, mode, out)
+            }
+        }
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2 => {
+            #[allow(unsafe_code)]
+            // SAFETY: as above.
+            unsafe {
+                fast_sweep_avx2(f, theta0, dtheta, first, mode, out)
+            }
+        }
+        _ => f.uniform_sweep(theta0, dtheta, first, mode, out),
+    }
+}
+
+/// Which build of the fast sweep runs on this CPU.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Simd {
+    Portable,
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    Avx2,
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    Avx512,
+}
+
+fn simd_level() -> Simd {
     // LINKAGE_PORTABLE=1 keeps the portable build's code (for comparisons and tests).
-    #[cfg(target_arch = "x86_64")]
-    let wide = std::env::var_os("LINKAGE_PORTABLE").is_none();
-    #[cfg(target_arch = "x86_64")]
-    if wide
-        && std::arch::is_x86_feature_detected!("avx512f")
-        && std::arch::is_x86_feature_detected!("avx512dq")
-        && std::arch::is_x86_feature_detected!("avx512vl")
-    {
-        #[allow(unsafe_code)]
-        // SAFETY: the only precondition of calling a `target_feature` function is that the CPU
-        // supports those features, checked just above.
-        return unsafe { fast_sweep_avx512(f, theta0, dtheta, first, mode, out) };
+    if std::env::var_os("LINKAGE_PORTABLE").is_some_and(|v| !v.is_empty() && v != "0") {
+        return Simd::Portable;
     }
     #[cfg(target_arch = "x86_64")]
-    if wide
-        && std::arch::is_x86_feature_detected!("avx2")
-        && std::arch::is_x86_feature_detected!("fma")
     {
-        #[allow(unsafe_code)]
-        // SAFETY: the only precondition of calling a `target_feature` function is that the CPU
-        // supports those features, checked just above.
-        return unsafe { fast_sweep_avx2(f, theta0, dtheta, first, mode, out) };
+        use std::arch::is_x86_feature_detected as has;
+        if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
+            return Simd::Avx512;
+        }
+        if has!("avx2") && has!("fma") {
+            return Simd::Avx2;
+        }
     }
-    f.uniform_sweep(theta0, dtheta, first, mode, out)
+    Simd::Portable
+}
+
+/// The instruction set the fast uniform sweep uses here: `"avx512"`, `"avx2"` or `"portable"`.
+#[pyfunction]
+pub fn sweep_simd() -> &'static str {
+    match simd_level() {
+        Simd::Avx512 => "avx512",
+        Simd::Avx2 => "avx2",
+        Simd::Portable => "portable",
+    }
 }
 
 /// The same sweep compiled with extra target features (each name is one instantiation).
@@ -232,8 +265,8 @@ impl FourBar {
 
     /// Coupler points `(n, 2)` at `theta0 + k·dtheta` by the fast kernel: `mode` "trig",
     /// "table" or "recurrence" (with `block`), on `threads` threads (the same bits for any
-    /// count).
-    #[pyo3(signature = (theta0, dtheta, n, mode="table", block=64, threads=1))]
+    /// count); into `out` (a writeable C-contiguous float64 `(n, 2)` array) when given.
+    #[pyo3(signature = (theta0, dtheta, n, mode="table", block=64, threads=1, out=None))]
     #[allow(clippy::too_many_arguments)]
     fn uniform_sweep<'py>(
         &self,
@@ -244,6 +277,7 @@ impl FourBar {
         mode: &str,
         block: usize,
         threads: usize,
+        out: Option<Bound<'py, PyArray2<f64>>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let mode = match mode {
             "trig" => AngleMode::Trig,
@@ -259,32 +293,61 @@ impl FourBar {
             return Err(linkage_error("threads must be at least 1"));
         }
         let f = self.inner;
-        let flat: Vec<f64> = py
-            .detach(|| {
-                // The output buffer is the numpy array's: the kernel writes points straight in.
-                let mut flat = vec![0.0_f64; 2 * n];
-                let points: &mut [Vec2<f64>] = bytemuck::cast_slice_mut(&mut flat);
-                let chunk = n.div_ceil(threads).max(1);
-                std::thread::scope(|scope| {
-                    let handles: Vec<_> = points
-                        .chunks_mut(chunk)
-                        .enumerate()
-                        .map(|(t, part)| {
-                            scope.spawn(move || {
-                                fast_sweep(&f, theta0, dtheta, t * chunk, mode, part)
-                                    .map_err(|e| e.to_string())
-                            })
-                        })
-                        .collect();
-                    handles.into_iter().try_for_each(|h| {
-                        h.join().unwrap_or_else(|_| {
-                            Err("internal error: a sweep thread panicked".into())
-                        })
-                    })
-                })
-                .map(|_| flat)
-            })
-            .map_err(linkage_error)?;
-        Ok(PyArray1::from_vec(py, flat).reshape([n, 2])?.into_any())
+        let Some(out) = out else {
+            // The kernel writes points straight into the buffer the numpy array then owns.
+            let mut flat = vec![0.0_f64; 2 * n];
+            py.detach(|| fill(&f, theta0, dtheta, mode, threads, &mut flat))
+                .map_err(linkage_error)?;
+            return Ok(PyArray1::from_vec(py, flat).reshape([n, 2])?.into_any());
+        };
+        if out.shape() != [n, 2] {
+            return Err(linkage_error(format!(
+                "out must have shape ({n}, 2), got {:?}",
+                out.shape()
+            )));
+        }
+        {
+            let mut view = out.try_readwrite().map_err(|e| {
+                linkage_error(format!("out must be a writeable array not in use: {e}"))
+            })?;
+            let flat = view
+                .as_slice_mut()
+                .map_err(|_| linkage_error("out must be C-contiguous"))?;
+            py.detach(|| fill(&f, theta0, dtheta, mode, threads, flat))
+                .map_err(linkage_error)?;
+        }
+        Ok(out.into_any())
     }
+}
+
+/// Fills `flat` (x, y pairs) with the fast sweep from sample 0, split over `threads` threads
+/// (the calling thread when one).
+fn fill(
+    f: &CoreFourBar<f64>,
+    theta0: f64,
+    dtheta: f64,
+    mode: AngleMode,
+    threads: usize,
+    flat: &mut [f64],
+) -> Result<(), String> {
+    let points: &mut [Vec2<f64>] = bytemuck::cast_slice_mut(flat);
+    if threads <= 1 || points.len() < 2 {
+        return fast_sweep(f, theta0, dtheta, 0, mode, points).map_err(|e| e.to_string());
+    }
+    let chunk = points.len().div_ceil(threads);
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = points
+            .chunks_mut(chunk)
+            .enumerate()
+            .map(|(t, part)| {
+                scope.spawn(move || {
+                    fast_sweep(f, theta0, dtheta, t * chunk, mode, part).map_err(|e| e.to_string())
+                })
+            })
+            .collect();
+        handles.into_iter().try_for_each(|h| {
+            h.join()
+                .unwrap_or_else(|_| Err("internal error: a sweep thread panicked".into()))
+        })
+    })
 }

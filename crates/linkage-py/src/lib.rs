@@ -44,5 +44,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cam::cam_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(kinetostatics::forces, m)?)?;
     m.add_function(wrap_pyfunction!(support::support_margins, m)?)?;
+    m.add_function(wrap_pyfunction!(fourbar::sweep_simd, m)?)?;
     Ok(())
 }
