@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+import linkage
 from linkage.cli import main
 
 EXAMPLES = sorted((Path(__file__).parent.parent / "examples").glob("*.toml"))
@@ -246,3 +247,30 @@ def test_default_scene_equals_the_example_file():
     example = scene.load(Path(__file__).parent.parent / "examples" / "quadruped_hoecken.toml")
     default.path = example.path = None
     assert default == example
+
+
+def test_scene_scale_multiplies_every_length_of_a_catalogue_four_bar():
+    from linkage import catalog, runner, scene
+
+    base = catalog.hoecken()
+    mech = runner.build_mechanism(
+        scene.parse(
+            'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\nscale = 2.5\n'
+            '[drive]\nkind = "constant"\nrpm = 50.0\n'
+        )
+    )
+    assert isinstance(mech, linkage.FourBar)
+    for name in ("ground", "crank", "coupler", "rocker"):
+        assert getattr(mech, name) == 2.5 * getattr(base, name)
+    assert mech.point == (2.5 * base.point[0], 2.5 * base.point[1])
+    assert mech.assembly == base.assembly
+    theta = np.linspace(0.0, 6.0, 7)
+    np.testing.assert_allclose(mech.sweep(theta).point, 2.5 * base.sweep(theta).point, atol=1e-12)
+
+    text = (Path(__file__).parent.parent / "examples" / "biped_custom_legs.toml").read_text()
+    big = text.replace('catalog = "hoecken",', 'catalog = "hoecken", scale = 2.0,')
+    assert big != text
+    legs = runner.build_walker(scene.parse(big)).legs
+    for leg in legs:
+        for name in ("ground", "crank", "coupler", "rocker"):
+            assert getattr(leg.linkage, name) == 2.0 * getattr(base, name)

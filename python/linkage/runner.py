@@ -76,14 +76,7 @@ def build_mechanism(scene: Scene) -> FourBar | Mechanism:
                     "[mechanism] scale: only catalogue four-bars can be scaled, "
                     f"not {m['catalog']!r}"
                 )
-            item = FourBar(
-                ground=item.ground * scale,
-                crank=item.crank * scale,
-                coupler=item.coupler * scale,
-                rocker=item.rocker * scale,
-                point=(item.point[0] * scale, item.point[1] * scale),
-                assembly=item.assembly,
-            )
+            item = _scaled(item, scale)
         return item
     if "ground" in m:
         return FourBar(
@@ -110,6 +103,18 @@ def build_mechanism(scene: Scene) -> FourBar | Mechanism:
     return mech
 
 
+def _scaled(fb: FourBar, k: float) -> FourBar:
+    """``fb`` with every length and its coupler point multiplied by ``k``."""
+    return FourBar(
+        ground=fb.ground * k,
+        crank=fb.crank * k,
+        coupler=fb.coupler * k,
+        rocker=fb.rocker * k,
+        point=(fb.point[0] * k, fb.point[1] * k),
+        assembly=fb.assembly,
+    )
+
+
 def build_walker(scene: Scene) -> Walker:
     """The scene's walker: a catalogue model, or legs built from catalogue four-bars."""
     from dataclasses import replace
@@ -126,14 +131,7 @@ def build_walker(scene: Scene) -> Walker:
             assert isinstance(fb, FourBar)
             k = float(spec.get("scale", 1.0))
             if k != 1.0:
-                fb = FourBar(
-                    ground=fb.ground * k,
-                    crank=fb.crank * k,
-                    coupler=fb.coupler * k,
-                    rocker=fb.rocker * k,
-                    point=(fb.point[0] * k, fb.point[1] * k),
-                    assembly=fb.assembly,
-                )
+                fb = _scaled(fb, k)
             lift = None
             if "lift" in spec:
                 segs = [
