@@ -331,6 +331,8 @@ def test_fast_sweep_into_out_array(hoecken):
     keep = np.full((n, 2), 7.0)
     with pytest.raises(linkage.LinkageError, match=r"shape \(1000, 2\)"):
         hoecken.uniform_sweep(0.3, 0.006, n, out=np.zeros((n, 3)))
+    with pytest.raises(linkage.LinkageError, match=r"shape \(1000, 2\), got \(2000\)"):
+        hoecken.uniform_sweep(0.3, 0.006, n, out=np.zeros(2 * n))
     with pytest.raises(TypeError, match="float64"):
         hoecken.uniform_sweep(0.3, 0.006, n, out=np.zeros((n, 2), np.float32))
     with pytest.raises(TypeError, match="float64"):

@@ -242,15 +242,11 @@ class FourBar:
         for name, v in (("n", n), ("block", block), ("threads", threads)):
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
                 raise LinkageError(f"{name} must be a positive int, got {v!r}")
-        if out is not None:
-            if not isinstance(out, np.ndarray) or out.dtype != np.float64:
-                raise TypeError(
-                    f"out must be a float64 numpy array, got {getattr(out, 'dtype', type(out))}"
-                )
-            if out.shape != (n, 2):
-                raise LinkageError(f"out must have shape ({n}, 2), got {out.shape}")
-            if not out.flags.c_contiguous or not out.flags.writeable:
-                raise LinkageError("out must be C-contiguous and writeable")
+        # The extension checks out's shape, layout and writeability; only the type is ours.
+        if out is not None and (not isinstance(out, np.ndarray) or out.dtype != np.float64):
+            raise TypeError(
+                f"out must be a float64 numpy array, got {getattr(out, 'dtype', type(out))}"
+            )
         points: NDArray[np.float64] = self._core.uniform_sweep(
             as_finite(theta0, "theta0"),
             as_finite(dtheta, "dtheta"),

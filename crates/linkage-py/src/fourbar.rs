@@ -1,7 +1,7 @@
 //! Mirrors `linkage_core::fourbar`.
 
 use linkage_core::{AngleMode, Assembly, FourBar as CoreFourBar, InputRange, Vec2};
-use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use crate::error::{linkage_error, to_py};
@@ -14,6 +14,7 @@ use crate::CAPACITY;
 /// contract `a * b + c` into a fused multiply-add — so every path gives the same bits (tested).
 /// `LINKAGE_PORTABLE=1` in the environment keeps the portable code.
 fn fast_sweep(
+    simd: Simd,
     f: &CoreFourBar<f64>,
     theta0: f64,
     dtheta: f64,
@@ -21,12 +22,13 @@ fn fast_sweep(
     mode: AngleMode,
     out: &mut [Vec2<f64>],
 ) -> Result<(), linkage_core::Error> {
-    match simd_level() {
+    match simd {
         #[cfg(target_arch = "x86_64")]
         Simd::Avx512 => {
             #[allow(unsafe_code)]
             // SAFETY: the only precondition of calling a `target_feature` function is that the
-            // CPU supports those features, which `simd_level` checked.
+            // CPU supports those features; a `Simd` other than `Portable` comes only from
+            // `simd_level`, which checked them.
             unsafe {
                 fast_sweep_avx512(f, theta0, dtheta, first, mode, out)
             }
@@ -43,7 +45,7 @@ fn fast_sweep(
     }
 }
 
-/// Which build of the fast sweep runs on this CPU.
+/// Which build of the fast sweep runs on this CPU (only `simd_level` makes one).
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Simd {
     Portable,
@@ -277,7 +279,7 @@ impl FourBar {
         mode: &str,
         block: usize,
         threads: usize,
-        out: Option<Bound<'py, PyArray2<f64>>>,
+        out: Option<Bound<'py, PyArrayDyn<f64>>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let mode = match mode {
             "trig" => AngleMode::Trig,
@@ -301,10 +303,15 @@ impl FourBar {
             return Ok(PyArray1::from_vec(py, flat).reshape([n, 2])?.into_any());
         };
         if out.shape() != [n, 2] {
+            let got: Vec<String> = out.shape().iter().map(usize::to_string).collect();
             return Err(linkage_error(format!(
-                "out must have shape ({n}, 2), got {:?}",
-                out.shape()
+                "out must have shape ({n}, 2), got ({})",
+                got.join(", ")
             )));
+        }
+        // `as_slice_mut` also accepts Fortran order, whose memory order is not (x, y) pairs.
+        if !out.is_c_contiguous() {
+            return Err(linkage_error("out must be C-contiguous"));
         }
         {
             let mut view = out.try_readwrite().map_err(|e| {
@@ -312,7 +319,7 @@ impl FourBar {
             })?;
             let flat = view
                 .as_slice_mut()
-                .map_err(|_| linkage_error("out must be C-contiguous"))?;
+                .map_err(|_| linkage_error("out must be C-contiguous"))?; // checked above
             py.detach(|| fill(&f, theta0, dtheta, mode, threads, flat))
                 .map_err(linkage_error)?;
         }
@@ -331,8 +338,9 @@ fn fill(
     flat: &mut [f64],
 ) -> Result<(), String> {
     let points: &mut [Vec2<f64>] = bytemuck::cast_slice_mut(flat);
+    let simd = simd_level();
     if threads <= 1 || points.len() < 2 {
-        return fast_sweep(f, theta0, dtheta, 0, mode, points).map_err(|e| e.to_string());
+        return fast_sweep(simd, f, theta0, dtheta, 0, mode, points).map_err(|e| e.to_string());
     }
     let chunk = points.len().div_ceil(threads);
     std::thread::scope(|scope| {
@@ -341,7 +349,8 @@ fn fill(
             .enumerate()
             .map(|(t, part)| {
                 scope.spawn(move || {
-                    fast_sweep(f, theta0, dtheta, t * chunk, mode, part).map_err(|e| e.to_string())
+                    fast_sweep(simd, f, theta0, dtheta, t * chunk, mode, part)
+                        .map_err(|e| e.to_string())
                 })
             })
             .collect();
