@@ -44,8 +44,8 @@ impl<T: RealField + Copy> FourBar<T> {
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite `theta0`/`dtheta`; [`Error::InvalidLength`] for a
     /// zero block.
-    // Always inlined, so a caller compiled for wider vectors (the Python binding's AVX2 path)
-    // gets this kernel compiled for them too.
+    // Always inlined, so a caller compiled for wider vectors (the Python binding's AVX-512 and
+    // AVX2 paths) gets this kernel compiled for them too.
     #[inline(always)]
     pub fn uniform_sweep(
         &self,
