@@ -104,9 +104,10 @@ def build_mechanism(scene: Scene) -> FourBar | Mechanism:
 
 
 def _scaled(fb: FourBar, k: float) -> FourBar:
-    """``fb`` with every length and its coupler point multiplied by ``k``."""
+    """``fb`` with every length, its pivots and its coupler point multiplied by ``k``."""
     return FourBar(
-        ground=fb.ground * k,
+        o=(fb.o[0] * k, fb.o[1] * k),
+        c=(fb.c[0] * k, fb.c[1] * k),
         crank=fb.crank * k,
         coupler=fb.coupler * k,
         rocker=fb.rocker * k,
