@@ -16,6 +16,13 @@ stages those outputs need are run (see :mod:`linkage.runner`). Example (``exampl
     rpm = 50.0
     gears = [18, 15, 14]
     duration = 0.933
+
+Validation is complete: :func:`load` and :func:`parse` check every key's type and range, the
+references between sections, and then build the study once without running it (the linkage,
+walker, drive, cam and masses, and the first assembled sample) so that whatever
+:func:`linkage.runner.run` would reject is rejected here, with the file, line and key. A scene's
+estimated memory (see :func:`linkage.runner.estimate_memory`) must stay under
+:data:`MEMORY_CAP`.
 """
 
 from __future__ import annotations
@@ -30,6 +37,7 @@ from pathlib import Path
 from typing import Any
 
 from linkage._core import LinkageError
+from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
 
 if sys.version_info >= (3, 11):  # pragma: no cover - depends on the interpreter
     import tomllib
@@ -82,6 +90,38 @@ MECHANISM_OUTPUTS = {
 }
 
 
+# Ranges of the numbers a scene may hold. Outside them a study means nothing (a length of
+# 1e308 overflows the first squared distance, one of 5e-324 is below every tolerance), so the
+# scene is refused with the range in the message instead of computing garbage.
+LENGTH_RANGE = (1e-9, 1e9)
+"""Lengths (link lengths, radii, pads, tolerances), in the scene's units."""
+COORD_MAX = 1e9
+"""Largest magnitude of a coordinate, offset, rise, force or gravity component."""
+ANGLE_MAX_DEG = 1e6
+"""Largest magnitude of an angle in degrees (phases, starts, rises)."""
+TIME_RANGE = (1e-9, 1e9)
+"""Durations (s)."""
+SPEED_RANGE = (1e-6, 1e9)
+"""Magnitude of a motor speed (rpm or rad/s), a crank speed or a foot speed."""
+SCALE_RANGE = (1e-6, 1e6)
+"""A catalogue linkage's scale factor."""
+TEETH_MAX = 100_000
+"""Most teeth on one gear."""
+MASS_MAX = 1e15
+"""Largest mass or moment of inertia."""
+CYCLES_MAX = 1e6
+"""Most cycles (crank turns or program periods) in one run."""
+SAMPLES_MAX = 10**9
+"""Most samples in one run (the memory estimate usually refuses far fewer)."""
+MEMORY_CAP = 2 * 1024**3
+"""Largest estimated memory of a run, in bytes (2 GiB); see
+:func:`linkage.runner.estimate_memory`."""
+FILE_MAX = 1 << 20
+"""Largest scene file, in bytes (1 MiB; a scene is a few hundred bytes)."""
+NAME = re.compile(r"[a-z0-9][a-z0-9_-]{0,63}")
+"""A scene name: a slug, the report folder's name (no '.', '/', spaces or capitals)."""
+
+
 class SceneError(LinkageError):
     """A malformed or contradictory scene file; the message names the file, line and key."""
 
@@ -103,14 +143,40 @@ class Scene:
     description: str = ""
     units: str = ""
     """Length unit label for the report (e.g. "mm"); lengths are used as given."""
+    locator: Locator | None = field(default=None, compare=False, repr=False)
+    """Where the scene's keys are in its text (None for a scene built in code)."""
 
     def wants(self, *names: str) -> bool:
         """Whether any of ``names`` is among the outputs."""
         return any(n in self.outputs for n in names)
 
+    def error(self, path: Sequence[Any], key: str, problem: str) -> SceneError:
+        """A :class:`SceneError` for ``key`` under ``path`` (section names and indices),
+        located in the scene's file when it came from one."""
+        if self.locator is not None:
+            return SceneError(self.locator.message(path, key, problem))
+        return SceneError(f"{label(path)}{key}: {problem}")
 
-# Allowed keys per section: key → (type check, description). Types: "number", "positive",
-# "int", "str", "bool", "pair", "list", "table", "tables".
+
+# Allowed keys per section and the kind of each value: "str", "bool", "int" (samples), "list",
+# "table", "tables", "pair" (two coordinates), or a number kind of NUMBERS.
+NUMBERS: dict[str, tuple[float, float, str]] = {
+    # kind: (low, high, how): "positive" (low ≤ x ≤ high), "signed" (|x| ≤ high),
+    # "nonzero" (low ≤ |x| ≤ high), "nonneg" (0 ≤ x ≤ high), "open" (low < x < high).
+    "length": (*LENGTH_RANGE, "positive"),
+    "coord": (0.0, COORD_MAX, "signed"),
+    "angle": (0.0, ANGLE_MAX_DEG, "signed"),
+    "angle_span": (1e-9, ANGLE_MAX_DEG, "positive"),
+    "time": (*TIME_RANGE, "positive"),
+    "speed": (*SPEED_RANGE, "nonzero"),
+    "foot_speed": (*SPEED_RANGE, "positive"),
+    "scale": (*SCALE_RANGE, "positive"),
+    "mass": (0.0, MASS_MAX, "nonneg"),
+    "pad": (0.0, LENGTH_RANGE[1], "nonneg"),
+    "fraction": (0.0, 1.0, "open"),
+    "cycles": (1e-6, CYCLES_MAX, "positive"),
+    "pressure": (0.0, 90.0, "open"),
+}
 TOP = {
     "name": "str",
     "units": "str",
@@ -126,77 +192,91 @@ TOP = {
 }
 MECHANISM = {
     "catalog": "str",
-    "scale": "positive",
-    "ground": "positive",
-    "crank": "positive",
-    "coupler": "positive",
-    "rocker": "positive",
+    "scale": "scale",
+    "ground": "length",
+    "crank": "length",
+    "coupler": "length",
+    "rocker": "length",
     "point": "pair",
     "assembly": "str",
     "trace": "str",
     "joints": "tables",
 }
+FORMS = {
+    "catalog": ("catalog", "scale"),
+    "ground": ("ground", "crank", "coupler", "rocker", "point", "assembly"),
+    "joints": ("joints", "trace"),
+}
+"""The keys of each way of giving a mechanism."""
 JOINT = {
     "name": "str",
     "kind": "str",
     "at": "pair",
     "centre": "str",
-    "radius": "positive",
-    "phase_deg": "number",
+    "radius": "length",
+    "phase_deg": "angle",
     "p1": "str",
     "p2": "str",
-    "r1": "positive",
-    "r2": "positive",
+    "r1": "length",
+    "r2": "length",
     "side": "str",
     "on": "list",
-    "along": "number",
-    "left": "number",
+    "along": "coord",
+    "left": "coord",
 }
+JOINT_KINDS = {
+    "fixed": (("at",), ()),
+    "crank": (("centre", "radius"), ("phase_deg",)),
+    "dyad": (("p1", "p2", "r1", "r2"), ("side",)),
+    "point": (("on", "along"), ("left",)),
+}
+"""Each joint kind's required and optional keys (besides name and kind)."""
 WALKER = {
     "model": "str",
     "legs": "tables",
     "gait": "str",
     "phases_deg": "list",
-    "pad": "number",
+    "pad": "pad",
     "cg": "pair",
-    "ground_tol": "positive",
+    "ground_tol": "length",
 }
+WALKER_MODELS = ("quadruped_hoecken", "hexapod_tripod")
 LEG = {
     "name": "str",
     "catalog": "str",
-    "scale": "positive",
+    "scale": "scale",
     "mount": "list",
-    "phase_deg": "number",
+    "phase_deg": "angle",
     "plane": "str",
     "mirror": "bool",
     "foot_offset": "pair",
-    "pad": "number",
+    "pad": "pad",
     "lift": "tables",
 }
 DRIVE = {
     "kind": "str",
-    "rpm": "number",
-    "omega": "number",
+    "rpm": "speed",
+    "omega": "speed",
     "gears": "list",
-    "start_deg": "number",
+    "start_deg": "angle",
     "segments": "tables",
-    "foot_speed": "positive",
-    "duty_factor": "number",
-    "duration": "positive",
-    "cycles": "positive",
+    "foot_speed": "foot_speed",
+    "duty_factor": "fraction",
+    "duration": "time",
+    "cycles": "cycles",
     "samples": "int",
 }
-SEGMENT = {"duration": "positive", "rise_deg": "number", "law": "str"}
-MASS = {"mass": "number", "centre": "pair", "inertia": "number"}
-LOAD = {"link": "str", "joint": "str", "force": "pair", "torque": "number"}
+SEGMENT = {"duration": "time", "rise_deg": "angle", "law": "str"}
+MASS = {"mass": "mass", "centre": "pair", "inertia": "mass"}
+LOAD = {"link": "str", "joint": "str", "force": "pair", "torque": "coord"}
 CAM = {
-    "base_radius": "positive",
-    "roller_radius": "positive",
-    "offset": "number",
-    "pressure_limit_deg": "positive",
+    "base_radius": "length",
+    "roller_radius": "length",
+    "offset": "coord",
+    "pressure_limit_deg": "pressure",
     "segments": "tables",
 }
-CAM_SEGMENT = {"duration_deg": "positive", "rise": "number", "law": "str"}
+CAM_SEGMENT = {"duration_deg": "angle_span", "rise": "coord", "law": "str"}
 DRIVE_KINDS = {
     "constant": {"rpm", "omega", "gears"},
     "program": {"start_deg", "segments", "gears"},
@@ -214,15 +294,34 @@ def load(path: str | Path) -> Scene:
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        with p.open("rb") as fh:
+            data = fh.read(FILE_MAX + 1)
     except OSError as exc:
         raise SceneError(f"{p}: cannot read the scene: {exc.strerror or exc}") from None
+    if len(data) > FILE_MAX:
+        raise SceneError(f"{p}: not a scene: larger than {FILE_MAX // 1024} KiB")
+    try:
+        text = decode(data)
+    except NotText as exc:
+        raise SceneError(f"{p}:{exc.line}: {exc.problem}") from None
     return parse(text, p)
 
 
 def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene:
-    """Validate scene ``text`` (``path`` only names it in messages)."""
-    where = _Locator(text, path)
+    """Validate scene ``text`` (``path`` only names it in messages; ``name`` is the name when
+    the text gives none).
+
+    Raises
+    ------
+    SceneError
+        With ``file:line: [section] key: problem`` for the first problem found.
+    """
+    where = Locator(text, str(path) if path else "<scene>")
+    deep = nesting(text)
+    if deep is not None:
+        raise SceneError(
+            f"{where.file}:{deep}: not a scene: brackets nested more than {MAX_NESTING} deep"
+        )
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -230,327 +329,433 @@ def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene
         n = (
             m.group(1)
             if m
-            else (str(max(1, len(where.lines))) if "end of document" in str(exc) else "")
+            else (str(max(1, len(where.lines))) if "end of document" in str(exc) else "1")
         )
-        line = f"{n}:" if n else ""
-        raise SceneError(f"{where.file}:{line} not valid TOML: {exc}") from None
-    _keys(data, TOP, where, ())
-    outputs = data.get("outputs")
-    if outputs is None:
-        raise where.error(
-            (), "outputs", 'missing: list what to compute, e.g. outputs = ["trajectory"]'
-        )
-    for o in outputs:
-        if not isinstance(o, str):
-            raise where.error((), "outputs", f"entries must be names, got {o!r}")
-        if o not in OUTPUTS:
-            raise where.error((), "outputs", f"unknown output {o!r}{_did_you_mean(o, OUTPUTS)}")
-    outputs = tuple(dict.fromkeys(outputs))
+        raise SceneError(f"{where.file}:{n}: not valid TOML: {exc}") from None
+    except RecursionError:  # pragma: no cover - the nesting check comes first
+        raise SceneError(f"{where.file}:1: not a scene: nested too deep") from None
+    except ValueError:  # an integer literal longer than Python converts
+        n = next((i + 1 for i, line in enumerate(where.lines) if re.search(r"\d{1000}", line)), 1)
+        raise SceneError(
+            f"{where.file}:{n}: not a scene: a number of more than "
+            f"{sys.get_int_max_str_digits()} digits"
+        ) from None
+    scene = Scene(name="scene", path=path, outputs=(), locator=where)
+    _keys(data, TOP, scene, ())
+    scene.outputs = _outputs(data, scene)
     has_mech, has_walker = "mechanism" in data, "walker" in data
     if has_mech == has_walker:
-        raise where.error((), "mechanism", "give exactly one of [mechanism] or [walker]")
-    scene = Scene(
-        name=str(data.get("name") or name or (path.stem if path else "scene")),
-        path=path,
-        outputs=outputs,
-        description=str(data.get("description", "")),
-        units=str(data.get("units", "")),
-    )
-    if not re.fullmatch(r"[A-Za-z0-9_.-]+", scene.name):
-        raise where.error(
-            (),
-            "name",
-            f"must be letters, digits, '.', '_' or '-' (a folder name), got {scene.name!r}",
+        raise scene.error((), "mechanism", "give exactly one of [mechanism] or [walker]")
+    scene.name = _name(data, scene, name, path)
+    scene.description = str(data.get("description", ""))
+    scene.units = str(data.get("units", ""))
+    if len(scene.units) > 32 or not scene.units.isprintable():
+        raise scene.error(
+            (), "units", f"must be a short unit label such as 'mm', got {scene.units!r}"
         )
+    if len(scene.description) > 4000:
+        raise scene.error((), "description", "must be at most 4000 characters")
+    outputs = scene.outputs
     if has_mech:
-        scene.mechanism = _mechanism(data["mechanism"], where)
+        scene.mechanism = _mechanism(data["mechanism"], scene)
         bad = sorted(set(outputs) & WALKER_OUTPUTS)
         if bad:
-            raise where.error((), "outputs", f"{bad} need a [walker], not a [mechanism]")
+            raise scene.error((), "outputs", f"{bad} need a [walker], not a [mechanism]")
     else:
-        scene.walker = _walker(data["walker"], where)
+        scene.walker = _walker(data["walker"], scene)
         bad = sorted(set(outputs) & MECHANISM_OUTPUTS)
         if bad:
-            raise where.error(
+            raise scene.error(
                 (), "outputs", f"{bad} need a [mechanism]; a walker reports gait, stability, slip"
             )
+        for key in ("masses", "loads"):
+            if key in data:
+                raise scene.error(
+                    (), key, "applies to a [mechanism] (for its torque), not to a [walker]"
+                )
     if "drive" not in data:
-        raise where.error(
+        raise scene.error(
             (), "drive", 'missing: a [drive] section (kind = "constant", "program" or "schedule")'
         )
-    scene.drive = _drive(data["drive"], where, scene)
+    scene.drive = _drive(data["drive"], scene)
     if "gravity" in data:
-        scene.gravity = _pair(data["gravity"], where, (), "gravity")
+        scene.gravity = _pair(data["gravity"], scene, (), "gravity")
     if "masses" in data:
-        masses = data["masses"]
         scene.masses = {}
-        for link, spec in masses.items():
+        for link, spec in data["masses"].items():
             if not isinstance(spec, Mapping):
-                raise where.error(
+                raise scene.error(
                     ("masses",),
                     link,
                     "must be a table {mass = ..., centre = [along, left], inertia = ...}",
                 )
-            _keys(spec, MASS, where, ("masses", link))
+            _keys(spec, MASS, scene, ("masses", link))
             if "mass" not in spec:
-                raise where.error(("masses", link), "mass", "missing")
-            if spec["mass"] < 0 or spec.get("inertia", 0.0) < 0:
-                raise where.error(("masses", link), "mass", "mass and inertia must be non-negative")
+                raise scene.error(("masses", link), "mass", "missing")
             scene.masses[link] = dict(spec)
-    for k, load in enumerate(data.get("loads", [])):
-        _keys(load, LOAD, where, ("loads", k))
+    for k, ld in enumerate(data.get("loads", [])):
+        _keys(ld, LOAD, scene, ("loads", k))
         for req in ("link", "joint", "force"):
-            if req not in load:
-                raise where.error(("loads", k), req, "missing")
-        scene.loads.append(dict(load))
-    if "torque" in outputs:
-        if scene.masses is None:
-            raise where.error(
-                (),
-                "outputs",
-                "'torque' needs link masses: add a [masses] section (mass = 0 for a massless link)",
-            )
-    elif scene.masses is not None or scene.loads:
-        pass  # masses without torque are allowed and ignored
+            if req not in ld:
+                raise scene.error(("loads", k), req, "missing")
+        scene.loads.append(dict(ld))
+    if "torque" in outputs and scene.masses is None:
+        raise scene.error(
+            (),
+            "outputs",
+            "'torque' needs link masses: add a [masses] section (mass = 0 for a massless link)",
+        )
     if "cam" in data:
-        scene.cam = _cam(data["cam"], where)
+        scene.cam = _cam(data["cam"], scene)
     if "cam" in outputs and scene.cam is None:
-        raise where.error((), "outputs", "'cam' needs a [cam] section")
+        raise scene.error((), "outputs", "'cam' needs a [cam] section")
+    # Build the study once without running it: whatever `run` would reject is rejected here.
+    from linkage import runner
+
+    runner.validate(scene)
     return scene
 
 
 # -- sections --------------------------------------------------------------------------------
 
 
-def _mechanism(m: Mapping[str, Any], where: _Locator) -> dict[str, Any]:
+def _outputs(data: Mapping[str, Any], scene: Scene) -> tuple[str, ...]:
+    outputs = data.get("outputs")
+    if outputs is None:
+        raise scene.error(
+            (), "outputs", 'missing: list what to compute, e.g. outputs = ["trajectory"]'
+        )
+    if not outputs:
+        raise scene.error((), "outputs", 'is empty: list what to compute, e.g. ["trajectory"]')
+    seen: list[str] = []
+    for o in outputs:
+        if not isinstance(o, str):
+            raise scene.error((), "outputs", f"entries must be names, got {o!r}")
+        if o not in OUTPUTS:
+            raise scene.error((), "outputs", f"unknown output {o!r}{_did_you_mean(o, OUTPUTS)}")
+        if o in seen:
+            raise scene.error((), "outputs", f"lists {o!r} twice")
+        seen.append(o)
+    return tuple(seen)
+
+
+def _name(data: Mapping[str, Any], scene: Scene, name: str | None, path: Path | None) -> str:
+    if "name" in data:
+        given = data["name"]
+        if not NAME.fullmatch(given):
+            raise scene.error(
+                (),
+                "name",
+                "must be a slug of 1 to 64 lower-case letters, digits, '-' or '_', starting "
+                f"with a letter or digit (it names the report folder), got {_show(given)}",
+            )
+        return str(given)
+    if name is not None:
+        return name
+    # No name: the file's stem as a slug ("My Scene.toml" → "my-scene").
+    stem = re.sub(r"[^a-z0-9_-]+", "-", path.stem.lower()).strip("-_") if path else ""
+    return stem[:64] if stem and NAME.fullmatch(stem[:64]) else "scene"
+
+
+def _mechanism(m: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
     sec = ("mechanism",)
-    _keys(m, MECHANISM, where, sec)
-    forms = [k for k in ("catalog", "ground", "joints") if k in m]
+    _keys(m, MECHANISM, scene, sec)
+    forms = [k for k in FORMS if k in m]
     if len(forms) != 1:
-        raise where.error(
+        raise scene.error(
             sec,
             forms[1] if len(forms) > 1 else "catalog",
             'give exactly one of catalog = "name", a four-bar (ground, crank, coupler, rocker) '
             "or [[mechanism.joints]]",
         )
-    out = dict(m)
-    if "catalog" in m:
+    form = forms[0]
+    for k in m:
+        if k not in FORMS[form]:
+            what = {"catalog": "a catalogue linkage", "ground": "a four-bar", "joints": "joints"}
+            owner = next(f for f, keys in FORMS.items() if k in keys)
+            raise scene.error(
+                sec, k, f"belongs to {what[owner]}, not to a mechanism given by {form!r}"
+            )
+    if form == "catalog":
         from linkage import catalog
 
         if m["catalog"] not in catalog.names():
-            raise where.error(
+            raise scene.error(
                 sec,
                 "catalog",
                 f"unknown catalogue linkage {m['catalog']!r}"
                 + _did_you_mean(m["catalog"], catalog.names()),
             )
-    elif "ground" in m:
+        if "scale" in m and m["catalog"] not in catalog.FOUR_BARS:
+            raise scene.error(
+                sec, "scale", f"only catalogue four-bars can be scaled, not {m['catalog']!r}"
+            )
+    elif form == "ground":
         for k in ("crank", "coupler", "rocker"):
             if k not in m:
-                raise where.error(
+                raise scene.error(
                     sec, k, "missing (a four-bar needs ground, crank, coupler, rocker)"
                 )
         if m.get("assembly", "open") not in ("open", "crossed"):
-            raise where.error(
+            raise scene.error(
                 sec, "assembly", f"must be 'open' or 'crossed', got {m['assembly']!r}"
             )
     else:
-        names: list[str] = []
-        for idx, j in enumerate(m["joints"]):
-            jp = ("mechanism", "joints", idx)
-            _keys(j, JOINT, where, jp)
-            for req in ("name", "kind"):
-                if req not in j:
-                    raise where.error(jp, req, "missing")
-            kinds = {
-                "fixed": ("at",),
-                "crank": ("centre", "radius"),
-                "dyad": ("p1", "p2", "r1", "r2"),
-                "point": ("on", "along"),
-            }
-            if j["kind"] not in kinds:
-                raise where.error(
+        _joints(m["joints"], m.get("trace"), scene)
+    return dict(m)
+
+
+def _joints(joints: Sequence[Mapping[str, Any]], trace: Any, scene: Scene) -> None:
+    if not joints:
+        raise scene.error(("mechanism",), "joints", "is empty: list the joints in build order")
+    names: list[str] = []
+    crank: str | None = None
+    for idx, j in enumerate(joints):
+        jp = ("mechanism", "joints", idx)
+        _keys(j, JOINT, scene, jp)
+        for req in ("name", "kind"):
+            if req not in j:
+                raise scene.error(jp, req, "missing")
+        if not j["name"] or not j["name"].isprintable() or len(j["name"]) > 64:
+            raise scene.error(jp, "name", f"must be a short printable name, got {j['name']!r}")
+        if j["name"] in names:
+            raise scene.error(jp, "name", f"joint {j['name']!r} is defined twice")
+        kind = j["kind"]
+        if kind not in JOINT_KINDS:
+            raise scene.error(
+                jp, "kind", f"unknown kind {kind!r}{_did_you_mean(kind, JOINT_KINDS)}"
+            )
+        need, optional = JOINT_KINDS[kind]
+        for req in need:
+            if req not in j:
+                raise scene.error(jp, req, f"missing (a {kind} needs {', '.join(need)})")
+        for k in j:
+            if k not in ("name", "kind", *need, *optional):
+                raise scene.error(jp, k, f"does not apply to a {kind} joint")
+        for ref in ("centre", "p1", "p2"):
+            if ref in j and j[ref] not in names:
+                raise scene.error(
+                    jp,
+                    ref,
+                    f"unknown joint {j[ref]!r} (defined before it: {', '.join(names) or 'none'})",
+                )
+        if kind == "crank":
+            if crank is not None:
+                raise scene.error(
                     jp,
                     "kind",
-                    f"unknown kind {j['kind']!r}{_did_you_mean(j['kind'], kinds)}",
+                    f"a second crank ({crank!r} is the crank); a mechanism has exactly one driver",
                 )
-            for req in kinds[j["kind"]]:
-                if req not in j:
-                    raise where.error(
+            crank = j["name"]
+        if kind == "dyad":
+            if j["p1"] == j["p2"]:
+                raise scene.error(jp, "p2", f"must differ from p1 (both {j['p1']!r})")
+            if j.get("side", "left") not in ("left", "right"):
+                raise scene.error(jp, "side", f"must be 'left' or 'right', got {j['side']!r}")
+        if kind == "point":
+            on = j["on"]
+            if len(on) != 2 or not all(isinstance(v, str) for v in on):
+                raise scene.error(jp, "on", f"must be two joint names [from, to], got {on!r}")
+            for v in on:
+                if v not in names:
+                    raise scene.error(
                         jp,
-                        req,
-                        f"missing (a {j['kind']} needs {', '.join(kinds[j['kind']])})",
+                        "on",
+                        f"unknown joint {v!r} (defined before it: {', '.join(names) or 'none'})",
                     )
-            for ref in ("centre", "p1", "p2"):
-                if ref in j and j[ref] not in names:
-                    raise where.error(
-                        jp,
-                        ref,
-                        f"unknown joint {j[ref]!r} "
-                        f"(defined before it: {', '.join(names) or 'none'})",
-                    )
-            names.append(j["name"])
-    return out
-
-
-def _walker(w: Mapping[str, Any], where: _Locator) -> dict[str, Any]:
-    sec = ("walker",)
-    _keys(w, WALKER, where, sec)
-    models = ("quadruped_hoecken", "hexapod_tripod")
-    if ("model" in w) == ("legs" in w):
-        raise where.error(
-            sec, "model", f"give a model ({', '.join(models)}) or [[walker.legs]], not both"
+            if on[0] == on[1]:
+                raise scene.error(jp, "on", f"needs two different joints, got {on!r}")
+        names.append(j["name"])
+    if crank is None:
+        raise scene.error(
+            ("mechanism",), "joints", 'no crank: one joint must be kind = "crank" (the driver)'
         )
-    if "model" in w and w["model"] not in models:
-        raise where.error(
-            sec, "model", f"unknown walker {w['model']!r}{_did_you_mean(w['model'], models)}"
+    if trace is not None and trace not in names:
+        raise scene.error(
+            ("mechanism",),
+            "trace",
+            f"unknown joint {trace!r}{_did_you_mean(trace, names)} (joints: {', '.join(names)})",
+        )
+
+
+def _walker(w: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
+    sec = ("walker",)
+    _keys(w, WALKER, scene, sec)
+    if ("model" in w) == ("legs" in w):
+        raise scene.error(
+            sec, "model", f"give a model ({', '.join(WALKER_MODELS)}) or [[walker.legs]], not both"
+        )
+    if "model" in w and w["model"] not in WALKER_MODELS:
+        raise scene.error(
+            sec,
+            "model",
+            f"unknown walker {w['model']!r}{_did_you_mean(w['model'], WALKER_MODELS)}",
         )
     if "legs" in w:
-        from linkage import catalog
-        from linkage.drive import LAWS
-
-        names = []
-        for idx, leg in enumerate(w["legs"]):
-            lp = ("walker", "legs", idx)
-            _keys(leg, LEG, where, lp)
-            for req in ("name", "catalog", "mount"):
-                if req not in leg:
-                    raise where.error(lp, req, "missing")
-            if leg["name"] in names:
-                raise where.error(lp, "name", f"leg {leg['name']!r} is defined twice")
-            names.append(leg["name"])
-            if leg["catalog"] not in catalog.FOUR_BARS:
-                raise where.error(
-                    lp,
-                    "catalog",
-                    f"a leg must be a catalogue four-bar, got {leg['catalog']!r}"
-                    + _did_you_mean(leg["catalog"], catalog.FOUR_BARS),
-                )
-            mount = leg["mount"]
-            if len(mount) != 3 or not all(
-                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-                for v in mount
-            ):
-                raise where.error(lp, "mount", f"must be [x, y, z] finite numbers, got {mount!r}")
-            plane = leg.get("plane", "sagittal")
-            if plane not in ("sagittal", "horizontal"):
-                raise where.error(lp, "plane", f"must be 'sagittal' or 'horizontal', got {plane!r}")
-            if plane == "horizontal" and "lift" not in leg:
-                raise where.error(lp, "lift", "a horizontal leg needs a lift program (cam)")
-            for k, seg in enumerate(leg.get("lift", [])):
-                _keys(seg, CAM_SEGMENT, where, (*lp, "lift", k))
-                if "law" in seg and seg["law"] not in LAWS:
-                    raise where.error(lp, "lift", f"unknown motion law {seg['law']!r}")
-            if leg.get("pad", 0.0) < 0:
-                raise where.error(lp, "pad", "must be non-negative")
+        _legs(w["legs"], scene)
     if "gait" in w and "phases_deg" in w:
-        raise where.error(sec, "phases_deg", "give a gait or phases_deg, not both")
+        raise scene.error(sec, "phases_deg", "give a gait or phases_deg, not both")
     if "gait" in w:
         from linkage.walker import GAITS
 
         if w["gait"] not in GAITS:
-            raise where.error(
+            raise scene.error(
                 sec, "gait", f"unknown gait {w['gait']!r}{_did_you_mean(w['gait'], GAITS)}"
             )
     if "phases_deg" in w:
-        ph = w["phases_deg"]
-        if not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in ph
-        ):
-            raise where.error(sec, "phases_deg", "must be finite numbers (degrees), one per leg")
-    if w.get("pad", 0.0) < 0:
-        raise where.error(sec, "pad", "must be non-negative")
+        for v in w["phases_deg"]:
+            _number(v, "angle", scene, sec, "phases_deg")
     return dict(w)
 
 
-def _drive(d: Mapping[str, Any], where: _Locator, scene: Scene) -> dict[str, Any]:
+def _legs(legs: Sequence[Mapping[str, Any]], scene: Scene) -> None:
+    from linkage import catalog
+
+    if not legs:
+        raise scene.error(("walker",), "legs", "is empty: a walker needs at least one leg")
+    names: list[str] = []
+    for idx, leg in enumerate(legs):
+        lp = ("walker", "legs", idx)
+        _keys(leg, LEG, scene, lp)
+        for req in ("name", "catalog", "mount"):
+            if req not in leg:
+                raise scene.error(lp, req, "missing")
+        if not leg["name"] or not leg["name"].isprintable() or len(leg["name"]) > 64:
+            raise scene.error(lp, "name", f"must be a short printable name, got {leg['name']!r}")
+        if leg["name"] in names:
+            raise scene.error(lp, "name", f"leg {leg['name']!r} is defined twice")
+        names.append(leg["name"])
+        if leg["catalog"] not in catalog.FOUR_BARS:
+            raise scene.error(
+                lp,
+                "catalog",
+                f"a leg must be a catalogue four-bar, got {leg['catalog']!r}"
+                + _did_you_mean(leg["catalog"], catalog.FOUR_BARS),
+            )
+        mount = leg["mount"]
+        if len(mount) != 3:
+            raise scene.error(lp, "mount", f"must be [x, y, z], got {mount!r}")
+        for v in mount:
+            _number(v, "coord", scene, lp, "mount")
+        plane = leg.get("plane", "sagittal")
+        if plane not in ("sagittal", "horizontal"):
+            raise scene.error(lp, "plane", f"must be 'sagittal' or 'horizontal', got {plane!r}")
+        if plane == "horizontal" and "lift" not in leg:
+            raise scene.error(lp, "lift", "a horizontal leg needs a lift program (cam)")
+        if "lift" in leg:
+            _turn(leg["lift"], scene, lp, "lift")
+
+
+def _turn(
+    segments: Sequence[Mapping[str, Any]], scene: Scene, owner: tuple[Any, ...], key: str
+) -> None:
+    """Segments of a program over one turn (a cam, a leg's lift): they span 360° and rise back
+    to the start."""
+    from linkage.drive import LAWS
+
+    if not segments:
+        raise scene.error(owner, key, "is empty: give segments spanning 360°")
+    total, rise, size = 0.0, 0.0, 0.0
+    for k, s in enumerate(segments):
+        sp = (*owner, key, k)
+        _keys(s, CAM_SEGMENT, scene, sp)
+        if "duration_deg" not in s:
+            raise scene.error(sp, "duration_deg", "missing")
+        if "law" in s and s["law"] not in LAWS:
+            raise scene.error(
+                sp, "law", f"unknown motion law {s['law']!r}{_did_you_mean(s['law'], LAWS)}"
+            )
+        total += s["duration_deg"]
+        rise += s.get("rise", 0.0)
+        size += abs(s.get("rise", 0.0))
+    if abs(total - 360.0) > 1e-9:
+        raise scene.error(owner, key, f"the segments must add up to 360°, got {total:g}°")
+    if abs(rise) > 1e-12 * max(1.0, size):
+        raise scene.error(
+            owner, key, f"the rises must add up to 0 (back to the start each turn), got {rise:g}"
+        )
+
+
+def _drive(d: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
     sec = ("drive",)
-    _keys(d, DRIVE, where, sec)
+    _keys(d, DRIVE, scene, sec)
     kind = d.get("kind")
     if kind is None:
-        raise where.error(sec, "kind", 'missing: "constant", "program" or "schedule"')
+        raise scene.error(sec, "kind", 'missing: "constant", "program" or "schedule"')
     if kind not in DRIVE_KINDS:
-        raise where.error(sec, "kind", f"unknown drive {kind!r}{_did_you_mean(kind, DRIVE_KINDS)}")
+        raise scene.error(sec, "kind", f"unknown drive {kind!r}{_did_you_mean(kind, DRIVE_KINDS)}")
     for other, keys in DRIVE_KINDS.items():
         if other != kind:
             for k in sorted(keys - DRIVE_KINDS[kind]):
                 if k in d:
-                    raise where.error(
+                    raise scene.error(
                         sec, k, f"belongs to a {other!r} drive, not {kind!r}: contradictory drive"
                     )
     if kind == "constant":
         if ("rpm" in d) == ("omega" in d):
-            raise where.error(
+            raise scene.error(
                 sec, "rpm", "give exactly one of rpm (motor, rev/min) or omega (rad/s)"
             )
-        speed = d.get("rpm", d.get("omega"))
-        if speed == 0:
-            raise where.error(sec, "rpm" if "rpm" in d else "omega", "must be non-zero")
     elif kind == "program":
         if "segments" not in d:
-            raise where.error(
+            raise scene.error(
                 sec, "segments", "missing: [[drive.segments]] with duration, rise_deg, law"
             )
+        if not d["segments"]:
+            raise scene.error(sec, "segments", "is empty: give at least one segment")
         from linkage.drive import LAWS
 
         for idx, s in enumerate(d["segments"]):
             sp = ("drive", "segments", idx)
-            _keys(s, SEGMENT, where, sp)
+            _keys(s, SEGMENT, scene, sp)
             if "duration" not in s:
-                raise where.error(sp, "duration", "missing")
+                raise scene.error(sp, "duration", "missing")
             if "law" in s and s["law"] not in LAWS:
-                raise where.error(
+                raise scene.error(
                     sp,
                     "law",
                     f"unknown motion law {s['law']!r}{_did_you_mean(s['law'], LAWS)}",
                 )
+        period = math.fsum(s["duration"] for s in d["segments"])
+        if period > TIME_RANGE[1]:
+            raise scene.error(
+                sec, "segments", f"the program lasts {period:g} s, more than {TIME_RANGE[1]:g} s"
+            )
     else:
         for k in ("foot_speed", "duty_factor"):
             if k not in d:
-                raise where.error(sec, k, "missing (a schedule needs foot_speed and duty_factor)")
-        if not 0 < d["duty_factor"] < 1:
-            raise where.error(
-                sec, "duty_factor", f"must be between 0 and 1, got {d['duty_factor']}"
-            )
+                raise scene.error(sec, k, "missing (a schedule needs foot_speed and duty_factor)")
     if "gears" in d:
         g = d["gears"]
-        if len(g) < 2 or not all(
-            isinstance(z, int) and not isinstance(z, bool) and z > 0 for z in g
-        ):
-            raise where.error(
-                sec, "gears", "must list at least two positive tooth counts in mesh order"
+        if len(g) < 2 or not all(isinstance(z, int) and not isinstance(z, bool) for z in g):
+            raise scene.error(
+                sec, "gears", f"must list at least two tooth counts in mesh order, got {g!r}"
+            )
+        if not all(1 <= z <= TEETH_MAX for z in g):
+            raise scene.error(
+                sec, "gears", f"tooth counts must be between 1 and {TEETH_MAX}, got {g!r}"
             )
     if "duration" in d and "cycles" in d:
-        raise where.error(sec, "cycles", "give duration (s) or cycles, not both")
+        raise scene.error(sec, "cycles", "give duration (s) or cycles, not both")
     samples = d.get("samples", 721)
     if samples < 8:
-        raise where.error(sec, "samples", f"must be at least 8, got {samples}")
+        raise scene.error(sec, "samples", f"must be at least 8, got {_show(samples)}")
+    if samples > SAMPLES_MAX:
+        raise scene.error(sec, "samples", f"must be at most {SAMPLES_MAX}, got {_show(samples)}")
     return dict(d)
 
 
-def _cam(c: Mapping[str, Any], where: _Locator) -> dict[str, Any]:
+def _cam(c: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
     sec = ("cam",)
-    _keys(c, CAM, where, sec)
+    _keys(c, CAM, scene, sec)
     for req in ("base_radius", "segments"):
         if req not in c:
-            raise where.error(sec, req, "missing")
-    from linkage.drive import LAWS
-
-    total = 0.0
-    for k, s in enumerate(c["segments"]):
-        _keys(s, CAM_SEGMENT, where, ("cam", "segments", k))
-        if "duration_deg" not in s:
-            raise where.error(("cam", "segments", k), "duration_deg", "missing")
-        if "law" in s and s["law"] not in LAWS:
-            raise where.error(
-                ("cam", "segments", k),
-                "law",
-                f"unknown motion law {s['law']!r}{_did_you_mean(s['law'], LAWS)}",
-            )
-        total += s["duration_deg"]
-    if abs(total - 360.0) > 1e-9:
-        raise where.error(
-            sec, "segments", f"the cam's segments must add up to 360°, got {total:g}°"
+            raise scene.error(sec, req, "missing")
+    _turn(c["segments"], scene, sec, "segments")
+    radius = c["base_radius"] + c.get("roller_radius", 0.0)
+    if "roller_radius" in c and abs(c.get("offset", 0.0)) >= radius:
+        raise scene.error(
+            sec, "offset", f"must be smaller than base_radius + roller_radius ({radius:g})"
         )
     return dict(c)
 
@@ -558,110 +763,102 @@ def _cam(c: Mapping[str, Any], where: _Locator) -> dict[str, Any]:
 # -- checks ----------------------------------------------------------------------------------
 
 
-def _keys(table: Any, schema: Mapping[str, str], where: _Locator, path: tuple[Any, ...]) -> None:
+def _keys(table: Any, schema: Mapping[str, str], scene: Scene, path: tuple[Any, ...]) -> None:
     if not isinstance(table, Mapping):
-        raise where.error(path[:-1], str(path[-1]) if path else "", "must be a table")
+        raise scene.error(path[:-1], str(path[-1]) if path else "", "must be a table")
     for key, value in table.items():
         if key not in schema:
-            raise where.error(path, key, f"unknown key{_did_you_mean(key, schema)}")
-        _type(value, schema[key], where, path, key)
+            raise scene.error(path, key, f"unknown key{_did_you_mean(key, schema)}")
+        _type(value, schema[key], scene, path, key)
 
 
-def _type(value: Any, kind: str, where: _Locator, path: tuple[Any, ...], key: str) -> None:
+def _type(value: Any, kind: str, scene: Scene, path: tuple[Any, ...], key: str) -> None:
     def bad(want: str) -> SceneError:
-        return where.error(path, key, f"must be {want}, got {type(value).__name__} {value!r}")
+        return scene.error(path, key, f"must be {want}, got {_show(value)}")
 
-    is_num = isinstance(value, (int, float)) and not isinstance(value, bool)
-    if kind == "str" and not isinstance(value, str):
+    if kind in NUMBERS:
+        _number(value, kind, scene, path, key)
+    elif kind == "str" and not isinstance(value, str):
         raise bad("a string")
-    if kind == "bool" and not isinstance(value, bool):
+    elif kind == "bool" and not isinstance(value, bool):
         raise bad("true or false")
-    if kind == "int" and (not isinstance(value, int) or isinstance(value, bool)):
+    elif kind == "int" and (not isinstance(value, int) or isinstance(value, bool)):
         raise bad("a whole number")
-    if kind in ("number", "positive"):
-        if not is_num or not math.isfinite(value):
-            raise bad("a finite number")
-        if kind == "positive" and value <= 0:
-            raise where.error(path, key, f"must be positive, got {value!r}")
-    if kind == "pair":
-        _pair(value, where, path, key)
-    if kind == "list" and not isinstance(value, list):
+    elif kind == "pair":
+        _pair(value, scene, path, key)
+    elif kind == "list" and not isinstance(value, list):
         raise bad("a list")
-    if kind == "table" and not isinstance(value, Mapping):
+    elif kind == "table" and not isinstance(value, Mapping):
         raise bad("a table")
-    if kind == "tables" and not (
+    elif kind == "tables" and not (
         isinstance(value, list) and all(isinstance(v, Mapping) for v in value)
     ):
         raise bad("a list of tables ([[...]] sections or {…} entries)")
 
 
-def _pair(value: Any, where: _Locator, path: tuple[Any, ...], key: str) -> tuple[float, float]:
+def _number(value: Any, kind: str, scene: Scene, path: tuple[Any, ...], key: str) -> float:
+    """``value`` checked as a finite number of ``kind`` (see :data:`NUMBERS`)."""
+    if not isinstance(value, (int, float)) or isinstance(value, bool):
+        raise scene.error(path, key, f"must be a finite number, got {_show(value)}")
+    try:
+        x = float(value)
+    except OverflowError:
+        x = math.inf
+    if not math.isfinite(x):
+        raise scene.error(path, key, f"must be a finite number, got {_show(value)}")
+    lo, hi, how = NUMBERS[kind]
+    shown = _show(value)
+    if how == "positive":
+        if x <= 0:
+            raise scene.error(path, key, f"must be positive, got {shown}")
+        if not lo <= x <= hi:
+            raise scene.error(path, key, f"must be between {lo:g} and {hi:g}, got {shown}")
+    elif how == "nonneg":
+        if x < 0:
+            raise scene.error(path, key, f"must be non-negative, got {shown}")
+        if x > hi:
+            raise scene.error(path, key, f"must be at most {hi:g}, got {shown}")
+    elif how == "signed":
+        if abs(x) > hi:
+            raise scene.error(path, key, f"must be between {-hi:g} and {hi:g}, got {shown}")
+    elif how == "nonzero":
+        if x == 0:
+            raise scene.error(path, key, "must be non-zero")
+        if not lo <= abs(x) <= hi:
+            raise scene.error(
+                path, key, f"must have a magnitude between {lo:g} and {hi:g}, got {shown}"
+            )
+    elif not lo < x < hi:
+        raise scene.error(path, key, f"must be between {lo:g} and {hi:g} (exclusive), got {shown}")
+    return x
+
+
+def _pair(value: Any, scene: Scene, path: tuple[Any, ...], key: str) -> tuple[float, float]:
     ok = (
         isinstance(value, list)
         and len(value) == 2
-        and all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-            for v in value
-        )
+        and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
     )
     if not ok:
-        raise where.error(path, key, f"must be a pair of finite numbers [x, y], got {value!r}")
-    return (float(value[0]), float(value[1]))
+        raise scene.error(path, key, f"must be a pair of finite numbers [x, y], got {_show(value)}")
+    x, y = (_number(v, "coord", scene, path, key) for v in value)
+    return (x, y)
+
+
+def _show(value: Any) -> str:
+    """``type value`` for messages, short even for a huge value."""
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 64:
+        return f"an integer of about {int(value.bit_length() * math.log10(2)) + 1} digits"
+    text = repr(value)
+    if len(text) > 60:
+        text = text[:57] + "..."
+    return (
+        f"{type(value).__name__} {text}"
+        if not isinstance(value, (int, float)) or isinstance(value, bool)
+        else text
+    )
 
 
 def _did_you_mean(word: str, choices: Any) -> str:
     close = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1, cutoff=0.6)
     return f" (did you mean {close[0]!r}?)" if close else ""
-
-
-class _Locator:
-    """Finds the line of a key in the scene text, for messages (tomllib keeps no positions)."""
-
-    def __init__(self, text: str, path: Path | None) -> None:
-        self.lines = text.splitlines()
-        self.file = str(path) if path else "<scene>"
-
-    def line(self, path: Sequence[Any], key: str) -> int | None:
-        names = [p for p in path if isinstance(p, str)]
-        index = next((p for p in path if isinstance(p, int)), None)
-        pattern = re.compile(r"(^|[\s{,])" + re.escape(str(key)) + r"\s*=")
-        start, end = 0, len(self.lines)
-        if names:
-            header = re.compile(r"^\s*\[\[?\s*" + re.escape(".".join(names)) + r"\s*\]\]?\s*$")
-            hits = [i for i, line in enumerate(self.lines) if header.match(line)]
-            if hits:
-                start = hits[min(index or 0, len(hits) - 1)] + 1
-                nxt = [
-                    i for i in range(start, len(self.lines)) if re.match(r"^\s*\[", self.lines[i])
-                ]
-                end = nxt[0] if nxt else len(self.lines)
-            else:
-                # An inline array of tables (`legs = [ {…}, {…} ]`): the entry's own line.
-                owner = re.compile(r"(^|[\s{,])" + re.escape(names[-1]) + r"\s*=")
-                at = next((i for i, line in enumerate(self.lines) if owner.search(line)), None)
-                if at is not None:
-                    entry = at
-                    if index is not None:
-                        braces = [i for i in range(at, len(self.lines)) if "{" in self.lines[i]]
-                        entry = braces[index] if index < len(braces) else at
-                    line = self.lines[entry]
-                    return entry + 1 if pattern.search(line) or index is not None else at + 1
-        else:
-            first = [i for i, line in enumerate(self.lines) if re.match(r"^\s*\[", line)]
-            end = first[0] if first else len(self.lines)
-        for i in range(start, end):
-            if pattern.search(self.lines[i]):
-                return i + 1
-        for i in range(len(self.lines)):
-            if pattern.search(self.lines[i]):
-                return i + 1
-        # A missing key: point at its section's header, or the file's first line.
-        return start if names and start else 1
-
-    def error(self, path: Sequence[Any], key: str, problem: str) -> SceneError:
-        line = self.line(path, key)
-        where = f"{self.file}:{line}:" if line else f"{self.file}:"
-        section = ".".join(str(p) for p in path if isinstance(p, str))
-        idx = [p for p in path if isinstance(p, int)]
-        label = (f"[{section}" + (f" #{idx[0] + 1}" if idx else "") + "] ") if section else ""
-        return SceneError(f"{where} {label}{key}: {problem}")
