@@ -15,6 +15,7 @@ from PIL import Image
 
 import linkage
 from linkage.cli import main
+from linkage.report import MARKER
 
 EXAMPLES = sorted((Path(__file__).parent.parent / "examples").glob("*.toml"))
 PLOTS = {
@@ -35,6 +36,16 @@ def expected_files(outputs):
     for o in outputs:
         files.update(PLOTS.get(o, []))
     return files
+
+
+def report_files(folder: Path) -> set[str]:
+    """The report's files: everything in the folder but the tool's marker (which must be there
+    and list exactly those files)."""
+    names = {p.name for p in folder.iterdir()}
+    assert MARKER in names, f"{folder} has no {MARKER}"
+    marker = json.loads((folder / MARKER).read_text())
+    assert marker["tool"] == "linkage" and set(marker["files"]) == names - {MARKER}
+    return names - {MARKER}
 
 
 def check_images(folder: Path):
@@ -61,7 +72,7 @@ def test_default_run_writes_its_report(tmp_path, capsys):
     assert "quadruped-hoecken" in text and "minimum stability margin" in text
     summary = json.loads((out / "summary.json").read_text())
     assert set(summary["files"]) == expected_files(summary["outputs"])
-    assert {p.name for p in out.iterdir()} == expected_files(summary["outputs"])
+    assert report_files(out) == expected_files(summary["outputs"])
     check_images(out)
     # The default is the source's quadruped: two or four feet down, statically stable.
     figures = {f["figure"]: f["value"] for f in summary["figures"]}
@@ -74,7 +85,7 @@ def test_every_example_scene(scene, tmp_path):
     code, out = run(tmp_path, str(scene))
     assert code == 0
     summary = json.loads((out / "summary.json").read_text())
-    assert {p.name for p in out.iterdir()} == expected_files(summary["outputs"])
+    assert report_files(out) == expected_files(summary["outputs"])
     check_images(out)
     data = np.load(out / "data.npz")
     assert len(data["time"]) == 61
@@ -90,7 +101,7 @@ def test_trajectory_only_runs_no_other_stage(tmp_path):
     assert code == 0
     summary = json.loads((out / "summary.json").read_text())
     assert set(summary["stages_s"]) == {"build", "trajectory", "report"}
-    assert {p.name for p in out.iterdir()} == {
+    assert report_files(out) == {
         "trajectory.png",
         "data.csv",
         "data.npz",
@@ -196,11 +207,23 @@ def test_existing_report_is_not_overwritten_without_force(tmp_path, capsys):
     out.mkdir()
     keep = out / "mine.txt"
     keep.write_text("user data")
+    # A folder linkage did not write is refused with and without --force.
+    for extra in ([], ["--force"]):
+        assert main(["run", "--out", str(out), "--samples", "31", "--frames", "2", *extra]) == 2
+        err = capsys.readouterr().err
+        assert str(out) in err and "not a report written by linkage" in err, err
+        assert keep.read_text() == "user data"
+        assert {p.name for p in out.iterdir()} == {"mine.txt"}
+    # A report linkage wrote is refused without --force and replaced with it.
+    keep.unlink()
+    out.rmdir()
+    assert main(["run", "--out", str(out), "--samples", "31", "--frames", "2", "--quiet"]) == 0
+    first = (out / MARKER).read_text()
     assert main(["run", "--out", str(out), "--samples", "31", "--frames", "2"]) == 2
     assert "--force" in capsys.readouterr().err
-    assert keep.read_text() == "user data"
+    assert (out / MARKER).read_text() == first
     assert main(["run", "--out", str(out), "--samples", "31", "--frames", "2", "--force"]) == 0
-    assert not keep.exists() and (out / "summary.json").exists()
+    assert "summary.json" in report_files(out)
 
 
 def test_check_and_module_entry(tmp_path):

@@ -2,19 +2,34 @@
 
 ``linkage run`` with no scene runs the built-in default, thesis 1's quadruped on Hoecken legs
 under its drive (the same as ``examples/quadruped_hoecken.toml``).
+
+Exit status: 0 done; 2 a mistake in the scene or arguments, a refused or failed report folder, or
+out of memory (one line on stderr, nothing written); 3 an internal error (a bug; set
+LINKAGE_DEBUG=1 for the traceback); 130 interrupted by Ctrl-C (nothing written).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
+import os
 import sys
 import time
+import traceback
 from collections.abc import Sequence
 from pathlib import Path
 
 from linkage import catalog
 from linkage._core import LinkageError
+
+EXIT_ERROR = 2
+"""Exit status for a mistake in the scene or the arguments, or a failed write."""
+EXIT_INTERNAL = 3
+"""Exit status for an internal error (a bug in linkage)."""
+EXIT_INTERRUPTED = 130
+"""Exit status after Ctrl-C (128 + SIGINT, as shells report it)."""
+DEBUG_ENV = "LINKAGE_DEBUG"
 
 
 def print_table(title: str, rows: Sequence[tuple[str, str, str, str]]) -> None:
@@ -58,19 +73,26 @@ def _load(path: str | None):  # type: ignore[no-untyped-def]
     return scene.load(path)
 
 
-def _run(args: argparse.Namespace) -> int:
+def _run(args: argparse.Namespace, state: dict[str, Path]) -> int:
     from linkage import report, runner
 
     sc = _load(args.scene)
-    out = Path(args.out) if args.out else Path("linkage-report") / sc.name
-    # Refuse before computing anything: nothing the user has is overwritten without --force.
+    if args.out is not None:
+        out = Path(os.path.expanduser(args.out))
+    else:
+        out = report.default_folder(sc.name)
+    # Refuse before computing anything: nothing the user has is touched, and --force replaces
+    # only a folder linkage wrote (see linkage.report).
     report.prepare(out, args.force)
     progress = _Progress(not args.quiet, 8)
     t0 = time.perf_counter()
-    res = runner.run(sc, samples=args.samples, progress=progress)
-    progress("report")
-    files = report.write(res, out, frames=args.frames)
-    progress.close()
+    try:
+        res = runner.run(sc, samples=args.samples, progress=progress)
+        progress("report")
+        files = report.write(res, out, frames=args.frames, force=args.force)
+    finally:
+        progress.close()
+    state["written"] = out
     if args.quiet:
         return 0
     rows = list(res.figures)
@@ -83,13 +105,13 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check(args: argparse.Namespace) -> int:
+def _check(args: argparse.Namespace, state: dict[str, Path]) -> int:
     sc = _load(args.scene)
     print(f"ok: {sc.name}: outputs {', '.join(sc.outputs)}")
     return 0
 
 
-def _catalog(args: argparse.Namespace) -> int:
+def _catalog(args: argparse.Namespace, state: dict[str, Path]) -> int:
     rows = []
     for f in catalog.figures(rel_tol=args.tol, samples=args.samples):
         if f.input_range is None:
@@ -118,14 +140,20 @@ def _catalog(args: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``linkage`` console script."""
-    parser = argparse.ArgumentParser(prog="linkage", description=__doc__)
+    parser = argparse.ArgumentParser(
+        prog="linkage", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser(
         "run", help="run a scene (default: thesis 1's quadruped) and write its report"
     )
     run.add_argument("scene", nargs="?", default=None, help="scene file (TOML); see examples/")
     run.add_argument("--out", help="report folder (default ./linkage-report/<scene name>)")
-    run.add_argument("--force", action="store_true", help="replace an existing report folder")
+    run.add_argument(
+        "--force",
+        action="store_true",
+        help="replace an earlier report linkage wrote (never a folder it did not write)",
+    )
     run.add_argument("--quiet", action="store_true", help="no progress, no table")
     run.add_argument("--samples", type=int, default=None, help="override the scene's samples")
     run.add_argument("--frames", type=int, default=48, help="animation frames (default 48)")
@@ -144,11 +172,47 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error("--samples must be at least 8")
     if getattr(args, "frames", 2) < 2:
         parser.error("--frames must be at least 2")
+    state: dict[str, Path] = {}
     try:
-        return int(args.func(args))
+        return int(args.func(args, state))
+    except KeyboardInterrupt:
+        _say(f"interrupted; {_written(state)}")
+        return EXIT_INTERRUPTED
     except LinkageError as exc:
-        print(f"linkage: error: {exc}", file=sys.stderr)
-        return 2
+        _say(f"error: {exc}")
+        return EXIT_ERROR
+    except MemoryError as exc:
+        detail = f": {exc}" if str(exc) else ""
+        _say(f"error: out of memory{detail} ({_written(state)})")
+        return EXIT_ERROR
+    except OSError as exc:
+        where = f"{exc.filename}: " if exc.filename is not None else ""
+        _say(f"error: {where}{exc.strerror or exc} ({_written(state)})")
+        return EXIT_ERROR
+    except (SystemExit, GeneratorExit):
+        raise
+    except BaseException as exc:  # a bug (a Rust panic is a BaseException): say so, no traceback
+        _say(
+            f"internal error (a bug in linkage, please report it): "
+            f"{type(exc).__name__}: {exc} (set {DEBUG_ENV}=1 for the traceback; "
+            f"{_written(state)})"
+        )
+        if os.environ.get(DEBUG_ENV):
+            traceback.print_exc()
+        return EXIT_INTERNAL
+
+
+def _written(state: dict[str, Path]) -> str:
+    if "written" in state:
+        return f"the report was written to {state['written']}/"
+    return "nothing was written"
+
+
+def _say(line: str) -> None:
+    """One line on stderr, prefixed with the program name (never raising itself)."""
+    with contextlib.suppress(OSError, ValueError):
+        print(f"linkage: {line}", file=sys.stderr)
+        sys.stderr.flush()
 
 
 if __name__ == "__main__":  # pragma: no cover
