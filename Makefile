@@ -52,9 +52,10 @@ bench: $(STAMP) ## Work-precision benchmark (mpmath, numpy, pylinkage, four-bar 
 	$(BIN)/python bench/stability.py
 	$(MAKE) firmware-size
 
-fuzz: $(STAMP) ## Long fuzzing runs: 1e5 proptest cases per property, 2e4 hypothesis examples per boundary test.
+fuzz: $(STAMP) ## Long fuzzing runs: 1e5 proptest cases per property; ~2e5 hypothesis examples over the whole Python API.
 	LINKAGE_PROPTEST_CASES=100000 cargo test -p linkage-core --release --test properties --test centres
 	LINKAGE_FUZZ_EXAMPLES=20000 $(BIN)/pytest tests/test_fuzz.py -q
+	LINKAGE_FUZZ_EXAMPLES=4000 $(BIN)/pytest tests/test_fuzz_api.py tests/test_memory_limits.py -q
 
 clean: ## Remove the venv and build products.
 	rm -rf $(VENV) target python/linkage/_core*.so

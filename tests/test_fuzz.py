@@ -1,6 +1,8 @@
 """The Python boundary fuzzed: arbitrary floats (NaN, ±inf, subnormals, huge, negative), shapes
 and dtypes never crash or leak a panic — they give a result (NaN + mask where a sample cannot
-be assembled) or one of the documented exceptions (LinkageError, a ValueError; TypeError)."""
+be assembled) or one of the documented exceptions (LinkageError, a ValueError; TypeError;
+MemoryError). The rest of the public API is fuzzed in test_fuzz_api.py, absurd sizes in
+test_memory_limits.py."""
 
 from __future__ import annotations
 
@@ -18,7 +20,7 @@ ANY_FLOAT = st.one_of(
     st.floats(allow_nan=True, allow_infinity=True, allow_subnormal=True),
     st.sampled_from([0.0, -0.0, 5e-324, -5e-324, 1e308, -1e308, 1e-300, 1e300]),
 )
-DOCUMENTED = (linkage.LinkageError, TypeError)
+DOCUMENTED = (linkage.LinkageError, TypeError, MemoryError)
 DTYPES = st.sampled_from(
     [
         np.float64,

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import sys
 from numbers import Real
 from typing import Any
 
@@ -52,12 +54,23 @@ def as_length(value: Any, name: str) -> float:
 
 
 def as_real(value: Any, name: str) -> float:
-    """A real scalar (int or float, not bool), as float; finiteness is checked by the caller."""
+    """A real scalar (int or float, not bool), as float; finiteness is checked by the caller.
+
+    An integer (or fraction) too large for a float raises ``LinkageError``, not
+    ``OverflowError``.
+    """
     if isinstance(value, (bool, np.bool_)) or not isinstance(
         value, (Real, np.integer, np.floating)
     ):
         raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:
+        raise LinkageError(f"{name} is too large for a float: {_short(value)}") from None
+    except (TypeError, ValueError, ArithmeticError) as exc:  # exotic Real subclasses
+        raise TypeError(
+            f"{name} must be a real number, got {type(value).__name__}: {exc}"
+        ) from None
 
 
 def as_finite(value: Any, name: str) -> float:
@@ -70,6 +83,8 @@ def as_finite(value: Any, name: str) -> float:
 
 def as_point(value: Any, name: str) -> tuple[float, float]:
     """A finite 2-D point given as a pair."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be a pair (x, y), got {type(value).__name__}")
     try:
         seq = tuple(value)
     except TypeError:
@@ -79,13 +94,117 @@ def as_point(value: Any, name: str) -> tuple[float, float]:
     return as_finite(seq[0], f"{name}[0]"), as_finite(seq[1], f"{name}[1]")
 
 
+def as_points(value: Any, name: str) -> NDArray[np.float64]:
+    """Points shaped ``(..., 2)`` as a float64 array (not necessarily contiguous); non-finite
+    values are kept (they give NaN results)."""
+    arr = _as_real_array(value, name)
+    if arr.ndim == 0 or arr.shape[-1] != 2:
+        raise LinkageError(f"{name} must have shape (..., 2), got {arr.shape}")
+    return np.asarray(arr, dtype=np.float64)
+
+
+def as_count(value: Any, name: str, minimum: int = 1) -> int:
+    """A count (an int, not bool) of at least ``minimum``, and at most what an index can hold
+    (``sys.maxsize``); beyond that ``LinkageError`` — it cannot be represented."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an int, got {type(value).__name__}")
+    v = int(value)
+    if v < minimum:
+        raise LinkageError(f"{name} must be an int ≥ {minimum}, got {v}")
+    if v > sys.maxsize:
+        raise LinkageError(f"{name} = {v} is too large to be represented (at most {sys.maxsize})")
+    return v
+
+
+def as_flag(value: Any, name: str) -> bool:
+    """A yes/no argument: bool, numpy bool, or the ints 0 and 1."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)) and int(value) in (0, 1):
+        return bool(value)
+    raise TypeError(f"{name} must be True or False, got {_short(value)}")
+
+
+def as_choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:
+    """One of the names ``allowed``: a str that is not one of them is a ``LinkageError``,
+    anything else a ``TypeError``."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be one of {allowed}, got {type(value).__name__}")
+    if value not in allowed:
+        raise LinkageError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
+    return value
+
+
+def memory_limit() -> int:
+    """Bytes this process can hold at most: physical memory, or the address-space limit
+    (``RLIMIT_AS``) when one is set lower."""
+    limit = 1 << 62
+    try:
+        limit = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, OSError, ValueError):  # pragma: no cover - not POSIX
+        pass
+    try:
+        import resource
+
+        soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+        if soft != resource.RLIM_INFINITY and 0 < soft < limit:
+            limit = soft
+    except (ImportError, OSError, ValueError):  # pragma: no cover - not POSIX
+        pass
+    return int(limit)
+
+
+def check_memory(nbytes: int, what: str) -> None:
+    """Raise ``MemoryError`` naming the size when ``nbytes`` (an exact int: no overflow) is
+    more than this process can hold (:func:`memory_limit`)."""
+    limit = memory_limit()
+    if nbytes > limit:
+        raise MemoryError(
+            f"{what} needs {_bytes(nbytes)}, more than this process can hold ({_bytes(limit)})"
+        )
+
+
+def _bytes(n: int) -> str:
+    for unit, size in (("EiB", 1 << 60), ("PiB", 1 << 50), ("TiB", 1 << 40), ("GiB", 1 << 30)):
+        if n >= size:
+            return f"{n / size:.3g} {unit} ({n} bytes)"
+    return f"{n} bytes"
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+class UnknownNameError(LinkageError, KeyError):
+    """A name (joint, link) that is not there: a ``LinkageError`` that is also a ``KeyError``."""
+
+    def __str__(self) -> str:
+        return str(self.args[0]) if self.args else ""
+
+
+def as_real_array(value: Any, name: str) -> NDArray[Any]:
+    """``value`` as an array of real numbers (int, uint or float dtype) of any shape."""
+    return _as_real_array(value, name)
+
+
 def _as_real_array(value: Any, name: str) -> NDArray[Any]:
     if value is None:
         raise TypeError(f"{name} must be a real number or array of them, got None")
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must hold real numbers, got {type(value).__name__}")
     try:
         arr = np.asarray(value)
-    except Exception as exc:  # ragged nested sequences and the like
+    except (ValueError, TypeError, OverflowError) as exc:  # ragged nested sequences and the like
         raise LinkageError(f"{name} could not be read as an array: {exc}") from None
+    if arr.dtype.kind == "O":
+        # Python ints beyond 64 bits and the like: convert, or say why not.
+        try:
+            arr = arr.astype(np.float64)
+        except OverflowError:
+            raise LinkageError(f"{name} holds a number too large for a float") from None
+        except (ValueError, TypeError):
+            raise TypeError(f"{name} must hold real numbers, got dtype object") from None
     if arr.dtype.kind not in "fiu":
         raise TypeError(f"{name} must hold real numbers, got dtype {arr.dtype}")
     return arr

@@ -7,6 +7,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage._arrays import UnknownNameError, as_real
+from linkage._core import LinkageError
+
 OUTPUTS = ("point", "joints", "velocity", "acceleration", "instant_centres", "curvature")
 """Names accepted by ``outputs=``: the trace point, every joint, their rates, the instant centres
 of every pair of links, and the path curvature of every joint."""
@@ -107,15 +110,22 @@ class Sweep:
         """Samples whose dyad margin is below ``threshold``: the rate equations' Jacobian is
         near singular there, and velocities and accelerations carry relative errors of order
         ``ε/margin²`` (measured: within a factor 5 of that down to margins of 2e-6)."""
-        flags: NDArray[np.bool_] = np.asarray(self.valid) & (np.asarray(self.margin) < threshold)
+        t = as_real(threshold, "threshold")
+        if np.isnan(t):
+            raise LinkageError("threshold must be a number, got nan")
+        flags: NDArray[np.bool_] = np.asarray(self.valid) & (np.asarray(self.margin) < t)
         return flags
 
     def joint(self, name: str) -> NDArray[np.float64]:
         """Positions of one joint by name, shape (N, 2)."""
+        if not isinstance(name, str):
+            raise TypeError(f"name must be a joint name (str), got {type(name).__name__}")
         try:
             i = self.joint_names.index(name)
         except ValueError:
-            raise KeyError(f"no joint {name!r}; joints are {', '.join(self.joint_names)}") from None
+            raise UnknownNameError(
+                f"no joint {name!r}; joints are {', '.join(self.joint_names)}"
+            ) from None
         return self.joints[..., i, :]
 
     @property
@@ -156,11 +166,17 @@ class Sweep:
 
     def instant_centre(self, a: str, b: str) -> NDArray[np.float64]:
         """Instant centre of links ``a`` and ``b`` (by name), shape (N, 2)."""
+        if not isinstance(a, str) or not isinstance(b, str):
+            raise TypeError(
+                f"links must be named by str, got {type(a).__name__}, {type(b).__name__}"
+            )
         pair = (a, b) if (a, b) in self.link_pairs else (b, a)
         try:
             q = self.link_pairs.index(pair)
         except ValueError:
-            raise KeyError(f"no links {a!r}, {b!r}; links are {', '.join(self.links)}") from None
+            raise UnknownNameError(
+                f"no links {a!r}, {b!r}; links are {', '.join(self.links)}"
+            ) from None
         return self.instant_centres[..., q, :]
 
     @property

@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_finite, as_length
+from linkage._arrays import as_count, as_finite, as_length, check_memory
 from linkage._core import LinkageError
 from linkage.drive import Program, Segment
 
@@ -118,9 +118,10 @@ class DiscCam:
 
     def profile(self, n: int = 721) -> CamProfile:
         """Sample the cam at ``n`` angles over one turn and check it."""
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 8:
-            raise LinkageError(f"n must be an int ≥ 8, got {n!r}")
-        phi = np.linspace(0.0, 2 * math.pi, int(n))
+        n = as_count(n, "n", 8)
+        # Angles, displacement and its rates, the geometry's outputs and temporaries.
+        check_memory(n * 8 * 24, f"a cam profile of {n} samples")
+        phi = np.linspace(0.0, 2 * math.pi, n)
         s, v, a, _ = self.program.eval(phi)
         y = np.ascontiguousarray(np.c_[s, v, a])
         raw = _core.cam_geometry(phi, y, self.base_radius, self.roller_radius, self.offset)

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkage import _core
+from linkage._arrays import as_count, as_finite, check_memory
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -39,7 +40,7 @@ def _four_bar(name: str) -> FourBar:
 
 
 def _linkage(name: str, scale: float = 2.0) -> Mechanism:
-    core, names, trace = _core.catalog_linkage(name, scale)
+    core, names, trace = _core.catalog_linkage(name, as_finite(scale, "scale"))
     return Mechanism._from_core(core, names, trace)
 
 
@@ -108,6 +109,8 @@ def names() -> tuple[str, ...]:
 
 def get(name: str) -> FourBar | Mechanism:
     """A catalogue linkage by name."""
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a str, got {type(name).__name__}")
     if name in FOUR_BARS:
         return _four_bar(name)
     if name in MULTI_LOOP:
@@ -146,6 +149,12 @@ def figures(rel_tol: float = 1e-3, samples: int = 20001) -> list[Figures]:
     Four-bars are traced over their whole circuit (:meth:`FourBar.circuit`); multi-loop
     linkages over one crank turn sampled ``samples`` times, where they assemble.
     """
+    rel_tol = as_finite(rel_tol, "rel_tol")
+    if rel_tol <= 0:
+        raise LinkageError(f"rel_tol must be positive, got {rel_tol}")
+    samples = as_count(samples, "samples", 3)
+    # Per sample: angles, every joint's position and velocity, flags (Jansen has 8 joints).
+    check_memory(samples * 8 * 80, f"catalogue figures at {samples} samples")
     rows = []
     for name in names():
         item = get(name)

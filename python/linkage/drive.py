@@ -16,7 +16,8 @@ A drive turns time into crank angle, speed and acceleration (``drive.angles(t)``
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -24,7 +25,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_finite, as_length
+from linkage._arrays import (
+    as_angles,
+    as_count,
+    as_finite,
+    as_flag,
+    as_length,
+    check_memory,
+)
 from linkage._core import LinkageError
 
 Array = NDArray[np.float64]
@@ -63,6 +71,10 @@ class Segment:
     def __post_init__(self) -> None:
         as_length(self.duration, "duration")
         as_finite(self.rise, "rise")
+        if self.law is not None and not isinstance(self.law, str):
+            raise TypeError(
+                f"law must be a motion law name (str) or None, got {type(self.law).__name__}"
+            )
         if self.law is not None and self.law not in LAWS:
             raise LinkageError(f"unknown motion law {self.law!r}; choose from {', '.join(LAWS)}")
 
@@ -94,6 +106,12 @@ class Program:
         for s in segs:
             if not isinstance(s, Segment):
                 raise TypeError(f"segments must be Segment, got {type(s).__name__}")
+        # Each duration and rise is finite; their sums must be too, or every time maps to one
+        # period and the program is meaningless.
+        if not math.isfinite(_sum(float(s.duration) for s in segs)):
+            raise LinkageError("the program's period (sum of the durations) overflows a float")
+        if not math.isfinite(_sum(float(s.rise) for s in segs)):
+            raise LinkageError("the program's net rise (sum of the rises) overflows a float")
         self.segments = tuple(segs)
 
     def _args(self) -> tuple[float, list[float], list[float], list[str | None]]:
@@ -107,12 +125,13 @@ class Program:
     @property
     def period(self) -> float:
         """Duration of one period."""
-        return float(sum(s.duration for s in self.segments))
+        return _sum(float(s.duration) for s in self.segments)
 
     def eval(self, t: Any) -> tuple[Array, Array, Array, Array]:
         """Value and first three derivatives at ``t``."""
         tt, _ = as_angles(t, "t")
         out = _core.program_eval(*self._args(), tt)
+        _check_rows(out, tt, ("value", "rate", "second derivative", "third derivative"))
         return out[:, 0], out[:, 1], out[:, 2], out[:, 3]
 
     def angles(self, t: Any) -> tuple[Array, Array, Array]:
@@ -138,14 +157,23 @@ class ConstantSpeed:
         """``(θ, ω, α)`` at times ``t``."""
         tt, _ = as_angles(t, "t")
         w = as_finite(self.omega, "omega")
-        return as_finite(self.theta0, "theta0") + w * tt, np.full_like(tt, w), np.zeros_like(tt)
+        with np.errstate(over="ignore", invalid="ignore"):
+            theta = as_finite(self.theta0, "theta0") + w * tt
+        _check_angles(theta, tt)
+        return theta, np.full_like(tt, w), np.zeros_like(tt)
 
 
 class GearTrain:
     """External spur gears: speed ratio ``output/input`` and sense."""
 
     def __init__(self, ratio: float, sign: int) -> None:
-        self.ratio = float(ratio)
+        self.ratio = as_finite(ratio, "ratio")
+        if not self.ratio > 0:
+            raise LinkageError(f"ratio must be positive, got {self.ratio!r}")
+        if isinstance(sign, (bool, np.bool_)) or not isinstance(sign, (int, np.integer)):
+            raise TypeError(f"sign must be the int 1 or -1, got {type(sign).__name__}")
+        if sign not in (1, -1):
+            raise LinkageError(f"sign must be 1 or -1, got {sign}")
         self.sign = int(sign)
 
     @classmethod
@@ -156,14 +184,56 @@ class GearTrain:
     @classmethod
     def compound(cls, stages: Sequence[tuple[int, int]]) -> GearTrain:
         """``(driver, driven)`` meshes, driven and next driver sharing a shaft."""
-        return cls(*_core.gear_train_compound([(_teeth(a), _teeth(b)) for a, b in stages]))
+        pairs = []
+        for stage in stages:
+            if isinstance(stage, (str, bytes)) or not hasattr(stage, "__len__"):
+                raise TypeError(
+                    f"stages must be (driver, driven) pairs, got {type(stage).__name__}"
+                )
+            if len(stage) != 2:
+                raise LinkageError(
+                    f"stages must be (driver, driven) pairs, got {len(stage)} values"
+                )
+            pairs.append((_teeth(stage[0]), _teeth(stage[1])))
+        return cls(*_core.gear_train_compound(pairs))
 
     def output_speed(self, input_speed: float) -> float:
         """Signed output speed for an input speed."""
-        return float(input_speed) * self.ratio * self.sign
+        out = as_finite(input_speed, "input_speed") * self.ratio * self.sign
+        if not math.isfinite(out):
+            raise LinkageError(f"output speed overflows: {input_speed!r} × {self.ratio!r}")
+        return out
 
     def __repr__(self) -> str:
         return f"GearTrain(ratio={self.ratio:g}, sign={self.sign:+d})"
+
+
+def _check_angles(theta: Array, t: Array) -> None:
+    bad = ~np.isfinite(theta)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise LinkageError(f"the crank angle overflows a float at t = {float(t[k])!r}")
+
+
+def _sum(values: Iterable[float]) -> float:
+    """Exact sum (``math.fsum``), ±inf when it overflows instead of ``OverflowError``."""
+    vals = list(values)
+    try:
+        return math.fsum(vals)
+    except OverflowError:
+        return math.copysign(math.inf, sum(math.copysign(1.0, v) for v in vals))
+
+
+def _check_rows(out: Array, t: Array, what: tuple[str, ...]) -> None:
+    """A drive's outputs at finite times are finite, or the times are beyond what float64 can
+    represent of it (e.g. the whole turns at t = 1e308): a ``LinkageError``, never inf/NaN."""
+    bad = ~np.isfinite(out)
+    if bad.any():
+        k, col = (int(i) for i in np.argwhere(bad)[0])
+        raise LinkageError(
+            f"the {what[col]} at t = {float(t[k])!r} is not representable in float64 "
+            f"(got {float(out[k, col])})"
+        )
 
 
 def _teeth(z: Any) -> int:
@@ -186,7 +256,12 @@ class Geared:
         """``(θ, ω, α)`` of the crank at times ``t``."""
         th, w, a = self.motor.angles(t)
         k = self.train.ratio * self.train.sign
-        return k * th, k * w, k * a
+        with np.errstate(over="ignore", invalid="ignore"):
+            out = k * np.asarray(th), k * np.asarray(w), k * np.asarray(a)
+        for arr, what in zip(out, ("angle", "speed", "acceleration")):
+            if not np.isfinite(arr).all():
+                raise LinkageError(f"the geared crank {what} overflows a float (ratio {k:g})")
+        return out
 
 
 @dataclass(frozen=True)
@@ -231,8 +306,9 @@ class CrankSchedule:
             np.asarray(self.theta, dtype=np.float64),
             np.asarray(self.omega, dtype=np.float64),
             tt,
-            bool(single),
+            as_flag(single, "single"),
         )
+        _check_rows(out, tt, ("crank angle", "crank speed", "crank acceleration"))
         return out[:, 0], out[:, 1], out[:, 2]
 
 
@@ -260,15 +336,27 @@ def crank_schedule(
         For bad numbers, a foot path with no straight part, or a swing that would need the crank
         to stop or reverse (duty factor too low for that stance).
     """
+    from linkage._fourbar import FourBar
+    from linkage._mechanism import Mechanism
+    from linkage.geometry import foot_path
+
+    if not isinstance(leg, (FourBar, Mechanism)):
+        raise TypeError(f"leg must be a FourBar or Mechanism, got {type(leg).__name__}")
     v_target = as_length(foot_speed, "foot_speed")
     beta = as_finite(duty_factor, "duty_factor")
     if not 0 < beta < 1:
         raise LinkageError(f"duty_factor must be between 0 and 1, got {beta}")
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 8:
-        raise LinkageError(f"samples must be an int ≥ 8, got {samples!r}")
-    from linkage.geometry import foot_path
+    samples = as_count(samples, "samples", 8)
+    resolution = as_count(resolution, "resolution", 16)
+    if tol is not None:
+        tol = as_finite(tol, "tol")
+    # Per resolution sample: angle, joints and joint velocities, flags; per table sample: 20
+    # checked times with their angles, speeds and a sweep.
+    joints = 5 if isinstance(leg, FourBar) else max(1, len(leg))
+    check_memory(resolution * 8 * (8 + 4 * joints), f"a crank schedule at resolution {resolution}")
+    check_memory(samples * 20 * 8 * (12 + 4 * joints), f"a crank schedule of {samples} samples")
 
-    theta = np.linspace(0.0, 2 * np.pi, int(resolution))
+    theta = np.linspace(0.0, 2 * np.pi, resolution)
     s = leg.sweep(theta, omega=1.0, outputs=("point", "velocity"))
     if not s.valid.all():
         raise LinkageError("the leg must assemble over a whole crank turn")
@@ -287,6 +375,10 @@ def crank_schedule(
     stance_time = float(t_st[-1])
     period = stance_time / beta
     swing_time = period - stance_time
+    if not (np.isfinite(period) and stance_time > 0 and swing_time > 0):
+        raise LinkageError(
+            f"foot speed {v_target:g} gives a stance of {stance_time:g} s: no usable schedule"
+        )
     w0, w1 = v_target / u[0], v_target / u[-1]
     swing_angle = 2 * np.pi - (th_st[-1] - th_st[0])
     bump = swing_angle / swing_time - 0.5 * (w0 + w1)

@@ -15,6 +15,7 @@ True
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -23,7 +24,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_finite, as_point, as_rate
+from linkage._arrays import (
+    UnknownNameError,
+    as_angles,
+    as_finite,
+    as_point,
+    as_rate,
+    as_real_array,
+)
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -84,18 +92,23 @@ class Forces:
             k for k, (j, _, t) in enumerate(self.reaction_links) if j == joint and to in (None, t)
         ]
         if not cols:
-            raise KeyError(f"no reaction at joint {joint!r}" + (f" on {to!r}" if to else ""))
+            raise UnknownNameError(
+                f"no reaction at joint {joint!r}" + (f" on {to!r}" if to else "")
+            )
         return self.reactions[:, cols[0]]
 
     @property
     def mean_abs_torque(self) -> float:
-        """Mean of ``|torque|`` over the valid samples (the thesis 2 'average torque')."""
-        return float(np.mean(np.abs(self.torque[self.valid])))
+        """Mean of ``|torque|`` over the valid samples (the thesis 2 'average torque'); NaN when
+        no sample is valid."""
+        t = np.abs(self.torque[self.valid])
+        return float(np.mean(t)) if t.size else math.nan
 
     @property
     def peak_torque(self) -> float:
-        """Largest ``|torque|`` over the valid samples."""
-        return float(np.max(np.abs(self.torque[self.valid])))
+        """Largest ``|torque|`` over the valid samples; NaN when no sample is valid."""
+        t = np.abs(self.torque[self.valid])
+        return float(np.max(t)) if t.size else math.nan
 
 
 def _rate(value: Any, name: str, n: int) -> Array:
@@ -132,6 +145,8 @@ def forces(
     if drive is not None or time is not None:
         if drive is None or time is None or theta is not None or omega is not None:
             raise LinkageError("give either theta with omega, or time= with drive=")
+        if not hasattr(drive, "angles"):
+            raise TypeError(f"drive must have an angles(t) method, got {type(drive).__name__}")
         times, _ = as_angles(time, "time")
         theta, omega, alpha = drive.angles(times)
     if theta is None or omega is None:
@@ -167,16 +182,24 @@ def forces(
     for load in loads:
         if not isinstance(load, PointLoad):
             raise TypeError(f"loads must be PointLoad, got {type(load).__name__}")
+        if not isinstance(load.link, str) or not isinstance(load.joint, str):
+            raise TypeError("a load's link and joint must be names (str)")
         if load.link not in links:
             raise LinkageError(f"load on unknown link {load.link!r}; links are {', '.join(links)}")
         if load.joint not in mech.joint_names:
             raise LinkageError(f"load at unknown joint {load.joint!r}")
-        f = np.asarray(load.force, dtype=np.float64)
+        f = as_real_array(load.force, "load force").astype(np.float64)
         if f.shape not in ((2,), (n, 2)) or not np.isfinite(f).all():
             raise LinkageError(
                 f"load force must be a finite pair or ({n}, 2) array, got shape {f.shape}"
             )
-        tq = np.broadcast_to(np.asarray(load.torque, dtype=np.float64), (n,))
+        tq0 = as_real_array(load.torque, "load torque").astype(np.float64)
+        if tq0.shape not in ((), (1,), (n,)):
+            raise LinkageError(
+                f"load torque must be a scalar or have one value per angle ({n}), "
+                f"got shape {tq0.shape}"
+            )
+        tq = np.broadcast_to(tq0, (n,))
         if not np.isfinite(tq).all():
             raise LinkageError("load torque must be finite")
         core_loads.append(

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_finite
+from linkage._arrays import as_angles, as_count, as_finite, as_flag, as_points
 from linkage._core import LinkageError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -24,12 +24,7 @@ Points = NDArray[np.float64]
 
 
 def _points(value: Any, name: str) -> Points:
-    arr = np.asarray(value)
-    if arr.dtype.kind not in "fiu":
-        raise TypeError(f"{name} must hold real numbers, got dtype {arr.dtype}")
-    if arr.ndim == 0 or arr.shape[-1] != 2:
-        raise LinkageError(f"{name} must have shape (..., 2), got {arr.shape}")
-    return np.asarray(arr, dtype=np.float64)
+    return as_points(value, name)
 
 
 def _rows(*arrays: Points) -> tuple[tuple[int, ...], list[Points]]:
@@ -126,8 +121,7 @@ def three_point_centres(path: Any, step: int = 1) -> Points:
     p = _points(path, "path")
     if p.ndim != 2:
         raise LinkageError(f"path must have shape (N, 2), got {p.shape}")
-    if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or step < 1:
-        raise LinkageError(f"step must be a positive int, got {step!r}")
+    step = as_count(step, "step")
     if len(p) < 2 * step + 1:
         raise LinkageError(f"path needs at least {2 * step + 1} points for step {step}")
     return circumcentre(p[: -2 * step], p[step:-step], p[2 * step :])
@@ -180,7 +174,7 @@ def straightness(
     t = as_finite(tol, "tol")
     if t < 0:
         raise LinkageError(f"tol must be non-negative, got {t}")
-    run = _core.straight_run(np.ascontiguousarray(p), t, bool(closed))
+    run = _core.straight_run(np.ascontiguousarray(p), t, as_flag(closed, "closed"))
     if run is None:
         return None
     idx = (run["start"] + np.arange(run["count"])) % len(p)
@@ -189,10 +183,13 @@ def straightness(
         v = _points(velocity, "velocity")
         if v.shape != p.shape:
             raise LinkageError(f"velocity must have the shape of path {p.shape}, got {v.shape}")
-        speed = np.linalg.norm(v[idx], axis=1)
+        speed = np.hypot(v[idx, 0], v[idx, 1])  # no overflow for speeds up to the float max
         if np.isfinite(speed).all():
-            mean = float(speed.mean())
-            var = float((speed.max() - speed.min()) / mean) if mean > 0 else float("nan")
+            top = float(speed.max())
+            # Mean and spread relative to the largest speed: no overflow summing huge speeds.
+            rel = speed / top if top > 0 else speed
+            mean = float(rel.mean()) * top if top > 0 else 0.0
+            var = float((1.0 - rel.min()) / rel.mean()) if top > 0 else float("nan")
         else:
             # The run reaches a toggle, where the speed at constant crank speed is unbounded.
             mean = var = float("inf")
@@ -239,6 +236,8 @@ def foot_path(path: Any, tol: float, velocity: Any = None) -> FootPath:
         If the path has no straight part within ``tol``.
     """
     p = _points(path, "path")
+    if p.ndim != 2:
+        raise LinkageError(f"path must have shape (N, 2), got {p.shape}")
     stance = straightness(p, tol, closed=True, velocity=velocity)
     if stance is None:
         raise LinkageError(f"the path has no straight part within tol = {tol}")
@@ -296,7 +295,14 @@ def ball_point(fb: FourBar, theta: float) -> Inflection:
     LinkageError
         At a toggle or where the coupler is instantaneously translating (no finite pole).
     """
-    th = float(as_angles(theta, "theta")[0][0])
+    from linkage._fourbar import FourBar
+
+    if not isinstance(fb, FourBar):
+        raise TypeError(f"fb must be a FourBar, got {type(fb).__name__}")
+    angles, scalar = as_angles(theta, "theta")
+    if not scalar:
+        raise LinkageError(f"theta must be one crank angle (a scalar), got shape {angles.shape}")
+    th = float(angles[0])
     joints = fb.sweep(th).joints
     if not np.isfinite(joints).all():
         raise _core.AssemblyError(f"the linkage cannot be assembled at theta = {th}")
@@ -306,6 +312,11 @@ def ball_point(fb: FourBar, theta: float) -> Inflection:
             f"no inflection circle at theta = {th}: a toggle, or the coupler is translating"
         )
     pole, jpole, centre, radius, ball = res
+    if not np.isfinite([*pole, *jpole, *centre, radius]).all():
+        raise LinkageError(
+            f"the inflection circle at theta = {th} is not representable in float64 "
+            f"(radius {radius!r}): the coupler is nearly translating"
+        )
     a, b = joints[2], joints[3]
     u = (b - a) / np.linalg.norm(b - a)
     r = np.asarray(ball) - a

@@ -25,7 +25,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_finite, as_point
+from linkage._arrays import (
+    as_angles,
+    as_choice,
+    as_count,
+    as_finite,
+    as_flag,
+    as_point,
+    check_memory,
+)
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -60,12 +68,26 @@ class Leg:
     """Side of the square foot pad (0: a point foot)."""
 
     def __post_init__(self) -> None:
+        if not isinstance(self.name, str):
+            raise TypeError(f"a leg's name must be a str, got {type(self.name).__name__}")
+        if not isinstance(self.plane, str):
+            raise TypeError(
+                f"leg {self.name!r}: plane must be a str, got {type(self.plane).__name__}"
+            )
+        as_flag(self.mirror, "mirror")
+        if self.lift is not None and not isinstance(self.lift, Program):
+            raise TypeError(
+                f"leg {self.name!r}: lift must be a linkage.drive.Program or None, "
+                f"got {type(self.lift).__name__}"
+            )
         if self.plane not in PLANES:
             raise LinkageError(
                 f"leg {self.name!r}: plane must be one of {PLANES}, got {self.plane!r}"
             )
         if not isinstance(self.linkage, (FourBar, Mechanism)):
             raise TypeError(f"leg {self.name!r}: linkage must be a FourBar or Mechanism")
+        if isinstance(self.mount, (str, bytes)) or not hasattr(self.mount, "__len__"):
+            raise TypeError(f"leg {self.name!r}: mount must be (x, y, z)")
         if len(self.mount) != 3:
             raise LinkageError(f"leg {self.name!r}: mount must be (x, y, z)")
         for v in self.mount:
@@ -185,7 +207,7 @@ class Simulation:
     @property
     def slip_distance(self) -> Array:
         """Distance each foot slides over the ground while in stance, over the simulation."""
-        dt = np.gradient(self.time)
+        dt = np.gradient(self.time) if len(self.time) > 1 else np.zeros(len(self.time))
         s = np.where(self.stance, np.abs(np.nan_to_num(self.slip_velocity)), 0.0)
         d: Array = (s * dt[:, None]).sum(axis=0)
         return d
@@ -226,9 +248,14 @@ class Walker:
         ground_tol: float | None = None,
         body_underside: float | None = None,
     ) -> None:
+        if isinstance(legs, (str, bytes)) or not hasattr(legs, "__iter__"):
+            raise TypeError(f"legs must be a sequence of Leg, got {type(legs).__name__}")
         self.legs = tuple(legs)
         if not self.legs:
             raise LinkageError("a walker needs at least one leg")
+        for leg in self.legs:
+            if not isinstance(leg, Leg):
+                raise TypeError(f"legs must be Leg, got {type(leg).__name__}")
         names = [leg.name for leg in self.legs]
         if len(set(names)) != len(names):
             raise LinkageError(f"leg names must be unique, got {names}")
@@ -245,9 +272,14 @@ class Walker:
 
     def with_phases(self, phases: Sequence[float]) -> Walker:
         """The same walker with new crank phases (one per leg)."""
+        if isinstance(phases, (str, bytes)) or not hasattr(phases, "__len__"):
+            raise TypeError(f"phases must be a sequence of numbers, got {type(phases).__name__}")
         if len(phases) != len(self.legs):
             raise LinkageError(f"need {len(self.legs)} phases, got {len(phases)}")
-        legs = [replace(leg, phase=float(p)) for leg, p in zip(self.legs, phases)]
+        legs = [
+            replace(leg, phase=as_finite(p, f"phases[{k}]"))
+            for k, (leg, p) in enumerate(zip(self.legs, phases))
+        ]
         return Walker(legs, self.cg, self.ground_tol, self.body_underside)
 
     @property
@@ -271,10 +303,14 @@ class Walker:
         each leg runs the drive shifted in time by its phase's share of the period instead of
         adding the phase to the angle: how one would run one motor per leg on the same schedule.
         """
+        per_leg_time = as_flag(per_leg_time, "per_leg_time")
         if drive is not None or time is not None:
             if drive is None or time is None or theta is not None:
                 raise LinkageError("give either theta, or time= with drive=")
+            if not hasattr(drive, "angles"):
+                raise TypeError(f"drive must have an angles(t) method, got {type(drive).__name__}")
             t, _ = as_angles(time, "time")
+            _check_size(len(t), len(self.legs))
             th, w, _ = drive.angles(t)
         else:
             if theta is None:
@@ -283,15 +319,24 @@ class Walker:
             w0 = as_finite(omega, "omega")
             if w0 == 0:
                 raise LinkageError("omega must be non-zero")
-            t, w = th / w0, np.full_like(th, w0)
+            _check_size(len(th), len(self.legs))
+            with np.errstate(over="ignore"):
+                t, w = th / w0, np.full_like(th, w0)
+            if not np.isfinite(t).all():
+                raise LinkageError(f"times theta/omega overflow a float (omega = {w0!r})")
+        if len(th) == 0:
+            raise LinkageError("simulate() needs at least one sample")
+        period = 0.0
+        if per_leg_time:
+            if drive is None or not hasattr(drive, "period"):
+                raise LinkageError("per_leg_time needs a periodic drive (with a period)")
+            period = as_finite(drive.period, "drive.period")
         n, m = len(th), len(self.legs)
         feet = np.empty((n, m, 3))
         vel = np.empty((n, m, 3))
         for i, leg in enumerate(self.legs):
             if per_leg_time:
-                if drive is None or not hasattr(drive, "period"):
-                    raise LinkageError("per_leg_time needs a periodic drive (with a period)")
-                shift = leg.phase / (2 * math.pi) * drive.period
+                shift = leg.phase / (2 * math.pi) * period
                 thi, wi, _ = drive.angles(t + shift)
                 feet[:, i], vel[:, i] = replace(leg, phase=0.0).feet(thi, wi)
             else:
@@ -301,6 +346,13 @@ class Walker:
     def _evaluate(self, th: Array, t: Array, feet: Array, vel: Array) -> Simulation:
         """Ground contact, body motion, support polygons, margins and slip from foot tracks."""
         n, m = feet.shape[:2]
+        bad = ~(np.isfinite(feet).all(axis=2) & np.isfinite(vel).all(axis=2))
+        if bad.any():
+            k, i = (int(x) for x in np.argwhere(bad)[0])
+            raise LinkageError(
+                f"leg {self.legs[i].name!r}: the foot's position or velocity is not finite at "
+                f"crank angle {float(th[k])!r} (not representable in float64 at this scale)"
+            )
         z = feet[:, :, 2]
         ground = float(z.min())
         extent = float(np.ptp(feet.reshape(-1, 3), axis=0).max())
@@ -343,6 +395,8 @@ class Walker:
 
     def body_clearance(self, samples: int = 721) -> float:
         """Height of the body's underside above the ground (the obstacle the body clears)."""
+        samples = as_count(samples, "samples")
+        _check_size(samples, len(self.legs))
         sim = self.simulate(np.linspace(0, 2 * math.pi, samples))
         return float(self.body_underside - sim.ground)
 
@@ -359,16 +413,27 @@ class Walker:
         phasings (``"slip"``: a phasing whose margin ever drops below zero is rejected — all legs
         in phase slip least but fall over), by coordinate search over a grid of ``step``.
         The search is exhaustive over the grid when it has at most ``max_evals`` phasings,
-        otherwise a coordinate search from the current phases. Legs' tracks are computed once
-        and shifted, so a phasing costs one support-polygon pass. Returns ``(phases, objective
+        otherwise a coordinate search from the current phases, which may take at most
+        ``max_evals`` evaluations too (``rounds × (legs − 1) × 2π/step``; a finer ``step`` is a
+        ``LinkageError``, so the search time stays bounded). Legs' tracks are computed once and
+        shifted, so a phasing costs one support-polygon pass. Returns ``(phases, objective
         value)``."""
-        if objective not in ("margin", "slip"):
-            raise LinkageError(f"objective must be 'margin' or 'slip', got {objective!r}")
-        g = int(round(2 * math.pi / as_finite(step, "step")))
+        objective = as_choice(objective, "objective", ("margin", "slip"))
+        step = as_finite(step, "step")
+        samples = as_count(samples, "samples")
+        rounds = as_count(rounds, "rounds", 0)
+        max_evals = as_count(max_evals, "max_evals", 0)
+        turns = 2 * math.pi / step if step > 0 else math.inf
+        if not (math.isfinite(turns) and turns < 2**53):
+            raise LinkageError(
+                f"step must divide a full turn into at most 2**53 parts, got {step!r}"
+            )
+        g = int(round(turns))
         if g < 2 or abs(g * step - 2 * math.pi) > 1e-9:
             raise LinkageError("step must divide a full turn (2π/step a whole number ≥ 2)")
-        per = max(1, int(math.ceil(samples / g)))
+        per = max(1, -(-samples // g))
         n = g * per
+        _check_size(n, len(self.legs))
         theta = np.linspace(0, 2 * math.pi, n, endpoint=False)
         # Every leg's track at phase 0 over one turn; a phase on the grid is a cyclic shift.
         base = [replace(leg, phase=0.0).feet(theta, np.ones(n)) for leg in self.legs]
@@ -386,7 +451,14 @@ class Walker:
 
         start = [int(round(p / step)) % g for p in self.phases]
         free = len(self.legs) - 1
-        if g**free <= max_evals:
+        exhaustive = g**free <= max_evals
+        if not exhaustive and rounds * free * g > max(max_evals, 1):
+            # Bounded time: the coordinate search tries every grid phase of every leg per round.
+            raise LinkageError(
+                f"step {step:g} gives {g} phases per leg: the search would need "
+                f"{rounds * free * g} evaluations, more than max_evals = {max_evals}"
+            )
+        if exhaustive:
             # Exhaustive over the grid (the first leg fixed).
             best_k, best_val = start, score(start)
             for combo in itertools.product(range(g), repeat=free):
@@ -424,12 +496,20 @@ def search_duty_factor(
     Returns ``(duty factor, objective value)``."""
     from linkage.drive import crank_schedule
 
-    if objective not in ("margin", "slip"):
-        raise LinkageError(f"objective must be 'margin' or 'slip', got {objective!r}")
+    if not isinstance(walker, Walker):
+        raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
+    objective = as_choice(objective, "objective", ("margin", "slip"))
+    samples = as_count(samples, "samples")
+    _check_size(samples, len(walker.legs))
+    if isinstance(duty_factors, (str, bytes)) or not hasattr(duty_factors, "__iter__"):
+        raise TypeError(
+            f"duty_factors must be a sequence of numbers, got {type(duty_factors).__name__}"
+        )
+    betas = [as_finite(b, "duty_factors[]") for b in duty_factors]
     best: tuple[float, float] | None = None
-    for beta in duty_factors:
+    for beta in betas:
         try:
-            sched = crank_schedule(walker.legs[0].linkage, foot_speed, float(beta))
+            sched = crank_schedule(walker.legs[0].linkage, foot_speed, beta)
         except LinkageError:
             continue
         t = np.linspace(0.0, sched.period, samples)
@@ -443,6 +523,12 @@ def search_duty_factor(
     if best is None:
         raise LinkageError("no duty factor gives a feasible schedule")
     return best[0], best[1] if objective == "margin" else -best[1]
+
+
+def _check_size(n: int, legs: int) -> None:
+    """Refuse a simulation that cannot fit: per sample and leg, positions, velocities, support
+    corners and the sweep's arrays (about 60 float64 values)."""
+    check_memory(n * max(1, legs) * 8 * 60, f"a walker simulation of {n} samples × {legs} legs")
 
 
 class _quiet:
@@ -480,6 +566,14 @@ def gait_phases(gait: str, legs: Sequence[str]) -> Array:
     "crawl" for quadruped legs A–D. A leg's phase is ``−2π × (its share of the cycle)``: a leg
     whose protraction comes later runs behind.
     """
+    if not isinstance(gait, str):
+        raise TypeError(f"gait must be a name (str), got {type(gait).__name__}")
+    if isinstance(legs, (str, bytes)) or not hasattr(legs, "__iter__"):
+        raise TypeError(f"legs must be a sequence of leg names, got {type(legs).__name__}")
+    legs = list(legs)
+    for leg in legs:
+        if not isinstance(leg, str):
+            raise TypeError(f"leg names must be str, got {type(leg).__name__}")
     if gait not in GAITS:
         raise LinkageError(f"unknown gait {gait!r}; choose from {', '.join(GAITS)}")
     table = GAITS[gait]
