@@ -297,3 +297,13 @@ def test_scene_scale_multiplies_every_length_of_a_catalogue_four_bar():
     for leg in legs:
         for name in ("ground", "crank", "coupler", "rocker"):
             assert getattr(leg.linkage, name) == 2.0 * getattr(base, name)
+
+
+@pytest.mark.parametrize("frames", ["1", "2001", "1000000000"])
+def test_frames_out_of_range_is_refused_before_anything_runs(tmp_path, capsys, frames):
+    out = tmp_path / "r"
+    with pytest.raises(SystemExit) as exc:
+        main(["run", "--out", str(out), "--frames", frames])
+    assert exc.value.code == 2
+    assert "--frames must be between 2 and 2000" in capsys.readouterr().err
+    assert not out.exists()

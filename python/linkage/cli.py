@@ -32,6 +32,10 @@ EXIT_INTERRUPTED = 130
 DEBUG_ENV = "LINKAGE_DEBUG"
 
 
+MAX_FRAMES = 2000
+"""The most animation frames a run draws: each is a full figure render, so more is only slower."""
+
+
 def print_table(title: str, rows: Sequence[tuple[str, str, str, str]]) -> None:
     """Print rows as an aligned four-column table."""
     head = ("figure", "value", "unit", "error estimate")
@@ -156,7 +160,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     run.add_argument("--quiet", action="store_true", help="no progress, no table")
     run.add_argument("--samples", type=int, default=None, help="override the scene's samples")
-    run.add_argument("--frames", type=int, default=48, help="animation frames (default 48)")
+    run.add_argument(
+        "--frames",
+        type=int,
+        default=48,
+        help=f"animation frames (default 48, at most {MAX_FRAMES})",
+    )
     run.set_defaults(func=_run)
     check = sub.add_parser("check", help="validate a scene without running it")
     check.add_argument("scene", help="scene file (TOML)")
@@ -170,8 +179,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if getattr(args, "samples", None) is not None and args.samples < 8:
         parser.error("--samples must be at least 8")
-    if getattr(args, "frames", 2) < 2:
-        parser.error("--frames must be at least 2")
+    if not 2 <= getattr(args, "frames", 2) <= MAX_FRAMES:
+        parser.error(f"--frames must be between 2 and {MAX_FRAMES}")
     state: dict[str, Path] = {}
     try:
         return int(args.func(args, state))
