@@ -4,7 +4,7 @@ use nalgebra::RealField;
 
 use crate::dyad::{Dyad, DyadFailure, Side};
 use crate::error::{check_finite, check_length, Error};
-use crate::scalar::{perp, Vec2};
+use crate::scalar::{lit, perp, Vec2};
 use crate::slider::{Reach, SliderDyad};
 
 /// Direction of a slider's line.
@@ -407,6 +407,52 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         }
     }
 
+    /// For a dyad on a crank pin `A` and a fixed joint `Q` (the crank turning about a fixed
+    /// joint `O`), the base's distances to its toggle values without cancellation:
+    /// `(d² − (r1 − r2)², (r1 + r2)² − d²)`.
+    ///
+    /// With `g = |Q − O|`, crank radius `r` and `ψ` the angle from `O → Q` to `O → A`,
+    /// `d² = (g − r)² + 4gr·sin²(ψ/2) = (g + r)² − 4gr·cos²(ψ/2)`, so
+    /// `d² − Δ² = (g − r − Δ)(g − r + Δ) + 4gr·sin²(ψ/2)` and
+    /// `Σ² − d² = (Σ − g − r)(Σ + g + r) + 4gr·cos²(ψ/2)` (`Δ = |r1 − r2|`, `Σ = r1 + r2`). On a
+    /// change-point linkage the first products vanish exactly at the flat positions, and what
+    /// is left is a product of accurate factors: the pose keeps full accuracy right up to them.
+    fn crank_base(
+        &self,
+        p1: usize,
+        p2: usize,
+        theta: T,
+        pos: &[Vec2<T>],
+        dyad: Dyad<T>,
+    ) -> Option<(T, T)> {
+        let fixed = |j: usize| matches!(self.steps[j], Construction::Fixed { .. });
+        let (k, q) = match (self.steps[p1], self.steps[p2]) {
+            (Construction::Crank { .. }, _) if fixed(p2) => (p1, p2),
+            (_, Construction::Crank { .. }) if fixed(p1) => (p2, p1),
+            _ => return None,
+        };
+        let Construction::Crank {
+            centre,
+            radius: r,
+            phase,
+        } = self.steps[k]
+        else {
+            return None;
+        };
+        if !fixed(centre) {
+            return None;
+        }
+        let gv = pos[q] - pos[centre];
+        let g = crate::scalar::length(gv);
+        let psi = theta + phase - gv.y.atan2(gv.x);
+        let (s, c) = (psi * lit::<T>(0.5)).sin_cos();
+        let four_gr = lit::<T>(4.0) * g * r;
+        let (delta, sigma) = ((dyad.r1 - dyad.r2).abs(), dyad.r1 + dyad.r2);
+        let fold = (g - r - delta) * (g - r + delta) + four_gr * s * s;
+        let stretch = (sigma - g - r) * (sigma + g + r) + four_gr * c * c;
+        Some((fold, stretch))
+    }
+
     /// Where joint `i` may go at driver angle `theta`, given the joints before it.
     ///
     /// `slack` widens the toggle tolerance (length units, see [`Dyad::solve`]).
@@ -460,7 +506,10 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                 Ok(Candidates::One(pos[centre] + Vec2::new(c, s) * radius))
             }
             Construction::Dyad { p1, p2, dyad, .. } => {
-                let d = dyad.solve(pos[p1], pos[p2], slack).map_err(fail)?;
+                let base = || self.crank_base(p1, p2, theta, pos, dyad);
+                let d = dyad
+                    .solve_with_base(pos[p1], pos[p2], slack, base)
+                    .map_err(fail)?;
                 Ok(Candidates::Two {
                     foot: d.foot,
                     offset: d.offset,
