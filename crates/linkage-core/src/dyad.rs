@@ -81,7 +81,7 @@ fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> 
     if a < b {
         core::mem::swap(&mut a, &mut b);
     }
-    if f2 < T::zero() || f2.is_nan() {
+    if f2 < T::zero() || !f2.is_finite() {
         let gap = -f2;
         return if gap <= tol { Ok(T::zero()) } else { Err(gap) };
     }
