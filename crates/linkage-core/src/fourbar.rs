@@ -345,12 +345,13 @@ impl<T: RealField + Copy> FourBar<T> {
     }
 
     /// Inflection circle and Ball point of the coupler at `theta` (see [`inflection`]), from
-    /// rates per unit crank angle. `None` where it cannot assemble, at a toggle, or when the
-    /// coupler is instantaneously translating.
+    /// rates per unit crank angle. `None` where it cannot assemble, within the rate margin of a
+    /// toggle ([`crate::rate_margin`]: the rates are not known there), or when the coupler is
+    /// instantaneously translating to rounding (its pole at infinity).
     pub fn coupler_inflection(&self, theta: T) -> Option<Inflection<T>> {
         let m = self.mechanism();
         let mut pos = [Vec2::zeros(); 5];
-        m.pose(theta, &mut pos).ok()?;
+        let margin = m.pose(theta, &mut pos).ok()?;
         let (mut v, mut a, mut j) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5], [Vec2::zeros(); 5]);
         if !m
             .motion(&pos, Motion::unit(), &mut v, Some(&mut a), Some(&mut j))
@@ -363,7 +364,7 @@ impl<T: RealField + Copy> FourBar<T> {
             joint: Self::B,
             slot: 0,
         };
-        inflection(&BodyMotion::of(&bodies, coupler, &pos, &v, &a, &j))
+        inflection(&BodyMotion::of(&bodies, coupler, &pos, &v, &a, &j).conditioned(margin))
     }
 
     /// The `k`-th of `n` samples of a circuit sweep, and whether it is on the flipped branch.
