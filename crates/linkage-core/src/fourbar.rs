@@ -472,6 +472,16 @@ impl<T: RealField + Copy> FourBar<T> {
     }
 }
 
+/// The crank angles, measured from the ground direction, at which a crank of radius `r` about
+/// a pivot `g` from the rocker pivot puts a dyad `(r1, r2)` flat: `0` when `|g − r|`, `π` when
+/// `g + r` equals `|r1 − r2|` or `r1 + r2` to `8ε` of the lengths (a change point).
+pub(crate) fn flat_angles<T: RealField + Copy>(g: T, r: T, r1: T, r2: T) -> [Option<T>; 2] {
+    let (delta, sigma) = ((r1 - r2).abs(), r1 + r2);
+    let tol = eps::<T>() * lit::<T>(8.0) * (g + r + sigma);
+    let flat = |d: T| (d - delta).abs() <= tol || (d - sigma).abs() <= tol;
+    [flat((g - r).abs()).then(T::zero), flat(g + r).then(T::pi)]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

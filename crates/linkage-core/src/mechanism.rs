@@ -425,12 +425,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         pos: &[Vec2<T>],
         dyad: Dyad<T>,
     ) -> Option<(T, T)> {
-        let fixed = |j: usize| matches!(self.steps[j], Construction::Fixed { .. });
-        let (k, q) = match (self.steps[p1], self.steps[p2]) {
-            (Construction::Crank { .. }, _) if fixed(p2) => (p1, p2),
-            (_, Construction::Crank { .. }) if fixed(p1) => (p2, p1),
-            _ => return None,
-        };
+        let (k, q) = self.crank_and_fixed(p1, p2)?;
         let Construction::Crank {
             centre,
             radius: r,
@@ -439,9 +434,6 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         else {
             return None;
         };
-        if !fixed(centre) {
-            return None;
-        }
         let gv = pos[q] - pos[centre];
         let g = crate::scalar::length(gv);
         let psi = theta + phase - gv.y.atan2(gv.x);
@@ -451,6 +443,68 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         let fold = (g - r - delta) * (g - r + delta) + four_gr * s * s;
         let stretch = (sigma - g - r) * (sigma + g + r) + four_gr * c * c;
         Some((fold, stretch))
+    }
+
+    /// For a dyad on a crank pin and a fixed joint (see [`Mechanism::crank_base`]), whether an
+    /// odd number of its flat positions lies between driver angles `from` and `to`; `None` for
+    /// other constructions.
+    ///
+    /// The dyad is flat where the crank pin is on the line through the crank centre and the
+    /// fixed joint (`ψ = 0` or `π`) and the base length `|g ∓ r|` equals `|r1 − r2|` or
+    /// `r1 + r2` (to `8ε` of the lengths: a change point). There the joint's signed height over
+    /// its base is `∝ sin(ψ/2)` (or `cos`), an analytic function with a simple zero: each of
+    /// the two branches through the flat position changes side there, and only there. Flat
+    /// positions are counted as `⌊(ψ − ψ_f)/2π⌋`, so the count is a function of the angle and
+    /// a path that returns changes nothing.
+    pub(crate) fn flat_crossings(&self, i: usize, from: T, to: T) -> Option<bool> {
+        let Construction::Dyad { p1, p2, dyad, .. } = self.steps[i] else {
+            return None;
+        };
+        let (k, q) = self.crank_and_fixed(p1, p2)?;
+        let Construction::Crank {
+            centre,
+            radius: r,
+            phase,
+        } = self.steps[k]
+        else {
+            return None;
+        };
+        let (o, qp) = match (self.steps[centre], self.steps[q]) {
+            (Construction::Fixed { at: o }, Construction::Fixed { at: qp }) => (o, qp),
+            _ => return None,
+        };
+        let gv = qp - o;
+        let g = crate::scalar::length(gv);
+        let beta = gv.y.atan2(gv.x);
+        let mut odd = false;
+        for psi in crate::fourbar::flat_angles(g, r, dyad.r1, dyad.r2)
+            .into_iter()
+            .flatten()
+        {
+            let turn = |t: T| ((t + phase - beta - psi) / T::two_pi()).floor();
+            if turn(to) != turn(from) {
+                let n = crate::scalar::to_f64(turn(to) - turn(from));
+                if n % 2.0 != 0.0 {
+                    odd = !odd;
+                }
+            }
+        }
+        Some(odd)
+    }
+
+    /// The crank joint and the fixed joint of a dyad on `p1`, `p2`, when it is built on a crank
+    /// pin (turning about a fixed joint) and a fixed joint.
+    fn crank_and_fixed(&self, p1: usize, p2: usize) -> Option<(usize, usize)> {
+        let fixed = |j: usize| matches!(self.steps[j], Construction::Fixed { .. });
+        let (k, q) = match (self.steps[p1], self.steps[p2]) {
+            (Construction::Crank { .. }, _) if fixed(p2) => (p1, p2),
+            (_, Construction::Crank { .. }) if fixed(p1) => (p2, p1),
+            _ => return None,
+        };
+        match self.steps[k] {
+            Construction::Crank { centre, .. } if fixed(centre) => Some((k, q)),
+            _ => None,
+        }
     }
 
     /// Where joint `i` may go at driver angle `theta`, given the joints before it.

@@ -141,7 +141,13 @@ struct Snapshot<T: RealField + Copy, const N: usize> {
 /// candidate nearest the position extrapolated linearly from the two previous points of the
 /// path is taken. At a bifurcation (a change-point linkage's flat position, a kite's crank pin
 /// passing over the rocker pivot, a deltoid folding) this is the branch that continues
-/// smoothly through it.
+/// smoothly through it. A dyad built on a crank pin and a fixed joint (every four-bar's) knows
+/// its flat positions in closed form ([`crate::FourBar::check_fixed_assembly_path`]): its
+/// joint's signed height over the base has a simple zero there, so both branches through a
+/// flat position change side exactly there and nowhere else, and the tracker flips its
+/// orientation exactly at each one crossed — also for a sample a hair's breadth from it,
+/// where the two candidates are too close for any extrapolation to tell apart (their rates are
+/// not).
 ///
 /// # The canonical path
 /// Those decisions are made on a path fixed by the linkage alone, never by the caller's
@@ -195,6 +201,8 @@ pub struct Tracker<'m, T: RealField + Copy, const N: usize> {
     hist: [[Vec2<T>; N]; 2],
     newest: usize,
     hist_at: [At<T>; 2],
+    /// Driver angles of the history points (not reduced: flat positions are counted on them).
+    hist_theta: [T; 2],
     hist_margin: [T; N],
     /// Margins of the joints as last placed (committed into `hist_margin` with the point).
     placed_margin: [T; N],
@@ -252,6 +260,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             hist: [[Vec2::zeros(); N]; 2],
             newest: 0,
             hist_at: [At::grid(0); 2],
+            hist_theta: [T::zero(); 2],
             hist_margin: [T::one(); N],
             placed_margin: [T::one(); N],
             nhist: 0,
@@ -306,6 +315,11 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         lit::<T>(idx.rem_euclid(self.fine) as f64) * self.h()
     }
 
+    /// Driver angle of grid point `idx` along the path (not reduced).
+    fn grid_path_angle(&self, idx: i64) -> T {
+        lit::<T>(idx as f64) * self.h()
+    }
+
     /// Where `theta` lies on the grid.
     fn at_of(&self, theta: T) -> At<T> {
         let bound = lit::<T>(4.0e18);
@@ -315,12 +329,14 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         At { idx, frac: u - fl }
     }
 
-    /// Solves every joint at `theta` (the point `at` of the path) into `joints`, choosing
+    /// Solves every joint at `theta` (the point `at` of the path, at driver angle `path` before
+    /// reduction to one turn) into `joints`, choosing
     /// branches as `choice` says. Returns the smallest margin and, for [`Choice::Probe`],
     /// whether continuation would flip a dyad.
     fn place(
         &mut self,
         theta: T,
+        path: T,
         at: At<T>,
         choice: Choice,
         joints: &mut [Vec2<T>],
@@ -359,7 +375,23 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                         Choice::Continue => near,
                         Choice::Probe => true,
                     };
-                    if test && self.nhist >= 2 {
+                    // A dyad on a crank pin and a fixed joint knows its flat positions exactly:
+                    // both branches through one change side there, and only there.
+                    let flats = if test && self.nhist >= 1 {
+                        mech.flat_crossings(i, self.hist_theta[new], path)
+                    } else {
+                        None
+                    };
+                    if let Some(odd) = flats {
+                        if odd {
+                            if choice == Choice::Continue {
+                                s = -s;
+                                self.sign[i] = -self.sign[i];
+                            } else {
+                                would_flip = true;
+                            }
+                        }
+                    } else if test && self.nhist >= 2 {
                         let prev = self.hist[new][i];
                         let predicted = prev + (prev - self.hist[old][i]) * ratio;
                         let kept = foot + offset * s;
@@ -382,11 +414,12 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     }
 
     /// Records a placed point of the path as the newest history entry (the cursor).
-    fn commit(&mut self, at: At<T>, joints: &[Vec2<T>]) {
+    fn commit(&mut self, at: At<T>, theta: T, joints: &[Vec2<T>]) {
         let n = self.mech.len();
         self.newest = 1 - self.newest;
         self.hist[self.newest][..n].copy_from_slice(joints);
         self.hist_at[self.newest] = at;
+        self.hist_theta[self.newest] = theta;
         self.nhist = (self.nhist + 1).min(2);
         self.hist_margin[..n].copy_from_slice(&self.placed_margin[..n]);
         self.clear_to = None;
@@ -423,7 +456,8 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                     return Ok(true);
                 }
                 let th = self.grid_angle(next.idx);
-                if let Err(e) = self.place(th, next, Choice::Continue, &mut scratch[..n]) {
+                let path = self.grid_path_angle(next.idx);
+                if let Err(e) = self.place(th, path, next, Choice::Continue, &mut scratch[..n]) {
                     // A grid point where a construction is undetermined (a kite's crank pin
                     // exactly on the rocker pivot) is stepped over: the motion is continuous
                     // through it, only that instant's dyad is not.
@@ -435,9 +469,10 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                         return Ok(true);
                     }
                     let th = self.grid_angle(next.idx);
-                    self.place(th, next, Choice::Continue, &mut scratch[..n])?;
+                    let path = self.grid_path_angle(next.idx);
+                    self.place(th, path, next, Choice::Continue, &mut scratch[..n])?;
                 }
-                self.commit(next, &scratch[..n]);
+                self.commit(next, self.grid_path_angle(next.idx), &scratch[..n]);
                 if next.on_coarse_grid() {
                     self.fine_here = false;
                 }
@@ -464,7 +499,8 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             if known && e.past(&target, dir) {
                 return Ok(false);
             }
-            let probe = self.place(th, e, Choice::Probe, &mut scratch[..n]);
+            let path = self.grid_path_angle(e.idx);
+            let probe = self.place(th, path, e, Choice::Probe, &mut scratch[..n]);
             let (m, flip) = match probe {
                 Ok(r) => r,
                 // Undetermined there: walk the stretch in grid steps, which step over it.
@@ -478,7 +514,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                     self.clear_to = Some(e.idx);
                     return Ok(false);
                 }
-                self.commit(e, &scratch[..n]);
+                self.commit(e, path, &scratch[..n]);
                 continue;
             }
             self.fine_here = true;
@@ -618,7 +654,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                 // The sample does not move the walk: its own choice is not kept.
                 let walked = self.sign;
                 let choice = if near { Choice::Continue } else { Choice::Keep };
-                let placed = self.place(theta, at, choice, joints);
+                let placed = self.place(theta, theta, at, choice, joints);
                 if placed.is_ok() {
                     self.held = self.sign;
                 }
@@ -639,10 +675,10 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     fn restart(&mut self, theta: T, at: At<T>, joints: &mut [Vec2<T>]) -> Result<T, Error> {
         let nhist = self.nhist;
         self.nhist = 0;
-        match self.place(theta, at, Choice::Keep, joints) {
+        match self.place(theta, theta, at, Choice::Keep, joints) {
             Ok((margin, _)) => {
                 self.fine_here = false;
-                self.commit(at, joints);
+                self.commit(at, theta, joints);
                 self.held = self.sign;
                 Ok(margin)
             }

@@ -46,20 +46,12 @@ impl<T: RealField + Copy> FourBar<T> {
         check_finite("theta0", theta0)?;
         check_finite("theta1", theta1)?;
         let (lo, hi) = (theta0.min(theta1), theta0.max(theta1));
-        let (g, r) = (self.ground(), self.crank);
-        let (delta, sigma) = (
-            (self.coupler - self.rocker).abs(),
-            self.coupler + self.rocker,
-        );
-        let tol = T::default_epsilon() * lit::<T>(8.0) * (g + r + sigma);
-        let flat = |d: T| (d - delta).abs() <= tol || (d - sigma).abs() <= tol;
+        let flats =
+            crate::fourbar::flat_angles(self.ground(), self.crank, self.coupler, self.rocker);
         let dv = self.c - self.o;
         let base = dv.y.atan2(dv.x);
         let mut first: Option<T> = None;
-        for (psi, d) in [(T::zero(), (g - r).abs()), (T::pi(), g + r)] {
-            if !flat(d) {
-                continue;
-            }
+        for psi in flats.into_iter().flatten() {
             let a = base + psi;
             let turns = ((lo - a) / T::two_pi()).ceil();
             let at = a + turns * T::two_pi();
