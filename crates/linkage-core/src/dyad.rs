@@ -175,26 +175,40 @@ impl<T: RealField + Copy> Dyad<T> {
         self.solve_with_base(p1, p2, slack, || None)
     }
 
-    /// As [`Dyad::solve`], given a cancellation-free form of the base's distance to its toggle
-    /// values when the caller has one: `base()` returns `(d² − (r1 − r2)², (r1 + r2)² − d²)`.
+    /// As [`Dyad::solve`], given a cancellation-free form of the base when the caller has one:
+    /// `base()` returns the base vector `p2 − p1` and its distances to the toggle values,
+    /// `(d² − (r1 − r2)², (r1 + r2)² − d²)`.
     ///
     /// Next to a toggle Kahan's vanishing factor is `d − |r1 − r2|` (folded) or `r1 + r2 − d`
     /// (stretched); from a `d` rounded to `ε·d` it keeps only the digits its size allows, and the
-    /// joint's height `h ∝ √factor` loses half of them. When the base joints are a crank pin and
-    /// a fixed joint, both differences have exact closed forms in the crank angle (see
-    /// [`crate::Mechanism`]), so the factor — and the pose — keep full accuracy up to the flat
-    /// position itself. `base` is called only when the plain factor is below 1/16 of the
-    /// longest side, so the common case pays nothing.
+    /// joint's height `h ∝ √factor` loses half of them; a base that shrinks to nothing (a kite's
+    /// crank pin passing over the rocker pivot) loses its direction the same way. When the base
+    /// joints are a crank pin and a fixed joint, the vector and both differences have exact
+    /// closed forms in the crank angle (see [`crate::Mechanism`]), so the pose keeps full
+    /// accuracy up to the flat position itself. `base` is called only when the plain factor is
+    /// below 1/16 of the longest side, so the common case pays nothing.
     pub(crate) fn solve_with_base(
         &self,
         p1: Vec2<T>,
         p2: Vec2<T>,
         slack: T,
-        base: impl FnOnce() -> Option<(T, T)>,
+        base: impl FnOnce() -> Option<(Vec2<T>, T, T)>,
     ) -> Result<DyadPose<T>, DyadFailure<T>> {
         let (r1, r2) = (self.r1, self.r2);
-        let dv = p2 - p1;
-        let d = length(dv);
+        let (mut dv, mut d) = (p2 - p1, length(p2 - p1));
+        let longest = d.max(r1).max(r2);
+        let plain = (d + r1.min(r2)).min(r1 + r2) - longest;
+        let mut flat = None;
+        if plain < longest * lit::<T>(0.0625) {
+            if let Some((v, fold, stretch)) = base() {
+                (dv, d) = (v, length(v));
+                flat = Some(if d >= r1.max(r2) {
+                    stretch / (r1 + r2 + d)
+                } else {
+                    fold / (d + (r1 - r2).abs())
+                });
+            }
+        }
         let scale = d + r1 + r2 + p1.amax() + p2.amax();
         let tol = eps::<T>() * lit::<T>(8.0) * scale + slack;
         if d == T::zero() {
@@ -213,19 +227,6 @@ impl<T: RealField + Copy> Dyad<T> {
             (d, r1, r2, tol)
         } else {
             (d / s, r1 / s, r2 / s, tol / s)
-        };
-        let longest = ds.max(r1s).max(r2s);
-        let plain = (ds + r1s.min(r2s)).min(r1s + r2s) - longest;
-        let flat = if plain < longest * lit::<T>(0.0625) {
-            base().map(|(fold, stretch)| {
-                if d >= r1.max(r2) {
-                    stretch / (r1 + r2 + d)
-                } else {
-                    fold / (d + (r1 - r2).abs())
-                }
-            })
-        } else {
-            None
         };
         let area = match flat {
             Some(f2) => triangle_area_given(ds, r1s, r2s, f2 / s, tols),

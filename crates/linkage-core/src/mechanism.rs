@@ -408,8 +408,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     }
 
     /// For a dyad on a crank pin `A` and a fixed joint `Q` (the crank turning about a fixed
-    /// joint `O`), the base's distances to its toggle values without cancellation:
-    /// `(d² − (r1 − r2)², (r1 + r2)² − d²)`.
+    /// joint `O`), the base vector `p2 − p1` and its distances to the toggle values without
+    /// cancellation: `(p2 − p1, d² − (r1 − r2)², (r1 + r2)² − d²)`.
     ///
     /// With `g = |Q − O|`, crank radius `r` and `ψ` the angle from `O → Q` to `O → A`,
     /// `d² = (g − r)² + 4gr·sin²(ψ/2) = (g + r)² − 4gr·cos²(ψ/2)`, so
@@ -424,7 +424,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         theta: T,
         pos: &[Vec2<T>],
         dyad: Dyad<T>,
-    ) -> Option<(T, T)> {
+    ) -> Option<(Vec2<T>, T, T)> {
         let (k, q) = self.crank_and_fixed(p1, p2)?;
         let Construction::Crank {
             centre,
@@ -436,13 +436,19 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         };
         let gv = pos[q] - pos[centre];
         let g = crate::scalar::length(gv);
-        let psi = theta + phase - gv.y.atan2(gv.x);
-        let (s, c) = (psi * lit::<T>(0.5)).sin_cos();
+        let beta = gv.y.atan2(gv.x);
+        let psi = theta + phase - beta;
+        let half = psi * lit::<T>(0.5);
+        let (s, c) = half.sin_cos();
         let four_gr = lit::<T>(4.0) * g * r;
         let (delta, sigma) = ((dyad.r1 - dyad.r2).abs(), dyad.r1 + dyad.r2);
         let fold = (g - r - delta) * (g - r + delta) + four_gr * s * s;
         let stretch = (sigma - g - r) * (sigma + g + r) + four_gr * c * c;
-        Some((fold, stretch))
+        // Q − A = (g − r)·ĝ + r·(ĝ − ŵ), and ĝ − ŵ = 2 sin(ψ/2)·(sin(β + ψ/2), −cos(β + ψ/2)).
+        let (sb, cb) = (beta + half).sin_cos();
+        let qa = gv * ((g - r) / g) + Vec2::new(sb, -cb) * (lit::<T>(2.0) * r * s);
+        let dv = if k == p1 { qa } else { -qa };
+        Some((dv, fold, stretch))
     }
 
     /// For a dyad on a crank pin and a fixed joint (see [`Mechanism::crank_base`]), whether an
@@ -454,8 +460,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// `r1 + r2` (to `8ε` of the lengths: a change point). There the joint's signed height over
     /// its base is `∝ sin(ψ/2)` (or `cos`), an analytic function with a simple zero: each of
     /// the two branches through the flat position changes side there, and only there. Flat
-    /// positions are counted as `⌊(ψ − ψ_f)/2π⌋`, so the count is a function of the angle and
-    /// a path that returns changes nothing.
+    /// positions are counted as `⌊(ψ − ψ_f)/2π⌋` (mod 2), a function of the angle, so a path
+    /// that returns changes nothing.
     pub(crate) fn flat_crossings(&self, i: usize, from: T, to: T) -> Option<bool> {
         let Construction::Dyad { p1, p2, dyad, .. } = self.steps[i] else {
             return None;
@@ -476,19 +482,17 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         let gv = qp - o;
         let g = crate::scalar::length(gv);
         let beta = gv.y.atan2(gv.x);
-        let mut odd = false;
-        for psi in crate::fourbar::flat_angles(g, r, dyad.r1, dyad.r2)
-            .into_iter()
-            .flatten()
-        {
-            let turn = |t: T| ((t + phase - beta - psi) / T::two_pi()).floor();
-            if turn(to) != turn(from) {
-                let n = crate::scalar::to_f64(turn(to) - turn(from));
-                if n % 2.0 != 0.0 {
-                    odd = !odd;
-                }
-            }
-        }
+        // ⌊(ψ − ψ_f)/2π⌋ is odd exactly when sin((ψ − ψ_f)/2) < 0: the sign of a sine, which
+        // libm reduces exactly, so a sample on the float nearest a flat position (2π rounds
+        // below it) is on the side it truly is — the side `crank_base` builds its base on, from
+        // the same ψ.
+        let parity = |t: T| {
+            let half = (t + phase - beta) * lit::<T>(0.5);
+            let (s, c) = half.sin_cos();
+            let [at_zero, at_pi] = crate::fourbar::flat_angles(g, r, dyad.r1, dyad.r2);
+            (at_zero.is_some() && s < T::zero()) != (at_pi.is_some() && c > T::zero())
+        };
+        let odd = parity(from) != parity(to);
         Some(odd)
     }
 
