@@ -497,7 +497,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     }
 
     /// The crank joint and the fixed joint of a dyad on `p1`, `p2`, when it is built on a crank
-    /// pin (turning about a fixed joint) and a fixed joint.
+    /// pin (turning about a fixed joint) and another fixed joint.
     fn crank_and_fixed(&self, p1: usize, p2: usize) -> Option<(usize, usize)> {
         let fixed = |j: usize| matches!(self.steps[j], Construction::Fixed { .. });
         let (k, q) = match (self.steps[p1], self.steps[p2]) {
@@ -505,8 +505,13 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
             (_, Construction::Crank { .. }) if fixed(p1) => (p2, p1),
             _ => return None,
         };
-        match self.steps[k] {
-            Construction::Crank { centre, .. } if fixed(centre) => Some((k, q)),
+        let Construction::Crank { centre, .. } = self.steps[k] else {
+            return None;
+        };
+        match (self.steps[centre], self.steps[q]) {
+            // A fixed joint on the crank centre keeps the base at the crank radius: nothing to
+            // gain, and no ground direction to measure angles from.
+            (Construction::Fixed { at: o }, Construction::Fixed { at }) if at != o => Some((k, q)),
             _ => None,
         }
     }
