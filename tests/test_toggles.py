@@ -211,3 +211,32 @@ def test_change_point_next_to_its_flat_position_keeps_every_digit():
             ref = _analytic("change_point", g, r, c, k)(mp.mpf(t), -1)
         worst = max(worst, float(mp.sqrt((ref[0] - B[0]) ** 2 + (ref[1] - B[1]) ** 2)))
     assert worst <= 4 * EPS * (g + r + c + k), worst
+
+
+def test_huge_jumps_cost_a_few_turns():
+    """Samples 1e9 rad apart: the walk skips whole periods of the turn, so each costs a few
+    turns of work (the core's work counter is proptested; here, that it finishes at all)."""
+    fb = linkage.FourBar(ground=3, crank=1, coupler=3, rocker=1, point=(1.5, 0.5))
+    th = 0.5 + np.arange(200) * 1e9
+    s = fb.sweep(th)
+    np.testing.assert_allclose(
+        s.joint("B") - s.joint("A"), np.tile([3.0, 0.0], (200, 1)), atol=1e-12
+    )
+
+
+def test_a_long_sweep_honours_ctrl_c():
+    import _thread
+    import threading
+    import time
+
+    fb = linkage.FourBar(ground=3, crank=1, coupler=3, rocker=1, point=(1.5, 0.5))
+    th = 0.5 + np.arange(400_000) * 1e6  # each step walks a few turns: tens of seconds in all
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    timer.start()
+    t0 = time.monotonic()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            fb.sweep(th)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - t0 < 0.3 + 1.0
