@@ -14,6 +14,9 @@ OUTPUTS = ("point", "joints", "velocity", "acceleration", "instant_centres", "cu
 """Names accepted by ``outputs=``: the trace point, every joint, their rates, the instant centres
 of every pair of links, and the path curvature of every joint."""
 
+RATE_MARGIN = 32.0 * float(np.sqrt(np.finfo(np.float64).eps))
+"""The core's rate margin (``linkage_core::rate_margin``): below it rates are NaN."""
+
 
 class Sweep:
     """Positions (and, if asked, velocities and accelerations) over a sweep of crank angles.
@@ -34,6 +37,10 @@ class Sweep:
         0 at a toggle, where velocities are unbounded. NaN where invalid.
     gap : (N,) float64
         0 where valid; how much the lengths miss closure where not (NaN when undetermined).
+    regular : (N,) bool
+        Valid and clear of a toggle: False where some dyad's margin is below the rate margin
+        ``32·√ε`` (4.8e-7), where rates lose all their digits (relative error ``ε/margin²``);
+        velocities, accelerations and curvature are NaN there, never huge numbers.
     point : (N, 2) float64
         The trace joint (``trace``).
     velocity, acceleration : (N, 2) float64
@@ -84,6 +91,11 @@ class Sweep:
         self.valid: NDArray[np.bool_] = pick(raw["valid"])
         self.margin: NDArray[np.float64] = pick(raw["margin"])
         self.gap: NDArray[np.float64] = pick(raw["gap"])
+        if "regular" in raw:
+            self.regular: NDArray[np.bool_] = pick(raw["regular"])
+        else:
+            with np.errstate(invalid="ignore"):
+                self.regular = self.valid & (np.asarray(self.margin) >= RATE_MARGIN)
         self._rates = {
             k: pick(raw[k]) for k in ("velocity", "acceleration") if k in raw and k in outputs
         }

@@ -120,6 +120,17 @@ impl<T: RealField + Copy> BodyMotion<T> {
         self.j + perp(r) * (self.alpha_rate - w * w * w) - r * (lit::<T>(3.0) * w * self.alpha)
     }
 
+    /// The same motion with `omega_tol` widened for rates solved at assembly margin `margin`
+    /// (the sample's smallest): such rates carry a relative error `ε/margin²` (see
+    /// [`crate::rate_margin`]), so an angular velocity below `omega_tol/margin²` is zero to
+    /// rounding — a parallelogram's coupler next to its flat position translates, and its
+    /// instant centre is at infinity, not at a distance set by rounding.
+    pub fn conditioned(mut self, margin: T) -> Self {
+        let m = margin.min(T::one()).max(eps::<T>());
+        self.omega_tol /= m * m;
+        self
+    }
+
     /// Motion of body `id` from joint positions and rates (accelerations and jerks may be
     /// zero slices when only velocities matter).
     pub fn of<const N: usize>(

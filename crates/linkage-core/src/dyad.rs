@@ -68,6 +68,27 @@ pub fn triangle_area<T: RealField + Copy>(a: T, b: T, c: T, tol: T) -> Result<T,
     Ok(prod.sqrt() * lit::<T>(0.25))
 }
 
+/// [`triangle_area`] with its vanishing factor `f2 = (b + c) − a` (`a` the longest side) given,
+/// formed by the caller without cancellation.
+fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> Result<T, T> {
+    let (mut a, mut b, mut c) = (a, b, c);
+    if a < b {
+        core::mem::swap(&mut a, &mut b);
+    }
+    if b < c {
+        core::mem::swap(&mut b, &mut c);
+    }
+    if a < b {
+        core::mem::swap(&mut a, &mut b);
+    }
+    if f2 < T::zero() || !f2.is_finite() {
+        let gap = -f2;
+        return if gap <= tol { Ok(T::zero()) } else { Err(gap) };
+    }
+    let prod = (a + (b + c)) * f2 * (c + (a - b)) * (a + (b - c));
+    Ok(prod.sqrt() * lit::<T>(0.25))
+}
+
 /// A power of two within a factor 2³² of `x` (1 for `x` in `[2⁻³², 2³²]`): dividing by it is
 /// exact, so it rescales without rounding.
 #[inline]
@@ -151,9 +172,43 @@ impl<T: RealField + Copy> Dyad<T> {
     /// [`DyadFailure::Gap`] when the circles do not meet, [`DyadFailure::Undetermined`] when
     /// `p1 = p2` and `r1 = r2`.
     pub fn solve(&self, p1: Vec2<T>, p2: Vec2<T>, slack: T) -> Result<DyadPose<T>, DyadFailure<T>> {
+        self.solve_with_base(p1, p2, slack, || None)
+    }
+
+    /// As [`Dyad::solve`], given a cancellation-free form of the base when the caller has one:
+    /// `base()` returns the base vector `p2 − p1` and its distances to the toggle values,
+    /// `(d² − (r1 − r2)², (r1 + r2)² − d²)`.
+    ///
+    /// Next to a toggle Kahan's vanishing factor is `d − |r1 − r2|` (folded) or `r1 + r2 − d`
+    /// (stretched); from a `d` rounded to `ε·d` it keeps only the digits its size allows, and the
+    /// joint's height `h ∝ √factor` loses half of them; a base that shrinks to nothing (a kite's
+    /// crank pin passing over the rocker pivot) loses its direction the same way. When the base
+    /// joints are a crank pin and a fixed joint, the vector and both differences have exact
+    /// closed forms in the crank angle (see [`crate::Mechanism`]), so the pose keeps full
+    /// accuracy up to the flat position itself. `base` is called only when the plain factor is
+    /// below 1/16 of the longest side, so the common case pays nothing.
+    pub(crate) fn solve_with_base(
+        &self,
+        p1: Vec2<T>,
+        p2: Vec2<T>,
+        slack: T,
+        base: impl FnOnce() -> Option<(Vec2<T>, T, T)>,
+    ) -> Result<DyadPose<T>, DyadFailure<T>> {
         let (r1, r2) = (self.r1, self.r2);
-        let dv = p2 - p1;
-        let d = length(dv);
+        let (mut dv, mut d) = (p2 - p1, length(p2 - p1));
+        let longest = d.max(r1).max(r2);
+        let plain = (d + r1.min(r2)).min(r1 + r2) - longest;
+        let mut flat = None;
+        if plain < longest * lit::<T>(0.0625) {
+            if let Some((v, fold, stretch)) = base() {
+                (dv, d) = (v, length(v));
+                flat = Some(if d >= r1.max(r2) {
+                    stretch / (r1 + r2 + d)
+                } else {
+                    fold / (d + (r1 - r2).abs())
+                });
+            }
+        }
         let scale = d + r1 + r2 + p1.amax() + p2.amax();
         let tol = eps::<T>() * lit::<T>(8.0) * scale + slack;
         if d == T::zero() {
@@ -173,7 +228,11 @@ impl<T: RealField + Copy> Dyad<T> {
         } else {
             (d / s, r1 / s, r2 / s, tol / s)
         };
-        let area = triangle_area(ds, r1s, r2s, tols).map_err(|g| DyadFailure::Gap(g * s))?;
+        let area = match flat {
+            Some(f2) => triangle_area_given(ds, r1s, r2s, f2 / s, tols),
+            None => triangle_area(ds, r1s, r2s, tols),
+        }
+        .map_err(|g| DyadFailure::Gap(g * s))?;
         let inv_d = T::one() / d;
         let u = dv * inv_d;
         let x = (d + (r1 - r2) * ((r1 + r2) * inv_d)) * lit::<T>(0.5);

@@ -65,6 +65,12 @@ pub enum Error {
         /// Index of the second crank.
         joint: usize,
     },
+    /// A sweep that keeps one assembly would cross a flat position of a change-point linkage,
+    /// where its two branches meet and the motion continues on the other orientation.
+    ToggleOnPath {
+        /// The crank angle (radians) of the first flat position on the path.
+        angle: f64,
+    },
 }
 
 impl fmt::Display for Error {
@@ -101,6 +107,12 @@ impl fmt::Display for Error {
             Error::SecondDriver { joint } => write!(
                 f,
                 "joint {joint} is a second crank; a mechanism is driven by exactly one"
+            ),
+            Error::ToggleOnPath { angle } => write!(
+                f,
+                "the linkage flattens at crank angle {angle} on the requested path, where its \
+                 two assembly branches meet: a sweep on one fixed assembly would switch branch \
+                 there (use sweep(), which tracks the branch through it)"
             ),
         }
     }

@@ -345,12 +345,13 @@ impl<T: RealField + Copy> FourBar<T> {
     }
 
     /// Inflection circle and Ball point of the coupler at `theta` (see [`inflection`]), from
-    /// rates per unit crank angle. `None` where it cannot assemble, at a toggle, or when the
-    /// coupler is instantaneously translating.
+    /// rates per unit crank angle. `None` where it cannot assemble, within the rate margin of a
+    /// toggle ([`crate::rate_margin`]: the rates are not known there), or when the coupler is
+    /// instantaneously translating to rounding (its pole at infinity).
     pub fn coupler_inflection(&self, theta: T) -> Option<Inflection<T>> {
         let m = self.mechanism();
         let mut pos = [Vec2::zeros(); 5];
-        m.pose(theta, &mut pos).ok()?;
+        let margin = m.pose(theta, &mut pos).ok()?;
         let (mut v, mut a, mut j) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5], [Vec2::zeros(); 5]);
         if !m
             .motion(&pos, Motion::unit(), &mut v, Some(&mut a), Some(&mut j))
@@ -363,7 +364,7 @@ impl<T: RealField + Copy> FourBar<T> {
             joint: Self::B,
             slot: 0,
         };
-        inflection(&BodyMotion::of(&bodies, coupler, &pos, &v, &a, &j))
+        inflection(&BodyMotion::of(&bodies, coupler, &pos, &v, &a, &j).conditioned(margin))
     }
 
     /// The `k`-th of `n` samples of a circuit sweep, and whether it is on the flipped branch.
@@ -469,6 +470,16 @@ impl<T: RealField + Copy> FourBar<T> {
         }
         Ok(ok)
     }
+}
+
+/// The crank angles, measured from the ground direction, at which a crank of radius `r` about
+/// a pivot `g` from the rocker pivot puts a dyad `(r1, r2)` flat: `0` when `|g − r|`, `π` when
+/// `g + r` equals `|r1 − r2|` or `r1 + r2` to `8ε` of the lengths (a change point).
+pub(crate) fn flat_angles<T: RealField + Copy>(g: T, r: T, r1: T, r2: T) -> [Option<T>; 2] {
+    let (delta, sigma) = ((r1 - r2).abs(), r1 + r2);
+    let tol = eps::<T>() * lit::<T>(8.0) * (g + r + sigma);
+    let flat = |d: T| (d - delta).abs() <= tol || (d - sigma).abs() <= tol;
+    [flat((g - r).abs()).then(T::zero), flat(g + r).then(T::pi)]
 }
 
 #[cfg(test)]

@@ -86,6 +86,7 @@ pub use inflection::{inflection, Inflection};
 #[cfg(feature = "alloc")]
 pub use kinetostatics::{Dynamics, ForceSolution, Inertia, Load, Reaction};
 pub use mechanism::{Construction, LineDirection, Mechanism, Motion};
+pub use motion::rate_margin;
 pub use motion_law::{Derivatives, Discontinuity, MotionLaw, Program, Segment};
 pub use scalar::Vec2;
 pub use schedule::ScheduleTable;

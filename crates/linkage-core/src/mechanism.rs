@@ -4,7 +4,7 @@ use nalgebra::RealField;
 
 use crate::dyad::{Dyad, DyadFailure, Side};
 use crate::error::{check_finite, check_length, Error};
-use crate::scalar::{perp, Vec2};
+use crate::scalar::{lit, perp, Vec2};
 use crate::slider::{Reach, SliderDyad};
 
 /// Direction of a slider's line.
@@ -407,6 +407,115 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         }
     }
 
+    /// For a dyad on a crank pin `A` and a fixed joint `Q` (the crank turning about a fixed
+    /// joint `O`), the base vector `p2 − p1` and its distances to the toggle values without
+    /// cancellation: `(p2 − p1, d² − (r1 − r2)², (r1 + r2)² − d²)`.
+    ///
+    /// With `g = |Q − O|`, crank radius `r` and `ψ` the angle from `O → Q` to `O → A`,
+    /// `d² = (g − r)² + 4gr·sin²(ψ/2) = (g + r)² − 4gr·cos²(ψ/2)`, so
+    /// `d² − Δ² = (g − r − Δ)(g − r + Δ) + 4gr·sin²(ψ/2)` and
+    /// `Σ² − d² = (Σ − g − r)(Σ + g + r) + 4gr·cos²(ψ/2)` (`Δ = |r1 − r2|`, `Σ = r1 + r2`). On a
+    /// change-point linkage the first products vanish exactly at the flat positions, and what
+    /// is left is a product of accurate factors: the pose keeps full accuracy right up to them.
+    fn crank_base(
+        &self,
+        p1: usize,
+        p2: usize,
+        theta: T,
+        pos: &[Vec2<T>],
+        dyad: Dyad<T>,
+    ) -> Option<(Vec2<T>, T, T)> {
+        let (k, q) = self.crank_and_fixed(p1, p2)?;
+        let Construction::Crank {
+            centre,
+            radius: r,
+            phase,
+        } = self.steps[k]
+        else {
+            return None;
+        };
+        let gv = pos[q] - pos[centre];
+        let g = crate::scalar::length(gv);
+        let beta = gv.y.atan2(gv.x);
+        let psi = theta + phase - beta;
+        let half = psi * lit::<T>(0.5);
+        let (s, c) = half.sin_cos();
+        let four_gr = lit::<T>(4.0) * g * r;
+        let (delta, sigma) = ((dyad.r1 - dyad.r2).abs(), dyad.r1 + dyad.r2);
+        let fold = (g - r - delta) * (g - r + delta) + four_gr * s * s;
+        let stretch = (sigma - g - r) * (sigma + g + r) + four_gr * c * c;
+        // Q − A = (g − r)·ĝ + r·(ĝ − ŵ), and ĝ − ŵ = 2 sin(ψ/2)·(sin(β + ψ/2), −cos(β + ψ/2)).
+        let (sb, cb) = (beta + half).sin_cos();
+        let qa = gv * ((g - r) / g) + Vec2::new(sb, -cb) * (lit::<T>(2.0) * r * s);
+        let dv = if k == p1 { qa } else { -qa };
+        Some((dv, fold, stretch))
+    }
+
+    /// For a dyad on a crank pin and a fixed joint (see [`Mechanism::crank_base`]), whether an
+    /// odd number of its flat positions lies between driver angles `from` and `to`; `None` for
+    /// other constructions.
+    ///
+    /// The dyad is flat where the crank pin is on the line through the crank centre and the
+    /// fixed joint (`ψ = 0` or `π`) and the base length `|g ∓ r|` equals `|r1 − r2|` or
+    /// `r1 + r2` (to `8ε` of the lengths: a change point). There the joint's signed height over
+    /// its base is `∝ sin(ψ/2)` (or `cos`), an analytic function with a simple zero: each of
+    /// the two branches through the flat position changes side there, and only there. Flat
+    /// positions are counted as `⌊(ψ − ψ_f)/2π⌋` (mod 2), a function of the angle, so a path
+    /// that returns changes nothing.
+    pub(crate) fn flat_crossings(&self, i: usize, from: T, to: T) -> Option<bool> {
+        let Construction::Dyad { p1, p2, dyad, .. } = self.steps[i] else {
+            return None;
+        };
+        let (k, q) = self.crank_and_fixed(p1, p2)?;
+        let Construction::Crank {
+            centre,
+            radius: r,
+            phase,
+        } = self.steps[k]
+        else {
+            return None;
+        };
+        let (o, qp) = match (self.steps[centre], self.steps[q]) {
+            (Construction::Fixed { at: o }, Construction::Fixed { at: qp }) => (o, qp),
+            _ => return None,
+        };
+        let gv = qp - o;
+        let g = crate::scalar::length(gv);
+        let beta = gv.y.atan2(gv.x);
+        // ⌊(ψ − ψ_f)/2π⌋ is odd exactly when sin((ψ − ψ_f)/2) < 0: the sign of a sine, which
+        // libm reduces exactly, so a sample on the float nearest a flat position (2π rounds
+        // below it) is on the side it truly is — the side `crank_base` builds its base on, from
+        // the same ψ.
+        let parity = |t: T| {
+            let half = (t + phase - beta) * lit::<T>(0.5);
+            let (s, c) = half.sin_cos();
+            let [at_zero, at_pi] = crate::fourbar::flat_angles(g, r, dyad.r1, dyad.r2);
+            (at_zero.is_some() && s < T::zero()) != (at_pi.is_some() && c > T::zero())
+        };
+        let odd = parity(from) != parity(to);
+        Some(odd)
+    }
+
+    /// The crank joint and the fixed joint of a dyad on `p1`, `p2`, when it is built on a crank
+    /// pin (turning about a fixed joint) and another fixed joint.
+    fn crank_and_fixed(&self, p1: usize, p2: usize) -> Option<(usize, usize)> {
+        let fixed = |j: usize| matches!(self.steps[j], Construction::Fixed { .. });
+        let (k, q) = match (self.steps[p1], self.steps[p2]) {
+            (Construction::Crank { .. }, _) if fixed(p2) => (p1, p2),
+            (_, Construction::Crank { .. }) if fixed(p1) => (p2, p1),
+            _ => return None,
+        };
+        let Construction::Crank { centre, .. } = self.steps[k] else {
+            return None;
+        };
+        match (self.steps[centre], self.steps[q]) {
+            // A fixed joint on the crank centre keeps the base at the crank radius: nothing to
+            // gain, and no ground direction to measure angles from.
+            (Construction::Fixed { at: o }, Construction::Fixed { at }) if at != o => Some((k, q)),
+            _ => None,
+        }
+    }
+
     /// Where joint `i` may go at driver angle `theta`, given the joints before it.
     ///
     /// `slack` widens the toggle tolerance (length units, see [`Dyad::solve`]).
@@ -460,7 +569,10 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                 Ok(Candidates::One(pos[centre] + Vec2::new(c, s) * radius))
             }
             Construction::Dyad { p1, p2, dyad, .. } => {
-                let d = dyad.solve(pos[p1], pos[p2], slack).map_err(fail)?;
+                let base = || self.crank_base(p1, p2, theta, pos, dyad);
+                let d = dyad
+                    .solve_with_base(pos[p1], pos[p2], slack, base)
+                    .map_err(fail)?;
                 Ok(Candidates::Two {
                     foot: d.foot,
                     offset: d.offset,

@@ -5,7 +5,22 @@ use nalgebra::RealField;
 use crate::dyad::solve_rows;
 use crate::error::Error;
 use crate::mechanism::{Construction, LineDirection, Mechanism, Motion};
-use crate::scalar::{cross, lit, nan, perp, Vec2};
+use crate::scalar::{cross, eps, lit, nan, perp, Vec2};
+
+/// The smallest assembly margin at which rates are computed: `m* = 32·√ε` (4.8e-7 for `f64`,
+/// 0.011 for `f32`).
+///
+/// Why: next to a toggle a dyad's joint carries a rounding error of about `ε·L/m` (its height
+/// over the base line is `√` of a small quantity known to `ε·L`), along the one direction the
+/// links do not hold. The rate equations' determinant `(p − p1) × (p − p2) = ±r1·r2·m` therefore
+/// carries a relative error `ε/m²`, and so do the velocities, accelerations and jerks solved
+/// with it. Below `m*` that bound exceeds `2⁻¹⁰`: the rates are no longer numbers worth giving
+/// (at an exact toggle they are `0/0` or unbounded), so they are NaN and the sample is flagged
+/// (`regular == false`) instead — never a huge number. Above it, rates keep at least three
+/// digits, and all of them once `m > ε^{1/4}` (1.2e-4).
+pub fn rate_margin<T: RealField + Copy>() -> T {
+    lit::<T>(32.0) * eps::<T>().sqrt()
+}
 
 /// Angular velocity, acceleration and jerk of the direction of `d(t)`, from `d` and its first
 /// three time derivatives.
@@ -58,8 +73,9 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// `[(p − p1)ᵀ; (p − p2)ᵀ]` (see [`crate::Dyad::velocity`]) with right-hand sides
     /// `(p − pi)·vi`, `(p − pi)·ai − |v − vi|²` and `(p − pi)·ji − 3(v − vi)·(a − ai)`; the
     /// slider's scalar equation along its line; carried points by rigid-body kinematics. A joint
-    /// at an exact toggle has no finite rates: it and every joint built on it get NaN, and the
-    /// return value is `false`.
+    /// whose assembly margin is below [`rate_margin`] (at or next to a toggle, where the rates
+    /// are unbounded, `0/0`, or lost to rounding) gets NaN rates, and so does every joint built
+    /// on it; the return value is then `false`.
     ///
     /// # Errors
     /// [`Error::BufferLength`] when a slice is not [`Mechanism::len`] long, or jerks are asked
@@ -102,6 +118,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         let mut al = [zero; N];
         let mut jk = [zero; N];
         let mut regular = true;
+        let m_star = rate_margin::<T>();
         for (i, c) in self.constructions().iter().enumerate() {
             let p = pos[i];
             let (v, a, j) = match *c {
@@ -111,9 +128,11 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                     (vel[centre], al[centre], jk[centre]),
                     (drive.omega, drive.alpha, drive.jerk),
                 ),
-                Construction::Dyad { p1, p2, .. } => {
+                Construction::Dyad { p1, p2, dyad, .. } => {
                     let (e1, e2) = (p - pos[p1], p - pos[p2]);
+                    let toggle = cross(e1, e2).abs() < m_star * dyad.r1 * dyad.r2;
                     match solve_rows(e1, e2, e1.dot(&vel[p1]), e2.dot(&vel[p2])) {
+                        _ if toggle => (bad, bad, bad),
                         None => (bad, bad, bad),
                         Some(v) => {
                             let (w1, w2) = (v - vel[p1], v - vel[p2]);
@@ -148,9 +167,11 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                     pivot,
                     origin,
                     direction,
+                    slider,
                     ..
                 } => {
                     let u = Self::line_direction(direction, pos).unwrap_or(bad);
+                    let toggle = (p - pos[pivot]).dot(&u).abs() < m_star * slider.r;
                     let turn = match direction {
                         LineDirection::Fixed(_) => (T::zero(), T::zero(), T::zero()),
                         LineDirection::Link { from, to, .. } => direction_rates(
@@ -160,16 +181,20 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                             jk[to] - jk[from],
                         ),
                     };
-                    slider_rates(
-                        p,
-                        u,
-                        turn,
-                        (pos[pivot], vel[pivot], al[pivot], jk[pivot]),
-                        (pos[origin], vel[origin], al[origin], jk[origin]),
-                        want_a,
-                        want_j,
-                    )
-                    .unwrap_or((bad, bad, bad))
+                    if toggle {
+                        (bad, bad, bad)
+                    } else {
+                        slider_rates(
+                            p,
+                            u,
+                            turn,
+                            (pos[pivot], vel[pivot], al[pivot], jk[pivot]),
+                            (pos[origin], vel[origin], al[origin], jk[origin]),
+                            want_a,
+                            want_j,
+                        )
+                        .unwrap_or((bad, bad, bad))
+                    }
                 }
                 Construction::Point { from, to, .. } => {
                     let turn = direction_rates(

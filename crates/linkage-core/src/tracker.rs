@@ -10,16 +10,17 @@ use crate::scalar::{lit, Vec2};
 /// toggle" and its branch is chosen by continuation rather than kept.
 pub const DEFAULT_TOGGLE_MARGIN: f64 = 0.2;
 
-/// Largest driver step (radians) taken while a dyad is near a toggle; longer steps are subdivided
-/// there so that continuation sees the motion, whatever the caller's sampling.
+/// Largest driver step (radians) taken while a dyad is near a toggle, by default: the fine grid
+/// has the least power of two of points per turn that makes its step at most this (1024).
 const DEFAULT_MAX_STEP: f64 = 1.0 / 128.0;
 
-/// Longest driver step (radians) taken at all: longer requested steps are cut, so that a toggle
-/// between two far-apart samples (a change-point linkage's flat position) is seen.
-const COARSE_STEP: f64 = 0.25;
+/// Fine grid steps per coarse step: away from toggles the canonical path steps 16 fine steps at
+/// a time (2π/64 ≈ 0.098 rad with the default grid).
+const COARSE: i64 = 16;
 
-/// Cap on the substeps of one refined step, so a pathological request stays bounded in time.
-const MAX_SUBSTEPS: u32 = 1 << 16;
+/// Bounds on the fine grid points per turn (powers of two, multiples of [`COARSE`]).
+const MIN_FINE: i64 = 64;
+const MAX_FINE: i64 = 1 << 20;
 
 /// Where a sweep sample writes the rates it is asked for; absent buffers are not computed.
 /// Higher rates need the lower ones (a jerk needs an acceleration and a velocity buffer).
@@ -67,28 +68,112 @@ impl<'a, T> Rates<'a, T> {
 pub struct Sample<T> {
     /// Smallest assembly margin of the mechanism's dyads at this sample (1 when it has none).
     pub margin: T,
-    /// False when some joint is at an exact toggle, so its rates are NaN.
+    /// False when some joint is within the rate threshold of a toggle
+    /// ([`crate::rate_margin`]), so its rates (and those of every joint built on it) are NaN.
     pub regular: bool,
+}
+
+/// A point of the driver's line in fine-grid units, `(idx + frac)·h` with `frac ∈ [0, 1)`;
+/// grid points have `frac = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct At<T> {
+    idx: i64,
+    frac: T,
+}
+
+impl<T: RealField + Copy> At<T> {
+    fn grid(idx: i64) -> Self {
+        At {
+            idx,
+            frac: T::zero(),
+        }
+    }
+
+    /// `self − other` in grid units.
+    fn minus(&self, other: &Self) -> T {
+        lit::<T>(self.idx.saturating_sub(other.idx) as f64) + (self.frac - other.frac)
+    }
+
+    /// Whether `self` lies strictly past `other` going in direction `dir` (±1).
+    fn past(&self, other: &Self, dir: i64) -> bool {
+        let ahead = self.idx > other.idx || (self.idx == other.idx && self.frac > other.frac);
+        let behind = self.idx < other.idx || (self.idx == other.idx && self.frac < other.frac);
+        if dir > 0 {
+            ahead
+        } else {
+            behind
+        }
+    }
+
+    fn on_coarse_grid(&self) -> bool {
+        self.frac == T::zero() && self.idx.rem_euclid(COARSE) == 0
+    }
+}
+
+/// How [`Tracker::place`] chooses each dyad's candidate.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Choice {
+    /// Keep every orientation.
+    Keep,
+    /// Continuation: a dyad near a toggle takes the candidate nearest the extrapolated position.
+    Continue,
+    /// Keep every orientation, and report whether continuation would have flipped one.
+    Probe,
+}
+
+/// The tracked state at a turn boundary, compared to find the period of a full-turn crank.
+#[derive(Clone, Copy, PartialEq)]
+struct Snapshot<T: RealField + Copy, const N: usize> {
+    sign: [i8; N],
+    older: [Vec2<T>; N],
+    newest: [Vec2<T>; N],
+    spacing: T,
+    hist_margin: [T; N],
+    nhist: u8,
+    fine_here: bool,
 }
 
 /// Sweeps a [`Mechanism`] over driver angles, keeping each dyad on its assembly branch.
 ///
 /// # Branch tracking
 /// A dyad's branch is its orientation (the side of its base line its joint is on). The tracker
-/// keeps each dyad's orientation from sample to sample, except near a toggle: when the dyad's
-/// margin is below `toggle_margin` at this or the previous sample, the orientation may
-/// legitimately change (a change-point linkage passing its flat position, a chain whose dyad
-/// straightens), so the tracker chooses the candidate nearest the position extrapolated from the
-/// two previous samples: the branch consistent with the motion so far.
+/// keeps each dyad's orientation, except near a toggle, where it continues the motion: the
+/// candidate nearest the position extrapolated linearly from the two previous points of the
+/// path is taken. At a bifurcation (a change-point linkage's flat position, a kite's crank pin
+/// passing over the rocker pivot, a deltoid folding) this is the branch that continues
+/// smoothly through it. A dyad built on a crank pin and a fixed joint (every four-bar's) knows
+/// its flat positions in closed form ([`crate::FourBar::check_fixed_assembly_path`]): its
+/// joint's signed height over the base has a simple zero there, so both branches through a
+/// flat position change side exactly there and nowhere else, and the tracker flips its
+/// orientation exactly at each one crossed — also for a sample a hair's breadth from it,
+/// where the two candidates are too close for any extrapolation to tell apart (their rates are
+/// not).
 ///
-/// The caller's sampling does not decide the branch: a requested step longer than 0.25 rad is
-/// walked in equal hops of at most that, and a hop near a toggle is walked in steps of at most
-/// `max_step` (default 1/128 rad), so the extrapolation is always local. Far from toggles this
-/// costs nothing (a Grashof crank-rocker sampled every 100° keeps its orientation in 7 hops per
-/// step); near them it is what makes a coarse sweep of a parallelogram stay a parallelogram.
+/// # The canonical path
+/// Those decisions are made on a path fixed by the linkage alone, never by the caller's
+/// sampling: the grid of `M` points per turn at absolute angles `2πk/M` (`M = 1024` by
+/// default). From a sample, the tracker walks the grid toward the next sample, a coarse step
+/// (16 grid steps, 0.098 rad) at a time where both ends of the step are clear of toggles (every
+/// margin at least `toggle_margin`) and continuation would keep every orientation, and one grid
+/// step at a time (6.1 mrad) elsewhere. A sample is then placed from the last grid point before
+/// it, and it does not move the walk. So a sample's pose depends only on the linkage, the first
+/// sample and the angles the path has run through: inserting or removing samples between two
+/// samples never changes the branch at either. The first sample takes the branches the
+/// constructions declare.
 ///
-/// A sample that cannot assemble writes NaN joints and returns its error; the history is kept,
-/// and the next sample that assembles resumes from the orientation held before the gap.
+/// # Cost
+/// The work is counted in placements (solves of every joint at one angle, [`Tracker::work`]):
+/// at most 17 per coarse step and 1 per grid step, so a step of `Δθ` costs at most
+/// `M·|Δθ|/2π + 2` placements. Grid angles are reduced to one turn exactly, so the walk of a
+/// full-turn crank is periodic in the turn; a step of many turns walks turns only until the
+/// state at a turn boundary repeats (Brent's cycle finding; one or two turns for a four-bar),
+/// then skips whole periods: a jump of any size costs a bounded number of turns. A caller that
+/// must stay responsive (Ctrl-C) steps a bounded number of samples at a time.
+///
+/// A grid point where a construction is undetermined (a kite's crank pin exactly on the rocker
+/// pivot) is stepped over. A sample that cannot assemble writes NaN joints, returns its error
+/// and changes nothing else. A path that cannot be walked (a locked zone lies between two
+/// samples) restarts at the new sample on the orientations of the last sample that assembled.
 ///
 /// ```
 /// use linkage_core::{Assembly, FourBar, Rates, Tracker, Vec2};
@@ -101,23 +186,38 @@ pub struct Sample<T> {
 ///     let s = t.step(1.745 * k as f64, None, &mut joints, Rates::none()).unwrap();
 ///     assert!(s.margin > 0.1);
 /// }
+/// // A jump of a billion radians costs a few turns of work, not 10⁸ of them.
+/// let before = t.work();
+/// t.step(1e9, None, &mut joints, Rates::none()).unwrap();
+/// assert!(t.work() - before < 5 * 1024);
 /// ```
 #[derive(Clone, Debug)]
 pub struct Tracker<'m, T: RealField + Copy, const N: usize> {
     mech: &'m Mechanism<T, N>,
     /// Orientation of each branch joint, `+1` or `-1` (compact, as it is saved per step).
     sign: [i8; N],
-    /// `hist[newest]`: last assembled sample, `hist[1 - newest]`: the one before (a two-slot
-    /// ring, so committing a sample copies only the mechanism's joints).
+    /// `hist[newest]`: the walk's last point (the cursor), `hist[1 - newest]`: the one before
+    /// (a two-slot ring, so committing a point copies only the mechanism's joints).
     hist: [[Vec2<T>; N]; 2],
     newest: usize,
+    hist_at: [At<T>; 2],
+    /// Driver angles of the history points (not reduced: flat positions are counted on them).
     hist_theta: [T; 2],
     hist_margin: [T; N],
-    /// Margins of the joints as last placed (committed into `hist_margin` with the sample).
+    /// Margins of the joints as last placed (committed into `hist_margin` with the point).
     placed_margin: [T; N],
     nhist: u8,
+    /// Orientations of the last sample that assembled: a path that cannot be walked restarts
+    /// on them.
+    held: [i8; N],
+    /// Whether the cursor is inside a coarse step walked one grid step at a time.
+    fine_here: bool,
+    /// A coarse grid point the cursor is known to reach by one clear coarse step.
+    clear_to: Option<i64>,
     toggle_margin: T,
-    max_step: T,
+    /// Grid points per turn.
+    fine: i64,
+    work: u64,
 }
 
 impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
@@ -130,7 +230,8 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     }
 
     /// A tracker with explicit continuation settings: `toggle_margin` in `[0, 1)`, `max_step`
-    /// (radians, > 0) the longest driver step taken near a toggle.
+    /// (radians, > 0) the longest grid step: the grid has the least power of two of points per
+    /// turn (from 64 to 2²⁰) that makes its step at most `max_step`.
     ///
     /// # Errors
     /// [`Error::NoDriver`]; [`Error::NotFinite`] / [`Error::InvalidLength`] for bad settings.
@@ -144,6 +245,11 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         }
         check_finite("toggle_margin", toggle_margin)?;
         crate::error::check_length("max_step", max_step)?;
+        let want = crate::scalar::to_f64(T::two_pi() / max_step);
+        let mut fine = MIN_FINE;
+        while (fine as f64) < want && fine < MAX_FINE {
+            fine *= 2;
+        }
         let mut sign = [1i8; N];
         for (s, c) in sign.iter_mut().zip(mech.constructions()) {
             *s = if c.initial_sign() < T::zero() { -1 } else { 1 };
@@ -153,12 +259,17 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             sign,
             hist: [[Vec2::zeros(); N]; 2],
             newest: 0,
+            hist_at: [At::grid(0); 2],
             hist_theta: [T::zero(); 2],
             hist_margin: [T::one(); N],
             placed_margin: [T::one(); N],
             nhist: 0,
+            held: sign,
+            fine_here: false,
+            clear_to: None,
             toggle_margin,
-            max_step,
+            fine,
+            work: 0,
         })
     }
 
@@ -177,19 +288,68 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     /// circuit sweep does.
     pub fn set_branch(&mut self, i: usize, sign: T) {
         self.sign[i] = if sign < T::zero() { -1 } else { 1 };
+        self.held = self.sign;
         self.nhist = 0;
     }
 
-    /// Solves every joint at `theta` into `joints`, choosing branches by continuity.
-    /// Returns the smallest margin and whether any dyad was near a toggle.
-    fn place(&mut self, theta: T, joints: &mut [Vec2<T>]) -> Result<(T, bool), Error> {
+    /// Placements done so far: solves of every joint at one angle, the unit of the tracker's
+    /// work (samples and the grid points walked between them). A deterministic count, for
+    /// bounding cost in tests where a clock would not be.
+    pub fn work(&self) -> u64 {
+        self.work
+    }
+
+    /// Grid points per turn of the canonical path.
+    pub fn grid_points_per_turn(&self) -> usize {
+        self.fine as usize
+    }
+
+    /// The grid step `h = 2π/M`.
+    fn h(&self) -> T {
+        T::two_pi() / lit::<T>(self.fine as f64)
+    }
+
+    /// Driver angle of grid point `idx`, reduced to one turn exactly (so the walk of a
+    /// full-turn crank repeats bit for bit from turn to turn).
+    fn grid_angle(&self, idx: i64) -> T {
+        lit::<T>(idx.rem_euclid(self.fine) as f64) * self.h()
+    }
+
+    /// Driver angle of grid point `idx` along the path (not reduced).
+    fn grid_path_angle(&self, idx: i64) -> T {
+        lit::<T>(idx as f64) * self.h()
+    }
+
+    /// Where `theta` lies on the grid.
+    fn at_of(&self, theta: T) -> At<T> {
+        let bound = lit::<T>(4.0e18);
+        let u = (theta / self.h()).max(-bound).min(bound);
+        let fl = u.floor();
+        let idx = fl.to_subset().unwrap_or(0.0) as i64;
+        At { idx, frac: u - fl }
+    }
+
+    /// Solves every joint at `theta` (the point `at` of the path, at driver angle `path` before
+    /// reduction to one turn) into `joints`, choosing
+    /// branches as `choice` says. Returns the smallest margin and, for [`Choice::Probe`],
+    /// whether continuation would flip a dyad.
+    fn place(
+        &mut self,
+        theta: T,
+        path: T,
+        at: At<T>,
+        choice: Choice,
+        joints: &mut [Vec2<T>],
+    ) -> Result<(T, bool), Error> {
+        self.work = self.work.saturating_add(1);
         let mech = self.mech;
         let mut margin = T::one();
-        let mut near_any = false;
-        // Extrapolation ratio for continuation near a toggle (computed only when needed).
-        let ratio = || {
-            if self.hist_theta[0] != self.hist_theta[1] {
-                (theta - self.hist_theta[0]) / (self.hist_theta[0] - self.hist_theta[1])
+        let mut would_flip = false;
+        let (new, old) = (self.newest, 1 - self.newest);
+        let ratio = {
+            let den = self.hist_at[new].minus(&self.hist_at[old]);
+            if den != T::zero() {
+                at.minus(&self.hist_at[new]) / den
             } else {
                 T::zero()
             }
@@ -204,40 +364,218 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                 } => {
                     margin = margin.min(m);
                     self.placed_margin[i] = m;
-                    let near = self.nhist > 0
-                        && (m < self.toggle_margin || self.hist_margin[i] < self.toggle_margin);
-                    near_any |= near;
                     let mut s = if self.sign[i] < 0 {
                         -T::one()
                     } else {
                         T::one()
                     };
-                    if near && self.nhist >= 2 {
-                        let prev = self.hist[self.newest][i];
-                        let predicted = prev + (prev - self.hist[1 - self.newest][i]) * ratio();
+                    let near = m < self.toggle_margin || self.hist_margin[i] < self.toggle_margin;
+                    let test = match choice {
+                        Choice::Keep => false,
+                        Choice::Continue => near,
+                        Choice::Probe => true,
+                    };
+                    // A dyad on a crank pin and a fixed joint knows its flat positions exactly:
+                    // both branches through one change side there, and only there.
+                    let flats = if test && self.nhist >= 1 {
+                        mech.flat_crossings(i, self.hist_theta[new], path)
+                    } else {
+                        None
+                    };
+                    if let Some(odd) = flats {
+                        if odd {
+                            if choice == Choice::Continue {
+                                s = -s;
+                                self.sign[i] = -self.sign[i];
+                            } else {
+                                would_flip = true;
+                            }
+                        }
+                    } else if test && self.nhist >= 2 {
+                        let prev = self.hist[new][i];
+                        let predicted = prev + (prev - self.hist[old][i]) * ratio;
                         let kept = foot + offset * s;
                         let flipped = foot - offset * s;
                         if (flipped - predicted).norm_squared() < (kept - predicted).norm_squared()
                         {
-                            s = -s;
-                            self.sign[i] = -self.sign[i];
+                            if choice == Choice::Continue {
+                                s = -s;
+                                self.sign[i] = -self.sign[i];
+                            } else {
+                                would_flip = true;
+                            }
                         }
                     }
                     foot + offset * s
                 }
             };
         }
-        Ok((margin, near_any))
+        Ok((margin, would_flip))
     }
 
-    /// Records an assembled sample as the newest history entry.
-    fn commit(&mut self, theta: T, joints: &[Vec2<T>]) {
+    /// Records a placed point of the path as the newest history entry (the cursor).
+    fn commit(&mut self, at: At<T>, theta: T, joints: &[Vec2<T>]) {
         let n = self.mech.len();
         self.newest = 1 - self.newest;
         self.hist[self.newest][..n].copy_from_slice(joints);
-        self.hist_theta = [theta, self.hist_theta[0]];
+        self.hist_at[self.newest] = at;
+        self.hist_theta[self.newest] = theta;
         self.nhist = (self.nhist + 1).min(2);
         self.hist_margin[..n].copy_from_slice(&self.placed_margin[..n]);
+        self.clear_to = None;
+    }
+
+    /// Smallest margin of the dyads at the cursor.
+    fn cursor_margin(&self) -> T {
+        self.hist_margin[..self.mech.len()]
+            .iter()
+            .fold(T::one(), |a, &b| a.min(b))
+    }
+
+    /// Walks the canonical path from the cursor to the last path point not past `target`.
+    /// Returns whether the stretch holding `target` is walked in grid steps (so a sample there
+    /// is placed by continuation) rather than a clear coarse step (orientations kept).
+    fn walk_to(&mut self, target: At<T>) -> Result<bool, Error> {
+        let mut scratch = [Vec2::zeros(); N];
+        let n = self.mech.len();
+        loop {
+            let c = self.hist_at[self.newest];
+            if c == target {
+                return Ok(false);
+            }
+            let dir: i64 = if target.past(&c, 1) { 1 } else { -1 };
+            if self.fine_here {
+                let mut next = At::grid(if dir > 0 {
+                    c.idx.saturating_add(1)
+                } else if c.frac > T::zero() {
+                    c.idx
+                } else {
+                    c.idx.saturating_sub(1)
+                });
+                if next.past(&target, dir) {
+                    return Ok(true);
+                }
+                let th = self.grid_angle(next.idx);
+                let path = self.grid_path_angle(next.idx);
+                if let Err(e) = self.place(th, path, next, Choice::Continue, &mut scratch[..n]) {
+                    // A grid point where a construction is undetermined (a kite's crank pin
+                    // exactly on the rocker pivot) is stepped over: the motion is continuous
+                    // through it, only that instant's dyad is not.
+                    if !matches!(e, Error::Coincident { .. }) {
+                        return Err(e);
+                    }
+                    next = At::grid(next.idx.saturating_add(dir));
+                    if next.past(&target, dir) {
+                        return Ok(true);
+                    }
+                    let th = self.grid_angle(next.idx);
+                    let path = self.grid_path_angle(next.idx);
+                    self.place(th, path, next, Choice::Continue, &mut scratch[..n])?;
+                }
+                self.commit(next, self.grid_path_angle(next.idx), &scratch[..n]);
+                if next.on_coarse_grid() {
+                    self.fine_here = false;
+                }
+                continue;
+            }
+            let turns = target.idx.saturating_sub(c.idx).saturating_abs() / self.fine;
+            if turns > 2 && c.on_coarse_grid() && self.nhist > 0 {
+                self.jump(dir, turns - 1)?;
+                continue;
+            }
+            // The coarse grid point ahead, strictly.
+            let e = {
+                let base = c.idx.div_euclid(COARSE).saturating_mul(COARSE);
+                if dir > 0 {
+                    At::grid(base.saturating_add(COARSE))
+                } else if c.on_coarse_grid() {
+                    At::grid(base.saturating_sub(COARSE))
+                } else {
+                    At::grid(base)
+                }
+            };
+            let th = self.grid_angle(e.idx);
+            let known = self.clear_to == Some(e.idx);
+            if known && e.past(&target, dir) {
+                return Ok(false);
+            }
+            let path = self.grid_path_angle(e.idx);
+            let probe = self.place(th, path, e, Choice::Probe, &mut scratch[..n]);
+            let (m, flip) = match probe {
+                Ok(r) => r,
+                // Undetermined there: walk the stretch in grid steps, which step over it.
+                Err(Error::Coincident { .. }) => (T::zero(), true),
+                Err(e) => return Err(e),
+            };
+            let clear = known
+                || (!flip && m >= self.toggle_margin && self.cursor_margin() >= self.toggle_margin);
+            if clear {
+                if e.past(&target, dir) {
+                    self.clear_to = Some(e.idx);
+                    return Ok(false);
+                }
+                self.commit(e, path, &scratch[..n]);
+                continue;
+            }
+            self.fine_here = true;
+        }
+    }
+
+    /// The state at a turn boundary, relative to the turn.
+    fn snapshot(&self) -> Snapshot<T, N> {
+        let (new, old) = (self.newest, 1 - self.newest);
+        Snapshot {
+            sign: self.sign,
+            older: self.hist[old],
+            newest: self.hist[new],
+            spacing: self.hist_at[new].minus(&self.hist_at[old]),
+            hist_margin: self.hist_margin,
+            nhist: self.nhist,
+            fine_here: self.fine_here,
+        }
+    }
+
+    /// Walks `turns` whole turns in direction `dir` from a coarse grid point, walking only
+    /// until the state at a turn boundary repeats and skipping whole periods after that.
+    fn jump(&mut self, dir: i64, turns: i64) -> Result<(), Error> {
+        let turn = dir.saturating_mul(self.fine);
+        let walk_turn = |t: &mut Self| -> Result<(), Error> {
+            let to = At::grid(t.hist_at[t.newest].idx.saturating_add(turn));
+            t.walk_to(to).map(|_| ())
+        };
+        let mut left = turns;
+        let mut tortoise = self.snapshot();
+        walk_turn(self)?;
+        left -= 1;
+        // Brent's cycle finding on the states at turn boundaries.
+        let (mut power, mut lam) = (1i64, 1i64);
+        let mut period = None;
+        while left > 0 {
+            if self.snapshot() == tortoise {
+                period = Some(lam);
+                break;
+            }
+            if power == lam {
+                tortoise = self.snapshot();
+                power = power.saturating_mul(2);
+                lam = 0;
+            }
+            walk_turn(self)?;
+            left -= 1;
+            lam += 1;
+        }
+        if let Some(p) = period {
+            let skip = left / p * p;
+            let shift = skip.saturating_mul(turn);
+            for at in self.hist_at.iter_mut() {
+                at.idx = at.idx.saturating_add(shift);
+            }
+            left -= skip;
+        }
+        for _ in 0..left {
+            walk_turn(self)?;
+        }
+        Ok(())
     }
 
     /// Solves the sample at driver angle `theta`, writing joint positions into `joints` and,
@@ -273,8 +611,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         let margin = match result {
             Ok(m) => m,
             Err(e) => {
-                // Forget the motion: after a gap, continuation restarts from the orientation held.
-                self.nhist = 0;
+                // The walk is left as it was: a sample that cannot assemble changes nothing.
                 joints.fill(nan);
                 for buf in [velocity, acceleration, jerk].into_iter().flatten() {
                     buf.fill(nan);
@@ -282,7 +619,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                 return Err(e);
             }
         };
-        let mut regular = true;
+        let regular;
         if let Some(vel) = velocity {
             let drive = motion.ok_or(Error::BufferLength {
                 what: "motion (omega, alpha)",
@@ -299,80 +636,56 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                 expected: n,
                 got: 0,
             });
+        } else {
+            regular = margin >= crate::motion::rate_margin::<T>();
         }
         Ok(Sample { margin, regular })
     }
 
-    /// Moves the tracked state to `theta`: steps longer than `coarse_step` are cut into equal
-    /// hops, and each hop is refined to `max_step` where a dyad is near a toggle.
+    /// Walks the canonical path toward `theta` and places the sample there. A sample that
+    /// cannot be placed leaves the walk as it was.
     fn advance(&mut self, theta: T, joints: &mut [Vec2<T>]) -> Result<T, Error> {
+        let at = self.at_of(theta);
         if self.nhist == 0 {
-            let (margin, _) = self.place(theta, joints)?;
-            self.commit(theta, joints);
-            return Ok(margin);
+            return self.restart(theta, at, joints);
         }
-        let saved_sign = self.sign;
-        let start = self.hist_theta[0];
-        // The common case is a single hop.
-        let hops = if (theta - start).abs() <= lit(COARSE_STEP) {
-            1
-        } else {
-            Self::count(theta - start, lit(COARSE_STEP))
-        };
-        let mut result = Ok(T::one());
-        for k in 1..=hops {
-            let t = Self::between(start, theta, k, hops);
-            result = self.hop(t, joints);
-            if result.is_err() {
-                break;
+        match self.walk_to(at) {
+            Ok(near) => {
+                // The sample does not move the walk: its own choice is not kept.
+                let walked = self.sign;
+                let choice = if near { Choice::Continue } else { Choice::Keep };
+                let placed = self.place(theta, theta, at, choice, joints);
+                if placed.is_ok() {
+                    self.held = self.sign;
+                }
+                self.sign = walked;
+                placed.map(|(m, _)| m)
             }
-        }
-        match result {
-            Ok(m) => Ok(m),
             Err(_) => {
                 // The motion cannot pass continuously from the last sample to `theta` (a locked
-                // zone lies between): restart at `theta` on the orientation held before.
-                self.sign = saved_sign;
-                self.nhist = 0;
-                let (margin, _) = self.place(theta, joints)?;
-                self.commit(theta, joints);
-                Ok(margin)
+                // zone lies between): restart at `theta` on the orientation held there.
+                self.sign = self.held;
+                self.restart(theta, at, joints)
             }
         }
     }
 
-    /// One hop from the last committed sample to `t`, subdivided to `max_step` near toggles.
-    fn hop(&mut self, t: T, joints: &mut [Vec2<T>]) -> Result<T, Error> {
-        let saved_sign = self.sign;
-        let (margin, near) = self.place(t, joints)?;
-        let start = self.hist_theta[0];
-        if !near || (t - start).abs() <= self.max_step {
-            self.commit(t, joints);
-            return Ok(margin);
-        }
-        self.sign = saved_sign;
-        let steps = Self::count(t - start, self.max_step);
-        let mut last = margin;
-        for k in 1..=steps {
-            let tk = Self::between(start, t, k, steps);
-            last = self.place(tk, joints)?.0;
-            self.commit(tk, joints);
-        }
-        Ok(last)
-    }
-
-    /// Number of equal steps of at most `step` covering `gap` (at least 1, capped).
-    fn count(gap: T, step: T) -> u32 {
-        let n = (gap.abs() / step).ceil().to_subset().unwrap_or(1.0);
-        n.clamp(1.0, MAX_SUBSTEPS as f64) as u32
-    }
-
-    /// The `k`-th of `n` equal steps from `a` to `b`, landing exactly on `b`.
-    fn between(a: T, b: T, k: u32, n: u32) -> T {
-        if k == n {
-            b
-        } else {
-            a + (b - a) * lit::<T>(k as f64) / lit::<T>(n as f64)
+    /// Starts the path afresh at `theta` on the orientations held; on failure the state is
+    /// left as it was (the next sample restarts too).
+    fn restart(&mut self, theta: T, at: At<T>, joints: &mut [Vec2<T>]) -> Result<T, Error> {
+        let nhist = self.nhist;
+        self.nhist = 0;
+        match self.place(theta, theta, at, Choice::Keep, joints) {
+            Ok((margin, _)) => {
+                self.fine_here = false;
+                self.commit(at, theta, joints);
+                self.held = self.sign;
+                Ok(margin)
+            }
+            Err(e) => {
+                self.nhist = nhist;
+                Err(e)
+            }
         }
     }
 }

@@ -34,6 +34,39 @@ pub enum AngleMode {
 pub const MAX_TABLE: usize = 256;
 
 impl<T: RealField + Copy> FourBar<T> {
+    /// Checks that crank angles from `theta0` to `theta1` (either order, both included) can be
+    /// swept on the declared assembly: no flat position of a change-point four-bar lies on the
+    /// path. At a flat position (crank pin on the ground line with coupler and rocker
+    /// collinear) the open and crossed branches meet and the motion continues on the other
+    /// orientation, so a sweep that keeps one would silently switch branch there.
+    ///
+    /// # Errors
+    /// [`Error::ToggleOnPath`] with the first such angle; [`Error::NotFinite`] for bad angles.
+    pub fn check_fixed_assembly_path(&self, theta0: T, theta1: T) -> Result<(), Error> {
+        check_finite("theta0", theta0)?;
+        check_finite("theta1", theta1)?;
+        let (lo, hi) = (theta0.min(theta1), theta0.max(theta1));
+        let flats =
+            crate::fourbar::flat_angles(self.ground(), self.crank, self.coupler, self.rocker);
+        let dv = self.c - self.o;
+        let base = dv.y.atan2(dv.x);
+        let mut first: Option<T> = None;
+        for psi in flats.into_iter().flatten() {
+            let a = base + psi;
+            let turns = ((lo - a) / T::two_pi()).ceil();
+            let at = a + turns * T::two_pi();
+            if at <= hi && first.is_none_or(|f| at < f) {
+                first = Some(at);
+            }
+        }
+        match first {
+            Some(angle) => Err(Error::ToggleOnPath {
+                angle: crate::scalar::to_f64(angle),
+            }),
+            None => Ok(()),
+        }
+    }
+
     /// Coupler point at `θ_k = theta0 + k·dtheta` for `k` in `first .. first + out.len()`, on
     /// the declared assembly (no branch tracking: right for cranks that turn fully without a
     /// toggle — crank-rockers and double cranks — and anywhere a toggle is not crossed). A sample
@@ -43,7 +76,8 @@ impl<T: RealField + Copy> FourBar<T> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite `theta0`/`dtheta`; [`Error::InvalidLength`] for a
-    /// zero block.
+    /// zero block; [`Error::ToggleOnPath`] when a change-point linkage's flat position lies on
+    /// the samples' path (see [`FourBar::check_fixed_assembly_path`]): nothing is written.
     // Always inlined, so a caller compiled for wider vectors (the Python binding's AVX-512 and
     // AVX2 paths) gets this kernel compiled for them too.
     #[inline(always)]
@@ -71,6 +105,9 @@ impl<T: RealField + Copy> FourBar<T> {
             });
         }
         let angle = |i: usize| theta0 + dtheta * lit::<T>(i as f64);
+        if !out.is_empty() {
+            self.check_fixed_assembly_path(angle(first), angle(first + out.len() - 1))?;
+        }
         // The step's rotation (recurrence) and the small table of its multiples (table mode).
         let (ds, dc) = dtheta.sin_cos();
         let mut tc = [T::zero(); MAX_TABLE];
@@ -186,6 +223,7 @@ impl<T: RealField + Copy> FourBar<T> {
 mod tests {
     use super::*;
     use crate::catalog;
+    use crate::fourbar::Assembly;
 
     #[test]
     fn modes_agree_with_the_general_solver() {
@@ -223,6 +261,27 @@ mod tests {
             fb.uniform_sweep(0.0, dt, 421, mode, b).unwrap();
             assert_eq!(whole, parts, "{mode:?}");
         }
+    }
+
+    #[test]
+    fn change_point_flat_positions_on_the_path_are_refused() {
+        // Parallelogram: flat at θ = 0 and π.
+        let fb = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.5, 0.5), Assembly::Open).unwrap();
+        let mut out = vec![Vec2::zeros(); 10];
+        let e = fb.uniform_sweep(0.1, 0.5, 0, AngleMode::Trig, &mut out);
+        assert_eq!(
+            e,
+            Err(Error::ToggleOnPath {
+                angle: core::f64::consts::PI
+            })
+        );
+        assert!(out.iter().all(|p| *p == Vec2::zeros()), "nothing written");
+        // Between the flat positions it runs.
+        fb.uniform_sweep(0.1, 0.3, 0, AngleMode::Trig, &mut out)
+            .unwrap();
+        // A Grashof crank-rocker never flattens.
+        let h = catalog::hoecken::<f64>();
+        assert!(h.check_fixed_assembly_path(-1e3, 1e3).is_ok());
     }
 
     #[test]

@@ -295,6 +295,11 @@ impl FourBar {
             return Err(linkage_error("threads must be at least 1"));
         }
         let f = self.inner;
+        if n > 0 {
+            // Checked for the whole path before any thread writes, so `out` stays untouched.
+            f.check_fixed_assembly_path(theta0, theta0 + dtheta * (n - 1) as f64)
+                .map_err(to_py)?;
+        }
         let Some(out) = out else {
             // The kernel writes points straight into the buffer the numpy array then owns.
             let mut flat = vec![0.0_f64; 2 * n];

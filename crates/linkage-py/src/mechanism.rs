@@ -52,6 +52,8 @@ pub struct SweepArrays {
     pub valid: Vec<bool>,
     /// Smallest dyad margin per sample (NaN where invalid).
     pub margin: Vec<f64>,
+    /// Whether each valid sample is clear of the rate margin (its rates are numbers).
+    pub regular: Vec<bool>,
     /// How much the lengths miss closure (0 where valid, NaN where undetermined).
     pub gap: Vec<f64>,
     /// `n·j·2` velocities, if asked.
@@ -85,15 +87,21 @@ fn put(dst: &mut [f64], k: usize, c: Centre<f64>, finite: bool) {
     dst[2 * k..2 * k + 2].copy_from_slice(&v);
 }
 
+/// Samples between two calls of a sweep's `go_on` (each sample's work is bounded, so this
+/// bounds the time between them).
+pub const CHUNK: usize = 4096;
+
 /// Sweeps `m` over `theta` with the core tracker. Pure Rust, no Python: runs with the GIL
 /// released. Only what `wanted` asks is computed; instant centres and curvature use rates per
-/// unit crank angle (they do not depend on timing).
+/// unit crank angle (they do not depend on timing). `go_on` is called every [`CHUNK`] samples;
+/// when it returns false the sweep stops early (the caller raises what stopped it).
 pub fn sweep_arrays<const N: usize>(
     m: &CoreMechanism<f64, N>,
     theta: &[f64],
     omega: Rate<'_>,
     alpha: Rate<'_>,
     wanted: Wanted,
+    go_on: &mut dyn FnMut() -> bool,
 ) -> Result<SweepArrays, Error> {
     let (n, j) = (theta.len(), m.len());
     let rates = wanted.velocity || wanted.acceleration;
@@ -109,6 +117,7 @@ pub fn sweep_arrays<const N: usize>(
         joints: Vec::with_capacity(n * j * 2),
         valid: vec![false; n],
         margin: vec![f64::NAN; n],
+        regular: vec![false; n],
         gap: vec![0.0; n],
         velocity: grow(rates),
         acceleration: grow(wanted.acceleration),
@@ -123,6 +132,9 @@ pub fn sweep_arrays<const N: usize>(
     let (mut uvel, mut uacc) = (zero, zero);
     let mut motions = Vec::with_capacity(ids.len());
     for (k, &th) in theta.iter().enumerate() {
+        if k % CHUNK == CHUNK - 1 && !go_on() {
+            break;
+        }
         let motion = rates.then(|| Motion::new(omega.at(k), alpha.at(k)));
         let buffers = match (wanted.acceleration, rates) {
             (true, _) => Rates::acceleration(&mut vel[..j], &mut acc[..j]),
@@ -133,6 +145,7 @@ pub fn sweep_arrays<const N: usize>(
             Ok(s) => {
                 out.valid[k] = true;
                 out.margin[k] = s.margin;
+                out.regular[k] = s.regular;
             }
             Err(
                 e @ (Error::CannotAssemble { .. }
@@ -174,6 +187,7 @@ pub fn sweep_arrays<const N: usize>(
             motions.clear();
             motions.extend(ids.iter().map(|&id| {
                 BodyMotion::of(&bodies, id, &pos[..j], &uvel[..j], &zero[..j], &zero[..j])
+                    .conditioned(out.margin[k])
             }));
             for (q, &(a, b)) in pairs.iter().enumerate() {
                 let ic = relative_centre(
@@ -416,15 +430,30 @@ impl Mechanism {
             curvature,
         };
         let mech = self.inner.clone();
+        // Ctrl-C: the signal handler only sets a flag; check it between chunks of samples.
+        let mut stopped: Option<PyErr> = None;
         let res = py
-            .detach(|| sweep_arrays(&mech, th, w, a, wanted))
+            .detach(|| {
+                let mut go_on = || match Python::attach(|py| py.check_signals()) {
+                    Ok(()) => true,
+                    Err(e) => {
+                        stopped = Some(e);
+                        false
+                    }
+                };
+                sweep_arrays(&mech, th, w, a, wanted, &mut go_on)
+            })
             .map_err(to_py)?;
+        if let Some(e) = stopped {
+            return Err(e);
+        }
         let j = self.inner.len();
         let np = body_pairs(Bodies::of(&self.inner).count()).len();
         let d = PyDict::new(py);
         d.set_item("joints", to_array3(py, res.joints, n, j)?)?;
         d.set_item("valid", PyArray1::from_vec(py, res.valid))?;
         d.set_item("margin", PyArray1::from_vec(py, res.margin))?;
+        d.set_item("regular", PyArray1::from_vec(py, res.regular))?;
         d.set_item("gap", PyArray1::from_vec(py, res.gap))?;
         for (key, arr, cols) in [
             ("velocity", res.velocity, j),
