@@ -1057,6 +1057,44 @@ mod tests {
         }
     }
 
+    /// Not a check of speed: `bench/straightness.py` runs it to time the direct scan against
+    /// the fast one, in one process, on the path it writes to the file named by
+    /// `STRAIGHT_BENCH_PATH` (a first line `tol closed`, then one `x y` line per sample).
+    #[test]
+    #[ignore = "run by bench/straightness.py"]
+    fn direct_scan_timing() {
+        extern crate std;
+        use std::time::Instant;
+        let file = std::env::var("STRAIGHT_BENCH_PATH").expect("STRAIGHT_BENCH_PATH");
+        let text = std::fs::read_to_string(file).expect("readable path file");
+        let mut lines = text.lines();
+        let head: Vec<&str> = lines.next().expect("header").split_whitespace().collect();
+        let tol: f64 = head[0].parse().expect("tol");
+        let closed = head[1] == "1";
+        let path: Vec<Vec2<f64>> = lines
+            .map(|l| {
+                let v: Vec<f64> = l
+                    .split_whitespace()
+                    .map(|x| x.parse().expect("number"))
+                    .collect();
+                Vec2::new(v[0], v[1])
+            })
+            .collect();
+        let t = Instant::now();
+        let direct = reference(&path, tol, closed);
+        let direct_s = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let fast = straight_part(&path, tol, closed);
+        let fast_s = t.elapsed().as_secs_f64();
+        std::println!(
+            "n = {}: direct scan {direct_s:.3} s, fast {fast_s:.4} s, ratio {:.0}, run of {:?}",
+            path.len(),
+            direct_s / fast_s,
+            fast.map(|s| s.count)
+        );
+        assert!(same(fast, direct), "fast {fast:?}\ndirect {direct:?}");
+    }
+
     #[test]
     fn finds_the_flat_of_a_d_shape() {
         // A "D": 21 samples on y = 0 from x = 0 to 10, then a half circle back.
