@@ -340,8 +340,29 @@ mod fast {
         /// Per node: its lower and upper hull chains, left to right, as (start, length) in
         /// `chains`, and where the last search on each chain ended (a finger).
         hot: Vec<[u32; 6]>,
+        /// Per node: the last exact extremes (see [`Cache`]).
+        cache: Vec<Cache<T>>,
         chains: Vec<u32>,
     }
+
+    /// What a node remembers of its last exact extremes, to bound the next ones cheaply.
+    ///
+    /// For `side` 0 (largest `v·q`) and 1 (largest `−v·q`): the direction `u` of the last
+    /// exact search and the sample that was extreme (`NONE` before any). For a new direction
+    /// `u'` the node's largest `u'·q` is at least `u'·q[arg]` and at most
+    /// `u·q[arg] + (u' − u)·centre + |u' − u|₁·radius`.
+    #[derive(Clone, Copy)]
+    struct Cache<T> {
+        centre: Vec2<T>,
+        radius: T,
+        u: [Vec2<T>; 2],
+        arg: [u32; 2],
+        /// `q[arg]`, kept here to spare a load from the (large) sample array.
+        at: [Vec2<T>; 2],
+    }
+
+    /// No sample.
+    const NONE: u32 = u32::MAX;
 
     /// A piece of a window: a tree node or a short span of samples.
     #[derive(Clone, Copy)]
@@ -492,6 +513,7 @@ mod fast {
                 size: LEAF,
                 stats: Vec::with_capacity(n.div_ceil(LEAF)),
                 hot: Vec::with_capacity(n.div_ceil(LEAF)),
+                cache: Vec::new(),
                 chains: Vec::new(),
             };
             for s in (0..n).step_by(LEAF) {
@@ -526,6 +548,7 @@ mod fast {
                     size: below.size * 2,
                     stats: Vec::with_capacity(below.hot.len().div_ceil(2)),
                     hot: Vec::with_capacity(below.hot.len().div_ceil(2)),
+                    cache: Vec::new(),
                     chains: Vec::new(),
                 };
                 for (pair, pair_stats) in below.hot.chunks(2).zip(below.stats.chunks(2)) {
@@ -543,15 +566,37 @@ mod fast {
                 }
                 self.levels.push(level);
             }
+            for level in &mut self.levels {
+                level.cache = level
+                    .stats
+                    .iter()
+                    .map(|st| {
+                        // The farthest corner of the bounding box from the centroid.
+                        let far = |lo: T, hi: T, m: T| (lo - m).abs().max((hi - m).abs());
+                        let radius = Vec2::new(
+                            far(st.lo.x, st.hi.x, st.mean.x),
+                            far(st.lo.y, st.hi.y, st.mean.y),
+                        )
+                        .norm();
+                        Cache {
+                            centre: st.mean,
+                            radius,
+                            u: [Vec2::zeros(); 2],
+                            arg: [NONE; 2],
+                            at: [Vec2::zeros(); 2],
+                        }
+                    })
+                    .collect();
+            }
         }
 
         /// Largest `v·q` over a hull chain along which it is unimodal, searching from the
         /// chain position `hint` outwards (galloping, then bisecting) and leaving the answer
         /// there: `O(log d)` for an answer `d` places from the last one.
-        fn chain_max(q: &[Vec2<T>], chain: &[u32], v: Vec2<T>, hint: &mut u32) -> T {
+        fn chain_max(q: &[Vec2<T>], chain: &[u32], v: Vec2<T>, hint: &mut u32) -> (T, u32) {
             let at = |k: usize| q[chain[k] as usize];
             let Some(edges) = chain.len().checked_sub(1) else {
-                return T::zero();
+                return (T::zero(), NONE);
             };
             // Rising along edge k (monotone: true, then false); the answer is the first false.
             let rising = |k: usize| v.dot(&(at(k + 1) - at(k))) > T::zero();
@@ -592,31 +637,29 @@ mod fast {
                 }
             }
             *hint = lo as u32;
-            v.dot(&at(lo))
+            (v.dot(&at(lo)), chain[lo])
         }
 
-        /// Largest and smallest `v·q` over the samples of node `k` of level `l`.
-        fn node_extent(&mut self, l: usize, k: usize, v: Vec2<T>) -> (T, T) {
+        /// Largest `u·q` over the samples of node `k` of level `l`, and a sample where it is.
+        fn node_max(&mut self, l: usize, k: usize, u: Vec2<T>) -> (T, u32) {
             let level = &mut self.levels[l];
             let hot = &mut level.hot[k];
             let (lower, upper) = Self::chain_pair(&level.chains, hot);
             let q = &self.q;
-            if v.y == T::zero() {
-                // Along x: the first and last samples of a chain.
-                let (Some(&a), Some(&b)) = (upper.first(), upper.last()) else {
-                    return (T::zero(), T::zero());
+            if u.y == T::zero() {
+                // Along x: the first or last sample of a chain.
+                let end = if u.x > T::zero() {
+                    upper.last()
+                } else {
+                    upper.first()
                 };
-                let (a, b) = (v.dot(&q[a as usize]), v.dot(&q[b as usize]));
-                return (a.max(b), a.min(b));
+                return end.map_or((T::zero(), NONE), |&k| (u.dot(&q[k as usize]), k));
             }
-            // The upper chain holds the largest v·q for v pointing up, the smallest otherwise.
-            let (up, down) = if v.y > T::zero() { (v, -v) } else { (-v, v) };
-            let a = Self::chain_max(q, upper, up, &mut hot[4]);
-            let b = Self::chain_max(q, lower, down, &mut hot[5]);
-            if v.y > T::zero() {
-                (a, -b)
+            // The upper chain holds the largest u·q for u pointing up, the lower one otherwise.
+            if u.y > T::zero() {
+                Self::chain_max(q, upper, u, &mut hot[4])
             } else {
-                (b, -a)
+                Self::chain_max(q, lower, u, &mut hot[5])
             }
         }
 
@@ -760,7 +803,8 @@ mod fast {
         }
 
         /// Largest deviation of the window (`self.pieces`, running moments) from its
-        /// least-squares line, and a bound on the window's radius about its centroid.
+        /// least-squares line — or a lower bound on it that already exceeds `tol` by more
+        /// than the error bound — and a bound on the window's radius about its centroid.
         fn deviation(&mut self) -> (T, T) {
             let st = self.moments;
             let two: T = lit(2.0);
@@ -783,38 +827,81 @@ mod fast {
                 Vec2::new(T::zero(), T::one())
             };
             let vc = v.dot(&st.mean);
-            let (mut top, mut bottom) = (vc, vc);
+            // Σ|q − mean|² bounds every |q − mean|², up to the running moments' drift.
+            let r = (two * (st.sxx + st.syy) + self.drift).sqrt();
+            // A deviation this large is certainly beyond tol (given the error bound).
+            let hopeless = self.tol + self.error(r);
+            // Largest v·q and −v·q over the window: exact on the spans; on the nodes first
+            // the value at each one's last extreme sample (attained, so a lower bound), then
+            // an exact search only where the cached upper bound exceeds the best so far.
+            let mut best = [vc, -vc];
+            let us = [v, -v];
+            let slack = eps::<T>() * lit(16.0) * self.tree.extent;
             for &p in &self.pieces {
                 match p {
                     Piece::Node(l, k) => {
-                        let (h, l) = self.tree.node_extent(l, k, v);
-                        if h > top {
-                            top = h;
-                        }
-                        if l < bottom {
-                            bottom = l;
+                        let c = &self.tree.levels[l].cache[k];
+                        for side in 0..2 {
+                            if c.arg[side] != NONE {
+                                let d = us[side].dot(&c.at[side]);
+                                if d > best[side] {
+                                    best[side] = d;
+                                }
+                            }
                         }
                     }
                     Piece::Span(a, b) => {
                         for q in &self.tree.q[a..b] {
                             let d = v.dot(q);
-                            if d > top {
-                                top = d;
+                            if d > best[0] {
+                                best[0] = d;
                             }
-                            if d < bottom {
-                                bottom = d;
+                            if -d > best[1] {
+                                best[1] = -d;
                             }
                         }
                     }
                 }
             }
+            for &p in &self.pieces {
+                if best[0] - vc > hopeless || best[1] + vc > hopeless {
+                    // Attained values: the deviation is at least this.
+                    break;
+                }
+                let Piece::Node(l, k) = p else {
+                    continue;
+                };
+                for side in 0..2 {
+                    let u = us[side];
+                    let c = &self.tree.levels[l].cache[k];
+                    if c.arg[side] != NONE {
+                        let q = &c.at[side];
+                        let du = u - c.u[side];
+                        let bound = u.dot(q) - du.dot(&(q - c.centre))
+                            + (du.x.abs() + du.y.abs()) * c.radius
+                            + slack;
+                        if bound <= best[side] {
+                            continue;
+                        }
+                    }
+                    let (d, arg) = self.tree.node_max(l, k, u);
+                    let at = self.tree.q.get(arg as usize).copied();
+                    let c = &mut self.tree.levels[l].cache[k];
+                    c.u[side] = u;
+                    c.arg[side] = if at.is_some() { arg } else { NONE };
+                    c.at[side] = at.unwrap_or_else(Vec2::zeros);
+                    if d > best[side] {
+                        best[side] = d;
+                    }
+                }
+            }
+            let (top, bottom) = (best[0], -best[1]);
             let dev = if top - vc > vc - bottom {
                 top - vc
             } else {
                 vc - bottom
             };
-            // Σ|q − mean|² bounds every |q − mean|², up to the running moments' drift.
-            (dev, (two * (st.sxx + st.syy) + self.drift).sqrt())
+            (dev, r)
         }
 
         /// The window's radius about its centroid, from the bounding boxes of its pieces.
