@@ -99,15 +99,20 @@ fn fit<T: RealField + Copy>(
 ///
 /// The result is the one a direct refit of every window gives (the `O(n·w)` scan used without
 /// `alloc`, for runs of `w` samples): same run, and the line, deviation and length are computed
-/// from the run's samples exactly as there. The fast check carries an error bound (a few
-/// `w·ε` relative to the window's size, plus `ε` times the path's extent from its centre, both
-/// enlarged when the window is nearly isotropic); a window whose deviation is within that bound
-/// of `tol` — including windows at rounding level with `tol = 0` — is decided by a direct refit
-/// instead. Those refits are budgeted (`64·n` samples in all): past the budget, which only data
-/// that stays at rounding level from `tol` over very many long windows can exhaust, the fast
-/// deviation decides, which may differ from a direct refit at the level of rounding. Windows
-/// holding samples whose squared spread overflows (|coordinates| beyond about `1e150` for
-/// `f64`, `1e18` for `f32`) are always decided by the direct refit, within the same budget.
+/// from the run's samples exactly as there. The fast check carries an error bound on the
+/// difference between its deviation and the direct refit's: `8·ε·(√w + 4)` times the window's
+/// radius, plus `64·ε` times the path's extent from its centre, both enlarged as the window
+/// nears isotropy (where its line is ill-defined). The `√w` is the statistical growth of
+/// rounding in the direct refit's sequential sums; the worst case, `w·ε`, needs adversarial
+/// orderings of rounding errors, and bounding with it made long windows (10⁵ samples) fall
+/// back to refits by the hundred. A window whose deviation is within that bound of `tol` —
+/// including every window at rounding level with `tol = 0`, except windows with one `y`
+/// throughout, which the direct refit puts at deviation 0 exactly — is decided by a direct
+/// refit instead. Those refits are budgeted (`64·n` samples in all): past the budget, which only
+/// data that stays at rounding level from `tol` over very many long windows can exhaust, the
+/// fast deviation decides, which may differ from a direct refit at the level of rounding.
+/// Windows holding samples whose squared spread overflows (|coordinates| beyond about `1e150`
+/// for `f64`, `1e18` for `f32`) are always decided by the direct refit, within the same budget.
 pub fn straight_part<T: RealField + Copy>(
     path: &[Vec2<T>],
     tol: T,
@@ -930,7 +935,9 @@ mod fast {
             let st = self.moments;
             let (two, four): (T, T) = (lit(2.0), lit(4.0));
             let e: T = eps::<T>() * lit(8.0);
-            let w4 = st.w + four;
+            // Rounding in sums of w terms: statistically √w ε (the worst case, w ε, is only
+            // reached by adversarial orderings; see `straight_part`).
+            let w4 = st.w.sqrt() + four;
             let total = st.sxx + st.syy;
             let (c2, s2) = (st.sxx - st.syy, two * st.sxy);
             let gap = (c2 * c2 + s2 * s2).sqrt();
