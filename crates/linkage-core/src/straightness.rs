@@ -710,6 +710,8 @@ mod fast {
         moments: Stats<T>,
         updates: usize,
         drift: T,
+        /// The last window's samples of largest `v·q` and `−v·q` (or `NONE`).
+        seed: [u32; 2],
     }
 
     impl<T: RealField + Copy> Checker<'_, T> {
@@ -781,10 +783,10 @@ mod fast {
             }
             if complete {
                 self.move_to(i, j);
-                let (dev, r) = self.deviation();
+                let (dev, r) = self.deviation(i, j);
                 // First with a cheap bound on the window's radius, then with its bounding box.
-                for r in [r, self.radius()] {
-                    let err = self.error(r);
+                for tight in [false, true] {
+                    let err = self.error(if tight { self.radius() } else { r });
                     if dev.is_finite() && err.is_finite() {
                         if dev + err < self.tol {
                             return true;
@@ -810,7 +812,7 @@ mod fast {
         /// Largest deviation of the window (`self.pieces`, running moments) from its
         /// least-squares line — or a lower bound on it that already exceeds `tol` by more
         /// than the error bound — and a bound on the window's radius about its centroid.
-        fn deviation(&mut self) -> (T, T) {
+        fn deviation(&mut self, i: usize, j: usize) -> (T, T) {
             let st = self.moments;
             let two: T = lit(2.0);
             // The principal axis at half the angle of (Sxx − Syy, 2 Sxy), without trigonometry;
@@ -840,49 +842,57 @@ mod fast {
             // the value at each one's last extreme sample (attained, so a lower bound), then
             // an exact search only where the cached upper bound exceeds the best so far.
             let mut best = [vc, -vc];
+            let mut best_at = [NONE; 2];
             let us = [v, -v];
-            let slack = eps::<T>() * lit(16.0) * self.tree.extent;
-            for &p in &self.pieces {
-                match p {
-                    Piece::Node(l, k) => {
-                        let c = &self.tree.levels[l].cache[k];
-                        for side in 0..2 {
-                            if c.arg[side] != NONE {
-                                let d = us[side].dot(&c.at[side]);
-                                if d > best[side] {
-                                    best[side] = d;
-                                }
-                            }
-                        }
-                    }
-                    Piece::Span(a, b) => {
-                        for q in &self.tree.q[a..b] {
-                            let d = v.dot(q);
-                            if d > best[0] {
-                                best[0] = d;
-                            }
-                            if -d > best[1] {
-                                best[1] = -d;
-                            }
-                        }
+            // Start from the last window's extreme samples, if this window holds them.
+            let n = self.path.len();
+            for side in 0..2 {
+                let k = self.seed[side] as usize;
+                let inside = if j <= n {
+                    i <= k && k < j
+                } else {
+                    k >= i || k < j - n
+                };
+                if let (true, Some(q)) = (inside, self.tree.q.get(k)) {
+                    let d = us[side].dot(q);
+                    if d > best[side] {
+                        (best[side], best_at[side]) = (d, self.seed[side]);
                     }
                 }
             }
+            let slack = eps::<T>() * lit(16.0) * self.tree.extent;
             for &p in &self.pieces {
                 if best[0] - vc > hopeless || best[1] + vc > hopeless {
                     // Attained values: the deviation is at least this.
                     break;
                 }
-                let Piece::Node(l, k) = p else {
-                    continue;
+                let (l, k) = match p {
+                    Piece::Node(l, k) => (l, k),
+                    Piece::Span(a, b) => {
+                        for (k, q) in (a..b).zip(&self.tree.q[a..b]) {
+                            let d = v.dot(q);
+                            if d > best[0] {
+                                (best[0], best_at[0]) = (d, k as u32);
+                            }
+                            if -d > best[1] {
+                                (best[1], best_at[1]) = (-d, k as u32);
+                            }
+                        }
+                        continue;
+                    }
                 };
                 for side in 0..2 {
                     let u = us[side];
                     let c = &self.tree.levels[l].cache[k];
                     if c.arg[side] != NONE {
+                        // The last extreme sample: attained, and the base of the bound.
                         let q = &c.at[side];
+                        let d = u.dot(q);
+                        if d > best[side] {
+                            (best[side], best_at[side]) = (d, c.arg[side]);
+                        }
                         let du = u - c.u[side];
-                        let bound = u.dot(q) - du.dot(&(q - c.centre))
+                        let bound = d - du.dot(&(q - c.centre))
                             + (du.x.abs() + du.y.abs()) * c.radius
                             + slack;
                         if bound <= best[side] {
@@ -896,10 +906,11 @@ mod fast {
                     c.arg[side] = if at.is_some() { arg } else { NONE };
                     c.at[side] = at.unwrap_or_else(Vec2::zeros);
                     if d > best[side] {
-                        best[side] = d;
+                        (best[side], best_at[side]) = (d, arg);
                     }
                 }
             }
+            self.seed = best_at;
             let (top, bottom) = (best[0], -best[1]);
             let dev = if top - vc > vc - bottom {
                 top - vc
@@ -972,6 +983,7 @@ mod fast {
             moments: Stats::empty(),
             updates: 0,
             drift: T::zero(),
+            seed: [NONE; 2],
         };
         scan(path, closed, |i, j| checker.fits(i, j))
     }
