@@ -32,13 +32,17 @@ def foot_path(n: int) -> np.ndarray:
     return np.ascontiguousarray(fb.sweep(theta).point)
 
 
-def best_time(path: np.ndarray, repeats: int) -> tuple[float, linkage.StraightPart | None]:
-    best, part = math.inf, None
+def best_time(path: np.ndarray, repeats: int) -> tuple[float, float, int]:
+    """Best wall and CPU (process) time of a call, and the run's sample count."""
+    wall = cpu = math.inf
+    count = 0
     for _ in range(repeats):
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         part = linkage.straightness(path, TOL, closed=True)
-        best = min(best, time.perf_counter() - t)
-    return best, part
+        wall = min(wall, time.perf_counter() - t)
+        cpu = min(cpu, time.process_time() - c)
+        count = part.count if part is not None else 0
+    return wall, cpu, count
 
 
 def direct_scan(path: np.ndarray) -> str:
@@ -73,20 +77,22 @@ def direct_scan(path: np.ndarray) -> str:
 
 
 def main() -> int:
-    print(f"Hoecken foot path, closed, tol = {TOL} mm; best of a few calls (1 at 10^6)")
-    print(f"{'n':>9} {'time (s)':>10} {'run':>8} {'x per decade':>13} {'n log2^2 n x':>13}")
+    load = ", ".join(f"{x:.1f}" for x in os.getloadavg())
+    print(f"Hoecken foot path, closed, tol = {TOL} mm; best of 3 calls (2 at 10^6)")
+    print(f"{os.cpu_count()} CPUs, load average {load} (wall times stretch with load)")
+    head = f"{'n':>9} {'wall (s)':>10} {'CPU (s)':>10} {'run':>8}"
+    print(f"{head} {'CPU x/decade':>13} {'n log2^2 n x':>13}")
     prev: tuple[int, float] | None = None
     for n in (10**3, 10**4, 4 * 10**4, 10**5, 10**6):
         path = foot_path(n)
-        t, part = best_time(path, 1 if n >= 10**6 else 3)
-        count = part.count if part is not None else 0
+        wall, cpu, count = best_time(path, 2 if n >= 10**6 else 3)
         growth = model = ""
         if prev is not None and n == 10 * prev[0]:
-            growth = f"{t / prev[1]:.1f}"
+            growth = f"{cpu / prev[1]:.1f}"
             model = f"{n * math.log2(n) ** 2 / (prev[0] * math.log2(prev[0]) ** 2):.1f}"
-        print(f"{n:>9} {t:>10.4f} {count:>8} {growth:>13} {model:>13}")
+        print(f"{n:>9} {wall:>10.4f} {cpu:>10.4f} {count:>8} {growth:>13} {model:>13}")
         if n != 4 * 10**4:
-            prev = (n, t)
+            prev = (n, cpu)
     print()
     print("direct (old) scan vs fast scan, same process, same 4*10^4-sample path:")
     print(direct_scan(foot_path(4 * 10**4)))
