@@ -287,6 +287,15 @@ class Walker:
         """Crank phase of each leg."""
         return np.array([leg.phase for leg in self.legs])
 
+    def leg_labels(self) -> tuple[str, ...]:
+        """Each leg named by side and position, in leg order (see :func:`leg_labels`).
+
+        >>> import linkage
+        >>> linkage.catalog.quadruped_hoecken().leg_labels()   # legs A, B, C, D
+        ('L1', 'R1', 'L2', 'R2')
+        """
+        return leg_labels([leg.mount for leg in self.legs])
+
     def simulate(
         self,
         theta: Any = None,
@@ -523,6 +532,30 @@ def search_duty_factor(
     if best is None:
         raise LinkageError("no duty factor gives a feasible schedule")
     return best[0], best[1] if objective == "margin" else -best[1]
+
+
+def leg_labels(mounts: Sequence[Sequence[float]]) -> tuple[str, ...]:
+    """Labels naming legs by side and position from their body-frame mounts ``(x, y, z)``:
+    ``L`` for a mount left of the midline (y > 0), ``R`` right of it (y < 0), ``M`` on it;
+    numbered 1, 2, … from the front (largest x) to the rear on each side. Mounts at the same x
+    keep their given order.
+
+    >>> leg_labels([(0.04, 0.02, 0), (-0.02, 0.02, 0), (0.04, -0.02, 0), (-0.08, 0.02, 0)])
+    ('L1', 'L2', 'R1', 'L3')
+    """
+    sides = []
+    for k, m in enumerate(mounts):
+        if isinstance(m, (str, bytes)) or len(m) != 3:
+            raise LinkageError(f"mounts[{k}] must be (x, y, z), got {m!r}")
+        y = as_finite(m[1], f"mounts[{k}][1]")
+        sides.append("L" if y > 0 else "R" if y < 0 else "M")
+    labels = [""] * len(sides)
+    for side in "LRM":
+        ks = [k for k, s in enumerate(sides) if s == side]
+        ks.sort(key=lambda k: -as_finite(mounts[k][0], f"mounts[{k}][0]"))
+        for pos, k in enumerate(ks, start=1):
+            labels[k] = f"{side}{pos}"
+    return tuple(labels)
 
 
 def _check_size(n: int, legs: int) -> None:
