@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import math
 import os
 import sys
 import time
@@ -116,29 +115,9 @@ def _check(args: argparse.Namespace, state: dict[str, Path]) -> int:
 
 
 def _catalog(args: argparse.Namespace, state: dict[str, Path]) -> int:
-    rows = []
-    for f in catalog.figures(rel_tol=args.tol, samples=args.samples):
-        if f.input_range is None:
-            rng = "full turn"
-        else:
-            rng = f"{math.degrees(f.input_range[0]):.1f} … {math.degrees(f.input_range[1]):.1f}"
-        rows.append(
-            (
-                f.name,
-                f.grashof,
-                rng,
-                f"{f.size:g}",
-                f"{f.straight_length:.3f}",
-                f"{f.max_deviation:.2e}",
-                f"{100 * f.speed_variation:.1f}%",
-            )
-        )
-    head = ("linkage", "class", "input (deg)", "size", "straight", "max dev", "speed var")
-    widths = [max(len(r[i]) for r in [head, *rows]) for i in range(len(head))]
-    print(f"straight part: longest run within {args.tol:g} × size of a line (mm)")
-    for r in [head, *rows]:
-        print("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
-    print("walkers: quadruped_hoecken, hexapod_tripod")
+    rows = catalog.table(rel_tol=args.tol, samples=args.samples, cache=not args.no_cache)
+    for line in catalog.format_table(rows, args.tol):
+        print(line)
     return 0
 
 
@@ -174,7 +153,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         "catalog", help="list the built-in linkages with their straight-line figures"
     )
     cat.add_argument("--tol", type=float, default=1e-3, help="straightness tolerance / size")
-    cat.add_argument("--samples", type=int, default=20001, help="samples per circuit")
+    cat.add_argument(
+        "--samples",
+        type=int,
+        default=catalog.TABLE_SAMPLES,
+        help=f"samples per circuit (default {catalog.TABLE_SAMPLES})",
+    )
+    cat.add_argument(
+        "--no-cache", action="store_true", help="recompute instead of using the user cache"
+    )
     cat.set_defaults(func=_catalog)
     args = parser.parse_args(argv)
     if getattr(args, "samples", None) is not None and args.samples < 8:

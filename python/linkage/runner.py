@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any
+from functools import partial
+from typing import Any, Union
 
 import numpy as np
 from numpy.typing import NDArray
@@ -49,7 +50,59 @@ from linkage.scene import (
 from linkage.walker import Simulation, Walker, gait_phases
 
 Array = NDArray[np.float64]
-Row = tuple[str, str, str, str]
+Value = Union[float, int, str, tuple[float, ...], None]
+"""A figure's typed value: a number, a pair such as a range, a word (a class), or ``None`` for
+a value that is not a finite number (an infinite radius, an undefined margin)."""
+
+
+class _AsText:
+    """The default :attr:`Row.value`: the row's text (a word, a list of names)."""
+
+
+_AS_TEXT = _AsText()
+
+
+class Row(tuple[str, str, str, str]):
+    """One figure of the table: iterable as four strings — (figure, value, unit, error
+    estimate) — as the terminal shows them, and carrying the typed :attr:`value`, :attr:`unit`
+    and :attr:`error` (a number, or ``None`` when there is none) for the JSON summary.
+    """
+
+    value: Value
+    error: float | None
+    exact: bool
+
+    def __new__(
+        cls,
+        figure: str,
+        text: str,
+        unit: str = "",
+        note: str = "",
+        value: Value | _AsText = _AS_TEXT,
+        error: float | None = None,
+        exact: bool = False,
+    ) -> Row:
+        self = super().__new__(cls, (figure, text, unit, note))
+        self.value = (text or None) if isinstance(value, _AsText) else value
+        self.error = error
+        self.exact = exact
+        return self
+
+    @property
+    def figure(self) -> str:
+        return self[0]
+
+    @property
+    def text(self) -> str:
+        return self[1]
+
+    @property
+    def unit(self) -> str:
+        return self[2]
+
+    @property
+    def note(self) -> str:
+        return self[3]
 
 
 @dataclass
@@ -59,7 +112,9 @@ class Result:
     scene: Scene
     time: Array
     theta: Array
-    figures: list[Row] = field(default_factory=list)
+    figures: list[tuple[str, str, str, str]] = field(default_factory=list)
+    """The figures table: each a :class:`Row` (four strings, with the typed value, unit and
+    error as attributes); typed as plain 4-tuples so that callers may add rows of their own."""
     stages: dict[str, float] = field(default_factory=dict)
     """Seconds per stage, in the order run: only the stages the outputs needed."""
     sweep: Sweep | None = None
@@ -71,15 +126,184 @@ class Result:
     simulation: Simulation | None = None
     mechanism: FourBar | Mechanism | None = None
     walker: Walker | None = None
+    drive: Any = None
+    """The drive the run used (its crank angles over time)."""
     arrays: dict[str, Array] = field(default_factory=dict)
+    check_samples: tuple[int, ...] = ()
+    """Sample counts of the runs at other resolutions that give the sampled figures their
+    error estimates (:func:`check_counts`)."""
+
+
+# -- numbers as the table prints them ---------------------------------------------------------
+
+SIG_MAX = 6
+"""Significant digits of a figure known to better than a millionth (exact, or nearly)."""
+SIG_UNKNOWN = 4
+"""Significant digits of a figure without an error estimate."""
+
+
+def significant_digits(x: float, error: float | None) -> int:
+    """Digits of ``x`` its ``error`` supports: down to one digit below the error's leading
+    digit, between 2 and :data:`SIG_MAX` (:data:`SIG_UNKNOWN` without an error)."""
+    if error is None or not math.isfinite(error) or error < 0:
+        return SIG_UNKNOWN
+    if x == 0 or not math.isfinite(x):
+        return 2
+    if error == 0:
+        return SIG_MAX
+    digits = math.floor(math.log10(abs(x))) - math.floor(math.log10(error)) + 2
+    return max(2, min(SIG_MAX, digits))
+
+
+def format_number(x: float, error: float | None = None, digits: int | None = None) -> str:
+    """``x`` with the significant digits its ``error`` supports (or ``digits``): positional
+    from 0.001 to 10⁶, else ``1.4e-4`` style; ``∞``/``−∞``/``NaN`` spelled as such. An exact
+    value (``error == 0``) gets up to :data:`SIG_MAX` digits, without trailing zeros.
+
+    >>> format_number(44.2523, 0.155), format_number(0.0014, 1e-7), format_number(6.6e-4, 1.2e-4)
+    ('44.25', '0.00140000', '6.6e-4')
+    >>> format_number(12741226936709.7, None), format_number(3, 0), format_number(2 / 3, 0)
+    ('1.274e13', '3', '0.666667')
+    """
+    if math.isnan(x):
+        return "NaN"
+    if math.isinf(x):
+        return "∞" if x > 0 else "−∞"
+    sig = digits if digits is not None else significant_digits(x, error)
+    if x == 0:
+        return "0"
+
+    def trim(text: str) -> str:
+        if error == 0 and digits is None and "." in text:
+            return text.rstrip("0").rstrip(".")
+        return text
+
+    mag = math.floor(math.log10(abs(x)))
+    if -3 <= mag < 6:
+        text = f"{x:.{max(0, sig - 1 - mag)}f}"
+        if float(text) != 0 or x == 0:
+            return trim(text)
+    mant, _, exp = f"{x:.{sig - 1}e}".partition("e")
+    return f"{trim(mant)}e{int(exp)}"
+
+
+def format_error(error: float | None) -> str:
+    """An error estimate to two significant digits (``0`` when the values agreed exactly)."""
+    if error is None or not math.isfinite(error):
+        return "unknown"
+    return "0" if error == 0 else format_number(error, digits=2)
+
+
+def length_unit(scene: Scene) -> str:
+    """The scene's length unit, or ``length units`` when the scene names none."""
+    return scene.units or "length units"
+
+
+def torque_unit(scene: Scene) -> str:
+    """The unit of a torque: force × length, with masses in kg and times in s."""
+    if scene.units == "m":
+        return "N·m"
+    if scene.units:
+        return f"kg·{scene.units}²/s²"
+    return "kg·(length unit)²/s²"
 
 
 def _e(x: float) -> str:
-    return f"{x:.1e}"
+    return format_number(x, digits=2)
 
 
-def _f(x: float, d: int = 3) -> str:
-    return f"{x:.{d}f}"
+def _spread(x: float, others: Sequence[float | None]) -> float | None:
+    """The largest difference between ``x`` and the same figure at the other resolutions."""
+    diffs = [abs(x - o) for o in others if o is not None]
+    if not diffs or not all(math.isfinite(d) for d in diffs):
+        return None
+    return max(diffs)
+
+
+def _vs(ns: Sequence[int]) -> str:
+    if not ns:
+        return "no second resolution within the memory limit"
+    return f"vs {' and '.join(map(str, ns))} samples"
+
+
+def _row(
+    figure: str,
+    x: float,
+    unit: str,
+    others: Sequence[float | None],
+    ns: Sequence[int],
+    note: str = "",
+) -> Row:
+    """A sampled figure: ``x`` at the run's samples, its error estimated as the largest
+    difference from ``others``, the same figure at ``ns`` samples."""
+    err = _spread(x, others) if math.isfinite(x) else None
+    told = f"±{format_error(err)} ({_vs(ns)})"
+    return Row(
+        figure,
+        format_number(x, err),
+        unit,
+        f"{told}; {note}" if note else told,
+        value=x if math.isfinite(x) else None,
+        error=err,
+    )
+
+
+def _exact(figure: str, x: float, unit: str, note: str = "exact", error: float = 0.0) -> Row:
+    """A figure that does not depend on the sampling (``error`` its round-off, if known)."""
+    return Row(figure, format_number(x, error), unit, note, value=x, error=error, exact=True)
+
+
+def _pair(
+    figure: str,
+    pair: tuple[float, float],
+    unit: str,
+    others: Sequence[tuple[float, float] | None],
+    ns: Sequence[int],
+    sep: str = " … ",
+) -> Row:
+    """A pair of sampled figures (a range, min/max), the error the larger of the two."""
+    e0 = _spread(pair[0], [o[0] if o else None for o in others])
+    e1 = _spread(pair[1], [o[1] if o else None for o in others])
+    err = None if e0 is None or e1 is None else max(e0, e1)
+    text = sep.join(format_number(v, err) for v in pair)
+    return Row(
+        figure,
+        text,
+        unit,
+        f"±{format_error(err)} ({_vs(ns)})",
+        value=tuple(float(v) for v in pair),
+        error=err,
+    )
+
+
+def _affordable_checks(
+    scene: Scene, study: FourBar | Mechanism | Walker, n: int
+) -> tuple[int, ...]:
+    """:func:`check_counts` within the memory limit, with every run alive at once: both when
+    they fit, else the half only, else none (the figures then carry no error estimate)."""
+    half, double = check_counts(n)
+    if estimate_memory(scene, study, n + half + double) <= MEMORY_CAP:
+        return (half, double)
+    if estimate_memory(scene, study, n + half) <= MEMORY_CAP:
+        return (half,)
+    return ()
+
+
+def check_counts(n: int, double: bool = True) -> tuple[int, ...]:
+    """The sample counts a run of ``n`` samples is checked at: about half as many, on a grid
+    that shares only its ends with the run's (``n_half − 1`` coprime to ``n − 1``, so that no
+    extreme is found again at a shared sample), and — when ``double`` — twice as many, on the
+    run's grid refined (every sample and the midpoints). The first catches aliasing (a
+    figure that depends on where the samples fall), the second the slow convergence of
+    extremes; a figure's error estimate is its largest difference from the two.
+
+    >>> check_counts(721), check_counts(8, double=False)
+    ((360, 1441), (4,))
+    """
+    half = max(3, (n - 1) // 2 + 1)
+    while half > 3 and math.gcd(half - 1, n - 1) != 1:
+        half -= 1
+    return (half, 2 * n - 1) if double else (half,)
 
 
 # What `run` may raise from a stage besides LinkageError: numpy and arithmetic errors on data
@@ -658,7 +882,9 @@ def check_memory_estimate(
 def run(
     scene: Scene, samples: int | None = None, progress: Callable[[str], None] | None = None
 ) -> Result:
-    """Run the stages ``scene.outputs`` need.
+    """Run the stages ``scene.outputs`` need, and each again at the sample counts of
+    :func:`check_counts` (the stage ``second resolution``; the doubled run only when it fits
+    the memory limit): the largest difference is the error estimate of every sampled figure.
 
     Raises
     ------
@@ -680,7 +906,7 @@ def run(
             raise
         except _ARITHMETIC as exc:
             raise LinkageError(f"stage {name!r} failed: {exc}") from None
-        stages[name] = time.perf_counter() - t0
+        stages[name] = stages.get(name, 0.0) + time.perf_counter() - t0
         return out
 
     study, leg = stage("build", lambda: _build_study(scene))
@@ -692,23 +918,43 @@ def run(
         _check_legs(scene, walker, drive, duration, n)
     t = np.linspace(0.0, duration, n)
     theta, omega, alpha = drive.angles(t)
+    ns = _affordable_checks(scene, study, n)
+    alts = [np.linspace(0.0, duration, k) for k in ns]
     res = Result(scene=scene, time=t, theta=theta, mechanism=None if walker else leg, walker=walker)
+    res.check_samples = ns
+    res.drive = drive
     res.arrays.update(time=t, theta=theta, omega=omega, alpha=alpha)
     rows = res.figures
-    rows.append(("drive", _drive_label(scene, drive), "", ""))
-    rows.append(("duration / samples", f"{duration:.4g} s / {n}", "", ""))
+    rows.append(Row("drive", _drive_label(scene, drive)))
+    rows.append(_exact("duration", duration, "s"))
+    rows.append(Row("samples", str(n), "", f"errors {_vs(ns)}", value=n, exact=True))
+    second = "second resolution"
 
     if walker is not None:
         per_leg = isinstance(drive, CrankSchedule)
         sim = stage("walker", lambda: walker.simulate(time=t, drive=drive, per_leg_time=per_leg))
+        sims = [
+            stage(second, partial(walker.simulate, time=ta, drive=drive, per_leg_time=per_leg))
+            for ta in alts
+        ]
         res.simulation = sim
         # Loop-closure residual of the legs' own kinematics over the run (zero if exact).
         closure = max(
             _rigidity(leg.linkage, leg.linkage.sweep(theta + leg.phase)) for leg in walker.legs
         )
         res.arrays["closure"] = np.array([closure])
-        _walker_figures(res, sim, walker, duration, period)
-        res.figures.insert(3, ("leg loop-closure residual", _e(closure), scene.units, "0 if exact"))
+        rows.append(
+            Row(
+                "leg loop-closure residual",
+                _e(closure),
+                length_unit(scene),
+                "0 if exact",
+                value=closure,
+                error=closure,
+                exact=True,
+            )
+        )
+        _walker_figures(res, sim, sims, walker, duration, period)
         if scene.wants("cam"):
             res.cam = stage("cam", lambda: _cam(res, scene))
         return _finish(res, stages)
@@ -718,27 +964,31 @@ def run(
     if not sweep.valid.any():
         raise _no_assembly(scene, mech, drive, duration, n)
     res.sweep = sweep
-    _trajectory_figures(res, mech, sweep)
+    angles = [drive.angles(ta) for ta in alts]
+    sweeps = [stage(second, partial(mech.sweep, a[0])) for a in angles]
+    _trajectory_figures(res, mech, sweep, sweeps)
 
     # Straightness reports the speed variation along the straight part, so it needs rates too.
+    rates2: list[Sweep] = []
     if scene.wants("velocity", "acceleration", "straightness"):
-        rates = stage(
-            "rates",
-            lambda: mech.sweep(
-                theta, omega=omega, alpha=alpha, outputs=("point", "velocity", "acceleration")
-            ),
-        )
+        outs = ("point", "velocity", "acceleration")
+        rates = stage("rates", lambda: mech.sweep(theta, omega=omega, alpha=alpha, outputs=outs))
+        rates2 = [
+            stage(second, partial(mech.sweep, a[0], omega=a[1], alpha=a[2], outputs=outs))
+            for a in angles
+        ]
         res.rates = rates
-        _rate_figures(res, rates, t)
+        _rate_figures(res, rates, rates2)
     if scene.wants("instant_centres", "curvature"):
-        outs = tuple(o for o in ("instant_centres", "curvature") if scene.wants(o))
-        geo = stage("geometry", lambda: mech.sweep(theta, outputs=("point", *outs)))
+        geo_outs = ("point", *(o for o in ("instant_centres", "curvature") if scene.wants(o)))
+        geo = stage("geometry", lambda: mech.sweep(theta, outputs=geo_outs))
+        geo2 = [stage(second, partial(mech.sweep, a[0], outputs=geo_outs)) for a in angles]
         res.geometry = geo
-        _geometry_figures(res, geo, sweep)
+        _geometry_figures(res, geo, sweep, geo2)
     if scene.wants("straightness"):
-        res.straight = stage("straightness", lambda: _straightness(res, mech))
+        res.straight = stage("straightness", lambda: _straightness(res, mech, rates2 or sweeps))
     if scene.wants("torque"):
-        res.forces = stage("torque", lambda: _torque(res, scene, mech, t, drive))
+        res.forces = stage("torque", lambda: _torque(res, scene, mech, t, alts, drive))
     if scene.wants("cam"):
         res.cam = stage("cam", lambda: _cam(res, scene))
     return _finish(res, stages)
@@ -756,11 +1006,12 @@ def _drive_label(scene: Scene, drive: Any) -> str:
         speed = f"{d['rpm']:g} rpm" if "rpm" in d else f"{d['omega']:g} rad/s"
         if isinstance(drive, Geared):
             crank = drive.train.output_speed(d["rpm"] if "rpm" in d else d["omega"])
-            return f"constant {speed}{gears} (crank {crank:.3f})"
+            return f"constant {speed}{gears} (crank {format_number(crank, 0)} rad/s)"
         return f"constant {speed}"
     if d["kind"] == "program":
         return f"motion program, {len(d['segments'])} segments{gears}"
-    return f"crank schedule: foot {d['foot_speed']:g}/s, duty factor {d['duty_factor']:g}"
+    u = length_unit(scene)
+    return f"crank schedule: foot {d['foot_speed']:g} {u}/s, duty factor {d['duty_factor']:g}"
 
 
 def _rigidity(mech: FourBar | Mechanism, s: Sweep) -> float:
@@ -780,166 +1031,294 @@ def _rigidity(mech: FourBar | Mechanism, s: Sweep) -> float:
     return worst
 
 
-def _trajectory_figures(res: Result, mech: FourBar | Mechanism, s: Sweep) -> None:
+def _ranges(s: Sweep) -> tuple[tuple[float, float], tuple[float, float]] | None:
     p = s.point[s.valid]
+    if not len(p):
+        return None
+    return (
+        (float(p[:, 0].min()), float(p[:, 0].max())),
+        (float(p[:, 1].min()), float(p[:, 1].max())),
+    )
+
+
+def _trajectory_figures(
+    res: Result, mech: FourBar | Mechanism, s: Sweep, others: list[Sweep]
+) -> None:
     res.arrays.update(point=s.point, joints=s.joints, valid=s.valid.astype(float), margin=s.margin)
     closure = _rigidity(mech, s)
     res.arrays["closure"] = np.array([closure])
     rows = res.figures
-    rows.append(("samples assembled", f"{int(s.valid.sum())} / {len(s.valid)}", "", "exact"))
-    if len(p):
-        u = res.scene.units
-        rows.append(
-            (
-                "trace x range",
-                f"{_f(p[:, 0].min())} … {_f(p[:, 0].max())}",
-                u,
-                f"closure {_e(closure)}",
-            )
+    ns = res.check_samples
+    u = length_unit(res.scene)
+    ok = int(s.valid.sum())
+    rows.append(
+        Row("samples assembled", f"{ok} / {len(s.valid)}", "", "exact", value=ok, exact=True)
+    )
+    rows.append(
+        Row(
+            "loop-closure residual",
+            _e(closure),
+            u,
+            "0 if exact",
+            value=closure,
+            error=closure,
+            exact=True,
         )
-        rows.append(
-            (
-                "trace y range",
-                f"{_f(p[:, 1].min())} … {_f(p[:, 1].max())}",
-                u,
-                f"closure {_e(closure)}",
-            )
-        )
+    )
+    fine, alt = _ranges(s), [_ranges(o) for o in others]
+    if fine is not None:
+        rows.append(_pair("trace x range", fine[0], u, [a[0] if a else None for a in alt], ns))
+        rows.append(_pair("trace y range", fine[1], u, [a[1] if a else None for a in alt], ns))
     if isinstance(mech, FourBar):
-        rows.append(("Grashof class", mech.grashof(), "", "exact"))
+        rows.append(Row("Grashof class", mech.grashof(), "", "exact", exact=True))
 
 
-def _rate_figures(res: Result, s: Sweep, t: Array) -> None:
-    v, a = s.velocity, s.acceleration
-    res.arrays.update(velocity=v, acceleration=a)
+def _peaks(s: Sweep) -> tuple[float, float]:
     ok = s.valid
-    # Derivative consistency: the analytic velocity against a central difference in time.
-    fd = (s.point[2:] - s.point[:-2]) / (t[2:] - t[:-2])[:, None]
-    both = ok[2:] & ok[:-2] & ok[1:-1]
-    err = float(np.nanmax(np.abs(fd[both] - v[1:-1][both]))) if both.any() else math.nan
-    speed = np.linalg.norm(v[ok], axis=1)
-    accel = np.linalg.norm(a[ok], axis=1)
+    speed = np.linalg.norm(s.velocity[ok], axis=1)
+    accel = np.linalg.norm(s.acceleration[ok], axis=1)
+    return (
+        float(speed.max()) if len(speed) else math.nan,
+        float(accel.max()) if len(accel) else math.nan,
+    )
+
+
+def _rate_figures(res: Result, s: Sweep, others: list[Sweep]) -> None:
+    res.arrays.update(velocity=s.velocity, acceleration=s.acceleration)
+    (speed, accel), alt = _peaks(s), [_peaks(o) for o in others]
+    u = length_unit(res.scene)
+    ns = res.check_samples
     if res.scene.wants("velocity"):
-        res.figures.append(
-            (
-                "peak trace speed",
-                _f(float(speed.max()), 2),
-                f"{res.scene.units}/s",
-                f"vel {_e(err)}",
-            )
-        )
+        res.figures.append(_row("peak trace speed", speed, f"{u}/s", [a[0] for a in alt], ns))
     if res.scene.wants("acceleration"):
-        afd = (v[2:] - v[:-2]) / (t[2:] - t[:-2])[:, None]
-        aerr = float(np.nanmax(np.abs(afd[both] - a[1:-1][both]))) if both.any() else math.nan
         res.figures.append(
-            (
-                "peak trace acceleration",
-                _f(float(accel.max()), 1),
-                f"{res.scene.units}/s²",
-                f"acc {_e(aerr)}",
-            )
+            _row("peak trace acceleration", accel, f"{u}/s²", [a[1] for a in alt], ns)
         )
 
 
-def _geometry_figures(res: Result, g: Sweep, s: Sweep) -> None:
+STRAIGHT_RADIUS = 1e6
+"""A path whose every radius of curvature exceeds this many times its extent is straight: its
+radius is reported as ∞ (the finite values are round-off of an exact line)."""
+
+
+def _on_a_line(p: Array, extent: float) -> bool:
+    """Whether every point of ``p`` lies within 1e-9 × ``extent`` of one line (a straight
+    path: its radius is ∞ even where the point stops and turns back, where the sampled
+    radius ``|v|³/|v × a|`` is 0/0)."""
+    if len(p) < 3 or not extent > 0:
+        return False
+    d = p - p.mean(axis=0)
+    _, _, vt = np.linalg.svd(d, full_matrices=False)
+    off = np.abs(d @ vt[-1])
+    return bool(off.max() <= 1e-9 * extent)
+
+
+def _smallest_radius(g: Sweep, s: Sweep) -> float:
+    """The smallest radius of curvature over the run; ``inf`` for a straight path."""
+    r = g.curvature_radius
+    fin = np.isfinite(r) & (r >= 0)
+    p = s.point[s.valid]
+    extent = float(np.nanmax(np.ptp(p, axis=0))) if len(p) else 0.0
+    if not fin.any() or _on_a_line(p, extent):
+        return math.inf
+    smallest = float(np.min(r[fin]))
+    return math.inf if smallest > STRAIGHT_RADIUS * max(extent, 1e-300) else smallest
+
+
+def _geometry_figures(res: Result, g: Sweep, s: Sweep, others: list[Sweep]) -> None:
+    u = length_unit(res.scene)
     if res.scene.wants("curvature"):
-        c, r = g.curvature_centre, g.curvature_radius
-        res.arrays.update(curvature_centre=c, curvature=g.curvature)
-        fin = np.isfinite(r) & (r > 0)
+        res.arrays.update(curvature_centre=g.curvature_centre, curvature=g.curvature)
+        c, rad = g.curvature_centre, g.curvature_radius
         est = three_point_centres(s.point, 1)
-        # Compare where the centre is a "centre of rotation" (radius below the path's extent);
-        # near inflections both centres run off to infinity and their distance means nothing.
+        # The core's centres against circles through three neighbouring samples, where the
+        # centre is a "centre of rotation" (radius below the path's extent); near inflections
+        # both run off to infinity and their distance means nothing.
         extent = float(np.nanmax(np.ptp(s.point[s.valid], axis=0))) if s.valid.any() else 0.0
-        inner = np.isfinite(est[:, 0]) & np.isfinite(c[1:-1, 0]) & (r[1:-1] < extent)
-        err = (
-            float(np.max(np.linalg.norm(est[inner] - c[1:-1][inner], axis=1)))
+        inner = np.isfinite(est[:, 0]) & np.isfinite(c[1:-1, 0]) & (rad[1:-1] < extent)
+        check = (
+            f"3-point check {_e(float(np.max(np.linalg.norm(est[inner] - c[1:-1][inner], 1))))}"
             if inner.any()
-            else math.nan
+            else ""
         )
-        smallest = _f(float(np.min(r[fin])), 4) if fin.any() else "none"
-        res.figures.append(
-            ("smallest radius of curvature", smallest, res.scene.units, f"3-point {_e(err)}")
-        )
+        r, alt = _smallest_radius(g, s), [_smallest_radius(o, o) for o in others]
+        if math.isinf(r):
+            res.figures.append(
+                Row(
+                    "smallest radius of curvature",
+                    "∞ (straight path)",
+                    u,
+                    "the path is a line to 1e-9 of its extent, or every radius exceeds "
+                    f"{STRAIGHT_RADIUS:g} × it",
+                    value=None,
+                    error=None,
+                )
+            )
+        else:
+            res.figures.append(
+                _row(
+                    "smallest radius of curvature",
+                    r,
+                    u,
+                    [a if math.isfinite(a) else None for a in alt],
+                    res.check_samples,
+                    check,
+                )
+            )
     if res.scene.wants("instant_centres"):
         res.arrays.update(
             instant_centres=g.instant_centres, instant_centre_directions=g.instant_centre_directions
         )
         at_inf = int(np.count_nonzero(g.instant_centre_at_infinity))
         res.figures.append(
-            ("instant centres at infinity (samples × pairs)", str(at_inf), "", "flagged")
+            Row(
+                "instant centres at infinity (samples × pairs)",
+                str(at_inf),
+                "",
+                "flagged",
+                value=at_inf,
+            )
         )
 
 
-def _straightness(res: Result, mech: FourBar | Mechanism) -> StraightPart | None:
+def _straight_size(mech: FourBar | Mechanism, s: Sweep) -> float:
+    if isinstance(mech, FourBar):
+        return max(mech.ground, mech.crank, mech.coupler, mech.rocker)
+    return float(np.nanmax(np.ptp(s.point[s.valid], axis=0)))
+
+
+def _straightness(
+    res: Result, mech: FourBar | Mechanism, others: list[Sweep]
+) -> StraightPart | None:
     s = res.rates or res.sweep
     assert s is not None
-    size = (
-        max(mech.ground, mech.crank, mech.coupler, mech.rocker)
-        if isinstance(mech, FourBar)
-        else float(np.nanmax(np.ptp(s.point[s.valid], axis=0)))
-    )
+    u = length_unit(res.scene)
+    size = _straight_size(mech, s)
     tol = 1e-3 * size
+    name = "straight part within 0.1 % of size"
     if not (math.isfinite(tol) and tol > 0):
-        res.figures.append(("straight part within 0.1 % of size", "none", "", "no extent"))
+        res.figures.append(Row(name, "none", "", "no extent"))
         return None
     vel = res.rates.velocity if res.rates is not None else None
     part = straightness(s.point, tol, velocity=vel)
     if part is None:
-        res.figures.append(("straight part within 0.1 % of size", "none", "", f"tol {_e(tol)}"))
+        res.figures.append(Row(name, "none", "", f"tolerance {_e(tol)} {u}"))
         return None
+    parts = [
+        straightness(o.point, tol, velocity=o.velocity if res.rates is not None else None)
+        for o in others
+    ]
+    ns = res.check_samples
     res.figures.append(
-        ("straight part within 0.1 % of size", _f(part.length), "", f"tol {_e(tol)}")
+        _row(
+            name,
+            part.length,
+            u,
+            [p.length if p else None for p in parts],
+            ns,
+            f"tolerance {_e(tol)}",
+        )
     )
     res.figures.append(
-        ("straight part max deviation", _e(part.max_deviation), "", "vs its LS line")
+        _row(
+            "straight part max deviation",
+            part.max_deviation,
+            u,
+            [p.max_deviation if p else None for p in parts],
+            ns,
+            "from its least-squares line",
+        )
     )
     if part.speed_variation is not None:
-        variation = (
-            f"{100 * part.speed_variation:.1f}%"
-            if math.isfinite(part.speed_variation)
-            else "undefined (the trace stands still)"
-        )
-        res.figures.append(("speed variation along it", variation, "", "this drive"))
+        if math.isfinite(part.speed_variation):
+            alt = [p.speed_variation if p else None for p in parts]
+            res.figures.append(
+                _row(
+                    "speed variation along it",
+                    100 * part.speed_variation,
+                    "%",
+                    [100 * v if v is not None and math.isfinite(v) else None for v in alt],
+                    ns,
+                    "this drive",
+                )
+            )
+        else:
+            res.figures.append(
+                Row("speed variation along it", "undefined (the trace stands still)", "%")
+            )
     return part
 
 
-def _torque(res: Result, scene: Scene, mech: FourBar | Mechanism, t: Array, drive: Any) -> Forces:
+def _torque(
+    res: Result, scene: Scene, mech: FourBar | Mechanism, t: Array, alts: list[Array], drive: Any
+) -> Forces:
     masses, loads = build_masses(scene, mech)
     f = forces(mech, time=t, drive=drive, masses=masses, gravity=scene.gravity, loads=loads)
+    f2 = [
+        forces(mech, time=ta, drive=drive, masses=masses, gravity=scene.gravity, loads=loads)
+        for ta in alts
+    ]
     res.arrays.update(torque=f.torque, power_torque=f.power_torque)
     check = float(np.nanmax(np.abs(f.torque - f.power_torque)))
-    res.figures.append(
-        (
-            "driver torque mean |T| / peak",
-            f"{f.mean_abs_torque:.4g} / {f.peak_torque:.4g}",
-            "",
-            f"vs power {_e(check)}",
-        )
-    )
+    unit = torque_unit(scene)
+    ns = res.check_samples
+    note = f"power method agrees to {_e(check)}"
+    mean = [g.mean_abs_torque for g in f2]
+    res.figures.append(_row("driver torque mean |T|", f.mean_abs_torque, unit, mean, ns, note))
+    peak = [g.peak_torque for g in f2]
+    res.figures.append(_row("driver torque peak |T|", f.peak_torque, unit, peak, ns, note))
     return f
+
+
+CAM_SAMPLES = 721
+"""Cam profile samples (every 0.5°); the error estimate compares :func:`check_counts`."""
+
+
+def _cam_values(p: Any) -> tuple[float, float]:
+    return math.degrees(p.max_pressure_angle), float(np.nanmin(np.abs(p.profile_radius)))
 
 
 def _cam(res: Result, scene: Scene) -> Any:
     cam = build_cam(scene)
-    p = cam.profile(721)
+    p = cam.profile(CAM_SAMPLES)
+    ns = check_counts(CAM_SAMPLES)
+    alt = [_cam_values(cam.profile(k)) for k in ns]
     res.arrays.update(cam_profile=p.profile, cam_pitch=p.pitch, cam_pressure_angle=p.pressure_angle)
+    angle, radius = _cam_values(p)
+    res.figures.append(_row("cam max pressure angle", angle, "deg", [a[0] for a in alt], ns))
     res.figures.append(
-        ("cam max pressure angle", _f(math.degrees(p.max_pressure_angle), 2), "deg", "sampled 0.5°")
+        _row("cam smallest profile radius", radius, length_unit(scene), [a[1] for a in alt], ns)
     )
-    res.figures.append(
-        (
-            "cam smallest profile radius",
-            _f(float(np.nanmin(np.abs(p.profile_radius))), 3),
-            "",
-            "sampled 0.5°",
-        )
-    )
-    res.figures.append(("cam check", "ok" if not p.problems else "; ".join(p.problems), "", ""))
+    res.figures.append(Row("cam check", "ok" if not p.problems else "; ".join(p.problems)))
     return p
 
 
+def _walker_values(sim: Simulation, duration: float, period: float) -> dict[str, float]:
+    """The sampled walker figures of one simulation (compared between two resolutions)."""
+    cycles = duration / period if period > 0 else 1.0
+    down = sim.stance.sum(1)
+    travel = float(sim.body_position[-1])
+    return {
+        "duty": float(sim.duty_factor.mean()),
+        "stride": float(np.nanmean(sim.stride)),
+        "lift": float(sim.lift_height.min()),
+        "travel": travel,
+        "speed": travel / duration,
+        "slip": float(sim.slip_distance.sum()) / cycles,
+        "spread": float(np.nanmax(sim.spread)),
+        "down_min": float(down.min()),
+        "down_max": float(down.max()),
+        "margin": float(np.min(np.where(np.isfinite(sim.margin), sim.margin, np.inf))),
+    }
+
+
 def _walker_figures(
-    res: Result, sim: Simulation, walker: Walker, duration: float, period: float
+    res: Result,
+    sim: Simulation,
+    others: list[Simulation],
+    walker: Walker,
+    duration: float,
+    period: float,
 ) -> None:
     scene = res.scene
     res.arrays.update(
@@ -948,68 +1327,65 @@ def _walker_figures(
         body_position=sim.body_position,
         margin=sim.margin,
     )
+    a = _walker_values(sim, duration, period)
+    alt = [_walker_values(o, duration, period) for o in others]
+    ns = res.check_samples
+
+    def row(figure: str, key: str, unit: str, note: str = "") -> Row:
+        return _row(figure, a[key], unit, [b[key] for b in alt], ns, note)
+
     rows = res.figures
-    u = scene.units
-    rows.append(("legs", ", ".join(sim.legs), "", ""))
-    rows.append(("duty factor (per leg, mean)", _f(float(sim.duty_factor.mean())), "", "sampled"))
-    rows.append(("stride", _f(float(np.nanmean(sim.stride))), u, "sampled"))
-    rows.append(
-        ("lift height (obstacle a foot clears)", _f(float(sim.lift_height.min())), u, "sampled")
-    )
-    rows.append(("body clearance", _f(walker.body_underside - sim.ground), u, "exact"))
-    rows.append(
-        (
-            "body travel / mean speed",
-            f"{_f(float(sim.body_position[-1]))} / {_f(float(sim.body_position[-1] / duration))}",
-            f"{u}, {u}/s",
-            "trapezoid",
-        )
-    )
+    u = length_unit(scene)
+    rows.append(Row("legs", ", ".join(sim.legs)))
+    rows.append(row("duty factor (per leg, mean)", "duty", "of the cycle"))
+    rows.append(row("stride", "stride", u))
+    rows.append(row("lift height (obstacle a foot clears)", "lift", u))
+    rows.append(_exact("body clearance", walker.body_underside - sim.ground, u))
+    rows.append(row("body travel", "travel", u, "trapezoid"))
+    rows.append(row("mean body speed", "speed", f"{u}/s"))
     if scene.wants("stability"):
-        rows.append(_margin_row(sim, u))
+        rows.append(_margin_row(sim, u, [b["margin"] for b in alt], ns))
     if scene.wants("slip"):
-        cycles = duration / period if period > 0 else 1.0
-        rows.append(
-            (
-                "foot slip per cycle (all feet)",
-                _e(float(sim.slip_distance.sum()) / cycles),
-                u,
-                "trapezoid",
-            )
-        )
-        rows.append(
-            ("largest stance-speed spread", _e(float(np.nanmax(sim.spread))), f"{u}/s", "sampled")
-        )
+        rows.append(row("foot slip per cycle (all feet)", "slip", u, "trapezoid"))
+        rows.append(row("largest stance-speed spread", "spread", f"{u}/s"))
     if scene.wants("gait"):
+        lo, hi = int(a["down_min"]), int(a["down_max"])
+        e0 = _spread(a["down_min"], [b["down_min"] for b in alt]) or 0.0
+        e1 = _spread(a["down_max"], [b["down_max"] for b in alt]) or 0.0
         rows.append(
-            (
+            Row(
                 "feet down (min / max)",
-                f"{int(sim.stance.sum(1).min())} / {int(sim.stance.sum(1).max())}",
-                "",
-                "sampled",
+                f"{lo} / {hi}",
+                "feet",
+                f"±{format_error(max(e0, e1))} ({_vs(ns)})",
+                value=(lo, hi),
+                error=max(e0, e1),
             )
         )
 
 
-def _margin_row(sim: Simulation, units: str) -> Row:
+def _margin_row(sim: Simulation, units: str, others: list[float], ns: Sequence[int]) -> Row:
     """The smallest stability margin; with no foot on the ground at some samples there is no
     support polygon and no margin, which the row says instead of printing −inf."""
     unsupported = sim.margin == -np.inf
     if unsupported.any():
         k = int(np.argmax(unsupported))
-        return (
+        return Row(
             "minimum stability margin",
             f"none: no foot down at {int(unsupported.sum())} / {len(sim.margin)} samples",
             "",
-            f"first at t = {sim.time[k]:.4g} s",
+            f"first at t = {format_number(float(sim.time[k]), digits=4)} s",
+            value=None,
         )
     finite = np.isfinite(sim.margin)
     if not finite.any():
-        return ("minimum stability margin", "undefined", "", "no support polygon")
+        return Row("minimum stability margin", "undefined", "", "no support polygon", value=None)
     k = int(np.argmin(np.where(finite, sim.margin, np.inf)))
-    return (
+    return _row(
         "minimum stability margin",
-        _f(float(sim.margin[k])),
+        float(sim.margin[k]),
         units,
-        f"at t = {sim.time[k]:.4g} s",
+        [o if math.isfinite(o) else None for o in others],
+        ns,
+        f"at t = {format_number(float(sim.time[k]), digits=4)} s",
     )
