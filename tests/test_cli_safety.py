@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from linkage import report, runner
+from linkage import export, report, runner
 from linkage._core import LinkageError
 from linkage.cli import main
 from linkage.report import MARKER
@@ -30,6 +30,8 @@ SCENE = (
     '[drive]\nkind = "constant"\nomega = 1.0\n'
 )
 FAST = ["--samples", "31", "--frames", "2", "--quiet"]
+DATA_FILES = {"data.csv", "data.npz", "summary.json", "mechanism.dxf", "mechanism.svg"}
+"""What every report writes besides its plots and its page."""
 
 
 def scene_file(folder: Path, name: str = "fast", outputs: str = '["trajectory"]') -> Path:
@@ -235,7 +237,7 @@ def test_force_replaces_a_report_linkage_wrote_and_only_that(world, capsys):
     # With --force it is replaced: the file the new run does not write is gone too.
     assert main(["run", str(scene_file(world)), "--out", str(out), *FAST, "--force"]) == 0
     names = {p.name for p in out.iterdir()}
-    assert names == {MARKER, "trajectory.png", "data.csv", "data.npz", "summary.json"}
+    assert names == {MARKER, "trajectory.png", "index.html", *DATA_FILES}
     assert set(json.loads((out / MARKER).read_text())["files"]) == names - {MARKER}
     assert leftovers(world) == []
 
@@ -337,12 +339,12 @@ def interrupt_mid_write(monkeypatch, exc: BaseException) -> list[Path]:
     """Make the data writer write one file, then raise ``exc``; returns the folders it saw."""
     seen: list[Path] = []
 
-    def data(res, folder):
+    def data(res, folder, **_):
         seen.append(folder)
         (folder / "data.npz").write_bytes(b"half a file")
         raise exc
 
-    monkeypatch.setattr(report, "_data", data)
+    monkeypatch.setattr(export, "write_data", data)
     return seen
 
 
@@ -400,11 +402,11 @@ def test_a_failing_write_names_the_path_and_keeps_the_old_report(
     out = Path.cwd() / "linkage-report" / "other"
     before = snapshot(world)
 
-    def data(res, folder):
+    def data(res, folder, **_):
         (folder / "data.npz").write_bytes(b"half")
         raise OSError(err, os.strerror(err), str(folder / "data.npz"))
 
-    monkeypatch.setattr(report, "_data", data)
+    monkeypatch.setattr(export, "write_data", data)
     assert main(["run", str(scene_file(world, "other")), *FAST, "--force"]) == 2
     line = one_error_line(capsys.readouterr().err)
     assert words in line and str(Path("linkage-report") / "other" / "data.npz") in line, line

@@ -29,13 +29,14 @@ import shutil
 import signal
 import sys
 import threading
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from linkage._core import LinkageError
+from linkage.drawing import Array, Drawing, LinkShape
 from linkage.runner import Result
 
 MARKER = ".linkage-report"
@@ -256,10 +257,6 @@ def write(res: Result, folder: Path, frames: int = 48, force: bool = False) -> l
     — the temporary folder is removed and an earlier report is left as it was; an ``OSError``
     becomes a ``LinkageError`` naming the path.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-
     target = _resolve(folder)
     earlier = os.path.lexists(target)
     if earlier:
@@ -332,221 +329,659 @@ def _version() -> str:
     return str(__version__)
 
 
+# -- figures ------------------------------------------------------------------------------------
+#
+# Every drawing of the linkage (the pose in trajectory.png, each frame of animation.gif) comes
+# from one model, ``linkage.drawing.Drawing``, drawn by ``_Pose``: bars as thick lines with pin
+# circles, plates as filled polygons, ground pivots with the hatched symbol, slider blocks on
+# their guides, walkers' legs on the body with the ground line, stance feet and support polygon.
+
+DPI = 110
+GIF_DPI = 80
+"""Resolution of the PNG figures and of the animation's frames."""
+PALETTE = (
+    "#1f77b4",
+    "#ff7f0e",
+    "#2ca02c",
+    "#d62728",
+    "#9467bd",
+    "#8c564b",
+    "#e377c2",
+    "#7f7f7f",
+    "#bcbd22",
+    "#17becf",
+    "#393b79",
+    "#637939",
+    "#7b4173",
+    "#000000",
+)
+"""Line colours, distinct for 14 lines (tab10 and four dark shades); past that, dashed."""
+
+BAR = "#2c3e50"
+CRANK = "#c0392b"
+PLATE = "#aec7e8"
+
+
+def line_style(k: int) -> tuple[str, str]:
+    """Colour and line style of the ``k``-th line of a plot: distinct for 28 lines."""
+    return PALETTE[k % len(PALETTE)], "-" if (k // len(PALETTE)) % 2 == 0 else "--"
+
+
+def length_unit(units: str) -> str:
+    """The unit printed on a length axis: the scene's, or "length units" when it names none."""
+    return units or "length units"
+
+
+def _torque_unit(units: str) -> str:
+    if units == "m":
+        return "N·m"
+    return f"kg·{units}²/s²" if units else "kg·(length unit)²/s²"
+
+
+def leg_legend(names: Sequence[str], labels: Sequence[str]) -> list[str]:
+    """Legend text per leg: its position label, with its own name when that differs."""
+    return [lab if lab == name else f"{lab} ({name})" for name, lab in zip(names, labels)]
+
+
+def _new_figure(width: float, height: float) -> Any:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width, height), dpi=DPI)
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def _margins(
+    fig: Any,
+    left: float = 0.85,
+    right: float = 0.2,
+    bottom: float = 0.6,
+    top: float = 0.4,
+    gap: float = 0.0,
+    rows: int = 1,
+) -> None:
+    """Fixed margins in inches (no tight layout: it lays out every tick label twice)."""
+    w, h = fig.get_size_inches()
+    inner = h - bottom - top - gap * (rows - 1)
+    fig.subplots_adjust(
+        left=left / w,
+        right=1 - right / w,
+        bottom=bottom / h,
+        top=1 - top / h,
+        hspace=gap / (inner / rows) if rows > 1 else 0.2,
+    )
+
+
+def _tidy(ax: Any, xlabel: str, ylabel: str) -> None:
+    from matplotlib.ticker import MaxNLocator
+
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.xaxis.set_major_locator(MaxNLocator(nbins=6))
+    ax.yaxis.set_major_locator(MaxNLocator(nbins=6))
+    ax.grid(alpha=0.3)
+
+
+def _view(ax: Any, d: Drawing, equal: bool = True, margin: float = 0.06) -> None:
+    """Axis labels with units and limits from the drawing (joints and paths only)."""
+    x0, x1, y0, y1 = d.bounds(margin)
+    if not equal and d.feet is not None:
+        # Height not to scale: fit the feet's heights and the ground, so a lift shows.
+        z = d.feet[..., 1][np.isfinite(d.feet[..., 1])]
+        lo = min(float(z.min()), d.ground if d.ground is not None else float(z.min()))
+        hi = float(z.max())
+        pad = 0.15 * (hi - lo) if hi > lo else 1.0
+        y0, y1 = lo - pad, hi + 2 * pad
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_aspect("equal" if equal else "auto", adjustable="box")
+    u = length_unit(d.units)
+    scale = "" if equal else ", not to scale"
+    _tidy(ax, f"{d.axes[0]} ({u})", f"{d.axes[1]} ({u}{scale})")
+
+
+def _panel_height(d: Drawing, width: float, equal: bool) -> float:
+    x0, x1, y0, y1 = d.bounds()
+    if not equal:
+        return 1.6
+    return float(min(max(width * (y1 - y0) / (x1 - x0), 1.4), 5.0))
+
+
+def _ground_symbol(ax: Any, d: Drawing, size: float) -> None:
+    """The hatched ground symbol under every pivot (static)."""
+    from matplotlib.collections import LineCollection, PolyCollection
+
+    if not d.pivots:
+        return
+    row = _reference_row(d)
+    tri, lines = [], []
+    for j in d.pivots:
+        x, y = row[j]
+        if not (np.isfinite(x) and np.isfinite(y)):
+            continue
+        s = size
+        tri.append([(x, y), (x - 0.6 * s, y - s), (x + 0.6 * s, y - s)])
+        lines.append([(x - s, y - s), (x + s, y - s)])
+        for k in range(5):
+            a = x - s + k * 0.5 * s
+            lines.append([(a, y - s), (a - 0.35 * s, y - 1.45 * s)])
+    ax.add_collection(PolyCollection(tri, facecolors="white", edgecolors="k", lw=1, zorder=2))
+    ax.add_collection(LineCollection(lines, colors="k", lw=1, zorder=2))
+
+
+def _reference_row(d: Drawing) -> Array:
+    ok = np.isfinite(d.positions).all(axis=(1, 2))
+    row: Array = d.positions[int(np.argmax(ok))]
+    return row
+
+
+def _size(d: Drawing) -> float:
+    x0, x1, y0, y1 = d.bounds(0.0)
+    return 0.035 * max(x1 - x0, y1 - y0)
+
+
+class _Pose:
+    """The moving artists of a drawing, updated to a sample by :meth:`update` (the static ones
+    — paths, ground, body, pivots — are drawn once by :func:`_static`)."""
+
+    def __init__(self, ax: Any, d: Drawing, animated: bool, faint: bool = False) -> None:
+        from matplotlib.collections import LineCollection, PolyCollection
+        from matplotlib.patches import Polygon
+
+        self.d = d
+        self.size = _size(d)
+        alpha = 0.45 if faint else 1.0
+        walker = bool(d.legs)
+        lw = 2.0 if walker else 3.0
+        self.bars = [k for k in d.links if k.kind == "bar"]
+        self.plates = [k for k in d.links if k.kind == "plate"]
+        driver = _driver_link(d)
+
+        def colour(k: LinkShape) -> str:
+            if k.leg is not None:
+                return line_style(k.leg)[0]
+            return CRANK if k is driver else BAR
+
+        self.bar_art = LineCollection(
+            [], colors=[colour(k) for k in self.bars], linewidths=lw, alpha=alpha, zorder=4
+        )
+        self.bar_art.set_capstyle("round")
+        self.plate_art = PolyCollection(
+            [],
+            facecolors=[PLATE if k.leg is None else colour(k) for k in self.plates],
+            edgecolors=[BAR if k.leg is None else colour(k) for k in self.plates],
+            linewidths=1.5,
+            alpha=0.75 * alpha,
+            zorder=3,
+        )
+        moving = sorted({j for k in self.bars + self.plates for j in k.joints})
+        self.pin_idx = np.array(moving, dtype=int)
+        (self.pins,) = ax.plot(
+            [], [], "o", ms=3.5 if walker else 5, mfc="white", mec="k", mew=1, alpha=alpha, zorder=5
+        )
+        # Only the artists there is something to draw with (each costs time in every frame).
+        self.artists: list[Any] = [self.plate_art] if self.plates else []
+        self.artists += [self.bar_art, self.pins]
+        for art in self.artists[:-1]:
+            ax.add_collection(art)
+        self.trace: Any = None
+        if d.trace is not None:
+            (self.trace,) = ax.plot([], [], "o", ms=6, color="tab:red", alpha=alpha, zorder=6)
+            self.artists.append(self.trace)
+        self.blocks: Any = None
+        if d.sliders:
+            self.guides = LineCollection([], colors="0.35", linewidths=1.2, zorder=2)
+            self.blocks = PolyCollection([], facecolors="#f5cba7", edgecolors="k", zorder=4.5)
+            # Each guide spans the block's whole travel (and its origin), the same every frame.
+            self.travel = []
+            for sl in d.sliders:
+                rel = d.positions[:, sl.joint] - d.positions[:, sl.origin]
+                along = np.einsum("ij,ij->i", rel, sl.direction)
+                along = along[np.isfinite(along)]
+                lo = min(0.0, float(along.min())) if len(along) else 0.0
+                hi = max(0.0, float(along.max())) if len(along) else 0.0
+                self.travel.append((lo - 2.5 * self.size, hi + 2.5 * self.size))
+            ax.add_collection(self.guides)
+            ax.add_collection(self.blocks)
+            self.artists += [self.guides, self.blocks]
+        self.down: Any = None
+        if d.feet is not None:
+            (self.down,) = ax.plot([], [], "s", ms=6, color="k", zorder=7, label="stance foot")
+            (self.up,) = ax.plot(
+                [], [], "o", ms=5, mfc="white", mec="0.3", zorder=7, label="foot in swing"
+            )
+            self.artists += [self.down, self.up]
+        self.support: Any = None
+        if d.support is not None:
+            self.support = Polygon(
+                np.zeros((1, 2)),
+                closed=True,
+                fc="tab:green",
+                alpha=0.18,
+                ec="tab:green",
+                zorder=1,
+                label="support polygon",
+            )
+            ax.add_patch(self.support)
+            self.artists.append(self.support)
+        for a in self.artists:
+            a.set_animated(animated)
+
+    def update(self, i: int) -> list[Any]:
+        d = self.d
+        p = d.positions[i]
+        self.bar_art.set_segments([p[list(k.joints)] for k in self.bars])
+        if self.plates:
+            self.plate_art.set_verts([p[list(k.joints)] for k in self.plates])
+        self.pins.set_data(p[self.pin_idx, 0], p[self.pin_idx, 1])
+        if self.trace is not None and d.trace is not None:
+            self.trace.set_data([p[d.trace, 0]], [p[d.trace, 1]])
+        if self.blocks is not None:
+            s = self.size
+            guides, blocks = [], []
+            for sl, (lo, hi) in zip(d.sliders, self.travel):
+                u = sl.direction[i]
+                n = np.array([-u[1], u[0]])
+                o, c = p[sl.origin], p[sl.joint]
+                guides.append([o + lo * u, o + hi * u])
+                blocks.append(
+                    [
+                        c - 1.2 * s * u - 0.7 * s * n,
+                        c + 1.2 * s * u - 0.7 * s * n,
+                        c + 1.2 * s * u + 0.7 * s * n,
+                        c - 1.2 * s * u + 0.7 * s * n,
+                    ]
+                )
+            self.guides.set_segments(guides)
+            self.blocks.set_verts(blocks)
+        if self.down is not None and d.feet is not None and d.stance is not None:
+            f, st = d.feet[i], d.stance[i]
+            self.down.set_data(f[st, 0], f[st, 1])
+            self.up.set_data(f[~st, 0], f[~st, 1])
+        if self.support is not None and d.support is not None:
+            hull = d.support[i]
+            hull = hull[np.isfinite(hull).all(axis=1)]
+            self.support.set_xy(hull if len(hull) else np.full((1, 2), np.nan))
+        return self.artists
+
+
+def _driver_link(d: Drawing) -> LinkShape | None:
+    """The crank: the first moving link of a mechanism's program."""
+    for k in d.links:
+        if k.kind != "ground" and k.leg is None:
+            return k
+    return None
+
+
+def _static(ax: Any, d: Drawing, paths: bool = True, labels: bool = True) -> list[Any]:
+    """The parts of a drawing that do not move: traced paths, ground line, body, pivots, CG.
+    Returns the paths' lines (for a legend)."""
+    handles: list[Any] = []
+    size = _size(d)
+    if d.ground is not None:
+        x0, x1, y0, _ = d.bounds()
+        ax.axhspan(y0 - 10 * size, d.ground, fc="none", ec="0.65", hatch="////", lw=0, zorder=0)
+        ax.axhline(d.ground, color="#7f5f3f", lw=2, zorder=1, label="ground")
+    if d.body is not None:
+        ax.fill(d.body[:, 0], d.body[:, 1], fc="0.88", ec="0.45", lw=1, zorder=1, label="body")
+    if paths:
+        for k, (name, path) in enumerate(d.paths.items()):
+            colour, ls = line_style(k) if d.legs else ("k", "-")
+            lw = 1.1 if d.legs else 1.5
+            handles += ax.plot(
+                path[:, 0], path[:, 1], ls=ls, color=colour, lw=lw, zorder=2, label=name
+            )
+    _ground_symbol(ax, d, size)
+    if d.cg is not None:
+        ax.plot(*d.cg, "P", ms=9, color="tab:red", mec="k", zorder=8, label="CG projection")
+    if labels and d.legs and d.axes == ("x", "y"):
+        row = _reference_row(d)
+        for li, lab in enumerate(d.leg_labels):
+            mine = [j for k in d.links if k.leg == li and k.kind == "ground" for j in k.joints]
+            if not mine:
+                continue
+            x, y = row[mine].mean(axis=0)
+            # Inside the body, halfway from the leg's mount to the centre line (clear of the
+            # ground symbols hanging from the mount).
+            mid = d.cg[1] if d.cg is not None else 0.0
+            ax.text(
+                x,
+                y + 0.55 * (mid - y),
+                lab,
+                ha="center",
+                va="center",
+                fontsize=8,
+                fontweight="bold",
+                color=line_style(li)[0],
+                zorder=9,
+            )
+    return handles
+
+
+def _pose_sample(d: Drawing) -> int:
+    """The sample a static figure shows: a sixth of the run in (a crank along the ground line
+    at θ = 0 hides it), or the first assembled one."""
+    ok = np.asarray(np.isfinite(d.positions).all(axis=(1, 2)), dtype=bool)
+    k = ok.shape[0] // 6
+    return k if bool(ok[k]) else int(np.argmax(ok))
+
+
+def _walker_views(res: Result, units: str) -> list[tuple[Drawing, bool]]:
+    """The side and top views of a run's walker, each with whether it is drawn to scale (the
+    side view of legs that all lie in the horizontal plane is only a few pad heights tall)."""
+    from linkage.drawing import leg_angles, walker_drawing
+    from linkage.drive import CrankSchedule
+    from linkage.runner import build_drive
+
+    walker, sim = res.walker, res.simulation
+    assert walker is not None and sim is not None
+    drive, _ = build_drive(res.scene, walker.legs[0].linkage)
+    theta = leg_angles(walker, sim, drive, isinstance(drive, CrankSchedule))
+    side = walker_drawing(walker, sim, "side", theta, units)
+    top = walker_drawing(walker, sim, "top", theta, units)
+    sagittal = any(leg.plane == "sagittal" for leg in walker.legs)
+    return [(side, sagittal), (top, True)] if sagittal else [(top, True), (side, False)]
+
+
+def _drawing_figure(
+    views: list[tuple[Drawing, bool]], width: float, top: float = 0.4, bottom: float = 0.6
+) -> tuple[Any, list[Any]]:
+    """A figure with one panel per view, each as tall as its drawing at the figure's width."""
+    heights = [_panel_height(d, width - 1.05, eq) for d, eq in views]
+    gap = 0.85
+    fig = _new_figure(width, sum(heights) + top + bottom + gap * (len(views) - 1))
+    axes = fig.subplots(len(views), 1, gridspec_kw={"height_ratios": heights}, squeeze=False)
+    _margins(fig, top=top, bottom=bottom, gap=gap, rows=len(views))
+    return fig, [a for row in axes for a in row]
+
+
+def _mechanism_drawing(res: Result, units: str) -> Drawing:
+    from linkage.drawing import mechanism_drawing
+
+    assert res.mechanism is not None and res.sweep is not None
+    return mechanism_drawing(res.mechanism, res.sweep, units)
+
+
 def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
     """Write the report's files into the (new, empty) ``folder``; returns them."""
     import time
 
-    import matplotlib.pyplot as plt
-
     started = time.perf_counter()
     files: list[Path] = []
     scene = res.scene
+    units = scene.units
+    u = length_unit(units)
 
     def save(fig: Any, name: str) -> None:
         path = folder / name
-        fig.tight_layout()
-        try:
-            fig.savefig(path, dpi=110)
-        finally:
-            plt.close(fig)
+        fig.savefig(path, dpi=DPI, pil_kwargs={"compress_level": 2})
         files.append(path)
 
     t = res.time
+    sim = res.simulation
+    walker_views = _walker_views(res, units) if sim is not None else []
+    drawing = _mechanism_drawing(res, units) if res.sweep is not None else None
     if scene.wants("trajectory"):
-        fig, ax = plt.subplots(figsize=(6, 4.5))
-        if res.simulation is not None:
-            for i, leg in enumerate(res.simulation.legs):
-                sim_feet = res.simulation.feet
-                ax.plot(sim_feet[:, i, 0], sim_feet[:, i, 2], lw=1, label=leg)
-            ax.set_xlabel("x (body frame)")
-            ax.set_ylabel("z")
-            ax.set_title("foot paths, side view")
-            ax.legend(fontsize=7)
+        if sim is not None:
+            save(_walker_trajectory(res, walker_views), "trajectory.png")
         else:
-            s = res.sweep
-            assert s is not None
-            ax.plot(s.point[:, 0], s.point[:, 1], "k-", lw=1.5, label=f"trace {s.trace}")
-            if res.geometry is not None and "curvature" in res.geometry.outputs:
-                c = res.geometry.curvature_centre
-                ax.plot(
-                    c[:, 0], c[:, 1], ".", ms=2, color="tab:orange", label="centres of curvature"
-                )
-            if res.straight is not None and res.straight.count:
-                idx = res.straight.indices
-                ax.plot(
-                    s.point[idx, 0],
-                    s.point[idx, 1],
-                    "-",
-                    lw=3,
-                    color="tab:green",
-                    alpha=0.6,
-                    label="straight part",
-                )
-            ax.set_title(f"{scene.name}: trace path")
-            ax.legend(fontsize=7)
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.grid(alpha=0.3)
-        save(fig, "trajectory.png")
+            assert drawing is not None
+            save(_trajectory(res, drawing), "trajectory.png")
 
     rates = res.rates
     if rates is not None and scene.wants("velocity", "acceleration"):
-        fig, axes = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
+        fig = _new_figure(6, 5)
+        axes = fig.subplots(2, 1, sharex=True)
         axes[0].plot(t, np.linalg.norm(rates.velocity, axis=1), "tab:blue")
-        axes[0].set_ylabel("speed")
         axes[1].plot(t, np.linalg.norm(rates.acceleration, axis=1), "tab:red")
-        axes[1].set_ylabel("acceleration")
-        axes[1].set_xlabel("time (s)")
-        axes[0].set_title(f"{scene.name}: trace point against time")
-        for a in axes:
-            a.grid(alpha=0.3)
+        _tidy(axes[0], "", f"speed ({u}/s)")
+        _tidy(axes[1], "time (s)", f"acceleration ({u}/s²)")
+        axes[0].set_title(f"{scene.name}: trace point {rates.trace} against time")
+        _margins(fig, gap=0.15, rows=2)
         save(fig, "rates.png")
 
     if res.forces is not None:
-        fig, ax = plt.subplots(figsize=(6, 4))
-        ax.plot(
-            np.degrees(np.mod(res.theta, 2 * math.pi)),
-            res.forces.torque,
-            ".",
-            ms=2,
-            label="Newton–Euler",
-        )
-        ax.set_xlabel("crank angle (deg)")
-        ax.set_ylabel("driver torque")
-        ax.set_title(f"{scene.name}: torque against crank angle")
-        ax.grid(alpha=0.3)
+        fig = _new_figure(6, 4)
+        ax = fig.subplots()
+        ax.plot(np.degrees(np.mod(res.theta, 2 * math.pi)), res.forces.torque, ".", ms=2)
+        _tidy(ax, "crank angle (deg)", f"driver torque ({_torque_unit(units)})")
+        ax.set_xlim(0, 360)
+        ax.set_title(f"{scene.name}: torque against crank angle (Newton–Euler)")
+        _margins(fig)
         save(fig, "torque.png")
 
     if res.cam is not None:
         p = res.cam
-        fig, ax = plt.subplots(figsize=(5, 5))
+        fig = _new_figure(5, 5)
+        ax = fig.subplots()
         ax.plot(p.profile[:, 0], p.profile[:, 1], "k-", label="profile")
         ax.plot(p.pitch[:, 0], p.pitch[:, 1], "--", color="tab:gray", label="pitch curve")
+        ax.plot([0], [0], "+", color="k", ms=10, label="cam axis")
         ax.set_aspect("equal")
+        _tidy(ax, f"x ({u})", f"y ({u})")
         ax.legend(fontsize=7)
-        ax.set_title("cam")
+        ax.set_title(f"{scene.name}: cam")
+        _margins(fig)
         save(fig, "cam.png")
 
-    sim = res.simulation
-    if sim is not None and scene.wants("gait"):
-        fig, ax = plt.subplots(figsize=(6, max(2.0, 0.5 + 0.4 * len(sim.legs))))
-        for i, (_leg, bars) in enumerate(sim.gait_diagram()):
-            ax.broken_barh(
-                [(a, max(b - a, t[1] - t[0])) for a, b in bars], (i - 0.35, 0.7), color="k"
-            )
-        ax.set_yticks(range(len(sim.legs)), sim.legs)
-        ax.set_xlabel("time (s)")
-        ax.set_title("gait diagram (bars: stance)")
-        ax.set_xlim(t[0], t[-1])
-        save(fig, "gait.png")
-    if sim is not None and scene.wants("stability"):
-        fig, ax = plt.subplots(figsize=(6, 3.5))
-        m = np.where(np.isfinite(sim.margin), sim.margin, np.nan)
-        ax.plot(t, m, "tab:green")
-        ax.axhline(0, color="k", lw=0.8)
-        ax.set_xlabel("time (s)")
-        ax.set_ylabel("stability margin")
-        ax.set_title("static stability margin (CG projection)")
-        ax.grid(alpha=0.3)
-        save(fig, "stability.png")
-    if sim is not None and scene.wants("slip"):
-        fig, ax = plt.subplots(figsize=(6, 3.5))
-        ax.plot(t, sim.spread, "tab:purple")
-        ax.set_xlabel("time (s)")
-        ax.set_ylabel("stance speed spread")
-        ax.set_title("foot slip: spread of stance-foot speeds")
-        ax.grid(alpha=0.3)
-        save(fig, "slip.png")
+    if sim is not None:
+        names = leg_legend(sim.legs, walker_views[0][0].leg_labels)
+        if scene.wants("gait"):
+            save(_gait(res, names), "gait.png")
+        if scene.wants("stability"):
+            fig = _new_figure(6, 3.5)
+            ax = fig.subplots()
+            m = np.where(np.isfinite(sim.margin), sim.margin, np.nan)
+            ax.plot(t, m, "tab:green", label="margin")
+            ax.fill_between(t, m, 0, where=m < 0, color="tab:red", alpha=0.3, label="unstable")
+            ax.axhline(0, color="k", lw=0.8)
+            _tidy(ax, "time (s)", f"stability margin ({u})")
+            ax.set_xlim(t[0], t[-1])
+            ax.set_title(f"{scene.name}: static stability margin (CG projection)")
+            _margins(fig)
+            save(fig, "stability.png")
+        if scene.wants("slip"):
+            fig = _new_figure(6, 3.5)
+            ax = fig.subplots()
+            ax.plot(t, sim.spread, "tab:purple")
+            _tidy(ax, "time (s)", f"stance speed spread ({u}/s)")
+            ax.set_xlim(t[0], t[-1])
+            ax.set_title(f"{scene.name}: foot slip (spread of stance-foot speeds)")
+            _margins(fig)
+            save(fig, "slip.png")
 
     if scene.wants("animation"):
-        files.append(_animation(res, folder / "animation.gif", frames))
+        if sim is not None:
+            views = walker_views
+        else:
+            assert drawing is not None
+            views = [(drawing, True)]
+        files.append(_animation(res, views, folder / "animation.gif", frames))
 
+    from linkage import export, html_report
+
+    # The page embeds the plots and redraws the animation from the drawings already built.
+    shown = [d for d, _ in walker_views] or ([drawing] if drawing is not None else None)
+    pngs = [p for p in files if p.suffix == ".png"]
+    files.append(html_report.write_index(res, folder, pngs, shown))
     res.stages["report"] = time.perf_counter() - started
-    files.extend(_data(res, folder))
+    # Last: summary.json lists every file in the folder.
+    files.extend(export.write_data(res, folder))
     return files
 
 
-def _animation(res: Result, path: Path, frames: int) -> Path:
-    import matplotlib.pyplot as plt
-    from matplotlib.animation import FuncAnimation, PillowWriter
+def _trajectory(res: Result, d: Drawing) -> Any:
+    """The trace path with the mechanism drawn at its first assembled pose, the straight part
+    and the centres of curvature that fall in the view."""
+    from linkage.drawing import clip_to
 
-    fig, ax = plt.subplots(figsize=(4, 3.5))
-    n = len(res.time)
-    pick = np.linspace(0, n - 1, max(2, min(frames, n))).astype(int)
-    ax.set_aspect("equal", adjustable="box")
-    if res.simulation is not None:
-        sim = res.simulation
-        xs, zs = sim.feet[:, :, 0], sim.feet[:, :, 2]
-        ax.set_xlim(np.nanmin(xs) - 0.05 * np.ptp(xs), np.nanmax(xs) + 0.05 * np.ptp(xs))
-        ax.set_ylim(
-            min(np.nanmin(zs), 0) - 0.1 * np.ptp(zs), max(np.nanmax(zs), 0) + 0.1 * np.ptp(zs)
+    s = res.sweep
+    assert s is not None
+    fig, (ax,) = _drawing_figure([(d, True)], 6.4, bottom=0.95)
+    _static(ax, d)
+    i0 = _pose_sample(d)
+    _Pose(ax, d, animated=False, faint=True).update(i0)
+    if res.straight is not None and res.straight.count:
+        idx = res.straight.indices
+        ax.plot(
+            s.point[idx, 0],
+            s.point[idx, 1],
+            "-",
+            lw=6,
+            color="tab:green",
+            alpha=0.45,
+            label="straight part",
+            zorder=1.5,
         )
-        (feet,) = ax.plot([], [], "o")
-        (body,) = ax.plot([], [], "k-", lw=3)
+    _view(ax, d)
+    if res.geometry is not None and "curvature" in res.geometry.outputs:
+        c = res.geometry.curvature_centre
+        x0, x1 = ax.get_xlim()
+        y0, y1 = ax.get_ylim()
+        shown = clip_to(c, (x0, x1, y0, y1))
+        inside = int(np.isfinite(shown).all(axis=1).sum())
+        off = int(np.isfinite(c).all(axis=1).sum()) - inside
+        note = f" ({off} off the plot)" if off else ""
+        ax.plot(
+            shown[:, 0],
+            shown[:, 1],
+            ".",
+            ms=2,
+            color="tab:orange",
+            label=f"centres of curvature{note}",
+            zorder=2,
+        )
+    theta = math.degrees(float(res.theta[i0])) % 360
+    ax.set_title(f"{res.scene.name}: path of {s.trace}, pose at θ = {theta:.0f}°", fontsize=10)
+    # Below the plot, where it cannot hide the path or the linkage.
+    fig.legend(loc="lower center", ncol=3, fontsize=7, frameon=False)
+    return fig
 
-        def draw(k: int) -> Any:
-            i = pick[k]
-            down = sim.stance[i]
-            feet.set_data(xs[i], zs[i])
-            feet.set_color("k")
-            x0, x1 = np.nanmin(xs), np.nanmax(xs)
-            body.set_data([x0, x1], [0, 0])
-            ax.set_title(f"t = {res.time[i]:.2f} s, {int(down.sum())} feet down")
-            return feet, body
-    else:
-        s = res.sweep
-        assert s is not None
-        j = s.joints
-        ax.plot(s.point[:, 0], s.point[:, 1], "-", color="tab:gray", lw=1)
-        fin = j[np.isfinite(j[:, :, 0])]
-        ax.set_xlim(fin[:, 0].min() - 1, fin[:, 0].max() + 1)
-        ax.set_ylim(fin[:, 1].min() - 1, fin[:, 1].max() + 1)
-        (links,) = ax.plot([], [], "o-", color="k", lw=2, ms=4)
 
-        def draw(k: int) -> Any:
-            i = pick[k]
-            links.set_data(j[i, :, 0], j[i, :, 1])
-            ax.set_title(f"θ = {math.degrees(res.theta[i]) % 360:.0f}°")
-            return (links,)
+def _walker_trajectory(res: Result, views: list[tuple[Drawing, bool]]) -> Any:
+    """Foot paths in the side and top views, with the legs drawn at the first sample."""
+    fig, axes = _drawing_figure(views, 6.4, bottom=0.9)
+    handles: list[Any] = []
+    for ax, (d, equal) in zip(axes, views):
+        lines = _static(ax, d)
+        handles = handles or lines
+        _Pose(ax, d, animated=False, faint=True).update(0)
+        _view(ax, d, equal)
+        what = "side view" if d.axes[1] == "z" else "top view"
+        ax.set_title(f"{res.scene.name}: foot paths, {what} (body frame)", fontsize=10)
+    d0 = views[0][0]
+    labels = leg_legend(d0.legs, d0.leg_labels)
+    fig.legend(
+        handles,
+        labels,
+        loc="lower center",
+        ncol=min(6, len(labels)),
+        fontsize=7,
+        frameon=False,
+    )
+    return fig
 
-    anim = FuncAnimation(fig, draw, frames=len(pick), blit=False)
-    anim.save(path, writer=PillowWriter(fps=12))
-    plt.close(fig)
+
+def _gait(res: Result, names: list[str]) -> Any:
+    sim = res.simulation
+    assert sim is not None
+    t = res.time
+    fig = _new_figure(6, max(2.2, 0.8 + 0.4 * len(sim.legs)))
+    ax = fig.subplots()
+    step = t[1] - t[0] if len(t) > 1 else 1.0
+    for i, (_leg, bars) in enumerate(sim.gait_diagram()):
+        ax.broken_barh(
+            [(a, max(b - a, step)) for a, b in bars], (i - 0.35, 0.7), color=line_style(i)[0]
+        )
+    ax.set_yticks(range(len(sim.legs)), names)
+    ax.invert_yaxis()
+    ax.set_xlabel("time (s)")
+    ax.set_title(f"{res.scene.name}: gait diagram (bars: stance)")
+    ax.set_xlim(t[0], t[-1])
+    ax.grid(alpha=0.3, axis="x")
+    _margins(fig, left=0.9)
+    return fig
+
+
+def _animation(res: Result, views: list[tuple[Drawing, bool]], path: Path, frames: int) -> Path:
+    """The GIF: static parts drawn once; each frame restores them and draws only the moving
+    artists (blitting on the Agg canvas), its caption written with Pillow, and every frame
+    quantised to one shared palette."""
+    from PIL import Image, ImageDraw
+
+    d0 = views[0][0]
+    walker = bool(d0.legs)
+    fig, axes = _drawing_figure(
+        views, 5.6 if walker else 5.0, top=0.55, bottom=0.95 if walker else 0.6
+    )
+    poses = []
+    handles: list[Any] = []
+    for ax, (d, equal) in zip(axes, views):
+        lines = _static(ax, d, labels=True)
+        handles = handles or lines
+        _view(ax, d, equal)
+        poses.append(_Pose(ax, d, animated=True))
+    if walker:
+        for ax, (d, _) in zip(axes, views):
+            what = "side" if d.axes[1] == "z" else "top"
+            ax.set_title(f"{what} view (body frame)", fontsize=9)
+        fig.legend(
+            handles,
+            leg_legend(d0.legs, d0.leg_labels),
+            loc="lower center",
+            ncol=min(6, len(d0.legs)),
+            fontsize=7,
+            frameon=False,
+        )
+    fig.set_dpi(GIF_DPI)
+    canvas = fig.canvas
+    canvas.draw()
+    background = canvas.copy_from_bbox(fig.bbox)
+    # Frames spread over the samples that assembled (a linkage that cannot turn fully skips
+    # the angles where it does not exist).
+    ok = np.flatnonzero(np.isfinite(d0.positions).all(axis=(1, 2)))
+    if len(ok) < 2:
+        ok = np.arange(len(res.time))
+    pick = ok[np.linspace(0, len(ok) - 1, max(2, min(frames, len(ok)))).astype(int)]
+    sim = res.simulation
+    font = _caption_font(round(11 * GIF_DPI / 72))
+    images = []
+    for i in pick:
+        canvas.restore_region(background)
+        for pose in poses:
+            for a in pose.update(int(i)):
+                fig.draw_artist(a)
+        w, h = canvas.get_width_height()
+        im = Image.frombuffer("RGBA", (w, h), canvas.buffer_rgba(), "raw", "RGBA", 0, 1)
+        im = im.convert("RGB")
+        if sim is not None:
+            down = int(sim.stance[i].sum())
+            caption = f"{res.scene.name}: t = {res.time[i]:.2f} s, {down} feet down"
+        else:
+            theta = math.degrees(float(res.theta[i])) % 360
+            caption = f"{res.scene.name}: θ = {theta:.0f}°, t = {res.time[i]:.3f} s"
+        ImageDraw.Draw(im).text((im.width // 2, 8), caption, fill=(0, 0, 0), font=font, anchor="mt")
+        images.append(im)
+    # One palette for every frame, from a strip of a few frames (so all colours are in it).
+    sample = images[:: max(1, len(images) // 4)][:4]
+    strip = Image.new("RGB", (sum(im.width for im in sample), sample[0].height))
+    x = 0
+    for im in sample:
+        strip.paste(im, (x, 0))
+        x += im.width
+    palette = strip.quantize(colors=96, method=Image.Quantize.FASTOCTREE)
+    gif = [im.quantize(palette=palette, dither=Image.Dither.NONE) for im in images]
+    gif[0].save(path, save_all=True, append_images=gif[1:], duration=83, loop=0)
     return path
 
 
-def _data(res: Result, folder: Path) -> list[Path]:
-    arrays = {k: np.asarray(v) for k, v in res.arrays.items()}
-    npz = folder / "data.npz"
-    np.savez_compressed(npz, **arrays)  # type: ignore[arg-type]
-    # CSV: one row per sample, the per-sample scalar and 2-vector series.
-    n = len(res.time)
-    cols: dict[str, np.ndarray] = {}
-    for k, v in arrays.items():
-        if v.shape[:1] != (n,):
-            continue
-        if v.ndim == 1:
-            cols[k] = v
-        elif v.ndim == 2 and v.shape[1] == 2:
-            cols[f"{k}_x"], cols[f"{k}_y"] = v[:, 0], v[:, 1]
-        elif v.ndim == 2:
-            for i in range(v.shape[1]):
-                cols[f"{k}_{i}"] = v[:, i]
-    csv = folder / "data.csv"
-    header = ",".join(cols)
-    np.savetxt(csv, np.column_stack(list(cols.values())), delimiter=",", header=header, comments="")
-    summary = folder / "summary.json"
-    summary.write_text(
-        json.dumps(
-            {
-                "scene": res.scene.name,
-                "outputs": list(res.scene.outputs),
-                "figures": [
-                    dict(zip(("figure", "value", "unit", "error_estimate"), r)) for r in res.figures
-                ],
-                "stages_s": res.stages,
-                "files": sorted(p.name for p in folder.iterdir()) + ["summary.json"],
-            },
-            indent=2,
-        )
-    )
-    return [npz, csv, summary]
+def _caption_font(size: int) -> Any:
+    """Matplotlib's own sans-serif font for Pillow (Pillow's default if it cannot be read)."""
+    from matplotlib import font_manager
+    from PIL import ImageFont
+
+    try:
+        return ImageFont.truetype(font_manager.findfont("DejaVu Sans"), size)
+    except OSError:
+        return ImageFont.load_default(size)
