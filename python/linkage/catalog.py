@@ -372,7 +372,11 @@ def format_table(rows: list[Figures], rel_tol: float) -> list[str]:
                 None if f.speed_variation_error is None else 100 * f.speed_variation_error, ".1f"
             )
         else:
-            var = "undefined (stands still)"
+            var = (
+                "unbounded (reaches a toggle)"
+                if math.isinf(f.speed_variation)
+                else "undefined (stands still)"
+            )
         body.append(
             (
                 f.name,

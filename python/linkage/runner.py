@@ -1243,9 +1243,12 @@ def _straightness(
                 )
             )
         else:
-            res.figures.append(
-                Row("speed variation along it", "undefined (the trace stands still)", "%")
+            why = (
+                "unbounded (the run reaches a toggle)"
+                if math.isinf(part.speed_variation)
+                else "undefined (the trace stands still)"
             )
+            res.figures.append(Row("speed variation along it", why, "%"))
     return part
 
 
