@@ -121,7 +121,8 @@ impl<T: RealField + Copy> BodyMotion<T> {
     }
 
     /// Motion of body `id` from joint positions and rates (accelerations and jerks may be
-    /// zero slices when only velocities matter).
+    /// zero slices when only velocities matter). A joint index beyond a slice reads as NaN, so
+    /// short slices give a NaN motion, not a panic.
     pub fn of<const N: usize>(
         bodies: &Bodies<N>,
         id: BodyId,
@@ -141,11 +142,19 @@ impl<T: RealField + Copy> BodyMotion<T> {
             alpha_rate: T::zero(),
             omega_tol: T::zero(),
         };
+        let nan = crate::scalar::nan::<T>();
+        let get = |s: &[Vec2<T>], k: usize| s.get(k).copied().unwrap_or(Vec2::new(nan, nan));
+        let (pos, vel, acc, jerk) = (
+            |k| get(pos, k),
+            |k| get(vel, k),
+            |k| get(acc, k),
+            |k| get(jerk, k),
+        );
         let turn = |p: usize, q: usize| {
-            let d = pos[q] - pos[p];
+            let d = pos(q) - pos(p);
             let (w, al, jk) =
-                direction_rates(d, vel[q] - vel[p], acc[q] - acc[p], jerk[q] - jerk[p]);
-            let scale = (vel[p].norm() + vel[q].norm()) / d.norm();
+                direction_rates(d, vel(q) - vel(p), acc(q) - acc(p), jerk(q) - jerk(p));
+            let scale = (vel(p).norm() + vel(q).norm()) / d.norm();
             (
                 w,
                 al,
@@ -154,10 +163,10 @@ impl<T: RealField + Copy> BodyMotion<T> {
             )
         };
         let at = |k: usize, (w, al, jk, tol): (T, T, T, T)| BodyMotion {
-            origin: pos[k],
-            v: vel[k],
-            a: acc[k],
-            j: jerk[k],
+            origin: pos(k),
+            v: vel(k),
+            a: acc(k),
+            j: jerk(k),
             omega: w,
             alpha: al,
             alpha_rate: jk,
@@ -208,7 +217,7 @@ pub fn relative_centre<T: RealField + Copy, const N: usize>(
     pos: &[Vec2<T>],
 ) -> Centre<T> {
     match bodies.shared_joint(k, l) {
-        Some(j) => Centre::Finite(pos[j]),
+        Some(j) => pos.get(j).map_or(Centre::Undefined, |&p| Centre::Finite(p)),
         None => instant_centre(mk, ml),
     }
 }
