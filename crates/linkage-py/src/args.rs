@@ -127,3 +127,8 @@ pub mod named {
         to = "to";
     }
 }
+
+/// [`Real`] for `#[pyo3(from_py_with = ...)]`, where a default must stay a plain literal.
+pub fn real(obj: &Bound<'_, PyAny>) -> PyResult<f64> {
+    obj.extract::<Real>().map(|r| r.0)
+}

@@ -12,17 +12,16 @@ use crate::memory;
 /// Cam geometry at cam angles `phi` for follower motion `y` (N, 3: s, ds/dφ, d²s/dφ²).
 /// `roller_radius` None means a flat-faced follower. Returns a dict of arrays.
 #[pyfunction]
-#[pyo3(signature = (phi, y, base_radius, roller_radius=None, offset=Real(0.0)))]
+#[pyo3(signature = (phi, y, base_radius, roller_radius=None, offset=0.0))]
 pub fn cam_geometry<'py>(
     py: Python<'py>,
     phi: PyReadonlyArray1<'py, f64>,
     y: PyReadonlyArray2<'py, f64>,
     base_radius: Real,
     roller_radius: Option<Real>,
-    offset: Real,
+    #[pyo3(from_py_with = crate::args::real)] offset: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (base_radius, roller_radius, offset) =
-        (base_radius.0, roller_radius.map(|r| r.0), offset.0);
+    let (base_radius, roller_radius) = (base_radius.0, roller_radius.map(|r| r.0));
     let phi = phi
         .as_slice()
         .map_err(|_| linkage_error("phi must be a contiguous float64 array"))?;

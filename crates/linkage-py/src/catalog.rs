@@ -3,7 +3,6 @@
 use linkage_core::catalog as core_catalog;
 use pyo3::prelude::*;
 
-use crate::args::Real;
 use crate::error::linkage_error;
 use crate::fourbar::FourBar;
 use crate::mechanism::Mechanism;
@@ -29,9 +28,11 @@ pub fn catalog_four_bar(name: &str) -> PyResult<FourBar> {
 /// A catalogued multi-loop linkage: `(mechanism, joint names, trace index)`. `scale` is the
 /// pantograph's (ignored by the others).
 #[pyfunction]
-#[pyo3(signature = (name, scale=Real(2.0)))]
-pub fn catalog_linkage(name: &str, scale: Real) -> PyResult<(Mechanism, Vec<&'static str>, usize)> {
-    let scale = scale.0;
+#[pyo3(signature = (name, scale=2.0))]
+pub fn catalog_linkage(
+    name: &str,
+    #[pyo3(from_py_with = crate::args::real)] scale: f64,
+) -> PyResult<(Mechanism, Vec<&'static str>, usize)> {
     let linkage = match name {
         "hoecken_pantograph" => {
             core_catalog::hoecken_pantograph::<f64>(scale).map_err(crate::error::to_py)?

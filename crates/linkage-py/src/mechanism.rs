@@ -334,14 +334,14 @@ impl Mechanism {
     }
 
     /// Adds the crank about joint `centre`; returns its index.
-    #[pyo3(signature = (centre, radius, phase=Real(0.0)))]
+    #[pyo3(signature = (centre, radius, phase=0.0))]
     fn crank(
         &self,
         #[pyo3(from_py_with = named::centre)] centre: usize,
         radius: Real,
-        phase: Real,
+        #[pyo3(from_py_with = crate::args::real)] phase: f64,
     ) -> PyResult<usize> {
-        self.lock().crank(centre, radius.0, phase.0).map_err(to_py)
+        self.lock().crank(centre, radius.0, phase).map_err(to_py)
     }
 
     /// Adds an RRR dyad at r1 from p1 and r2 from p2 on `side` of p1 → p2.
