@@ -38,14 +38,19 @@ const ZERO_RATE: f64 = 64.0;
 /// give [`Centre::AtInfinity`] along the normal to the line (zero `a × b` to rounding);
 /// coincident ones [`Centre::Undefined`].
 pub fn circumcentre<T: RealField + Copy>(p0: Vec2<T>, p1: Vec2<T>, p2: Vec2<T>) -> Centre<T> {
-    let (a, b) = (p0 - p1, p2 - p1);
+    // Work in units of a power of two near the largest coordinate (exact; 1 for coordinates in
+    // [2⁻³², 2³²]), so neither the differences nor their squares overflow or underflow.
+    let big = p0.amax().max(p1.amax()).max(p2.amax());
+    let s = crate::dyad::pow2_scale(big);
+    let (q0, q1, q2) = (p0 / s, p1 / s, p2 / s);
+    let (a, b) = (q0 - q1, q2 - q1);
     let (na, nb) = (a.norm_squared(), b.norm_squared());
     let d = lit::<T>(2.0) * cross(a, b);
-    if na == T::zero() || nb == T::zero() {
+    if na == T::zero() || nb == T::zero() || !(na.is_finite() && nb.is_finite()) {
         return Centre::Undefined;
     }
     if d.abs() <= lit::<T>(16.0) * eps::<T>() * (na * nb).sqrt() {
-        let dir = p2 - p0;
+        let dir = q2 - q0;
         let n = dir.norm();
         return if n == T::zero() {
             Centre::Undefined
@@ -53,7 +58,14 @@ pub fn circumcentre<T: RealField + Copy>(p0: Vec2<T>, p1: Vec2<T>, p2: Vec2<T>) 
             Centre::AtInfinity(perp(dir / n))
         };
     }
-    Centre::Finite(p1 + Vec2::new(na * b.y - nb * a.y, nb * a.x - na * b.x) / d)
+    let c = (q1 + Vec2::new(na * b.y - nb * a.y, nb * a.x - na * b.x) / d) * s;
+    if c.x.is_finite() && c.y.is_finite() {
+        Centre::Finite(c)
+    } else {
+        // The centre lies beyond the float range: as good as at infinity, along the normal.
+        let dir = q2 - q0;
+        Centre::AtInfinity(perp(dir / dir.norm()))
+    }
 }
 
 /// Signed curvature and centre of curvature of a path at a point moving with velocity `v` and
@@ -66,17 +78,31 @@ pub fn circumcentre<T: RealField + Copy>(p0: Vec2<T>, p1: Vec2<T>, p2: Vec2<T>) 
 /// where `v × a` vanishes to rounding (an inflection or a straight path) the centre is at
 /// infinity along the normal.
 pub fn path_curvature<T: RealField + Copy>(p: Vec2<T>, v: Vec2<T>, a: Vec2<T>) -> (T, Centre<T>) {
-    let v2 = v.norm_squared();
-    if v2 == T::zero() || !v2.is_finite() || !(a.x.is_finite() && a.y.is_finite()) {
+    let finite = |w: Vec2<T>| w.x.is_finite() && w.y.is_finite();
+    if !(finite(p) && finite(v) && finite(a)) || v == Vec2::zeros() {
         return (crate::scalar::nan(), Centre::Undefined);
     }
+    // Velocity and acceleration in units of powers of two near their sizes (exact; 1 for
+    // ordinary sizes): κ = (sa/sv²)·κ' and the centre offset scales by sv²/sa.
+    let (sv, sa) = (
+        crate::dyad::pow2_scale(v.amax()),
+        crate::dyad::pow2_scale(a.amax()),
+    );
+    let (v, a) = (v / sv, a / sa);
+    let v2 = v.norm_squared();
     let c = cross(v, a);
     let speed = v2.sqrt();
-    let kappa = c / (v2 * speed);
+    let kappa = c / (v2 * speed) * (sa / sv) / sv;
     if c.abs() <= lit::<T>(16.0) * eps::<T>() * speed * a.norm() {
         return (T::zero(), Centre::AtInfinity(perp(v) / speed));
     }
-    (kappa, Centre::Finite(p + perp(v) * (v2 / c)))
+    let centre = p + perp(v) * (v2 / c) * (sv / sa) * sv;
+    if finite(centre) {
+        (kappa, Centre::Finite(centre))
+    } else {
+        // The radius exceeds the float range: the centre is as good as at infinity.
+        (kappa, Centre::AtInfinity(perp(v) / speed))
+    }
 }
 
 /// Instantaneous motion of a rigid body: a reference point's position and first three

@@ -277,9 +277,12 @@ impl<T: RealField + Copy> Program<'_, T> {
             return [end, T::zero(), T::zero(), T::zero()];
         }
         let (cycles, mut local) = if period.is_finite() {
-            let cycles = (t / period).floor();
-            // Rounding of `t − cycles·period` can leave `[0, period]` by an ulp.
-            (cycles, (t - cycles * period).max(T::zero()).min(period))
+            // `%` is exact (fmod): the time within the period is right however large `t` is.
+            let mut local = t % period;
+            if local < T::zero() {
+                local += period;
+            }
+            (((t - local) / period).round(), local.min(period))
         } else {
             (T::zero(), t)
         };

@@ -79,9 +79,13 @@ impl<'a, T: RealField + Copy> ScheduleTable<'a, T> {
     pub fn at(&self, t: T) -> (T, T, T) {
         let n = self.theta.len();
         let period = self.period();
-        let cycles = (t / period).floor();
-        // Rounding can put `local` an ulp below 0; below 0 it would index the wrong interval.
-        let local = (t - cycles * period).max(T::zero());
+        // `%` is exact (fmod), so the time within the period is right even when `t / period`
+        // is huge; `cycles` only scales `advance` (and is ±∞ only when the angle overflows).
+        let mut local = t % period;
+        if local < T::zero() {
+            local += period; // in (0, period]; `period` itself is handled below
+        }
+        let cycles = ((t - local) / period).round();
         let pos = local / self.dt;
         let k = pos.floor();
         // `as` saturates (NaN → 0), and `local ∈ [0, period]` keeps `k` in `0..=n` anyway.

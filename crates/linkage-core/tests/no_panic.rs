@@ -545,3 +545,61 @@ fn sweep_index_overflow_is_an_error() {
         Err(Error::CountOverflow { .. })
     ));
 }
+
+#[test]
+fn periodic_drives_at_huge_times_keep_the_time_within_the_period() {
+    // Schedule of period 0.2 (two samples 0.1 apart): at t = 1e17 + 0.05 the crank is a
+    // quarter of a sample past a sample point; the rates must be those of that local time.
+    let (theta, omega) = ([0.0, 1.0], [1.0, 1.0]);
+    let table = ScheduleTable::new(0.1, core::f64::consts::TAU, &theta, &omega).unwrap();
+    let t = 1e17_f64;
+    let local = t % 0.2;
+    let (_, w, a) = table.at(t);
+    let (_, w0, a0) = table.at(local);
+    assert_eq!((w, a), (w0, a0));
+    // Beyond the float range the angle overflows (±∞), but the rates stay those of local time.
+    let (th, w, a) = table.at(1e308);
+    let (_, w0, a0) = table.at(1e308 % 0.2);
+    assert!(th == f64::INFINITY && (w, a) == (w0, a0), "{th} {w} {a}");
+    // A program of period 3 at t = 3e15 + 1.5 is in the middle of its second segment.
+    let segs = [
+        Segment::new(1.0, 1.0, Some(MotionLaw::Cycloidal)).unwrap(),
+        Segment::new(2.0, -1.0, Some(MotionLaw::Cycloidal)).unwrap(),
+    ];
+    let p = Program {
+        start: 0.0,
+        segments: &segs,
+    };
+    let [_, v, _, _] = p.eval(3e15 + 1.5);
+    let [_, v0, _, _] = p.eval(1.5);
+    assert_eq!(v, v0);
+}
+
+#[test]
+fn centres_do_not_depend_on_scale() {
+    let c = |s: f64| circumcentre(Vec2::new(s, 0.0), Vec2::new(0.0, s), Vec2::new(-s, 0.0));
+    for s in [1.0, 1e308, 5e-324, 1e-300, 1e300] {
+        assert_eq!(
+            c(s),
+            linkage_core::Centre::Finite(Vec2::new(0.0, 0.0)),
+            "scale {s}"
+        );
+    }
+    // A circle of radius 2e300 about the origin, traversed at speed 3e300.
+    let (k, centre) = path_curvature(
+        Vec2::new(2e300_f64, 0.0),
+        Vec2::new(0.0, 3e300),
+        Vec2::new(-4.5e300, 0.0),
+    );
+    assert!((k * 2e300 - 1.0).abs() < 1e-15, "{k}");
+    let linkage_core::Centre::Finite(p) = centre else {
+        panic!("{centre:?}")
+    };
+    assert!(p.amax() < 1e285, "{p:?}"); // (2e300 to the rounding of its digits)
+    let (k, _) = path_curvature(
+        Vec2::new(2e-300_f64, 0.0),
+        Vec2::new(0.0, 3e-300),
+        Vec2::new(-4.5e-300, 0.0),
+    );
+    assert!((k * 2e-300 - 1.0).abs() < 1e-15, "{k}");
+}
