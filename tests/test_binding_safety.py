@@ -274,3 +274,15 @@ def test_forces_reaction_columns_do_not_depend_on_valid_samples() -> None:
     bad = _core.forces(m, theta, np.full(2, 1e308), np.zeros(2), inertia, (0.0, -9.81), [])
     assert ok["reaction_links"] and bad["reaction_links"] == ok["reaction_links"]
     assert bad["reactions"].shape == ok["reactions"].shape
+
+
+def test_wrong_tuple_lengths_are_linkage_errors() -> None:
+    # pyo3 reports these as a bare ValueError; the extension turns them into LinkageError.
+    with pytest.raises(LinkageError, match="length 2"):
+        _core.gear_train_compound([(1, 2, 3)])  # type: ignore[list-item]
+    with pytest.raises(LinkageError, match="length 2"):
+        _core.FourBar((0, 0, 0), (1, 0), 1, 1, 1, (0, 0), "open")  # type: ignore[arg-type]
+    m = _hoecken().mechanism()
+    z = np.zeros(1)
+    with pytest.raises(LinkageError, match="length 4"):
+        _core.forces(m, z, z, z, [(1.0, 0.0)], (0.0, 0.0), [])  # type: ignore[list-item]

@@ -2,11 +2,11 @@
 //! too large raise `LinkageError` naming the argument (never `OverflowError`, never a silent
 //! wrap), and a Python int too large for a float raises `LinkageError` too.
 
-use pyo3::exceptions::{PyOverflowError, PyTypeError};
+use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyAnyMethods;
 
-use crate::error::linkage_error;
+use crate::error::{linkage_error, LinkageError};
 
 /// The largest count or index accepted: numpy dimensions are signed 64-bit (`npy_intp`), so
 /// nothing larger could ever be an array length.
@@ -92,12 +92,37 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Real {
     }
 }
 
+/// A tuple (or other extractable value) whose extraction `ValueError`s — pyo3's "expected tuple
+/// of length 2, but got tuple of length 4" — become `LinkageError`s, so only the package's
+/// exceptions leave the extension.
+#[derive(Clone, Copy, Debug)]
+pub struct Strict<T>(pub T);
+
+impl<'a, 'py, T> FromPyObject<'a, 'py> for Strict<T>
+where
+    T: FromPyObject<'a, 'py>,
+{
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> Result<Self, Self::Error> {
+        let py = obj.py();
+        T::extract(obj).map(Strict).map_err(|e| {
+            let e: PyErr = e.into();
+            if e.is_instance_of::<PyValueError>(py) && !e.is_instance_of::<LinkageError>(py) {
+                linkage_error(e.value(py).to_string())
+            } else {
+                e
+            }
+        })
+    }
+}
+
 /// A pair of floats (a point).
-pub type RealPair = (Real, Real);
+pub type RealPair = Strict<(Real, Real)>;
 
 /// `(x, y)` of a pair of floats.
 pub fn xy(p: RealPair) -> (f64, f64) {
-    (p.0 .0, p.1 .0)
+    (p.0 .0 .0, p.0 .1 .0)
 }
 
 /// Extractors for `#[pyo3(from_py_with = ...)]`, one per argument name, so the messages of

@@ -4,7 +4,7 @@ use linkage_core::{Discontinuity, GearTrain, MotionLaw, Program, ScheduleTable, 
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
-use crate::args::{count_u32, Real};
+use crate::args::{count_u32, Real, Strict};
 use crate::error::{linkage_error, to_py};
 use crate::memory;
 
@@ -144,11 +144,11 @@ pub fn gear_train_simple(teeth: Vec<Bound<'_, PyAny>>) -> PyResult<(f64, i8)> {
 #[pyfunction]
 #[allow(clippy::type_complexity)]
 pub fn gear_train_compound(
-    stages: Vec<(Bound<'_, PyAny>, Bound<'_, PyAny>)>,
+    stages: Vec<Strict<(Bound<'_, PyAny>, Bound<'_, PyAny>)>>,
 ) -> PyResult<(f64, i8)> {
     let stages = stages
         .iter()
-        .map(|(a, b)| Ok((count_u32("driver teeth", a)?, count_u32("driven teeth", b)?)))
+        .map(|Strict((a, b))| Ok((count_u32("driver teeth", a)?, count_u32("driven teeth", b)?)))
         .collect::<PyResult<Vec<(u32, u32)>>>()?;
     let t = GearTrain::compound(&stages).map_err(to_py)?;
     Ok((t.ratio(), t.sign()))

@@ -5,7 +5,7 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{count, Real};
+use crate::args::{count, xy, Real, RealPair, Strict};
 use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
 use crate::memory;
@@ -29,14 +29,16 @@ pub fn forces<'py>(
     theta: PyReadonlyArray1<'py, f64>,
     omega: PyReadonlyArray1<'py, f64>,
     alpha: PyReadonlyArray1<'py, f64>,
-    inertia: Vec<(Real, Real, Real, Real)>,
-    gravity: (Real, Real),
-    loads: Vec<(
-        Bound<'py, PyAny>,
-        Bound<'py, PyAny>,
-        PyReadonlyArray2<'py, f64>,
-        PyReadonlyArray1<'py, f64>,
-    )>,
+    inertia: Vec<Strict<(Real, Real, Real, Real)>>,
+    gravity: RealPair,
+    loads: Vec<
+        Strict<(
+            Bound<'py, PyAny>,
+            Bound<'py, PyAny>,
+            PyReadonlyArray2<'py, f64>,
+            PyReadonlyArray1<'py, f64>,
+        )>,
+    >,
 ) -> PyResult<Bound<'py, PyDict>> {
     let th = slice("theta", &theta)?;
     let n = th.len();
@@ -47,7 +49,7 @@ pub fn forces<'py>(
     let m = mech.snapshot();
     let ids: Vec<BodyId> = Bodies::of(&m).ids().collect();
     let mut load_data = Vec::with_capacity(loads.len());
-    for (body, joint, force, torque) in &loads {
+    for Strict((body, joint, force, torque)) in &loads {
         let body = count("load body index", body)?;
         let joint = count("load joint index", joint)?;
         let f = force
@@ -69,14 +71,15 @@ pub fn forces<'py>(
     }
     let inertia: Vec<Inertia<f64>> = inertia
         .iter()
-        .map(|&(mass, along, left, inertia)| Inertia {
+        .map(|&Strict((mass, along, left, inertia))| Inertia {
             mass: mass.0,
             along: along.0,
             left: left.0,
             inertia: inertia.0,
         })
         .collect();
-    let g = Vec2::new(gravity.0 .0, gravity.1 .0);
+    let (gx, gy) = xy(gravity);
+    let g = Vec2::new(gx, gy);
     let dynamics = Dynamics::new(&m, &inertia, g).map_err(to_py)?;
     // The reactions' layout is fixed by the mechanism: size every output before solving.
     let idx = |b: BodyId| ids.iter().position(|&x| x == b).unwrap_or(0);
