@@ -43,6 +43,20 @@ pub fn circumcentre<T: RealField + Copy>(p0: Vec2<T>, p1: Vec2<T>, p2: Vec2<T>) 
     let big = p0.amax().max(p1.amax()).max(p2.amax());
     let s = crate::dyad::pow2_scale(big);
     let (q0, q1, q2) = (p0 / s, p1 / s, p2 / s);
+    // Measure from the vertex opposite the longest side: the two shorter sides then meet there,
+    // and their cross product has no cancellation (Shewchuk's advice for circumcentres).
+    let (l0, l1, l2) = (
+        (q2 - q1).norm_squared(),
+        (q2 - q0).norm_squared(),
+        (q1 - q0).norm_squared(),
+    );
+    let (q0, q1, q2) = if l1 >= l0 && l1 >= l2 {
+        (q2, q1, q0) // longest side q0–q2: measure from q1 (order kept: the sign is not used)
+    } else if l0 >= l2 {
+        (q1, q0, q2) // longest side q1–q2: measure from q0
+    } else {
+        (q0, q2, q1) // longest side q0–q1: measure from q2
+    };
     let (a, b) = (q0 - q1, q2 - q1);
     let (na, nb) = (a.norm_squared(), b.norm_squared());
     let d = lit::<T>(2.0) * cross(a, b);

@@ -585,6 +585,16 @@ fn centres_do_not_depend_on_scale() {
             "scale {s}"
         );
     }
+    // A needle triangle: measured from the wrong vertex its cross product cancels 9 digits.
+    let c = circumcentre(
+        Vec2::new(1e-9_f64, 0.0),
+        Vec2::new(1.0, 1.0),
+        Vec2::new(0.0, 0.0),
+    );
+    let linkage_core::Centre::Finite(c) = c else {
+        panic!("{c:?}")
+    };
+    assert!((c - Vec2::new(5e-10, 1.0 - 5e-10)).amax() < 1e-15, "{c:?}");
     // A circle of radius 2e300 about the origin, traversed at speed 3e300.
     let (k, centre) = path_curvature(
         Vec2::new(2e300_f64, 0.0),
