@@ -4,7 +4,7 @@ use nalgebra::RealField;
 
 use crate::bodies::{Bodies, BodyFrame, BodyId};
 use crate::motion::direction_rates;
-use crate::scalar::{cross, eps, lit, perp, Vec2};
+use crate::scalar::{cross, eps, length, lit, perp, Vec2};
 
 /// A point of the projective plane: finite, at infinity in a direction, or undefined.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -194,7 +194,7 @@ impl<T: RealField + Copy> BodyMotion<T> {
             let d = pos(q) - pos(p);
             let (w, al, jk) =
                 direction_rates(d, vel(q) - vel(p), acc(q) - acc(p), jerk(q) - jerk(p));
-            let scale = (vel(p).norm() + vel(q).norm()) / d.norm();
+            let scale = (length(vel(p)) + length(vel(q))) / length(d);
             (
                 w,
                 al,
@@ -236,8 +236,8 @@ pub fn instant_centre<T: RealField + Copy>(k: &BodyMotion<T>, l: &BodyMotion<T>)
         return Centre::Undefined;
     }
     if dw.abs() <= k.omega_tol + l.omega_tol {
-        let n = dv.norm();
-        let vscale = k.v.norm() + l.v.norm();
+        let n = length(dv);
+        let vscale = length(k.v) + length(l.v);
         return if n <= lit::<T>(ZERO_RATE) * eps::<T>() * vscale || n == T::zero() {
             Centre::Undefined
         } else {
@@ -270,6 +270,12 @@ pub fn line_intersection<T: RealField + Copy>(
     q: Vec2<T>,
     e: Vec2<T>,
 ) -> Centre<T> {
+    // Directions divided by powers of two near their sizes (exact; 1 for ordinary sizes): the
+    // lines are the same, and the cross product cannot overflow.
+    let (d, e) = (
+        d / crate::dyad::pow2_scale(d.amax()),
+        e / crate::dyad::pow2_scale(e.amax()),
+    );
     let w = cross(d, e);
     let (nd, ne) = (d.norm(), e.norm());
     if nd == T::zero() || ne == T::zero() {

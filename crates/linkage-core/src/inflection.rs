@@ -45,7 +45,7 @@ pub fn inflection<T: RealField + Copy>(m: &BodyMotion<T>) -> Option<Inflection<T
     let w2 = w * w;
     let diameter = a_i / w2;
     let g = j_i - a_i * (lit::<T>(3.0) * m.alpha / w);
-    let gn = g.norm();
+    let gn = crate::scalar::length(g);
     let ball_point = if gn == T::zero() {
         Centre::Undefined
     } else {
@@ -56,7 +56,7 @@ pub fn inflection<T: RealField + Copy>(m: &BodyMotion<T>) -> Option<Inflection<T
         pole,
         inflection_pole: pole + diameter,
         centre: pole + diameter * lit::<T>(0.5),
-        radius: diameter.norm() * lit::<T>(0.5),
+        radius: crate::scalar::length(diameter) * lit::<T>(0.5),
         ball_point,
     })
 }

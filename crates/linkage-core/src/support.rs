@@ -8,13 +8,14 @@ use crate::error::Error;
 use crate::scalar::{cross, Vec2};
 
 /// A power of two that brings the largest coordinate of `points` (and `extra`) near 1, so that
-/// differences and cross products of the scaled points cannot overflow; 1 for ordinary
-/// coordinates (below 2³²), where nothing is rescaled. Dividing by it is exact.
+/// differences and cross products of the scaled points neither overflow nor underflow; 1 for
+/// ordinary coordinates (in [2⁻³², 2³²]), where nothing is rescaled. Dividing by it is exact
+/// (short of subnormals).
 fn hull_scale<T: RealField + Copy>(points: &[Vec2<T>], extra: Vec2<T>) -> T {
     let big = points
         .iter()
         .fold(extra.amax(), |m, p| if p.amax() > m { p.amax() } else { m });
-    if big <= crate::scalar::lit::<T>(4_294_967_296.0) {
+    if big == T::zero() {
         T::one()
     } else {
         pow2_scale(big)

@@ -613,3 +613,56 @@ fn centres_do_not_depend_on_scale() {
     );
     assert!((k * 2e-300 - 1.0).abs() < 1e-15, "{k}");
 }
+
+#[test]
+fn stability_margin_does_not_depend_on_scale() {
+    let square = [
+        Vec2::new(0.0_f64, 0.0),
+        Vec2::new(2.0, 0.0),
+        Vec2::new(2.0, 2.0),
+        Vec2::new(0.0, 2.0),
+    ];
+    for s in [1.0, 1e-200, 1e200, 1e-300] {
+        let mut pts = square.map(|p| p * s);
+        let mut out = [Vec2::zeros(); 5];
+        let h = convex_hull(&mut pts, &mut out).unwrap();
+        assert_eq!(h, 4, "scale {s}");
+        let m = stability_margin(Vec2::new(0.5, 1.0) * s, &out[..h]).unwrap();
+        assert!((m / s - 0.5).abs() < 1e-15, "scale {s}: {m}");
+    }
+}
+
+#[test]
+fn rates_scale_with_the_linkage() {
+    // Hoecken as a program at scale s, with a slider on the coupler line to reach motion.rs's
+    // slider path too: velocities and accelerations per unit crank speed scale by s.
+    let rates = |s: f64| {
+        let mut m = Mechanism::<f64, 8>::new();
+        let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+        let c = m.fixed(Vec2::new(20.0 * s, 0.0)).unwrap();
+        let a = m.crank(o, 10.0 * s, 0.0).unwrap();
+        let b = m.dyad(a, c, 25.0 * s, 25.0 * s, Side::Left).unwrap();
+        let p = m.point(a, b, 50.0 * s, 0.0).unwrap();
+        let dir = LineDirection::Fixed(Vec2::new(1.0, 0.0));
+        m.slider(p, 60.0 * s, o, dir, Reach::Ahead).unwrap();
+        let mut t = Tracker::new(&m).unwrap();
+        let (mut pos, mut vel, mut acc) =
+            ([Vec2::zeros(); 6], [Vec2::zeros(); 6], [Vec2::zeros(); 6]);
+        let rates = Rates::acceleration(&mut vel, &mut acc);
+        t.step(1.0, Some(Motion::new(1.0, 0.5)), &mut pos, rates)
+            .unwrap();
+        (vel, acc)
+    };
+    let (v0, a0) = rates(1.0);
+    for s in [1e200, 1e-200, 1e300] {
+        let (v, a) = rates(s);
+        for k in 0..6 {
+            for (got, want) in [(v[k] / s, v0[k]), (a[k] / s, a0[k])] {
+                assert!(
+                    (got - want).amax() <= 1e-12 * (1.0 + want.amax()),
+                    "scale {s} joint {k}: {got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+}
