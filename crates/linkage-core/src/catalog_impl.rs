@@ -4,6 +4,12 @@
 //! Four-bars are placed with the crank pivot `O` at the origin and the rocker pivot `C` on the
 //! +x axis; their assembly is the one drawn in the source (the one whose coupler point traces the
 //! straight part).
+//!
+//! # Panics
+//! None of these functions panics. The fixed entries are built from constants through a helper
+//! with an `unreachable!` for construction errors that cannot occur for them (proof at
+//! [`program`]'s definition; `tests/catalog.rs` builds every entry in f32 and f64); the one entry
+//! with a caller's number, [`hoecken_pantograph`], returns its errors.
 
 use nalgebra::RealField;
 
