@@ -286,3 +286,23 @@ def test_wrong_tuple_lengths_are_linkage_errors() -> None:
     z = np.zeros(1)
     with pytest.raises(LinkageError, match="length 4"):
         _core.forces(m, z, z, z, [(1.0, 0.0)], (0.0, 0.0), [])  # type: ignore[list-item]
+
+
+def test_threads_the_system_refuses_are_swept_on_the_calling_thread() -> None:
+    # Room for a few dozen 2 MiB thread stacks only: most of the 256 threads cannot start, and
+    # their chunks must still be swept (the same bits as one thread), not panic.
+    child = _run_limited(
+        """
+        import numpy as np, resource
+        from linkage import _core
+        fb = _core.FourBar((0, 0), (20, 0), 10, 25, 25, (50, 0), "open")
+        ref = fb.uniform_sweep(0.3, 1e-4, 100_000, threads=1)
+        vm = int(open("/proc/self/status").read().split("VmSize:")[1].split()[0]) * 1024
+        resource.setrlimit(resource.RLIMIT_AS, (vm + (64 << 20), vm + (64 << 20)))
+        many = fb.uniform_sweep(0.3, 1e-4, 100_000, threads=256)
+        print("same" if np.array_equal(ref, many, equal_nan=True) else "different")
+        """,
+        limit_bytes=8 << 30,
+    )
+    assert child.returncode == 0, child.stderr[-2000:]
+    assert child.stdout.strip() == "same", child.stdout + child.stderr
