@@ -96,21 +96,32 @@ pub fn path_curvature<T: RealField + Copy>(p: Vec2<T>, v: Vec2<T>, a: Vec2<T>) -
     if !(finite(p) && finite(v) && finite(a)) || v == Vec2::zeros() {
         return (crate::scalar::nan(), Centre::Undefined);
     }
-    // Velocity and acceleration in units of powers of two near their sizes (exact; 1 for
+    // Velocity and acceleration in units of powers of two near their sizes (exact; skipped for
     // ordinary sizes): κ = (sa/sv²)·κ' and the centre offset scales by sv²/sa.
     let (sv, sa) = (
         crate::dyad::pow2_scale(v.amax()),
         crate::dyad::pow2_scale(a.amax()),
     );
-    let (v, a) = (v / sv, a / sa);
+    let ordinary = sv == T::one() && sa == T::one();
+    let (v, a) = if ordinary { (v, a) } else { (v / sv, a / sa) };
     let v2 = v.norm_squared();
     let c = cross(v, a);
     let speed = v2.sqrt();
-    let kappa = c / (v2 * speed) * (sa / sv) / sv;
+    let kappa = c / (v2 * speed);
+    let kappa = if ordinary {
+        kappa
+    } else {
+        kappa * (sa / sv) / sv
+    };
     if c.abs() <= lit::<T>(16.0) * eps::<T>() * speed * a.norm() {
         return (T::zero(), Centre::AtInfinity(perp(v) / speed));
     }
-    let centre = p + perp(v) * (v2 / c) * (sv / sa) * sv;
+    let offset = perp(v) * (v2 / c);
+    let centre = if ordinary {
+        p + offset
+    } else {
+        p + offset * (sv / sa) * sv
+    };
     if finite(centre) {
         (kappa, Centre::Finite(centre))
     } else {
@@ -182,13 +193,36 @@ impl<T: RealField + Copy> BodyMotion<T> {
             alpha_rate: T::zero(),
             omega_tol: T::zero(),
         };
-        let nan = crate::scalar::nan::<T>();
-        let get = |s: &[Vec2<T>], k: usize| s.get(k).copied().unwrap_or(Vec2::new(nan, nan));
+        let frame = bodies.frame(id);
+        // The joints the frame reads must be in every slice; otherwise the motion is NaN.
+        let (i, j) = match frame {
+            BodyFrame::Ground => (0, 0),
+            BodyFrame::Link { origin, toward } => (origin, toward),
+            BodyFrame::Block { joint, carrier } => {
+                carrier.map_or((joint, joint), |(p, q)| (joint.max(p), q))
+            }
+        };
+        let shortest = pos.len().min(vel.len()).min(acc.len()).min(jerk.len());
+        if !matches!(frame, BodyFrame::Ground) && i.max(j) >= shortest {
+            let nan = crate::scalar::nan::<T>();
+            let bad = Vec2::new(nan, nan);
+            return BodyMotion {
+                origin: bad,
+                v: bad,
+                a: bad,
+                j: bad,
+                omega: nan,
+                alpha: nan,
+                alpha_rate: nan,
+                omega_tol: nan,
+            };
+        }
+        // (every index below is now within every slice)
         let (pos, vel, acc, jerk) = (
-            |k| get(pos, k),
-            |k| get(vel, k),
-            |k| get(acc, k),
-            |k| get(jerk, k),
+            |k: usize| pos[k],
+            |k: usize| vel[k],
+            |k: usize| acc[k],
+            |k: usize| jerk[k],
         );
         let turn = |p: usize, q: usize| {
             let d = pos(q) - pos(p);
@@ -212,7 +246,7 @@ impl<T: RealField + Copy> BodyMotion<T> {
             alpha_rate: jk,
             omega_tol: tol,
         };
-        match bodies.frame(id) {
+        match frame {
             BodyFrame::Ground => still,
             BodyFrame::Link { origin, toward } => at(origin, turn(origin, toward)),
             BodyFrame::Block { joint, carrier } => match carrier {

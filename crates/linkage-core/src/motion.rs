@@ -126,7 +126,9 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                     // determinant nor `e·v`, `|w|²` overflow at any linkage scale.
                     let (e1, e2) = (p - pos[p1], p - pos[p2]);
                     let s = crate::dyad::pow2_scale(e1.amax().max(e2.amax()));
-                    let (e1, e2) = (e1 / s, e2 / s);
+                    // (no division at all in the common case s = 1)
+                    let sc = |v: Vec2<T>| if s == T::one() { v } else { v / s };
+                    let (e1, e2) = (sc(e1), sc(e2));
                     match solve_rows(e1, e2, e1.dot(&vel[p1]), e2.dot(&vel[p2])) {
                         None => (bad, bad, bad),
                         Some(v) => {
@@ -135,8 +137,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                                 solve_rows(
                                     e1,
                                     e2,
-                                    e1.dot(&al[p1]) - (w1 / s).dot(&w1),
-                                    e2.dot(&al[p2]) - (w2 / s).dot(&w2),
+                                    e1.dot(&al[p1]) - sc(w1).dot(&w1),
+                                    e2.dot(&al[p2]) - sc(w2).dot(&w2),
                                 )
                                 .unwrap_or(bad)
                             } else {
@@ -147,8 +149,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                                 solve_rows(
                                     e1,
                                     e2,
-                                    e1.dot(&jk[p1]) - three * (w1 / s).dot(&(a - al[p1])),
-                                    e2.dot(&jk[p2]) - three * (w2 / s).dot(&(a - al[p2])),
+                                    e1.dot(&jk[p1]) - three * sc(w1).dot(&(a - al[p1])),
+                                    e2.dot(&jk[p2]) - three * sc(w2).dot(&(a - al[p2])),
                                 )
                                 .unwrap_or(bad)
                             } else {
@@ -234,8 +236,9 @@ fn slider_rates<T: RealField + Copy>(
     // The link vector divided by a power of two near its length (exact; 1 for ordinary sizes):
     // each equation below is divided through by it, so no dot product of two large vectors
     // overflows at any linkage scale.
-    let sc = crate::dyad::pow2_scale((p - pa).amax());
-    let e = (p - pa) / sc;
+    let unit = crate::dyad::pow2_scale((p - pa).amax());
+    let sc = |v: Vec2<T>| if unit == T::one() { v } else { v / unit };
+    let e = sc(p - pa);
     let den = e.dot(&u);
     if den == T::zero() || !den.is_finite() {
         return None;
@@ -251,13 +254,13 @@ fn slider_rates<T: RealField + Copy>(
         return Some((v, Vec2::zeros(), Vec2::zeros()));
     }
     let k2 = aq + du * (two * sd) + ddu * s;
-    let sdd = (e.dot(&(aa - k2)) - ((v - va) / sc).dot(&(v - va))) / den;
+    let sdd = (e.dot(&(aa - k2)) - sc(v - va).dot(&(v - va))) / den;
     let a = k2 + u * sdd;
     if !want_j {
         return Some((v, a, Vec2::zeros()));
     }
     let k3 = jq + du * (three * sdd) + ddu * (three * sd) + dddu * s;
-    let sddd = (e.dot(&(ja - k3)) - three * ((v - va) / sc).dot(&(a - aa))) / den;
+    let sddd = (e.dot(&(ja - k3)) - three * sc(v - va).dot(&(a - aa))) / den;
     Some((v, a, k3 + u * sddd))
 }
 
