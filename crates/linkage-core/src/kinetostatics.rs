@@ -272,6 +272,11 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
     /// For each moving body: `Σ F = m a_G − m g − F_ext` and
     /// `Σ (r − G) × F + couples = I α − Σ (r_ext − G) × F_ext − τ_ext`.
     ///
+    /// # Panics
+    /// Never for a mechanism's own sizes: the dense system is `3(b − 1)` square for `b ≤ 2N + 1`
+    /// bodies (at most 384 × 384 for the Python binding's `N = 64`). Only a capacity `N` in the
+    /// tens of thousands, chosen at compile time, could make its allocation fail (an abort).
+    ///
     /// # Errors
     /// [`Error::Coincident`] (joint = the driver) when the system is singular: a toggle, where
     /// statics cannot decide the reactions; [`Error::BufferLength`] when a slice is not
