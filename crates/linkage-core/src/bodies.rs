@@ -66,9 +66,17 @@ pub struct Mobility {
 }
 
 impl Mobility {
-    /// `F = 3(n − 1) − 2·j1 − j2`.
+    /// `F = 3(n − 1) − 2·j1 − j2`, saturating at the `i64` range (counts of a real mechanism
+    /// are far inside it; the fields are public, so any value may arrive here).
     pub fn degrees_of_freedom(&self) -> i64 {
-        3 * (self.links as i64 - 1) - 2 * self.lower_pairs as i64 - self.higher_pairs as i64
+        // Each count is below 2⁶⁴, so the sum stays well inside i128.
+        let (n, j1, j2) = (
+            self.links as i128,
+            self.lower_pairs as i128,
+            self.higher_pairs as i128,
+        );
+        let f = 3 * (n - 1) - 2 * j1 - j2;
+        f.clamp(i64::MIN as i128, i64::MAX as i128) as i64
     }
 }
 
@@ -134,7 +142,7 @@ impl<const N: usize> Bodies<N> {
     pub fn ids(&self) -> impl Iterator<Item = BodyId> + '_ {
         core::iter::once(GROUND).chain((0..self.len).flat_map(move |i| {
             (0..2u8).filter_map(move |slot| {
-                self.created[i][slot as usize].map(|_| BodyId { joint: i, slot })
+                self.created[i][usize::from(slot)].map(|_| BodyId { joint: i, slot })
             })
         }))
     }
@@ -144,18 +152,28 @@ impl<const N: usize> Bodies<N> {
         self.ids().count()
     }
 
-    /// How body `id`'s motion is known.
+    /// How body `id`'s motion is known ([`BodyFrame::Ground`] for the ground and for an id that
+    /// names no body of this mechanism).
     pub fn frame(&self, id: BodyId) -> BodyFrame {
         if id == GROUND {
-            BodyFrame::Ground
-        } else {
-            self.created[id.joint][id.slot as usize].unwrap_or(BodyFrame::Ground)
+            return BodyFrame::Ground;
         }
+        self.created
+            .get(id.joint)
+            .filter(|_| id.joint < self.len)
+            .and_then(|slots| slots.get(usize::from(id.slot)))
+            .copied()
+            .flatten()
+            .unwrap_or(BodyFrame::Ground)
     }
 
-    /// Whether joint `j` is a joint of body `id` (a pin of it, or carried by it).
+    /// Whether joint `j` is a joint of body `id` (a pin of it, or carried by it); false for a
+    /// joint beyond the mechanism.
     pub fn contains(&self, id: BodyId, j: usize) -> bool {
-        if self.joined[j] == Some(id) {
+        if j >= self.len {
+            return false;
+        }
+        if self.joined.get(j) == Some(&Some(id)) {
             return true;
         }
         match self.frame(id) {

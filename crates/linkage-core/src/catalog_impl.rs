@@ -4,6 +4,12 @@
 //! Four-bars are placed with the crank pivot `O` at the origin and the rocker pivot `C` on the
 //! +x axis; their assembly is the one drawn in the source (the one whose coupler point traces the
 //! straight part).
+//!
+//! # Panics
+//! None of these functions panics. The fixed entries are built from constants through a helper
+//! with an `unreachable!` for construction errors that cannot occur for them (proof at
+//! [`program`]'s definition; `tests/catalog.rs` builds every entry in f32 and f64); the one entry
+//! with a caller's number, [`hoecken_pantograph`], returns its errors.
 
 use nalgebra::RealField;
 
@@ -49,7 +55,9 @@ fn four_bar<T: RealField + Copy>(
     assembly: Assembly,
 ) -> FourBar<T> {
     let [g, a, b, c] = dims.map(lit::<T>);
-    // The dimensions are positive constants, so construction cannot fail.
+    // Unreachable: every caller passes positive constants below 100 and a finite point, which
+    // `FourBar::new` accepts for any `RealField` (f32 and f64 both hold them exactly enough to
+    // stay positive and finite); `tests/catalog.rs` builds every entry in f32 and f64.
     FourBar::new(g, a, b, c, (lit(point.0), lit(point.1)), assembly)
         .unwrap_or_else(|_| unreachable!("catalogue dimensions are valid"))
 }
@@ -113,14 +121,26 @@ pub fn four_bar_by_name<T: RealField + Copy>(name: &str) -> Option<FourBar<T>> {
     })
 }
 
-/// Builds a program, mapping the (impossible) capacity or reference errors to a panic-free
-/// `unreachable` only in debug reasoning: all inputs here are constants.
+/// Builds a program, passing on the first construction that fails.
+fn try_program<T: RealField + Copy>(
+    build: impl FnOnce(&mut Mechanism<T, CAPACITY>) -> Result<(), Error>,
+) -> Result<Mechanism<T, CAPACITY>, Error> {
+    let mut m = Mechanism::new();
+    build(&mut m)?;
+    Ok(m)
+}
+
+/// Builds a program of constants.
+///
+/// Unreachable panic: only the fixed catalogue programs below use it. Their lengths are
+/// positive constants below 100, their references point backwards, they have one crank and
+/// fewer than `CAPACITY` joints, so no construction can fail for any `RealField`;
+/// `tests/catalog.rs` builds and sweeps each in f32 and f64. Programs with a caller's numbers
+/// (the pantograph's scale) use [`try_program`] and return its error.
 fn program<T: RealField + Copy>(
     build: impl FnOnce(&mut Mechanism<T, CAPACITY>) -> Result<(), Error>,
 ) -> Mechanism<T, CAPACITY> {
-    let mut m = Mechanism::new();
-    build(&mut m).unwrap_or_else(|_| unreachable!("catalogue programs are valid"));
-    m
+    try_program(build).unwrap_or_else(|_| unreachable!("catalogue programs are valid"))
 }
 
 /// Peaucellier–Lipkin inversor: centre of inversion `D` at the origin, crank pivot `O` 15 along
@@ -175,18 +195,19 @@ pub fn hart<T: RealField + Copy>() -> Linkage<T> {
 /// the parallelogram `E F G T`, output `P` on `F → G` at `30·scale`, so `P = Q + scale·(T − Q)`.
 ///
 /// # Errors
-/// [`Error::InvalidLength`] unless `scale > 1` and finite.
+/// [`Error::InvalidLength`] unless `scale > 1` and finite, and small enough that the arms
+/// (`30·scale`) are finite.
 pub fn hoecken_pantograph<T: RealField + Copy>(scale: T) -> Result<Linkage<T>, Error> {
-    if !(scale.is_finite() && scale > T::one()) {
+    let c = lit::<T>;
+    let arm = c(30.0);
+    if !(scale.is_finite() && scale > T::one() && (arm * scale).is_finite()) {
         return Err(Error::InvalidLength {
-            what: "pantograph scale (must exceed 1)",
+            what: "pantograph scale (must exceed 1, with 30·scale finite)",
             value: crate::scalar::to_f64(scale),
         });
     }
-    let c = lit::<T>;
-    let arm = c(30.0);
     let build = |g_side: Side| {
-        program(|m| {
+        try_program(|m| {
             let o = m.fixed(Vec2::new(c(0.0), c(0.0)))?;
             let cc = m.fixed(Vec2::new(c(20.0), c(0.0)))?;
             let a = m.crank(o, c(10.0), c(0.0))?;
@@ -201,9 +222,9 @@ pub fn hoecken_pantograph<T: RealField + Copy>(scale: T) -> Result<Linkage<T>, E
         })
     };
     // Pick the side of G that closes the parallelogram (G = F + T − E), not its mirror.
-    let mut best = (build(Side::Left), T::max_value().unwrap_or(T::one()));
+    let mut best = (build(Side::Left)?, T::max_value().unwrap_or(T::one()));
     for side in [Side::Left, Side::Right] {
-        let m = build(side);
+        let m = build(side)?;
         let mut j = [Vec2::zeros(); 10];
         if m.pose(T::zero(), &mut j).is_ok() {
             let miss = (j[8] - (j[7] + j[4] - j[6])).norm();

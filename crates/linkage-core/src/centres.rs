@@ -4,7 +4,7 @@ use nalgebra::RealField;
 
 use crate::bodies::{Bodies, BodyFrame, BodyId};
 use crate::motion::direction_rates;
-use crate::scalar::{cross, eps, lit, perp, Vec2};
+use crate::scalar::{cross, eps, length, lit, perp, Vec2};
 
 /// A point of the projective plane: finite, at infinity in a direction, or undefined.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,14 +38,33 @@ const ZERO_RATE: f64 = 64.0;
 /// give [`Centre::AtInfinity`] along the normal to the line (zero `a × b` to rounding);
 /// coincident ones [`Centre::Undefined`].
 pub fn circumcentre<T: RealField + Copy>(p0: Vec2<T>, p1: Vec2<T>, p2: Vec2<T>) -> Centre<T> {
-    let (a, b) = (p0 - p1, p2 - p1);
+    // Work in units of a power of two near the largest coordinate (exact; 1 for coordinates in
+    // [2⁻³², 2³²]), so neither the differences nor their squares overflow or underflow.
+    let big = p0.amax().max(p1.amax()).max(p2.amax());
+    let s = crate::dyad::pow2_scale(big);
+    let (q0, q1, q2) = (p0 / s, p1 / s, p2 / s);
+    // Measure from the vertex opposite the longest side: the two shorter sides then meet there,
+    // and their cross product has no cancellation (Shewchuk's advice for circumcentres).
+    let (l0, l1, l2) = (
+        (q2 - q1).norm_squared(),
+        (q2 - q0).norm_squared(),
+        (q1 - q0).norm_squared(),
+    );
+    let (q0, q1, q2) = if l1 >= l0 && l1 >= l2 {
+        (q2, q1, q0) // longest side q0–q2: measure from q1 (order kept: the sign is not used)
+    } else if l0 >= l2 {
+        (q1, q0, q2) // longest side q1–q2: measure from q0
+    } else {
+        (q0, q2, q1) // longest side q0–q1: measure from q2
+    };
+    let (a, b) = (q0 - q1, q2 - q1);
     let (na, nb) = (a.norm_squared(), b.norm_squared());
     let d = lit::<T>(2.0) * cross(a, b);
-    if na == T::zero() || nb == T::zero() {
+    if na == T::zero() || nb == T::zero() || !(na.is_finite() && nb.is_finite()) {
         return Centre::Undefined;
     }
     if d.abs() <= lit::<T>(16.0) * eps::<T>() * (na * nb).sqrt() {
-        let dir = p2 - p0;
+        let dir = q2 - q0;
         let n = dir.norm();
         return if n == T::zero() {
             Centre::Undefined
@@ -53,7 +72,14 @@ pub fn circumcentre<T: RealField + Copy>(p0: Vec2<T>, p1: Vec2<T>, p2: Vec2<T>) 
             Centre::AtInfinity(perp(dir / n))
         };
     }
-    Centre::Finite(p1 + Vec2::new(na * b.y - nb * a.y, nb * a.x - na * b.x) / d)
+    let c = (q1 + Vec2::new(na * b.y - nb * a.y, nb * a.x - na * b.x) / d) * s;
+    if c.x.is_finite() && c.y.is_finite() {
+        Centre::Finite(c)
+    } else {
+        // The centre lies beyond the float range: as good as at infinity, along the normal.
+        let dir = q2 - q0;
+        Centre::AtInfinity(perp(dir / dir.norm()))
+    }
 }
 
 /// Signed curvature and centre of curvature of a path at a point moving with velocity `v` and
@@ -66,17 +92,42 @@ pub fn circumcentre<T: RealField + Copy>(p0: Vec2<T>, p1: Vec2<T>, p2: Vec2<T>) 
 /// where `v × a` vanishes to rounding (an inflection or a straight path) the centre is at
 /// infinity along the normal.
 pub fn path_curvature<T: RealField + Copy>(p: Vec2<T>, v: Vec2<T>, a: Vec2<T>) -> (T, Centre<T>) {
-    let v2 = v.norm_squared();
-    if v2 == T::zero() || !v2.is_finite() || !(a.x.is_finite() && a.y.is_finite()) {
+    let finite = |w: Vec2<T>| w.x.is_finite() && w.y.is_finite();
+    if !(finite(p) && finite(v) && finite(a)) || v == Vec2::zeros() {
         return (crate::scalar::nan(), Centre::Undefined);
     }
+    // Velocity and acceleration in units of powers of two near their sizes (exact; skipped for
+    // ordinary sizes): κ = (sa/sv²)·κ' and the centre offset scales by sv²/sa.
+    let (sv, sa) = (
+        crate::dyad::pow2_scale(v.amax()),
+        crate::dyad::pow2_scale(a.amax()),
+    );
+    let ordinary = sv == T::one() && sa == T::one();
+    let (v, a) = if ordinary { (v, a) } else { (v / sv, a / sa) };
+    let v2 = v.norm_squared();
     let c = cross(v, a);
     let speed = v2.sqrt();
     let kappa = c / (v2 * speed);
+    let kappa = if ordinary {
+        kappa
+    } else {
+        kappa * (sa / sv) / sv
+    };
     if c.abs() <= lit::<T>(16.0) * eps::<T>() * speed * a.norm() {
         return (T::zero(), Centre::AtInfinity(perp(v) / speed));
     }
-    (kappa, Centre::Finite(p + perp(v) * (v2 / c)))
+    let offset = perp(v) * (v2 / c);
+    let centre = if ordinary {
+        p + offset
+    } else {
+        p + offset * (sv / sa) * sv
+    };
+    if finite(centre) {
+        (kappa, Centre::Finite(centre))
+    } else {
+        // The radius exceeds the float range: the centre is as good as at infinity.
+        (kappa, Centre::AtInfinity(perp(v) / speed))
+    }
 }
 
 /// Instantaneous motion of a rigid body: a reference point's position and first three
@@ -132,7 +183,8 @@ impl<T: RealField + Copy> BodyMotion<T> {
     }
 
     /// Motion of body `id` from joint positions and rates (accelerations and jerks may be
-    /// zero slices when only velocities matter).
+    /// zero slices when only velocities matter). A joint index beyond a slice reads as NaN, so
+    /// short slices give a NaN motion, not a panic.
     pub fn of<const N: usize>(
         bodies: &Bodies<N>,
         id: BodyId,
@@ -152,11 +204,42 @@ impl<T: RealField + Copy> BodyMotion<T> {
             alpha_rate: T::zero(),
             omega_tol: T::zero(),
         };
+        let frame = bodies.frame(id);
+        // The joints the frame reads must be in every slice; otherwise the motion is NaN.
+        let (i, j) = match frame {
+            BodyFrame::Ground => (0, 0),
+            BodyFrame::Link { origin, toward } => (origin, toward),
+            BodyFrame::Block { joint, carrier } => {
+                carrier.map_or((joint, joint), |(p, q)| (joint.max(p), q))
+            }
+        };
+        let shortest = pos.len().min(vel.len()).min(acc.len()).min(jerk.len());
+        if !matches!(frame, BodyFrame::Ground) && i.max(j) >= shortest {
+            let nan = crate::scalar::nan::<T>();
+            let bad = Vec2::new(nan, nan);
+            return BodyMotion {
+                origin: bad,
+                v: bad,
+                a: bad,
+                j: bad,
+                omega: nan,
+                alpha: nan,
+                alpha_rate: nan,
+                omega_tol: nan,
+            };
+        }
+        // (every index below is now within every slice)
+        let (pos, vel, acc, jerk) = (
+            |k: usize| pos[k],
+            |k: usize| vel[k],
+            |k: usize| acc[k],
+            |k: usize| jerk[k],
+        );
         let turn = |p: usize, q: usize| {
-            let d = pos[q] - pos[p];
+            let d = pos(q) - pos(p);
             let (w, al, jk) =
-                direction_rates(d, vel[q] - vel[p], acc[q] - acc[p], jerk[q] - jerk[p]);
-            let scale = (vel[p].norm() + vel[q].norm()) / d.norm();
+                direction_rates(d, vel(q) - vel(p), acc(q) - acc(p), jerk(q) - jerk(p));
+            let scale = (length(vel(p)) + length(vel(q))) / length(d);
             (
                 w,
                 al,
@@ -165,16 +248,16 @@ impl<T: RealField + Copy> BodyMotion<T> {
             )
         };
         let at = |k: usize, (w, al, jk, tol): (T, T, T, T)| BodyMotion {
-            origin: pos[k],
-            v: vel[k],
-            a: acc[k],
-            j: jerk[k],
+            origin: pos(k),
+            v: vel(k),
+            a: acc(k),
+            j: jerk(k),
             omega: w,
             alpha: al,
             alpha_rate: jk,
             omega_tol: tol,
         };
-        match bodies.frame(id) {
+        match frame {
             BodyFrame::Ground => still,
             BodyFrame::Link { origin, toward } => at(origin, turn(origin, toward)),
             BodyFrame::Block { joint, carrier } => match carrier {
@@ -198,8 +281,8 @@ pub fn instant_centre<T: RealField + Copy>(k: &BodyMotion<T>, l: &BodyMotion<T>)
         return Centre::Undefined;
     }
     if dw.abs() <= k.omega_tol + l.omega_tol {
-        let n = dv.norm();
-        let vscale = k.v.norm() + l.v.norm();
+        let n = length(dv);
+        let vscale = length(k.v) + length(l.v);
         return if n <= lit::<T>(ZERO_RATE) * eps::<T>() * vscale || n == T::zero() {
             Centre::Undefined
         } else {
@@ -219,7 +302,7 @@ pub fn relative_centre<T: RealField + Copy, const N: usize>(
     pos: &[Vec2<T>],
 ) -> Centre<T> {
     match bodies.shared_joint(k, l) {
-        Some(j) => Centre::Finite(pos[j]),
+        Some(j) => pos.get(j).map_or(Centre::Undefined, |&p| Centre::Finite(p)),
         None => instant_centre(mk, ml),
     }
 }
@@ -232,6 +315,12 @@ pub fn line_intersection<T: RealField + Copy>(
     q: Vec2<T>,
     e: Vec2<T>,
 ) -> Centre<T> {
+    // Directions divided by powers of two near their sizes (exact; 1 for ordinary sizes): the
+    // lines are the same, and the cross product cannot overflow.
+    let (d, e) = (
+        d / crate::dyad::pow2_scale(d.amax()),
+        e / crate::dyad::pow2_scale(e.amax()),
+    );
     let w = cross(d, e);
     let (nd, ne) = (d.norm(), e.norm());
     if nd == T::zero() || ne == T::zero() {

@@ -71,15 +71,32 @@ pub enum Error {
         /// The crank angle (radians) of the first flat position on the path.
         angle: f64,
     },
+    /// A result exists but is too large or too small for the floating-point type (it would
+    /// overflow to infinity or underflow to zero), so no value is returned rather than a wrong one.
+    NotRepresentable {
+        /// Which result.
+        what: &'static str,
+    },
+    /// A count or index is so large that the arithmetic on it would overflow `usize`.
+    CountOverflow {
+        /// Which count.
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             Error::InvalidLength { what, value } => {
-                write!(f, "{what} must be a positive finite length, got {value}")
+                write!(
+                    f,
+                    "{what} must be a positive finite length, got {}",
+                    Num(value)
+                )
             }
-            Error::NotFinite { what, value } => write!(f, "{what} must be finite, got {value}"),
+            Error::NotFinite { what, value } => {
+                write!(f, "{what} must be finite, got {}", Num(value))
+            }
             Error::CannotAssemble { joint, gap } => write!(
                 f,
                 "joint {joint} cannot be assembled: the lengths miss closure by {gap:e}"
@@ -114,11 +131,33 @@ impl fmt::Display for Error {
                  two assembly branches meet: a sweep on one fixed assembly would switch branch \
                  there (use sweep(), which tracks the branch through it)"
             ),
+            Error::NotRepresentable { what } => write!(
+                f,
+                "{what} is too large or too small to represent as a floating-point number"
+            ),
+            Error::CountOverflow { what } => {
+                write!(f, "{what} is too large: the count overflows")
+            }
         }
     }
 }
 
 impl core::error::Error for Error {}
+
+/// A value for a message: plain (`0.5`, `-3`) in the ordinary range, scientific (`1e308`,
+/// `5e-324`) outside it, so extreme values do not print as hundreds of digits.
+struct Num(f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || !a.is_finite() || (1e-4..1e16).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
 
 /// Checks that `value` is a positive finite length.
 pub(crate) fn check_length<T: nalgebra::RealField + Copy>(

@@ -198,6 +198,18 @@ impl<T: RealField + Copy> FourBar<T> {
         crate::scalar::length(self.c - self.o)
     }
 
+    /// `(ground, crank, coupler, rocker)` divided by a power of two near the longest (exact),
+    /// so sums and squares of them neither overflow nor underflow.
+    fn scaled_lengths(&self) -> (T, T, T, T) {
+        let (g, r, b, c) = (self.ground(), self.crank, self.coupler, self.rocker);
+        let s = crate::dyad::pow2_scale(g.max(r).max(b).max(c));
+        if s == T::one() {
+            (g, r, b, c)
+        } else {
+            (g / s, r / s, b / s, c / s)
+        }
+    }
+
     /// The four-bar as a [`Mechanism`] program: `O, C` fixed, `A` crank, `B` dyad, `P` point.
     pub fn mechanism(&self) -> Mechanism<T, 5> {
         let mut m = Mechanism::new();
@@ -215,7 +227,10 @@ impl<T: RealField + Copy> FourBar<T> {
             ),
             m.point(Self::A, Self::B, self.along, self.left),
         ];
-        debug_assert!(steps.iter().all(|s| s.is_ok()));
+        // A push can fail only if the public fields were set to invalid numbers after
+        // construction; the program is then shorter than 5 joints and every solve of it reports
+        // `Error::BufferLength` instead of a position (no panic, no wrong value).
+        let _ = steps;
         m
     }
 
@@ -238,8 +253,8 @@ impl<T: RealField + Copy> FourBar<T> {
     /// Grashof class. Ties `s + l = p + q` within `8 ε (s + l + p + q)` are
     /// [`GrashofClass::ChangePoint`].
     pub fn grashof(&self) -> GrashofClass {
-        let g = self.ground();
-        let links = [g, self.crank, self.coupler, self.rocker];
+        let (g, r, b, c) = self.scaled_lengths();
+        let links = [g, r, b, c];
         let mut s = links[0];
         let mut l = links[0];
         let mut shortest = 0;
@@ -275,8 +290,10 @@ impl<T: RealField + Copy> FourBar<T> {
     /// In the triangle `O A C` with sides `r`, `g`, `diag`, the angle at `O` is
     /// `atan2(4·Area, r² + g² − diag²)`: the area comes from [`triangle_area`], so the angle is
     /// accurate even at the toggle extremes where `acos` of a cosine near ±1 loses half its digits.
-    fn angle_for_diagonal(&self, diag: T) -> Option<T> {
-        let (r, g) = (self.crank, self.ground());
+    ///
+    /// `r`, `g` and `diag` are the crank, ground and diagonal in any common unit (the caller
+    /// scales them by a power of two so that no square overflows).
+    fn angle_for_diagonal(r: T, g: T, diag: T) -> Option<T> {
         if diag <= (g - r).abs() || diag >= g + r {
             return None;
         }
@@ -288,17 +305,20 @@ impl<T: RealField + Copy> FourBar<T> {
     /// The crank angles at which the linkage assembles, bounded by toggle positions where
     /// coupler and rocker are collinear (`|AC| = coupler + rocker` stretched, or
     /// `|coupler − rocker|` folded).
+    ///
+    /// The angles do not depend on the unit, so the lengths are first divided by a power of two
+    /// near the longest (exact): lengths near the float maximum or minimum give the same range.
     pub fn input_range(&self) -> InputRange<T> {
-        let (r, g) = (self.crank, self.ground());
-        let stretched = self.coupler + self.rocker;
-        let folded = (self.coupler - self.rocker).abs();
+        let (g, r, coupler, rocker) = self.scaled_lengths();
+        let stretched = coupler + rocker;
+        let folded = (coupler - rocker).abs();
         if stretched <= (g - r).abs() || folded >= g + r {
             return InputRange::Never;
         }
         let d = self.c - self.o;
         let base = d.y.atan2(d.x);
-        let lo = self.angle_for_diagonal(folded);
-        let hi = self.angle_for_diagonal(stretched);
+        let lo = Self::angle_for_diagonal(r, g, folded);
+        let hi = Self::angle_for_diagonal(r, g, stretched);
         match (lo, hi) {
             (None, None) => InputRange::Full,
             (None, Some(h)) => InputRange::Between {
@@ -424,14 +444,17 @@ impl<T: RealField + Copy> FourBar<T> {
         mut velocity: Option<&mut [Vec2<T>]>,
     ) -> Result<usize, Error> {
         let n = theta.len();
+        let n5 = n.checked_mul(5).ok_or(Error::CountOverflow {
+            what: "circuit samples",
+        })?;
         for (what, got) in [
             ("joints", joints.len()),
-            ("velocity", velocity.as_ref().map_or(5 * n, |v| v.len())),
+            ("velocity", velocity.as_ref().map_or(n5, |v| v.len())),
         ] {
-            if got != 5 * n {
+            if got != n5 {
                 return Err(Error::BufferLength {
                     what,
-                    expected: 5 * n,
+                    expected: n5,
                     got,
                 });
             }

@@ -43,8 +43,13 @@ impl GearTrain {
     /// A compound train: `(driver, driven)` tooth counts of each external mesh, the driven gear
     /// of one stage sharing its shaft with the driver of the next. Ratio `Π driver/driven`.
     ///
+    /// The product is formed with its power of two kept apart, so many stages cannot underflow
+    /// or overflow on the way to a representable ratio.
+    ///
     /// # Errors
-    /// [`Error::InvalidLength`] for no stage or a zero tooth count.
+    /// [`Error::InvalidLength`] for no stage or a zero tooth count;
+    /// [`Error::NotRepresentable`] when the ratio itself is below the smallest normal `f64` or
+    /// above the largest (it would come out as 0, a subnormal without full precision, or ∞).
     pub fn compound(stages: &[(u32, u32)]) -> Result<Self, Error> {
         if stages.is_empty() {
             return Err(Error::InvalidLength {
@@ -53,10 +58,43 @@ impl GearTrain {
             });
         }
         check_teeth(stages.iter().flat_map(|&(a, b)| [a, b]))?;
-        let magnitude = stages
-            .iter()
-            .map(|&(a, b)| f64::from(a) / f64::from(b))
-            .product();
+        // magnitude = m · 2^e with m kept in [2⁻³², 2³²]: every factor is in [2⁻³², 2³²], so
+        // each product is a normal number and each rescaling by 2^±32 is exact.
+        const STEP: f64 = 4_294_967_296.0; // 2³²
+        let (mut m, mut e) = (1.0_f64, 0_i64);
+        for &(a, b) in stages {
+            m *= f64::from(a) / f64::from(b);
+            while m > STEP {
+                m /= STEP;
+                e = e.saturating_add(32);
+            }
+            while m < 1.0 / STEP {
+                m *= STEP;
+                e = e.saturating_sub(32);
+            }
+        }
+        // m·2^e is a normal f64 only for e within a little of [-1022, 1023].
+        let not_representable = Error::NotRepresentable {
+            what: "gear train ratio",
+        };
+        if !(-1200..=1200).contains(&e) {
+            return Err(not_representable);
+        }
+        while e >= 32 {
+            m *= STEP;
+            e -= 32;
+        }
+        while e <= -32 {
+            m /= STEP;
+            e += 32;
+        }
+        // |e| < 32 now; the values only move one way, so a normal result had normal (exactly
+        // scaled) intermediates.
+        let two_e = (1u64 << e.unsigned_abs()) as f64; // exact: a power of two below 2³²
+        let magnitude = if e >= 0 { m * two_e } else { m / two_e };
+        if !(magnitude.is_finite() && magnitude >= f64::MIN_POSITIVE) {
+            return Err(not_representable);
+        }
         Ok(GearTrain {
             magnitude,
             sign: if stages.len() % 2 == 0 { 1 } else { -1 },
@@ -103,5 +141,26 @@ mod tests {
         assert_eq!(GearTrain::simple(&[20, 40]).unwrap().sign(), -1);
         assert!(GearTrain::simple(&[20]).is_err());
         assert!(GearTrain::simple(&[20, 0]).is_err());
+    }
+
+    #[test]
+    fn compound_ratio_is_exact_or_an_error() {
+        // 40 stages of 1:2 is 2⁻⁴⁰, exactly; 1100 stages of 1:2 is below the smallest normal.
+        let t = GearTrain::compound(&[(1, 2); 40]).unwrap();
+        assert_eq!(t.ratio(), 1.0 / (1u64 << 40) as f64);
+        // Far below the float range on the way (4e9⁻⁶⁰ ≈ 1e-577) but exactly 1 in the end: a
+        // plain product gives 0; this one is 1 to the rounding of 120 factors.
+        let mut stages = [(1, 4_000_000_000); 60].to_vec();
+        stages.extend([(4_000_000_000, 1); 60]);
+        let r = GearTrain::compound(&stages).unwrap().ratio();
+        assert!((r - 1.0).abs() < 1e-13, "{r}");
+        assert!(matches!(
+            GearTrain::compound(&[(1, 2); 1100]),
+            Err(Error::NotRepresentable { .. })
+        ));
+        assert!(matches!(
+            GearTrain::compound(&[(u32::MAX, 1); 40]),
+            Err(Error::NotRepresentable { .. })
+        ));
     }
 }

@@ -30,7 +30,8 @@ pub struct Inflection<T> {
 /// Bresse). Its curvature is also stationary when `v × j = 0`; with `j_P = j_I + (α̇ − ω³) r⊥ −
 /// 3ωα r` that is `r·(j_I − 3(α/ω) a_I) = 0`, a line through `I`, meeting the circle again at
 /// the Ball point. Timing does not matter (rates per unit crank angle are as good as per second).
-/// `None` when the body is not turning (`ω = 0`: pole at infinity) or the rates are not finite.
+/// `None` when the body is not turning (`ω = 0`: pole at infinity), the rates are not finite, or
+/// the circle lies beyond the float range.
 pub fn inflection<T: RealField + Copy>(m: &BodyMotion<T>) -> Option<Inflection<T>> {
     let w = m.omega;
     if w.abs() <= m.omega_tol || !w.is_finite() {
@@ -45,18 +46,30 @@ pub fn inflection<T: RealField + Copy>(m: &BodyMotion<T>) -> Option<Inflection<T
     let w2 = w * w;
     let diameter = a_i / w2;
     let g = j_i - a_i * (lit::<T>(3.0) * m.alpha / w);
-    let gn = g.norm();
+    let gn = crate::scalar::length(g);
     let ball_point = if gn == T::zero() {
         Centre::Undefined
     } else {
         let e = perp(g) / gn;
         Centre::Finite(pole + e * diameter.dot(&e))
     };
-    Some(Inflection {
+    let out = Inflection {
         pole,
         inflection_pole: pole + diameter,
         centre: pole + diameter * lit::<T>(0.5),
-        radius: diameter.norm() * lit::<T>(0.5),
+        radius: crate::scalar::length(diameter) * lit::<T>(0.5),
         ball_point,
-    })
+    };
+    // A circle beyond the float range (ω² underflowing against a_I, e.g. a subnormal crank) is
+    // no circle: `None`, not infinities. A Ball point that is not finite is undefined.
+    let finite = |p: Vec2<T>| p.x.is_finite() && p.y.is_finite();
+    let circle = finite(out.pole) && finite(out.inflection_pole) && finite(out.centre);
+    if !(circle && out.radius.is_finite()) {
+        return None;
+    }
+    let ball_point = match out.ball_point {
+        Centre::Finite(p) if !finite(p) => Centre::Undefined,
+        b => b,
+    };
+    Some(Inflection { ball_point, ..out })
 }

@@ -164,9 +164,10 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
                 got: size,
             });
         }
-        let centre = match mech.constructions()[driver] {
-            Construction::Crank { centre, .. } => centre,
-            _ => unreachable!("the driver is a crank"),
+        // `driver()` names the crank's joint (set only when a crank is pushed), so this always
+        // matches; a typed error rather than a panic keeps that an invariant, not a promise.
+        let Some(&Construction::Crank { centre, .. }) = mech.constructions().get(driver) else {
+            return Err(Error::NoDriver);
         };
         let driver_base = ids
             .iter()
@@ -193,6 +194,43 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
     /// The bodies, ground first (the order of the inertia entries).
     pub fn body_ids(&self) -> &[BodyId] {
         &self.ids
+    }
+
+    /// `(joint, from, to)` of every reaction [`Dynamics::solve`] returns, in its order: the
+    /// layout is fixed by the mechanism, so callers can size their outputs before solving.
+    pub fn reaction_layout(&self) -> impl ExactSizeIterator<Item = (usize, BodyId, BodyId)> + '_ {
+        self.unknowns.iter().map(|u| (u.joint, u.from, u.to))
+    }
+
+    /// Checks the pose slices and the loads' joints against the mechanism.
+    fn check_inputs(
+        &self,
+        pos: &[Vec2<T>],
+        vel: &[Vec2<T>],
+        acc: &[Vec2<T>],
+        loads: &[Load<T>],
+    ) -> Result<(), Error> {
+        let n = self.mech.len();
+        for (what, got) in [
+            ("joints", pos.len()),
+            ("velocities", vel.len()),
+            ("accelerations", acc.len()),
+        ] {
+            if got != n {
+                return Err(Error::BufferLength {
+                    what,
+                    expected: n,
+                    got,
+                });
+            }
+        }
+        if let Some(l) = loads.iter().find(|l| l.joint >= n) {
+            return Err(Error::UnknownJoint {
+                joint: n,
+                refers_to: l.joint,
+            });
+        }
+        Ok(())
     }
 
     /// Centre of mass of body `k` (index into [`Dynamics::body_ids`]) at a pose.
@@ -234,9 +272,15 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
     /// For each moving body: `Σ F = m a_G − m g − F_ext` and
     /// `Σ (r − G) × F + couples = I α − Σ (r_ext − G) × F_ext − τ_ext`.
     ///
+    /// # Panics
+    /// Never for a mechanism's own sizes: the dense system is `3(b − 1)` square for `b ≤ 2N + 1`
+    /// bodies (at most 384 × 384 for the Python binding's `N = 64`). Only a capacity `N` in the
+    /// tens of thousands, chosen at compile time, could make its allocation fail (an abort).
+    ///
     /// # Errors
     /// [`Error::Coincident`] (joint = the driver) when the system is singular: a toggle, where
-    /// statics cannot decide the reactions.
+    /// statics cannot decide the reactions; [`Error::BufferLength`] when a slice is not
+    /// [`Mechanism::len`] long; [`Error::UnknownJoint`] for a load at a joint beyond it.
     pub fn solve(
         &self,
         pos: &[Vec2<T>],
@@ -244,6 +288,7 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
         acc: &[Vec2<T>],
         loads: &[Load<T>],
     ) -> Result<ForceSolution<T>, Error> {
+        self.check_inputs(pos, vel, acc, loads)?;
         let nb = self.ids.len();
         let size = 3 * (nb - 1);
         let mut a = DMatrix::<T>::zeros(size, size);
@@ -342,7 +387,9 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
     /// Driver torque by the power method: the driver's power equals the rate of change of
     /// kinetic energy plus the power against gravity and the external loads,
     /// `T (ω_crank − ω_base) = Σ (m a_G·v_G + I α ω) − Σ m g·v_G − Σ F_ext·v_P − Σ τ_ext ω`.
-    /// No joint force enters. NaN when the crank is at rest relative to its base.
+    /// No joint force enters. NaN when the crank is at rest relative to its base, and for
+    /// inputs [`Dynamics::solve`] would reject (slices of the wrong length, a load's joint
+    /// beyond the mechanism).
     pub fn power_torque(
         &self,
         pos: &[Vec2<T>],
@@ -350,6 +397,9 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
         acc: &[Vec2<T>],
         loads: &[Load<T>],
     ) -> T {
+        if self.check_inputs(pos, vel, acc, loads).is_err() {
+            return crate::scalar::nan::<T>();
+        }
         let zero = vec![Vec2::zeros(); pos.len()];
         let motions: Vec<BodyMotion<T>> = self
             .ids

@@ -35,6 +35,15 @@ pub(crate) fn direction_rates<T: RealField + Copy>(
     d2: Vec2<T>,
     d3: Vec2<T>,
 ) -> (T, T, T) {
+    // The rates are homogeneous of degree 0 in (d, d1, d2, d3): dividing all four by one power
+    // of two near |d| (exact, and no change for ordinary sizes) keeps |d|² and the cross
+    // products from overflowing or underflowing at any linkage scale.
+    let s = crate::dyad::pow2_scale(d.amax());
+    let (d, d1, d2, d3) = if s == T::one() {
+        (d, d1, d2, d3)
+    } else {
+        (d / s, d1 / s, d2 / s, d3 / s)
+    };
     let two = lit::<T>(2.0);
     let l2 = d.norm_squared();
     let s = d.dot(&d1);
@@ -129,8 +138,16 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                     (drive.omega, drive.alpha, drive.jerk),
                 ),
                 Construction::Dyad { p1, p2, dyad, .. } => {
+                    // Both rows divided by a power of two near the links' length (exact, no
+                    // change for ordinary sizes): the system is the same, but neither the
+                    // determinant nor `e·v`, `|w|²` overflow at any linkage scale.
                     let (e1, e2) = (p - pos[p1], p - pos[p2]);
-                    let toggle = cross(e1, e2).abs() < m_star * dyad.r1 * dyad.r2;
+                    let s = crate::dyad::pow2_scale(e1.amax().max(e2.amax()));
+                    // (no division at all in the common case s = 1)
+                    let sc = |v: Vec2<T>| if s == T::one() { v } else { v / s };
+                    let (e1, e2) = (sc(e1), sc(e2));
+                    // The rate margin on the scaled rows: |e1 × e2| = r1·r2·m, all over s².
+                    let toggle = cross(e1, e2).abs() < m_star * (dyad.r1 / s) * (dyad.r2 / s);
                     match solve_rows(e1, e2, e1.dot(&vel[p1]), e2.dot(&vel[p2])) {
                         _ if toggle => (bad, bad, bad),
                         None => (bad, bad, bad),
@@ -140,8 +157,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                                 solve_rows(
                                     e1,
                                     e2,
-                                    e1.dot(&al[p1]) - w1.norm_squared(),
-                                    e2.dot(&al[p2]) - w2.norm_squared(),
+                                    e1.dot(&al[p1]) - sc(w1).dot(&w1),
+                                    e2.dot(&al[p2]) - sc(w2).dot(&w2),
                                 )
                                 .unwrap_or(bad)
                             } else {
@@ -152,8 +169,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                                 solve_rows(
                                     e1,
                                     e2,
-                                    e1.dot(&jk[p1]) - three * w1.dot(&(a - al[p1])),
-                                    e2.dot(&jk[p2]) - three * w2.dot(&(a - al[p2])),
+                                    e1.dot(&jk[p1]) - three * sc(w1).dot(&(a - al[p1])),
+                                    e2.dot(&jk[p2]) - three * sc(w2).dot(&(a - al[p2])),
                                 )
                                 .unwrap_or(bad)
                             } else {
@@ -242,7 +259,12 @@ fn slider_rates<T: RealField + Copy>(
     let (q, vq, aq, jq) = origin;
     let (w, al, jk) = turn;
     let (two, three) = (lit::<T>(2.0), lit::<T>(3.0));
-    let e = p - pa;
+    // The link vector divided by a power of two near its length (exact; 1 for ordinary sizes):
+    // each equation below is divided through by it, so no dot product of two large vectors
+    // overflows at any linkage scale.
+    let unit = crate::dyad::pow2_scale((p - pa).amax());
+    let sc = |v: Vec2<T>| if unit == T::one() { v } else { v / unit };
+    let e = sc(p - pa);
     let den = e.dot(&u);
     if den == T::zero() || !den.is_finite() {
         return None;
@@ -258,13 +280,13 @@ fn slider_rates<T: RealField + Copy>(
         return Some((v, Vec2::zeros(), Vec2::zeros()));
     }
     let k2 = aq + du * (two * sd) + ddu * s;
-    let sdd = (e.dot(&(aa - k2)) - (v - va).norm_squared()) / den;
+    let sdd = (e.dot(&(aa - k2)) - sc(v - va).dot(&(v - va))) / den;
     let a = k2 + u * sdd;
     if !want_j {
         return Some((v, a, Vec2::zeros()));
     }
     let k3 = jq + du * (three * sdd) + ddu * (three * sd) + dddu * s;
-    let sddd = (e.dot(&(ja - k3)) - three * (v - va).dot(&(a - aa))) / den;
+    let sddd = (e.dot(&(ja - k3)) - three * sc(v - va).dot(&(a - aa))) / den;
     Some((v, a, k3 + u * sddd))
 }
 

@@ -195,7 +195,17 @@ impl<T: RealField + Copy> Segment<T> {
         let d = self.duration;
         let [s, v, a, j] = law.eval(t / d);
         let l = self.rise;
-        [l * s, l * v / d, l * a / (d * d), l * j / (d * d * d)]
+        let (d2, d3) = (d * d, d * d * d);
+        // Normal and finite: at least 4/max (just above the smallest normal number).
+        let tiny = T::max_value().map_or(T::zero(), |m| lit::<T>(4.0) / m);
+        let normal = |x: T| x.is_finite() && x >= tiny;
+        if normal(d2) && normal(d3) {
+            [l * s, l * v / d, l * a / d2, l * j / d3]
+        } else {
+            // d² or d³ underflows or overflows: divide one factor at a time, so a zero
+            // derivative stays zero and a large one is infinite only if it exceeds the maximum.
+            [l * s, l * v / d, l * a / d / d, l * j / d / d / d]
+        }
     }
 }
 
@@ -234,16 +244,53 @@ impl<T: RealField + Copy> Program<'_, T> {
     }
 
     /// `[y, y', y'', y''']` at `t`; the program repeats with its period. Zero rates for an
-    /// empty program.
+    /// empty program; NaN for a non-finite `t`.
+    ///
+    /// When the durations add up to more than the float maximum (the period overflows), `t` is
+    /// placed by walking the segments forward from the start (`t ≥ 0`) or back from the end of
+    /// the previous period (`t < 0`), so the value is still the one at `t`, not a wrap-around.
     pub fn eval(&self, t: T) -> Derivatives<T> {
         let period = self.period();
-        if self.segments.is_empty() || period <= T::zero() {
+        let Some(last) = self.segments.len().checked_sub(1) else {
+            return [self.start, T::zero(), T::zero(), T::zero()];
+        };
+        // (a NaN period, from unvalidated public fields, returns here too)
+        if period.partial_cmp(&T::zero()) != Some(core::cmp::Ordering::Greater) {
             return [self.start, T::zero(), T::zero(), T::zero()];
         }
-        let cycles = (t / period).floor();
-        let mut local = t - cycles * period;
-        let mut base = self.start + cycles * self.advance();
-        let last = self.segments.len() - 1;
+        if !t.is_finite() {
+            return [crate::scalar::nan::<T>(); 4];
+        }
+        if !period.is_finite() && t < T::zero() {
+            // In the previous period, `-t` before its end: walk back from the last segment.
+            let mut back = -t;
+            let mut end = self.start;
+            for seg in self.segments.iter().rev() {
+                if back <= seg.duration {
+                    let [y, v, a, j] = seg.eval(seg.duration - back);
+                    return [end - seg.rise + y, v, a, j];
+                }
+                back -= seg.duration;
+                end -= seg.rise;
+            }
+            // Not reached for finite `t`: the durations add up to more than `|t|`.
+            return [end, T::zero(), T::zero(), T::zero()];
+        }
+        let (cycles, mut local) = if period.is_finite() {
+            // `%` is exact (fmod): the time within the period is right however large `t` is.
+            let mut local = t % period;
+            if local < T::zero() {
+                local += period;
+            }
+            (((t - local) / period).round(), local.min(period))
+        } else {
+            (T::zero(), t)
+        };
+        let mut base = if cycles == T::zero() {
+            self.start
+        } else {
+            self.start + cycles * self.advance()
+        };
         for (i, seg) in self.segments.iter().enumerate() {
             if local <= seg.duration || i == last {
                 let [y, v, a, j] = seg.eval(local.min(seg.duration));
@@ -252,7 +299,8 @@ impl<T: RealField + Copy> Program<'_, T> {
             local -= seg.duration;
             base += seg.rise;
         }
-        unreachable!("the last segment returns")
+        // Not reached: the loop returns at the last segment (`i == last`), and there is one.
+        [base, T::zero(), T::zero(), T::zero()]
     }
 
     /// Jumps of velocity, acceleration and jerk larger than `tol` at the joins, including the

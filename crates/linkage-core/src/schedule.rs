@@ -34,7 +34,8 @@ impl<'a, T: RealField + Copy> ScheduleTable<'a, T> {
     /// A table of `theta.len()` samples `dt` apart.
     ///
     /// # Errors
-    /// [`Error::InvalidLength`] for a non-positive `dt`, an empty table or mismatched lengths;
+    /// [`Error::InvalidLength`] for a non-positive `dt`, an empty table, a period `n·dt` that
+    /// overflows, or mismatched lengths;
     /// [`Error::NotFinite`] for a non-finite entry.
     pub fn new(dt: T, advance: T, theta: &'a [T], omega: &'a [T]) -> Result<Self, Error> {
         check_length("schedule dt", dt)?;
@@ -55,6 +56,11 @@ impl<'a, T: RealField + Copy> ScheduleTable<'a, T> {
         for &x in theta.iter().chain(omega) {
             check_finite("schedule entry", x)?;
         }
+        // The period `n·dt` must be finite too, or every time falls in period 0.
+        check_length(
+            "schedule period (samples × dt)",
+            dt * lit::<T>(theta.len() as f64),
+        )?;
         Ok(ScheduleTable {
             dt,
             advance,
@@ -73,10 +79,16 @@ impl<'a, T: RealField + Copy> ScheduleTable<'a, T> {
     pub fn at(&self, t: T) -> (T, T, T) {
         let n = self.theta.len();
         let period = self.period();
-        let cycles = (t / period).floor();
-        let local = t - cycles * period;
+        // `%` is exact (fmod), so the time within the period is right even when `t / period`
+        // is huge; `cycles` only scales `advance` (and is ±∞ only when the angle overflows).
+        let mut local = t % period;
+        if local < T::zero() {
+            local += period; // in (0, period]; `period` itself is handled below
+        }
+        let cycles = ((t - local) / period).round();
         let pos = local / self.dt;
         let k = pos.floor();
+        // `as` saturates (NaN → 0), and `local ∈ [0, period]` keeps `k` in `0..=n` anyway.
         let mut i = k.to_subset().unwrap_or(0.0) as usize;
         let mut tau = pos - k;
         if i >= n {

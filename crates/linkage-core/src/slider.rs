@@ -90,7 +90,10 @@ impl<T: RealField + Copy> SliderDyad<T> {
             }
             T::zero()
         } else {
-            ((r - e) * (r + e)).sqrt()
+            // In units of a power of two near r (exact; 1 for ordinary sizes), so the product
+            // neither overflows nor underflows at any linkage scale.
+            let sc = crate::dyad::pow2_scale(r);
+            (((r - e) / sc) * ((r + e) / sc)).sqrt() * sc
         };
         let foot = q - u * u.dot(&w);
         Ok(SliderPose {

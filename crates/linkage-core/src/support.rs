@@ -3,37 +3,103 @@
 
 use nalgebra::RealField;
 
+use crate::dyad::pow2_scale;
+use crate::error::Error;
 use crate::scalar::{cross, Vec2};
 
-/// Convex hull of `points` by Andrew's monotone chain, written counter-clockwise into `out`
-/// (which needs room for `points.len() + 1` vertices); returns the hull's vertex count.
-/// Collinear points on an edge are dropped; 1 or 2 distinct points give a degenerate hull of
-/// that many vertices. Sorts `points` in place. Non-finite points are not allowed.
-pub fn convex_hull<T: RealField + Copy>(points: &mut [Vec2<T>], out: &mut [Vec2<T>]) -> usize {
-    let n = points.len();
-    if n == 0 {
-        return 0;
+/// A power of two that brings the largest coordinate of `points` (and `extra`) near 1, so that
+/// differences and cross products of the scaled points neither overflow nor underflow; 1 for
+/// ordinary coordinates (in [2⁻³², 2³²]), where nothing is rescaled. Dividing by it is exact
+/// (short of subnormals).
+fn hull_scale<T: RealField + Copy>(points: &[Vec2<T>], extra: Vec2<T>) -> T {
+    let big = points
+        .iter()
+        .fold(extra.amax(), |m, p| if p.amax() > m { p.amax() } else { m });
+    if big == T::zero() {
+        T::one()
+    } else {
+        pow2_scale(big)
     }
+}
+
+/// Convex hull of `points` by Andrew's monotone chain, written counter-clockwise into `out`;
+/// returns the hull's vertex count. Collinear points on an edge are dropped; 1 or 2 distinct
+/// points give a degenerate hull of that many vertices.
+///
+/// Points with a NaN or infinite coordinate are left out (they are moved to the end of
+/// `points`; the finite ones are sorted in place). Orientation tests run on the points scaled
+/// by a power of two, so coordinates near the float maximum cannot overflow into a NaN test.
+///
+/// # Errors
+/// [`Error::BufferLength`] when `out` is shorter than the number of finite points plus one.
+pub fn convex_hull<T: RealField + Copy>(
+    points: &mut [Vec2<T>],
+    out: &mut [Vec2<T>],
+) -> Result<usize, Error> {
+    // Finite points first (a stable partition is not needed: they are sorted next).
+    let mut n = 0;
+    for i in 0..points.len() {
+        if points[i].x.is_finite() && points[i].y.is_finite() {
+            points.swap(n, i);
+            n += 1;
+        }
+    }
+    if out.len() < n + 1 {
+        return Err(Error::BufferLength {
+            what: "hull (finite points + 1)",
+            expected: n + 1,
+            got: out.len(),
+        });
+    }
+    let points = &mut points[..n];
+    if n == 0 {
+        return Ok(0);
+    }
+    // Every coordinate is finite here, so `partial_cmp` never fails: the order is total.
     points.sort_unstable_by(|a, b| {
         a.x.partial_cmp(&b.x)
             .unwrap_or(core::cmp::Ordering::Equal)
             .then(a.y.partial_cmp(&b.y).unwrap_or(core::cmp::Ordering::Equal))
     });
+    let s = hull_scale(points, Vec2::zeros());
+    // `true` when `o → a → b` does not turn strictly counter-clockwise (so `a` is dropped). A
+    // NaN test (impossible after scaling, kept as a guard) also drops, so the chain stays short.
+    let drop = |o: Vec2<T>, a: Vec2<T>, b: Vec2<T>| {
+        let (o, a, b) = (o / s, a / s, b / s);
+        let turn = cross(a - o, b - o);
+        turn.partial_cmp(&T::zero()) != Some(core::cmp::Ordering::Greater)
+    };
     let mut k = 0;
-    // Lower hull, then upper hull.
+    // Lower hull, then upper hull. Each chain is a stack of distinct points (popped before a
+    // push), so `k` stays below `n + 1`; `get_mut` keeps even a broken order from writing past
+    // `out`.
     for &p in points.iter() {
-        while k >= 2 && cross(out[k - 1] - out[k - 2], p - out[k - 2]) <= T::zero() {
+        while k >= 2 && drop(out[k - 2], out[k - 1], p) {
             k -= 1;
         }
-        out[k] = p;
+        let Some(slot) = out.get_mut(k) else {
+            return Err(Error::BufferLength {
+                what: "hull (finite points + 1)",
+                expected: k + 1,
+                got: out.len(),
+            });
+        };
+        *slot = p;
         k += 1;
     }
     let lower = k + 1;
-    for &p in points[..n.saturating_sub(1)].iter().rev() {
-        while k >= lower && cross(out[k - 1] - out[k - 2], p - out[k - 2]) <= T::zero() {
+    for &p in points[..n - 1].iter().rev() {
+        while k >= lower && drop(out[k - 2], out[k - 1], p) {
             k -= 1;
         }
-        out[k] = p;
+        let Some(slot) = out.get_mut(k) else {
+            return Err(Error::BufferLength {
+                what: "hull (finite points + 1)",
+                expected: k + 1,
+                got: out.len(),
+            });
+        };
+        *slot = p;
         k += 1;
     }
     // The last point repeats the first (except for a single point).
@@ -42,18 +108,25 @@ pub fn convex_hull<T: RealField + Copy>(points: &mut [Vec2<T>], out: &mut [Vec2<
     if count == 2 && out[0] == out[1] {
         count = 1;
     }
-    count
+    Ok(count)
 }
 
 /// Signed distance from `p` to the boundary of the convex polygon `hull` (counter-clockwise, as
 /// [`convex_hull`] writes it): positive inside, negative outside — the static stability margin
 /// of McGhee and Frank's CG projection method. A degenerate hull (a segment or a point) has no
-/// inside: the result is minus the distance to it. `None` for an empty hull.
+/// inside: the result is minus the distance to it. `None` for an empty hull, or when `p` or a
+/// vertex is not finite. Coordinates near the float maximum are scaled by a power of two first,
+/// so the distance is right whenever it is representable (infinite only when it exceeds the
+/// float maximum).
 pub fn stability_margin<T: RealField + Copy>(p: Vec2<T>, hull: &[Vec2<T>]) -> Option<T> {
     let n = hull.len();
-    if n == 0 {
+    let finite = |v: Vec2<T>| v.x.is_finite() && v.y.is_finite();
+    if n == 0 || !finite(p) || !hull.iter().all(|&v| finite(v)) {
         return None;
     }
+    let s = hull_scale(hull, p);
+    let p = p / s;
+    // Distance from `p` to the segment `a b`, all scaled.
     let seg_dist = |a: Vec2<T>, b: Vec2<T>| {
         let ab = b - a;
         let l2 = ab.norm_squared();
@@ -62,21 +135,22 @@ pub fn stability_margin<T: RealField + Copy>(p: Vec2<T>, hull: &[Vec2<T>]) -> Op
         } else {
             T::zero()
         };
-        (a + ab * t - p).norm()
+        crate::scalar::length(a + ab * t - p)
     };
     if n < 3 {
-        return Some(-seg_dist(hull[0], hull[n - 1]));
+        return Some(-seg_dist(hull[0] / s, hull[n - 1] / s) * s);
     }
     let mut inside = true;
     let mut nearest = T::max_value().unwrap_or(T::one() / T::default_epsilon());
+    // (scaled distances are at most 2³⁴, so the start value is above any of them)
     for i in 0..n {
-        let (a, b) = (hull[i], hull[(i + 1) % n]);
+        let (a, b) = (hull[i] / s, hull[(i + 1) % n] / s);
         if cross(b - a, p - a) < T::zero() {
             inside = false;
         }
         nearest = nearest.min(seg_dist(a, b));
     }
-    Some(if inside { nearest } else { -nearest })
+    Some(if inside { nearest * s } else { -nearest * s })
 }
 
 #[cfg(test)]
@@ -94,7 +168,7 @@ mod tests {
             Vec2::new(1.0, 0.0), // on an edge
         ];
         let mut hull = [Vec2::zeros(); 7];
-        let n = convex_hull(&mut pts, &mut hull);
+        let n = convex_hull(&mut pts, &mut hull).unwrap();
         assert_eq!(n, 4);
         let h = &hull[..n];
         assert_eq!(stability_margin(Vec2::new(1.0, 1.0), h), Some(1.0));
@@ -102,7 +176,7 @@ mod tests {
         assert_eq!(stability_margin(Vec2::new(3.0, 1.0), h), Some(-1.0));
         // Two pads touching at a point: a segment has no inside.
         let mut two = [Vec2::new(0.0, 0.0), Vec2::new(2.0, 0.0)];
-        let m = convex_hull(&mut two, &mut hull);
+        let m = convex_hull(&mut two, &mut hull).unwrap();
         assert_eq!(m, 2);
         assert_eq!(
             stability_margin(Vec2::new(1.0, 0.5), &hull[..m]),

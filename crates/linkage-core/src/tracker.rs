@@ -274,9 +274,9 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     }
 
     /// Current orientation of joint `i`: `+1` for [`crate::Side::Left`] / [`crate::Reach::Ahead`],
-    /// `-1` for the other, `+1` for joints without a branch.
+    /// `-1` for the other, `+1` for joints without a branch (and for an index beyond `N`).
     pub fn branch(&self, i: usize) -> T {
-        if self.sign[i] < 0 {
+        if self.sign.get(i).is_some_and(|&s| s < 0) {
             -T::one()
         } else {
             T::one()
@@ -286,10 +286,13 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     /// Forces the orientation of joint `i` (`+1` / `-1`) and forgets the motion history, so the
     /// next sample starts afresh there. Used to pass to the other branch at a toggle, as a
     /// circuit sweep does.
+    /// An index beyond `N` changes nothing.
     pub fn set_branch(&mut self, i: usize, sign: T) {
-        self.sign[i] = if sign < T::zero() { -1 } else { 1 };
-        self.held = self.sign;
-        self.nhist = 0;
+        if let Some(s) = self.sign.get_mut(i) {
+            *s = if sign < T::zero() { -1 } else { 1 };
+            self.held = self.sign;
+            self.nhist = 0;
+        }
     }
 
     /// Placements done so far: solves of every joint at one angle, the unit of the tracker's

@@ -76,8 +76,9 @@ impl<T: RealField + Copy> FourBar<T> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite `theta0`/`dtheta`; [`Error::InvalidLength`] for a
-    /// zero block; [`Error::ToggleOnPath`] when a change-point linkage's flat position lies on
-    /// the samples' path (see [`FourBar::check_fixed_assembly_path`]): nothing is written.
+    /// zero block; [`Error::CountOverflow`] when `first + out.len()` overflows `usize`;
+    /// [`Error::ToggleOnPath`] when a change-point linkage's flat position lies on the samples'
+    /// path (see [`FourBar::check_fixed_assembly_path`]): nothing is written.
     // Always inlined, so a caller compiled for wider vectors (the Python binding's AVX-512 and
     // AVX2 paths) gets this kernel compiled for them too.
     #[inline(always)]
@@ -122,7 +123,9 @@ impl<T: RealField + Copy> FourBar<T> {
         let mut cos_buf = [T::zero(); MAX_TABLE];
         let mut sin_buf = [T::zero(); MAX_TABLE];
         let span = block.min(MAX_TABLE);
-        let end = first + out.len();
+        let end = first.checked_add(out.len()).ok_or(Error::CountOverflow {
+            what: "first sample + samples",
+        })?;
         let mut k = first;
         let mut written = 0;
         // One anchor block at a time: the anchor's exact direction, then the samples up to the

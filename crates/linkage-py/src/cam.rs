@@ -5,7 +5,9 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args::Real;
 use crate::error::{linkage_error, to_py};
+use crate::memory;
 
 /// Cam geometry at cam angles `phi` for follower motion `y` (N, 3: s, ds/dφ, d²s/dφ²).
 /// `roller_radius` None means a flat-faced follower. Returns a dict of arrays.
@@ -15,17 +17,18 @@ pub fn cam_geometry<'py>(
     py: Python<'py>,
     phi: PyReadonlyArray1<'py, f64>,
     y: PyReadonlyArray2<'py, f64>,
-    base_radius: f64,
-    roller_radius: Option<f64>,
-    offset: f64,
+    base_radius: Real,
+    roller_radius: Option<Real>,
+    #[pyo3(from_py_with = crate::args::real)] offset: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let (base_radius, roller_radius) = (base_radius.0, roller_radius.map(|r| r.0));
     let phi = phi
         .as_slice()
         .map_err(|_| linkage_error("phi must be a contiguous float64 array"))?;
     let ys = y
         .as_slice()
         .map_err(|_| linkage_error("y must be a contiguous float64 array"))?;
-    if ys.len() != 3 * phi.len() {
+    if ys.len() / 3 != phi.len() || ys.len() % 3 != 0 {
         return Err(linkage_error("y must have shape (len(phi), 3)"));
     }
     let point: Box<dyn Fn(f64, [f64; 3]) -> CamPoint<f64> + Send + Sync> = match roller_radius {
@@ -39,35 +42,30 @@ pub fn cam_geometry<'py>(
         }
     };
     let n = phi.len();
-    let pts: Vec<CamPoint<f64>> = py.detach(|| {
-        phi.iter()
-            .enumerate()
-            .map(|(k, &p)| point(p, [ys[3 * k], ys[3 * k + 1], ys[3 * k + 2]]))
-            .collect()
+    // Seven floats a sample (pitch and profile points, three columns), checked and reserved
+    // before any is computed; the columns are then filled in one pass.
+    let what = || format!("cam geometry of {n} angles");
+    memory::check(&what, memory::bytes_of::<f64>(7 * n as u128))?;
+    let mut pitch = memory::with_capacity(&what, 2 * n)?;
+    let mut profile = memory::with_capacity(&what, 2 * n)?;
+    let mut pressure = memory::with_capacity(&what, n)?;
+    let mut pitch_radius = memory::with_capacity(&what, n)?;
+    let mut profile_radius = memory::with_capacity(&what, n)?;
+    py.detach(|| {
+        for (&p, y) in phi.iter().zip(ys.chunks_exact(3)) {
+            let c: CamPoint<f64> = point(p, [y[0], y[1], y[2]]);
+            pitch.extend([c.pitch.x, c.pitch.y]);
+            profile.extend([c.profile.x, c.profile.y]);
+            pressure.push(c.pressure_angle);
+            pitch_radius.push(c.pitch_radius);
+            profile_radius.push(c.profile_radius);
+        }
     });
-    let xy =
-        |f: &dyn Fn(&CamPoint<f64>) -> [f64; 2]| -> Vec<f64> { pts.iter().flat_map(f).collect() };
     let d = PyDict::new(py);
-    d.set_item(
-        "pitch",
-        PyArray1::from_vec(py, xy(&|p| [p.pitch.x, p.pitch.y])).reshape([n, 2])?,
-    )?;
-    d.set_item(
-        "profile",
-        PyArray1::from_vec(py, xy(&|p| [p.profile.x, p.profile.y])).reshape([n, 2])?,
-    )?;
-    let col = |f: fn(&CamPoint<f64>) -> f64| -> Vec<f64> { pts.iter().map(f).collect() };
-    d.set_item(
-        "pressure_angle",
-        PyArray1::from_vec(py, col(|p| p.pressure_angle)),
-    )?;
-    d.set_item(
-        "pitch_radius",
-        PyArray1::from_vec(py, col(|p| p.pitch_radius)),
-    )?;
-    d.set_item(
-        "profile_radius",
-        PyArray1::from_vec(py, col(|p| p.profile_radius)),
-    )?;
+    d.set_item("pitch", PyArray1::from_vec(py, pitch).reshape([n, 2])?)?;
+    d.set_item("profile", PyArray1::from_vec(py, profile).reshape([n, 2])?)?;
+    d.set_item("pressure_angle", PyArray1::from_vec(py, pressure))?;
+    d.set_item("pitch_radius", PyArray1::from_vec(py, pitch_radius))?;
+    d.set_item("profile_radius", PyArray1::from_vec(py, profile_radius))?;
     Ok(d)
 }

@@ -29,7 +29,10 @@ pub fn catalog_four_bar(name: &str) -> PyResult<FourBar> {
 /// pantograph's (ignored by the others).
 #[pyfunction]
 #[pyo3(signature = (name, scale=2.0))]
-pub fn catalog_linkage(name: &str, scale: f64) -> PyResult<(Mechanism, Vec<&'static str>, usize)> {
+pub fn catalog_linkage(
+    name: &str,
+    #[pyo3(from_py_with = crate::args::real)] scale: f64,
+) -> PyResult<(Mechanism, Vec<&'static str>, usize)> {
     let linkage = match name {
         "hoecken_pantograph" => {
             core_catalog::hoecken_pantograph::<f64>(scale).map_err(crate::error::to_py)?

@@ -6,7 +6,9 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args::Real;
 use crate::error::linkage_error;
+use crate::memory;
 
 /// Reads an (M, 2) contiguous float64 array as points.
 fn points(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<Vec2<f64>>> {
@@ -16,7 +18,10 @@ fn points(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<Vec2<f64>>>
     if a.as_array().ncols() != 2 {
         return Err(linkage_error(format!("{name} must have shape (M, 2)")));
     }
-    Ok(s.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect())
+    let what = || format!("a copy of {name} ({} points)", s.len() / 2);
+    let mut out = memory::with_capacity(&what, s.len() / 2)?;
+    out.extend(s.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])));
+    Ok(out)
 }
 
 fn same_rows(names: &[&str], rows: &[usize]) -> PyResult<()> {
@@ -51,15 +56,16 @@ pub fn curvature_centres<'py>(
         &[p.len(), v.len(), a.len()],
     )?;
     let m = p.len();
-    let (centres, kappa) = py.detach(|| {
-        let mut centres = Vec::with_capacity(2 * m);
-        let mut kappa = Vec::with_capacity(m);
+    let what = || format!("curvature of {m} points");
+    memory::check(&what, memory::bytes_of::<f64>(3 * m as u128))?;
+    let mut centres = memory::with_capacity(&what, 2 * m)?;
+    let mut kappa = memory::with_capacity(&what, m)?;
+    py.detach(|| {
         for i in 0..m {
             let (k, c) = path_curvature(p[i], v[i], a[i]);
             centres.extend(finite_xy(c));
             kappa.push(k);
         }
-        (centres, kappa)
     });
     let c = PyArray1::from_vec(py, centres).reshape([m, 2])?.into_any();
     Ok((c, PyArray1::from_vec(py, kappa)))
@@ -76,11 +82,8 @@ pub fn circumcentres<'py>(
     let (a, b, c) = (points("p0", &p0)?, points("p1", &p1)?, points("p2", &p2)?);
     same_rows(&["p0", "p1", "p2"], &[a.len(), b.len(), c.len()])?;
     let m = a.len();
-    let out: Vec<f64> = py.detach(|| {
-        (0..m)
-            .flat_map(|i| finite_xy(circumcentre(a[i], b[i], c[i])))
-            .collect()
-    });
+    let mut out = memory::with_capacity(&|| format!("circumcentres of {m} points"), 2 * m)?;
+    py.detach(|| out.extend((0..m).flat_map(|i| finite_xy(circumcentre(a[i], b[i], c[i])))));
     Ok(PyArray1::from_vec(py, out).reshape([m, 2])?.into_any())
 }
 
@@ -90,9 +93,10 @@ pub fn circumcentres<'py>(
 pub fn straight_run<'py>(
     py: Python<'py>,
     path: PyReadonlyArray2<'py, f64>,
-    tol: f64,
+    tol: Real,
     closed: bool,
 ) -> PyResult<Option<Bound<'py, PyDict>>> {
+    let tol = tol.0;
     let p = points("path", &path)?;
     let Some(s) = py.detach(|| straight_part(&p, tol, closed)) else {
         return Ok(None);

@@ -4,7 +4,9 @@ use linkage_core::{Discontinuity, GearTrain, MotionLaw, Program, ScheduleTable, 
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
+use crate::args::{count_u32, Real, Strict};
 use crate::error::{linkage_error, to_py};
+use crate::memory;
 
 fn law(name: &str) -> PyResult<MotionLaw> {
     MotionLaw::from_name(name).ok_or_else(|| {
@@ -36,15 +38,23 @@ pub fn motion_law_eval<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let l = law(name)?;
     let u = slice("u", &u)?;
-    let out: Vec<f64> = py.detach(|| u.iter().flat_map(|&x| l.eval(x)).collect());
+    let mut out = columns(u.len(), 4, "motion law values")?;
+    py.detach(|| out.extend(u.iter().flat_map(|&x| l.eval(x))));
     Ok(PyArray1::from_vec(py, out)
         .reshape([u.len(), 4])?
         .into_any())
 }
 
+/// Room for `rows × cols` floats (`cols` ≤ 4), or `MemoryError` naming the size.
+fn columns(rows: usize, cols: usize, what: &str) -> PyResult<Vec<f64>> {
+    let what = || format!("{what} at {rows} points");
+    memory::check(&what, memory::bytes_of::<f64>(rows as u128 * cols as u128))?;
+    memory::with_capacity(&what, rows * cols)
+}
+
 fn segments(
-    durations: &[f64],
-    rises: &[f64],
+    durations: &[Real],
+    rises: &[Real],
     laws: &[Option<String>],
 ) -> PyResult<Vec<Segment<f64>>> {
     if durations.len() != rises.len() || rises.len() != laws.len() {
@@ -58,7 +68,7 @@ fn segments(
         .zip(laws)
         .map(|((&d, &r), l)| {
             let l = l.as_deref().map(law).transpose()?;
-            Segment::new(d, r, l).map_err(to_py)
+            Segment::new(d.0, r.0, l).map_err(to_py)
         })
         .collect()
 }
@@ -67,19 +77,20 @@ fn segments(
 #[pyfunction]
 pub fn program_eval<'py>(
     py: Python<'py>,
-    start: f64,
-    durations: Vec<f64>,
-    rises: Vec<f64>,
+    start: Real,
+    durations: Vec<Real>,
+    rises: Vec<Real>,
     laws: Vec<Option<String>>,
     t: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let segs = segments(&durations, &rises, &laws)?;
     let t = slice("t", &t)?;
     let p = Program {
-        start,
+        start: start.0,
         segments: &segs,
     };
-    let out: Vec<f64> = py.detach(|| t.iter().flat_map(|&x| p.eval(x)).collect());
+    let mut out = columns(t.len(), 4, "program values")?;
+    py.detach(|| out.extend(t.iter().flat_map(|&x| p.eval(x))));
     Ok(PyArray1::from_vec(py, out)
         .reshape([t.len(), 4])?
         .into_any())
@@ -88,26 +99,30 @@ pub fn program_eval<'py>(
 /// Jumps of velocity / acceleration / jerk at the joins: `(after, order, jump)`.
 #[pyfunction]
 pub fn program_discontinuities(
-    start: f64,
-    durations: Vec<f64>,
-    rises: Vec<f64>,
+    start: Real,
+    durations: Vec<Real>,
+    rises: Vec<Real>,
     laws: Vec<Option<String>>,
-    tol: f64,
+    tol: Real,
 ) -> PyResult<Vec<(usize, usize, f64)>> {
     let segs = segments(&durations, &rises, &laws)?;
     let p = Program {
-        start,
+        start: start.0,
         segments: &segs,
     };
-    let mut out = vec![
-        Discontinuity {
-            after: 0,
-            order: 0,
-            jump: 0.0
-        };
-        3 * segs.len()
-    ];
-    let n = p.discontinuities(tol, &mut out);
+    // At most three jumps a join (velocity, acceleration, jerk), one join a segment.
+    let what = || format!("discontinuities of {} segments", segs.len());
+    let empty = Discontinuity {
+        after: 0,
+        order: 0,
+        jump: 0.0,
+    };
+    let slots = segs
+        .len()
+        .checked_mul(3)
+        .ok_or_else(|| linkage_error(format!("{} segments are too many", segs.len())))?;
+    let mut out = memory::filled(&what, slots, empty)?;
+    let n = p.discontinuities(tol.0, &mut out);
     Ok(out[..n.min(out.len())]
         .iter()
         .map(|d| (d.after, d.order, d.jump))
@@ -116,14 +131,25 @@ pub fn program_discontinuities(
 
 /// `(ratio, sign)` of a simple train given tooth counts in mesh order.
 #[pyfunction]
-pub fn gear_train_simple(teeth: Vec<u32>) -> PyResult<(f64, i8)> {
+pub fn gear_train_simple(teeth: Vec<Bound<'_, PyAny>>) -> PyResult<(f64, i8)> {
+    let teeth = teeth
+        .iter()
+        .map(|z| count_u32("gear tooth count", z))
+        .collect::<PyResult<Vec<u32>>>()?;
     let t = GearTrain::simple(&teeth).map_err(to_py)?;
     Ok((t.ratio(), t.sign()))
 }
 
 /// `(ratio, sign)` of a compound train given `(driver, driven)` meshes.
 #[pyfunction]
-pub fn gear_train_compound(stages: Vec<(u32, u32)>) -> PyResult<(f64, i8)> {
+#[allow(clippy::type_complexity)]
+pub fn gear_train_compound(
+    stages: Vec<Strict<(Bound<'_, PyAny>, Bound<'_, PyAny>)>>,
+) -> PyResult<(f64, i8)> {
+    let stages = stages
+        .iter()
+        .map(|Strict((a, b))| Ok((count_u32("driver teeth", a)?, count_u32("driven teeth", b)?)))
+        .collect::<PyResult<Vec<(u32, u32)>>>()?;
     let t = GearTrain::compound(&stages).map_err(to_py)?;
     Ok((t.ratio(), t.sign()))
 }
@@ -133,8 +159,8 @@ pub fn gear_train_compound(stages: Vec<(u32, u32)>) -> PyResult<(f64, i8)> {
 #[pyfunction]
 pub fn schedule_eval<'py>(
     py: Python<'py>,
-    dt: f64,
-    advance: f64,
+    dt: Real,
+    advance: Real,
     theta: PyReadonlyArray1<'py, f64>,
     omega: PyReadonlyArray1<'py, f64>,
     t: PyReadonlyArray1<'py, f64>,
@@ -145,29 +171,31 @@ pub fn schedule_eval<'py>(
         slice("omega", &omega)?,
         slice("t", &t)?,
     );
-    let out: Vec<f64> = if single {
-        let th32: Vec<f32> = th.iter().map(|&x| x as f32).collect();
-        let w32: Vec<f32> = w.iter().map(|&x| x as f32).collect();
+    let (dt, advance) = (dt.0, advance.0);
+    let mut out = columns(t.len(), 3, "schedule values")?;
+    if single {
+        // `as f32` rounds (to ±inf beyond the f32 range, which the table then rejects).
+        let what = || format!("an f32 copy of a schedule of {} samples", th.len());
+        let mut th32 = memory::with_capacity(&what, th.len())?;
+        th32.extend(th.iter().map(|&x| x as f32));
+        let mut w32 = memory::with_capacity(&what, w.len())?;
+        w32.extend(w.iter().map(|&x| x as f32));
         let table = ScheduleTable::new(dt as f32, advance as f32, &th32, &w32).map_err(to_py)?;
         py.detach(|| {
-            t.iter()
-                .flat_map(|&x| {
-                    let (a, b, c) = table.at(x as f32);
-                    [f64::from(a), f64::from(b), f64::from(c)]
-                })
-                .collect()
-        })
+            out.extend(t.iter().flat_map(|&x| {
+                let (a, b, c) = table.at(x as f32);
+                [f64::from(a), f64::from(b), f64::from(c)]
+            }))
+        });
     } else {
         let table = ScheduleTable::new(dt, advance, th, w).map_err(to_py)?;
         py.detach(|| {
-            t.iter()
-                .flat_map(|&x| {
-                    let (a, b, c) = table.at(x);
-                    [a, b, c]
-                })
-                .collect()
-        })
-    };
+            out.extend(t.iter().flat_map(|&x| {
+                let (a, b, c) = table.at(x);
+                [a, b, c]
+            }))
+        });
+    }
     Ok(PyArray1::from_vec(py, out)
         .reshape([t.len(), 3])?
         .into_any())

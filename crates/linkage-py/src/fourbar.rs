@@ -4,9 +4,15 @@ use linkage_core::{AngleMode, Assembly, FourBar as CoreFourBar, InputRange, Vec2
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
+use crate::args::{named, xy, Real, RealPair};
 use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
+use crate::memory;
 use crate::CAPACITY;
+
+/// Most threads one fast sweep starts: more only add start-up time (the bits are the same for
+/// any split), and an absurd request must not exhaust the system's threads.
+const MAX_THREADS: usize = 256;
 
 /// The fast sweep, compiled again for AVX-512 and for AVX2 + FMA and chosen at run time by what
 /// the CPU has: the kernel is branch-free, so wider vectors make it ~3× faster (measured from
@@ -125,14 +131,16 @@ impl FourBar {
     #[new]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        o: (f64, f64),
-        c: (f64, f64),
-        crank: f64,
-        coupler: f64,
-        rocker: f64,
-        point: (f64, f64),
+        o: RealPair,
+        c: RealPair,
+        crank: Real,
+        coupler: Real,
+        rocker: Real,
+        point: RealPair,
         assembly: &str,
     ) -> PyResult<Self> {
+        let (o, c, point) = (xy(o), xy(c), xy(point));
+        let (crank, coupler, rocker) = (crank.0, coupler.0, rocker.0);
         let assembly = match assembly {
             "open" => Assembly::Open,
             "crossed" => Assembly::Crossed,
@@ -194,10 +202,15 @@ impl FourBar {
             .as_slice()
             .map_err(|_| linkage_error("theta must be a contiguous float64 array"))?;
         let f = self.inner;
-        let out: Vec<f64> = py.detach(|| {
-            th.iter()
-                .map(|&t| f.transmission_angle(t).unwrap_or(f64::NAN))
-                .collect()
+        let mut out = memory::with_capacity(
+            &|| format!("transmission angles of {} samples", th.len()),
+            th.len(),
+        )?;
+        py.detach(|| {
+            out.extend(
+                th.iter()
+                    .map(|&t| f.transmission_angle(t).unwrap_or(f64::NAN)),
+            )
         });
         Ok(PyArray1::from_vec(py, out))
     }
@@ -217,7 +230,7 @@ impl FourBar {
     fn circuit<'py>(
         &self,
         py: Python<'py>,
-        n: usize,
+        #[pyo3(from_py_with = named::n)] n: usize,
     ) -> PyResult<(
         Bound<'py, PyArray1<f64>>,
         Bound<'py, PyAny>,
@@ -226,23 +239,25 @@ impl FourBar {
         if n < 2 {
             return Err(linkage_error(format!("n must be at least 2, got {n}")));
         }
+        // theta (n) + joints and velocities (n × 5 × 2 each), all f64.
+        let what = || format!("circuit of {n} samples");
+        memory::check(&what, memory::bytes_of::<f64>(n as u128 * 21))?;
+        let mut theta = memory::filled(&what, n, 0.0)?;
+        let mut joints = memory::filled(&what, n * 10, 0.0)?;
+        let mut vel = memory::filled(&what, n * 10, 0.0)?;
         let f = self.inner;
-        let (theta, joints, vel) = py
-            .detach(|| {
-                let mut theta = vec![0.0; n];
-                let mut joints = vec![Vec2::zeros(); 5 * n];
-                let mut vel = vec![Vec2::zeros(); 5 * n];
-                f.circuit(&mut theta, &mut joints, Some(&mut vel))
-                    .map(|_| (theta, joints, vel))
-            })
+        // Vec<f64> buffers of even length: 8-aligned, so the casts to points always succeed.
+        fn cast(v: &mut [f64]) -> PyResult<&mut [Vec2<f64>]> {
+            bytemuck::try_cast_slice_mut(v)
+                .map_err(|e| linkage_error(format!("internal error: {e}")))
+        }
+        let (j, v) = (cast(&mut joints)?, cast(&mut vel)?);
+        py.detach(|| f.circuit(&mut theta, j, Some(v)))
             .map_err(to_py)?;
-        let flat = |v: Vec<Vec2<f64>>| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y]).collect() };
-        let joints = PyArray1::from_vec(py, flat(joints))
+        let joints = PyArray1::from_vec(py, joints)
             .reshape([n, 5, 2])?
             .into_any();
-        let vel = PyArray1::from_vec(py, flat(vel))
-            .reshape([n, 5, 2])?
-            .into_any();
+        let vel = PyArray1::from_vec(py, vel).reshape([n, 5, 2])?.into_any();
         Ok((PyArray1::from_vec(py, theta), joints, vel))
     }
 
@@ -251,9 +266,9 @@ impl FourBar {
     #[allow(clippy::type_complexity)]
     fn coupler_inflection(
         &self,
-        theta: f64,
+        theta: Real,
     ) -> Option<((f64, f64), (f64, f64), (f64, f64), f64, (f64, f64))> {
-        let inf = self.inner.coupler_inflection(theta)?;
+        let inf = self.inner.coupler_inflection(theta.0)?;
         let xy = |p: Vec2<f64>| (p.x, p.y);
         let ball = inf.ball_point.finite().map_or((f64::NAN, f64::NAN), xy);
         Some((
@@ -273,14 +288,15 @@ impl FourBar {
     fn uniform_sweep<'py>(
         &self,
         py: Python<'py>,
-        theta0: f64,
-        dtheta: f64,
-        n: usize,
+        theta0: Real,
+        dtheta: Real,
+        #[pyo3(from_py_with = named::n)] n: usize,
         mode: &str,
-        block: usize,
-        threads: usize,
+        #[pyo3(from_py_with = named::block)] block: usize,
+        #[pyo3(from_py_with = named::threads)] threads: usize,
         out: Option<Bound<'py, PyArrayDyn<f64>>>,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let (theta0, dtheta) = (theta0.0, dtheta.0);
         let mode = match mode {
             "trig" => AngleMode::Trig,
             "table" => AngleMode::Table { block },
@@ -302,7 +318,10 @@ impl FourBar {
         }
         let Some(out) = out else {
             // The kernel writes points straight into the buffer the numpy array then owns.
-            let mut flat = vec![0.0_f64; 2 * n];
+            // `count` caps n at i64::MAX, so 2·n fits usize on 64-bit; `memory` checks the bytes.
+            let what = || format!("sweep of {n} samples");
+            memory::check(&what, memory::bytes_of::<f64>(2 * n as u128))?;
+            let mut flat = memory::filled(&what, 2 * n, 0.0_f64)?;
             py.detach(|| fill(&f, theta0, dtheta, mode, threads, &mut flat))
                 .map_err(linkage_error)?;
             return Ok(PyArray1::from_vec(py, flat).reshape([n, 2])?.into_any());
@@ -342,26 +361,39 @@ fn fill(
     threads: usize,
     flat: &mut [f64],
 ) -> Result<(), String> {
-    let points: &mut [Vec2<f64>] = bytemuck::cast_slice_mut(flat);
+    // An `out` array can be misaligned (numpy allows it for buffers at odd offsets): refuse
+    // it rather than let the cast panic.
+    let points: &mut [Vec2<f64>] = bytemuck::try_cast_slice_mut(flat)
+        .map_err(|e| format!("out must be an aligned float64 array ({e})"))?;
     let simd = simd_level();
     if threads <= 1 || points.len() < 2 {
         return fast_sweep(simd, f, theta0, dtheta, 0, mode, points).map_err(|e| e.to_string());
     }
-    let chunk = points.len().div_ceil(threads);
+    let chunk = points.len().div_ceil(threads.min(MAX_THREADS));
+    // Chunks whose thread the system refused (limits, memory): swept here afterwards, which
+    // gives the same bits as any thread would.
+    let mut refused: Vec<(usize, usize)> = Vec::new();
     std::thread::scope(|scope| {
-        let handles: Vec<_> = points
-            .chunks_mut(chunk)
-            .enumerate()
-            .map(|(t, part)| {
-                scope.spawn(move || {
-                    fast_sweep(simd, f, theta0, dtheta, t * chunk, mode, part)
-                        .map_err(|e| e.to_string())
-                })
-            })
-            .collect();
+        let mut handles = Vec::new();
+        for (t, part) in points.chunks_mut(chunk).enumerate() {
+            let (first, len) = (t * chunk, part.len());
+            let work = move || {
+                fast_sweep(simd, f, theta0, dtheta, first, mode, part).map_err(|e| e.to_string())
+            };
+            match std::thread::Builder::new().spawn_scoped(scope, work) {
+                Ok(h) => handles.push(h),
+                Err(_) => refused.push((first, len)),
+            }
+        }
         handles.into_iter().try_for_each(|h| {
+            // The kernel has no panicking path; a join error would be a bug, reported as one.
             h.join()
                 .unwrap_or_else(|_| Err("internal error: a sweep thread panicked".into()))
         })
-    })
+    })?;
+    for (first, len) in refused {
+        let part = &mut points[first..first + len];
+        fast_sweep(simd, f, theta0, dtheta, first, mode, part).map_err(|e| e.to_string())?;
+    }
+    Ok(())
 }

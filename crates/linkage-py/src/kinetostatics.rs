@@ -5,8 +5,10 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args::{count, xy, Real, RealPair, Strict};
 use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
+use crate::memory;
 use crate::CAPACITY;
 
 fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
@@ -27,14 +29,16 @@ pub fn forces<'py>(
     theta: PyReadonlyArray1<'py, f64>,
     omega: PyReadonlyArray1<'py, f64>,
     alpha: PyReadonlyArray1<'py, f64>,
-    inertia: Vec<(f64, f64, f64, f64)>,
-    gravity: (f64, f64),
-    loads: Vec<(
-        usize,
-        usize,
-        PyReadonlyArray2<'py, f64>,
-        PyReadonlyArray1<'py, f64>,
-    )>,
+    inertia: Vec<Strict<(Real, Real, Real, Real)>>,
+    gravity: RealPair,
+    loads: Vec<
+        Strict<(
+            Bound<'py, PyAny>,
+            Bound<'py, PyAny>,
+            PyReadonlyArray2<'py, f64>,
+            PyReadonlyArray1<'py, f64>,
+        )>,
+    >,
 ) -> PyResult<Bound<'py, PyDict>> {
     let th = slice("theta", &theta)?;
     let n = th.len();
@@ -42,38 +46,57 @@ pub fn forces<'py>(
     if w.len() != n || a.len() != n {
         return Err(linkage_error("omega and alpha need one value per angle"));
     }
-    let m = mech.inner.clone();
+    let m = mech.snapshot();
     let ids: Vec<BodyId> = Bodies::of(&m).ids().collect();
     let mut load_data = Vec::with_capacity(loads.len());
-    for (body, joint, force, torque) in &loads {
+    for Strict((body, joint, force, torque)) in &loads {
+        let body = count("load body index", body)?;
+        let joint = count("load joint index", joint)?;
         let f = force
             .as_slice()
             .map_err(|_| linkage_error("load force must be a contiguous float64 array"))?;
         let t = slice("load torque", torque)?;
-        if f.len() != 2 * n || t.len() != n {
+        if f.len() / 2 != n || f.len() % 2 != 0 || t.len() != n {
             return Err(linkage_error("load arrays need one row per angle"));
         }
         let id = *ids
-            .get(*body)
+            .get(body)
             .ok_or_else(|| linkage_error(format!("load body index {body} out of range")))?;
-        if *joint >= m.len() {
+        if joint >= m.len() {
             return Err(linkage_error(format!(
                 "load joint index {joint} out of range"
             )));
         }
-        load_data.push((id, *joint, f, t));
+        load_data.push((id, joint, f, t));
     }
     let inertia: Vec<Inertia<f64>> = inertia
         .iter()
-        .map(|&(mass, along, left, inertia)| Inertia {
-            mass,
-            along,
-            left,
-            inertia,
+        .map(|&Strict((mass, along, left, inertia))| Inertia {
+            mass: mass.0,
+            along: along.0,
+            left: left.0,
+            inertia: inertia.0,
         })
         .collect();
-    let g = Vec2::new(gravity.0, gravity.1);
+    let (gx, gy) = xy(gravity);
+    let g = Vec2::new(gx, gy);
     let dynamics = Dynamics::new(&m, &inertia, g).map_err(to_py)?;
+    // The reactions' layout is fixed by the mechanism: size every output before solving.
+    let idx = |b: BodyId| ids.iter().position(|&x| x == b).unwrap_or(0);
+    let layout: Vec<(usize, usize, usize)> = dynamics
+        .reaction_layout()
+        .map(|(joint, from, to)| (joint, idx(from), idx(to)))
+        .collect();
+    let nr = layout.len();
+    let what = || format!("forces of {n} samples × {nr} reactions");
+    // torque, power (n each), reactions n × nr × 2, couples n × nr; valid one byte a sample.
+    let (nu, ru) = (n as u128, nr as u128);
+    memory::check(&what, memory::bytes_of::<f64>(2 * nu + 3 * nu * ru) + nu)?;
+    let mut torque = memory::filled(&what, n, f64::NAN)?;
+    let mut power = memory::filled(&what, n, f64::NAN)?;
+    let mut valid = memory::filled(&what, n, false)?;
+    let mut forces = memory::filled(&what, n * nr * 2, f64::NAN)?;
+    let mut couples = memory::filled(&what, n * nr, f64::NAN)?;
     let result = py.detach(|| {
         let j = m.len();
         let mut tracker = Tracker::new(&m)?;
@@ -82,10 +105,6 @@ pub fn forces<'py>(
             [Vec2::zeros(); CAPACITY],
             [Vec2::zeros(); CAPACITY],
         );
-        let mut torque = vec![f64::NAN; n];
-        let mut power = vec![f64::NAN; n];
-        let mut valid = vec![false; n];
-        let mut reactions: Vec<Vec<(usize, BodyId, BodyId, Vec2<f64>, f64)>> = vec![Vec::new(); n];
         let mut sample_loads = Vec::with_capacity(load_data.len());
         for k in 0..n {
             let rates = Rates::acceleration(&mut v[..j], &mut ac[..j]);
@@ -108,37 +127,16 @@ pub fn forces<'py>(
             valid[k] = true;
             torque[k] = sol.torque;
             power[k] = dynamics.power_torque(&p[..j], &v[..j], &ac[..j], &sample_loads);
-            reactions[k] = sol
-                .reactions
-                .iter()
-                .map(|r| (r.joint, r.from, r.to, r.force, r.couple))
-                .collect();
+            // `solve` returns one reaction per layout entry, in its order.
+            for (q, r) in sol.reactions.iter().take(nr).enumerate() {
+                forces[(k * nr + q) * 2] = r.force.x;
+                forces[(k * nr + q) * 2 + 1] = r.force.y;
+                couples[k * nr + q] = r.couple;
+            }
         }
-        Ok::<_, linkage_core::Error>((torque, power, valid, reactions))
+        Ok::<_, linkage_core::Error>(())
     });
-    let (torque, power, valid, reactions) = result.map_err(to_py)?;
-    let layout: Vec<(usize, usize, usize)> = reactions
-        .iter()
-        .find(|r| !r.is_empty())
-        .map(|r| {
-            r.iter()
-                .map(|&(joint, from, to, _, _)| {
-                    let idx = |b: BodyId| ids.iter().position(|&x| x == b).unwrap_or(0);
-                    (joint, idx(from), idx(to))
-                })
-                .collect()
-        })
-        .unwrap_or_default();
-    let nr = layout.len();
-    let mut forces = vec![f64::NAN; n * nr * 2];
-    let mut couples = vec![f64::NAN; n * nr];
-    for (k, r) in reactions.iter().enumerate() {
-        for (q, &(_, _, _, f, c)) in r.iter().enumerate() {
-            forces[(k * nr + q) * 2] = f.x;
-            forces[(k * nr + q) * 2 + 1] = f.y;
-            couples[k * nr + q] = c;
-        }
-    }
+    result.map_err(to_py)?;
     let d = PyDict::new(py);
     d.set_item("torque", PyArray1::from_vec(py, torque))?;
     d.set_item("power_torque", PyArray1::from_vec(py, power))?;

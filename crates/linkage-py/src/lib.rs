@@ -6,6 +6,7 @@
 
 use pyo3::prelude::*;
 
+mod args;
 mod cam;
 mod catalog;
 mod centres;
@@ -14,6 +15,7 @@ mod error;
 mod fourbar;
 mod kinetostatics;
 mod mechanism;
+mod memory;
 mod support;
 
 /// Maximum joints of a mechanism built from Python.

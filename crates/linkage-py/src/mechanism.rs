@@ -9,7 +9,11 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use std::sync::{Mutex, MutexGuard};
+
+use crate::args::{named, Real};
 use crate::error::{linkage_error, to_py};
+use crate::memory;
 use crate::CAPACITY;
 
 /// A per-sample rate input: one value for every sample, or one per sample.
@@ -91,10 +95,48 @@ fn put(dst: &mut [f64], k: usize, c: Centre<f64>, finite: bool) {
 /// bounds the time between them).
 pub const CHUNK: usize = 4096;
 
+/// Allocates the outputs of a sweep of `n` samples of `j` joints and `np` link pairs: the total
+/// is checked first (`MemoryError` naming it), then each buffer is reserved without aborting.
+fn allocate(n: usize, j: usize, np: usize, wanted: Wanted) -> PyResult<SweepArrays> {
+    let rates = wanted.velocity || wanted.acceleration;
+    let (nu, ju, pu) = (n as u128, j as u128, np as u128);
+    let on = |b: bool| u128::from(b);
+    // In f64 units: joints, margin, gap, the optional arrays; `valid` and `regular` are one
+    // byte a sample each.
+    let floats = nu * ju * 2 * (1 + on(rates) + on(wanted.acceleration) + on(wanted.curvature))
+        + nu * 2
+        + nu * pu * 4 * on(wanted.instant_centres)
+        + nu * ju * on(wanted.curvature);
+    let what = || format!("sweep of {n} samples");
+    memory::check(&what, memory::bytes_of::<f64>(floats) + 2 * nu)?;
+    // The total fits isize, so every product below fits usize.
+    let rows = |on: bool| -> PyResult<Option<Vec<f64>>> {
+        on.then(|| memory::with_capacity(&what, n * j * 2))
+            .transpose()
+    };
+    let nans = |len: usize, on: bool| -> PyResult<Option<Vec<f64>>> {
+        on.then(|| memory::filled(&what, len, f64::NAN)).transpose()
+    };
+    Ok(SweepArrays {
+        joints: memory::with_capacity(&what, n * j * 2)?,
+        valid: memory::filled(&what, n, false)?,
+        margin: memory::filled(&what, n, f64::NAN)?,
+        regular: memory::filled(&what, n, false)?,
+        gap: memory::filled(&what, n, 0.0)?,
+        velocity: rows(rates)?,
+        acceleration: rows(wanted.acceleration)?,
+        centres: nans(n * np * 2, wanted.instant_centres)?,
+        centre_directions: nans(n * np * 2, wanted.instant_centres)?,
+        curvature_centres: nans(n * j * 2, wanted.curvature)?,
+        curvature: nans(n * j, wanted.curvature)?,
+    })
+}
+
 /// Sweeps `m` over `theta` with the core tracker. Pure Rust, no Python: runs with the GIL
-/// released. Only what `wanted` asks is computed; instant centres and curvature use rates per
-/// unit crank angle (they do not depend on timing). `go_on` is called every [`CHUNK`] samples;
-/// when it returns false the sweep stops early (the caller raises what stopped it).
+/// released (the allocation errors it can return are created lazily). Only what `wanted` asks
+/// is computed; instant centres and curvature use rates per unit crank angle (they do not
+/// depend on timing). `go_on` is called every [`CHUNK`] samples; when it returns false the
+/// sweep stops early (the caller raises what stopped it).
 pub fn sweep_arrays<const N: usize>(
     m: &CoreMechanism<f64, N>,
     theta: &[f64],
@@ -102,31 +144,17 @@ pub fn sweep_arrays<const N: usize>(
     alpha: Rate<'_>,
     wanted: Wanted,
     go_on: &mut dyn FnMut() -> bool,
-) -> Result<SweepArrays, Error> {
+) -> PyResult<SweepArrays> {
     let (n, j) = (theta.len(), m.len());
     let rates = wanted.velocity || wanted.acceleration;
     let bodies = Bodies::of(m);
     let ids: Vec<BodyId> = bodies.ids().collect();
     let pairs = body_pairs(ids.len());
     let np = pairs.len();
-    let nan_vec = |len: usize, on: bool| on.then(|| vec![f64::NAN; len]);
     // Positions and rates are appended sample by sample (NaN rows where a sample does not
     // assemble), so each output byte is written once.
-    let grow = |on: bool| on.then(|| Vec::with_capacity(n * j * 2));
-    let mut out = SweepArrays {
-        joints: Vec::with_capacity(n * j * 2),
-        valid: vec![false; n],
-        margin: vec![f64::NAN; n],
-        regular: vec![false; n],
-        gap: vec![0.0; n],
-        velocity: grow(rates),
-        acceleration: grow(wanted.acceleration),
-        centres: nan_vec(n * np * 2, wanted.instant_centres),
-        centre_directions: nan_vec(n * np * 2, wanted.instant_centres),
-        curvature_centres: nan_vec(n * j * 2, wanted.curvature),
-        curvature: nan_vec(n * j, wanted.curvature),
-    };
-    let mut tracker = Tracker::new(m)?;
+    let mut out = allocate(n, j, np, wanted)?;
+    let mut tracker = Tracker::new(m).map_err(to_py)?;
     let zero = [Vec2::zeros(); N];
     let (mut pos, mut vel, mut acc) = (zero, zero, zero);
     let (mut uvel, mut uacc) = (zero, zero);
@@ -168,7 +196,7 @@ pub fn sweep_arrays<const N: usize>(
                 }
                 continue;
             }
-            Err(e) => return Err(e),
+            Err(e) => return Err(to_py(e)),
         }
         let row = k * j * 2;
         push_rows(&mut out.joints, &pos[..j]);
@@ -182,7 +210,8 @@ pub fn sweep_arrays<const N: usize>(
             continue;
         }
         let unit_acc = wanted.curvature.then_some(&mut uacc[..j]);
-        m.motion(&pos[..j], Motion::unit(), &mut uvel[..j], unit_acc, None)?;
+        m.motion(&pos[..j], Motion::unit(), &mut uvel[..j], unit_acc, None)
+            .map_err(to_py)?;
         if let (Some(c), Some(d)) = (out.centres.as_mut(), out.centre_directions.as_mut()) {
             motions.clear();
             motions.extend(ids.iter().map(|&id| {
@@ -267,16 +296,33 @@ fn parse_reach(reach: &str) -> PyResult<Reach> {
 
 /// A mechanism program of up to `CAPACITY` joints, addressed by index (the `linkage.Mechanism`
 /// class adds names).
-#[pyclass(module = "linkage._core")]
-#[derive(Clone)]
+///
+/// Frozen, with the program behind a mutex: methods take `&self`, so no call can meet a borrow
+/// held by another thread or a re-entrant call (`RuntimeError: Already borrowed`). Each method
+/// holds the lock only for its own short, panic-free work and never while waiting for the GIL,
+/// and a sweep works on a copy taken under the lock.
+#[pyclass(module = "linkage._core", frozen)]
 pub struct Mechanism {
-    pub(crate) inner: CoreMechanism<f64, CAPACITY>,
+    inner: Mutex<CoreMechanism<f64, CAPACITY>>,
 }
 
 impl Mechanism {
     /// Wraps a core mechanism.
     pub fn from_core(inner: CoreMechanism<f64, CAPACITY>) -> Self {
-        Mechanism { inner }
+        Mechanism {
+            inner: Mutex::new(inner),
+        }
+    }
+
+    /// The program, locked. Nothing panics while holding the lock, so it is never poisoned;
+    /// if it were, the program itself is still whole (every change is a single `push`).
+    fn lock(&self) -> MutexGuard<'_, CoreMechanism<f64, CAPACITY>> {
+        self.inner.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// A copy of the program as it is now.
+    pub fn snapshot(&self) -> CoreMechanism<f64, CAPACITY> {
+        self.lock().clone()
     }
 }
 
@@ -284,57 +330,62 @@ impl Mechanism {
 impl Mechanism {
     #[new]
     fn new() -> Self {
-        Mechanism {
-            inner: CoreMechanism::new(),
-        }
+        Mechanism::from_core(CoreMechanism::new())
     }
 
     fn __len__(&self) -> usize {
-        self.inner.len()
+        self.lock().len()
     }
 
     /// Index of the crank joint, or None.
     #[getter]
     fn driver(&self) -> Option<usize> {
-        self.inner.driver()
+        self.lock().driver()
     }
 
     /// Adds a fixed joint at (x, y); returns its index.
-    fn fixed(&mut self, x: f64, y: f64) -> PyResult<usize> {
-        self.inner.fixed(Vec2::new(x, y)).map_err(to_py)
+    fn fixed(&self, x: Real, y: Real) -> PyResult<usize> {
+        self.lock().fixed(Vec2::new(x.0, y.0)).map_err(to_py)
     }
 
     /// Adds the crank about joint `centre`; returns its index.
     #[pyo3(signature = (centre, radius, phase=0.0))]
-    fn crank(&mut self, centre: usize, radius: f64, phase: f64) -> PyResult<usize> {
-        self.inner.crank(centre, radius, phase).map_err(to_py)
+    fn crank(
+        &self,
+        #[pyo3(from_py_with = named::centre)] centre: usize,
+        radius: Real,
+        #[pyo3(from_py_with = crate::args::real)] phase: f64,
+    ) -> PyResult<usize> {
+        self.lock().crank(centre, radius.0, phase).map_err(to_py)
     }
 
     /// Adds an RRR dyad at r1 from p1 and r2 from p2 on `side` of p1 → p2.
-    fn dyad(&mut self, p1: usize, p2: usize, r1: f64, r2: f64, side: &str) -> PyResult<usize> {
+    fn dyad(
+        &self,
+        #[pyo3(from_py_with = named::p1)] p1: usize,
+        #[pyo3(from_py_with = named::p2)] p2: usize,
+        r1: Real,
+        r2: Real,
+        side: &str,
+    ) -> PyResult<usize> {
         let side = parse_side(side)?;
-        self.inner.dyad(p1, p2, r1, r2, side).map_err(to_py)
+        self.lock().dyad(p1, p2, r1.0, r2.0, side).map_err(to_py)
     }
 
     /// Adds a slider dyad on the fixed direction (dx, dy) through `origin`.
     fn slider(
-        &mut self,
-        pivot: usize,
-        r: f64,
-        origin: usize,
-        dx: f64,
-        dy: f64,
+        &self,
+        #[pyo3(from_py_with = named::pivot)] pivot: usize,
+        r: Real,
+        #[pyo3(from_py_with = named::origin)] origin: usize,
+        dx: Real,
+        dy: Real,
         reach: &str,
     ) -> PyResult<usize> {
         let reach = parse_reach(reach)?;
-        self.inner
-            .slider(
-                pivot,
-                r,
-                origin,
-                LineDirection::Fixed(Vec2::new(dx, dy)),
-                reach,
-            )
+        let direction = LineDirection::Fixed(Vec2::new(dx.0, dy.0));
+        self.lock()
+            .slider(pivot, r.0, origin, direction, reach)
             .map_err(to_py)
     }
 
@@ -342,34 +393,40 @@ impl Mechanism {
     /// `angle`.
     #[allow(clippy::too_many_arguments)]
     fn slider_on_link(
-        &mut self,
-        pivot: usize,
-        r: f64,
-        origin: usize,
-        from_: usize,
-        to: usize,
-        angle: f64,
+        &self,
+        #[pyo3(from_py_with = named::pivot)] pivot: usize,
+        r: Real,
+        #[pyo3(from_py_with = named::origin)] origin: usize,
+        #[pyo3(from_py_with = named::from_)] from_: usize,
+        #[pyo3(from_py_with = named::to)] to: usize,
+        angle: Real,
         reach: &str,
     ) -> PyResult<usize> {
         let reach = parse_reach(reach)?;
         let direction = LineDirection::Link {
             from: from_,
             to,
-            angle,
+            angle: angle.0,
         };
-        self.inner
-            .slider(pivot, r, origin, direction, reach)
+        self.lock()
+            .slider(pivot, r.0, origin, direction, reach)
             .map_err(to_py)
     }
 
     /// Adds a point carried by the link `from_ → to` at (along, left).
-    fn point(&mut self, from_: usize, to: usize, along: f64, left: f64) -> PyResult<usize> {
-        self.inner.point(from_, to, along, left).map_err(to_py)
+    fn point(
+        &self,
+        #[pyo3(from_py_with = named::from_)] from_: usize,
+        #[pyo3(from_py_with = named::to)] to: usize,
+        along: Real,
+        left: Real,
+    ) -> PyResult<usize> {
+        self.lock().point(from_, to, along.0, left.0).map_err(to_py)
     }
 
     /// Constructions as tuples, for display: (kind, references, numbers, branch).
     fn describe(&self) -> Vec<String> {
-        self.inner
+        self.snapshot()
             .constructions()
             .iter()
             .map(|c| format!("{c:?}"))
@@ -378,19 +435,16 @@ impl Mechanism {
 
     /// Body (link) members as joint index lists, the ground first.
     fn bodies(&self) -> Vec<Vec<usize>> {
-        let b = Bodies::of(&self.inner);
+        let m = self.snapshot();
+        let b = Bodies::of(&m);
         b.ids()
-            .map(|id| {
-                (0..self.inner.len())
-                    .filter(|&j| b.contains(id, j))
-                    .collect()
-            })
+            .map(|id| (0..m.len()).filter(|&j| b.contains(id, j)).collect())
             .collect()
     }
 
     /// Kutzbach–Gruebler count: (links, lower pairs, higher pairs, degrees of freedom).
     fn mobility(&self) -> (usize, usize, usize, i64) {
-        let m = Bodies::of(&self.inner).mobility();
+        let m = Bodies::of(&self.snapshot()).mobility();
         (
             m.links,
             m.lower_pairs,
@@ -429,26 +483,24 @@ impl Mechanism {
             instant_centres,
             curvature,
         };
-        let mech = self.inner.clone();
+        let mech = self.snapshot();
         // Ctrl-C: the signal handler only sets a flag; check it between chunks of samples.
         let mut stopped: Option<PyErr> = None;
-        let res = py
-            .detach(|| {
-                let mut go_on = || match Python::attach(|py| py.check_signals()) {
-                    Ok(()) => true,
-                    Err(e) => {
-                        stopped = Some(e);
-                        false
-                    }
-                };
-                sweep_arrays(&mech, th, w, a, wanted, &mut go_on)
-            })
-            .map_err(to_py)?;
+        let res = py.detach(|| {
+            let mut go_on = || match Python::attach(|py| py.check_signals()) {
+                Ok(()) => true,
+                Err(e) => {
+                    stopped = Some(e);
+                    false
+                }
+            };
+            sweep_arrays(&mech, th, w, a, wanted, &mut go_on)
+        })?;
         if let Some(e) = stopped {
             return Err(e);
         }
-        let j = self.inner.len();
-        let np = body_pairs(Bodies::of(&self.inner).count()).len();
+        let j = mech.len();
+        let np = body_pairs(Bodies::of(&mech).count()).len();
         let d = PyDict::new(py);
         d.set_item("joints", to_array3(py, res.joints, n, j)?)?;
         d.set_item("valid", PyArray1::from_vec(py, res.valid))?;

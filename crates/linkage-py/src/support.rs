@@ -5,6 +5,7 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3};
 use pyo3::prelude::*;
 
 use crate::error::linkage_error;
+use crate::memory;
 
 /// For each sample `k`: the convex hull of the finite points `points[k]` (N, K, 2; NaN rows are
 /// absent) and the signed distance of `cg[k]` (N, 2) from its boundary. Returns (margin (N,)
@@ -21,8 +22,10 @@ pub fn support_margins<'py>(
     Bound<'py, PyArray1<u64>>,
 )> {
     let shape = points.as_array().shape().to_vec();
-    let (n, k) = (shape[0], shape[1]);
-    if shape[2] != 2 || cg.as_array().shape() != [n, 2] {
+    let [n, k, two] = shape[..] else {
+        return Err(linkage_error("points must be (N, K, 2) and cg (N, 2)"));
+    };
+    if two != 2 || cg.as_array().shape() != [n, 2] {
         return Err(linkage_error("points must be (N, K, 2) and cg (N, 2)"));
     }
     let p = points
@@ -31,12 +34,20 @@ pub fn support_margins<'py>(
     let c = cg
         .as_slice()
         .map_err(|_| linkage_error("cg must be a contiguous float64 array"))?;
-    let (margin, hulls, counts) = py.detach(|| {
-        let mut margin = vec![f64::NAN; n];
-        let mut hulls = vec![f64::NAN; n * (k + 1) * 2];
-        let mut counts = vec![0u64; n];
-        let mut pts = Vec::with_capacity(k);
-        let mut out = vec![Vec2::zeros(); k + 1];
+    // Outputs: margin and count (n each), hulls (n × (k + 1) × 2); scratch 2k + 1 points. The
+    // input holds n·k·2 floats, so these sizes fit usize; the bytes are checked all the same.
+    let what = || format!("support polygons of {n} samples × {k} feet");
+    let cells = (n as u128) * (k as u128 + 1) * 2;
+    memory::check(
+        &what,
+        memory::bytes_of::<f64>(cells + 2 * n as u128 + 4 * k as u128 + 2),
+    )?;
+    let mut margin = memory::filled(&what, n, f64::NAN)?;
+    let mut hulls = memory::filled(&what, n * (k + 1) * 2, f64::NAN)?;
+    let mut counts = memory::filled(&what, n, 0u64)?;
+    let mut pts = memory::with_capacity(&what, k)?;
+    let mut out = memory::filled(&what, k + 1, Vec2::zeros())?;
+    let result = py.detach(|| {
         for s in 0..n {
             pts.clear();
             for q in 0..k {
@@ -45,8 +56,9 @@ pub fn support_margins<'py>(
                     pts.push(Vec2::new(x, y));
                 }
             }
-            let h = convex_hull(&mut pts, &mut out);
-            counts[s] = h as u64;
+            // `out` has room for k + 1 ≥ finite points + 1: the hull always fits.
+            let h = convex_hull(&mut pts, &mut out)?;
+            counts[s] = h as u64; // h ≤ k + 1, far below u64::MAX
             for (i, v) in out[..h].iter().enumerate() {
                 hulls[(s * (k + 1) + i) * 2] = v.x;
                 hulls[(s * (k + 1) + i) * 2 + 1] = v.y;
@@ -55,8 +67,9 @@ pub fn support_margins<'py>(
                 margin[s] = m;
             }
         }
-        (margin, hulls, counts)
+        Ok::<_, linkage_core::Error>(())
     });
+    result.map_err(crate::error::to_py)?;
     let hulls = PyArray1::from_vec(py, hulls)
         .reshape([n, k + 1, 2])?
         .into_any();

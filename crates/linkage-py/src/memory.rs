@@ -1,0 +1,79 @@
+//! Output allocation that fails with `MemoryError` instead of aborting the process.
+//!
+//! Every output whose size comes from the caller is sized first (in `u128`, so the arithmetic
+//! cannot overflow), checked against what the machine can hold at all (RAM + swap, read once
+//! from `/proc/meminfo` where there is one), and then allocated with `try_reserve_exact`, so an
+//! allocation the system refuses (an address-space limit, overcommit refusal) is a `MemoryError`
+//! naming the size too. Rust's default allocation-failure handler (abort) is never reached from
+//! these paths.
+
+use std::sync::OnceLock;
+
+use pyo3::exceptions::PyMemoryError;
+use pyo3::PyErr;
+
+/// Bytes `len` values of `T` take, without overflow.
+pub fn bytes_of<T>(len: u128) -> u128 {
+    len.saturating_mul(std::mem::size_of::<T>() as u128)
+}
+
+/// RAM + swap in bytes, if the platform says (Linux: `/proc/meminfo`).
+fn machine_bytes() -> Option<u128> {
+    static TOTAL: OnceLock<Option<u128>> = OnceLock::new();
+    *TOTAL.get_or_init(|| {
+        let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+        let field = |key: &str| -> Option<u128> {
+            let line = text.lines().find(|l| l.starts_with(key))?;
+            let kb: u128 = line.split_whitespace().nth(1)?.parse().ok()?;
+            Some(kb * 1024)
+        };
+        Some(field("MemTotal:")? + field("SwapTotal:").unwrap_or(0))
+    })
+}
+
+/// `what needs X GB` as a `MemoryError`, with the reason.
+fn memory_error(what: &str, bytes: u128, why: &str) -> PyErr {
+    PyMemoryError::new_err(format!("{what} needs {:.1} GB{why}", bytes as f64 / 1e9))
+}
+
+/// Checks that `bytes` (the total an operation will allocate) can be held at all: it must fit
+/// `isize` (Rust's and numpy's limit for one object) and the machine's RAM + swap.
+pub fn check(what: &dyn Fn() -> String, bytes: u128) -> Result<(), PyErr> {
+    if bytes > isize::MAX as u128 {
+        return Err(memory_error(
+            &what(),
+            bytes,
+            " (more than any address space)",
+        ));
+    }
+    if let Some(total) = machine_bytes() {
+        if bytes > total {
+            return Err(memory_error(
+                &what(),
+                bytes,
+                &format!(
+                    " (this machine has {:.1} GB of memory and swap)",
+                    total as f64 / 1e9
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// An empty vector with room for exactly `len` values, or `MemoryError` naming the size.
+pub fn with_capacity<T>(what: &dyn Fn() -> String, len: usize) -> Result<Vec<T>, PyErr> {
+    let bytes = bytes_of::<T>(len as u128);
+    check(what, bytes)?;
+    let mut v = Vec::new();
+    v.try_reserve_exact(len)
+        .map_err(|_| memory_error(&what(), bytes, " (the allocation failed)"))?;
+    Ok(v)
+}
+
+/// A vector of `len` copies of `value`, or `MemoryError` naming the size.
+pub fn filled<T: Clone>(what: &dyn Fn() -> String, len: usize, value: T) -> Result<Vec<T>, PyErr> {
+    let mut v = with_capacity(what, len)?;
+    v.resize(len, value); // within the capacity: no reallocation
+    Ok(v)
+}
