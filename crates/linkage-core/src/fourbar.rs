@@ -342,6 +342,10 @@ impl<T: RealField + Copy> FourBar<T> {
     pub fn transmission_angle(&self, theta: T) -> Option<T> {
         let p = self.pose(theta).ok()?;
         let (ba, bc) = (p.a - p.b, self.c - p.b);
+        // The angle does not depend on scale: bring both sides near unit size first (a power
+        // of two, exact) so the products neither overflow nor underflow at extreme sizes.
+        let s = crate::dyad::pow2_scale(ba.amax().max(bc.amax()));
+        let (ba, bc) = (ba / s, bc / s);
         Some(cross(ba, bc).abs().atan2(ba.dot(&bc)))
     }
 

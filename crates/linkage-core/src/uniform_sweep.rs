@@ -120,6 +120,16 @@ impl<T: RealField + Copy> FourBar<T> {
                 ts[j] = s;
             }
         }
+        // The kernel squares and multiplies four lengths (Kahan's product): a linkage far from
+        // unit size would underflow or overflow there. Run it on the linkage scaled by a power
+        // of two to unit size and scale the points back: exact, so the bits are those of the
+        // unit-size linkage (ordinary sizes are left alone and keep their own bits).
+        let unscale = unit_scale(self.size());
+        let work = if unscale == T::one() {
+            *self
+        } else {
+            self.scaled(T::one() / unscale)
+        };
         let mut cos_buf = [T::zero(); MAX_TABLE];
         let mut sin_buf = [T::zero(); MAX_TABLE];
         let span = block.min(MAX_TABLE);
@@ -165,7 +175,13 @@ impl<T: RealField + Copy> FourBar<T> {
                     }
                 }
             }
-            self.coupler_block(&cos_buf[..m], &sin_buf[..m], &mut out[written..written + m]);
+            let dst = &mut out[written..written + m];
+            work.coupler_block(&cos_buf[..m], &sin_buf[..m], dst);
+            if unscale != T::one() {
+                for p in dst.iter_mut() {
+                    *p *= unscale;
+                }
+            }
             written += m;
             k = stop;
         }
@@ -220,6 +236,55 @@ impl<T: RealField + Copy> FourBar<T> {
             *p = Vec2::new(ax + along * ex - left * ey, ay + along * ey + left * ex);
         }
     }
+}
+
+impl<T: RealField + Copy> FourBar<T> {
+    /// The largest length or pivot coordinate: the linkage's size for scaling.
+    fn size(&self) -> T {
+        let lengths = self.crank.max(self.coupler).max(self.rocker);
+        let point = self.along.abs().max(self.left.abs());
+        lengths.max(point).max(self.o.amax()).max(self.c.amax())
+    }
+
+    /// The same linkage with every length and coordinate multiplied by `k` (a power of two in
+    /// [`FourBar::uniform_sweep`], so exactly).
+    fn scaled(&self, k: T) -> Self {
+        FourBar {
+            o: self.o * k,
+            c: self.c * k,
+            crank: self.crank * k,
+            coupler: self.coupler * k,
+            rocker: self.rocker * k,
+            along: self.along * k,
+            left: self.left * k,
+            assembly: self.assembly,
+        }
+    }
+}
+
+/// A power of two `s` with `size / s` in `[1, 2)` when `size` is outside `[2⁻¹⁶, 2¹⁶]`; `1`
+/// for ordinary sizes and for a size that is zero or not finite (nothing to gain there).
+fn unit_scale<T: RealField + Copy>(size: T) -> T {
+    let (lo, hi) = (lit::<T>(1.0 / 65_536.0), lit::<T>(65_536.0));
+    if !size.is_finite() || size <= T::zero() || (size >= lo && size <= hi) {
+        return T::one();
+    }
+    let (two, coarse) = (lit::<T>(2.0), lit::<T>(65_536.0));
+    let mut s = T::one();
+    // Coarse steps first (at most ~64 for f64), then single bits.
+    while size / s >= coarse && (s * coarse).is_finite() {
+        s *= coarse;
+    }
+    while size / s < T::one() / coarse && s / coarse > T::zero() {
+        s /= coarse;
+    }
+    while size / s >= two && (s * two).is_finite() {
+        s *= two;
+    }
+    while size / s < T::one() && s / two > T::zero() {
+        s /= two;
+    }
+    s
 }
 
 #[cfg(test)]
@@ -285,6 +350,25 @@ mod tests {
         // A Grashof crank-rocker never flattens.
         let h = catalog::hoecken::<f64>();
         assert!(h.check_fixed_assembly_path(-1e3, 1e3).is_ok());
+    }
+
+    #[test]
+    fn extreme_sizes_sweep_like_the_unit_size_linkage() {
+        // Power-of-two scales: the points must be exactly the unit linkage's, scaled.
+        let base = catalog::hoecken::<f64>();
+        let mut unit = [Vec2::zeros(); 40];
+        base.uniform_sweep(0.1, 0.157, 0, AngleMode::Table { block: 16 }, &mut unit)
+            .unwrap();
+        for e in [-1000, -330, -100, 100, 330, 1000] {
+            let k = 2f64.powi(e);
+            let fb = base.scaled(k);
+            let mut out = [Vec2::zeros(); 40];
+            fb.uniform_sweep(0.1, 0.157, 0, AngleMode::Table { block: 16 }, &mut out)
+                .unwrap();
+            for (p, q) in out.iter().zip(&unit) {
+                assert_eq!(*p / k, *q, "scale 2^{e}: {p:?} vs {q:?}");
+            }
+        }
     }
 
     #[test]
