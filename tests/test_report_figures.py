@@ -170,3 +170,12 @@ def test_format_number():
     # Exact values: up to six digits, no trailing zeros.
     assert format_number(3.0, 0) == "3" and format_number(2 / 3, 0) == "0.666667"
     assert format_number(60.0, 0) == "60" and format_number(1e-9, 0) == "1e-9"
+
+
+def test_a_geared_drive_names_the_crank_speed_in_the_scene_unit():
+    # 50 rpm through 18 → 15 → 14: the crank turns at 50·18/14 rpm (idler 15), not rad/s.
+    rows = {
+        r[0]: r[1] for r in runner.run(scene.parse(scene.DEFAULT_SCENE, None), samples=31).figures
+    }
+    crank = 50 * 18 / 14
+    assert f"(crank {format_number(crank, 0)} rpm)" in rows["drive"], rows["drive"]

@@ -1005,8 +1005,10 @@ def _drive_label(scene: Scene, drive: Any) -> str:
     if d["kind"] == "constant":
         speed = f"{d['rpm']:g} rpm" if "rpm" in d else f"{d['omega']:g} rad/s"
         if isinstance(drive, Geared):
+            # The train scales the speed in whatever unit the scene gave it.
             crank = drive.train.output_speed(d["rpm"] if "rpm" in d else d["omega"])
-            return f"constant {speed}{gears} (crank {format_number(crank, 0)} rad/s)"
+            unit = "rpm" if "rpm" in d else "rad/s"
+            return f"constant {speed}{gears} (crank {format_number(crank, 0)} {unit})"
         return f"constant {speed}"
     if d["kind"] == "program":
         return f"motion program, {len(d['segments'])} segments{gears}"
