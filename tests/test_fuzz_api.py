@@ -21,7 +21,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, example, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
@@ -763,8 +763,17 @@ def test_fourbar_scale_invariance(which, s):
         fb.transmission_angle(theta[sure]), base.transmission_angle(theta[sure]), atol=1e-9
     )
     if base.input_limits() is None:
-        u0, u1 = base.uniform_sweep(0.0, 0.1, 32), fb.uniform_sweep(0.0, 0.1, 32)
-        np.testing.assert_allclose(u1 / s, u0, rtol=1e-9, atol=1e-9)
+        try:
+            u0 = base.uniform_sweep(0.0, 0.1, 32)
+        except linkage.LinkageError:
+            # A change-point linkage (the parallelogram) flattens on this path: the fixed-
+            # assembly sweep refuses it, and must refuse it at every scale.
+            assert base.grashof() == "change-point"
+            with pytest.raises(linkage.LinkageError, match="flattens"):
+                fb.uniform_sweep(0.0, 0.1, 32)
+        else:
+            u1 = fb.uniform_sweep(0.0, 0.1, 32)
+            np.testing.assert_allclose(u1 / s, u0, rtol=1e-9, atol=1e-9)
 
 
 @FAST
@@ -775,15 +784,31 @@ def test_fourbar_scale_invariance(which, s):
 @example(pts=np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]), s=1e308)  # awaits A (D8)
 def test_circumcentre_scale_invariance(pts, s):
     """Awaits A (D8): a circumcentre and a centre of curvature scale with the points; NaN only
-    where the unscaled one is NaN (collinear), never from overflow or underflow."""
+    where the unscaled one is NaN (collinear), never from overflow or underflow.
+
+    Only for scaled points that are floats at all: every nonzero coordinate times ``s`` must be
+    a normal float. Below the smallest normal the product loses digits (below the smallest
+    subnormal it is 0, and three points at 0 rightly have a NaN centre); above the largest it
+    is infinite. Those inputs are not the points scaled, so there is nothing to compare."""
+    with np.errstate(over="ignore", under="ignore"):
+        scaled = s * pts
+    nonzero = np.abs(scaled[pts != 0])
+    assume(bool(np.all(nonzero >= np.finfo(np.float64).tiny) and np.all(np.isfinite(nonzero))))
+    largest = np.finfo(np.float64).max
     c0 = geometry.circumcentre(pts[0], pts[1], pts[2])
     if not np.isfinite(c0).all() or np.abs(c0).max() > 1e3:  # (nearly) collinear
         return
-    c1 = geometry.circumcentre(*(s * pts))
-    np.testing.assert_allclose(c1 / s, c0, rtol=1e-8, atol=1e-8)
-    centre, kappa = geometry.curvature_centre(s * pts[0], s * pts[1], s * pts[2])
+    c1 = geometry.circumcentre(*scaled)
+    if float(np.abs(c0).max()) * s <= largest:  # else the scaled centre is not a float: no claim
+        np.testing.assert_allclose(c1 / s, c0, rtol=1e-8, atol=1e-8)
+    centre, kappa = geometry.curvature_centre(scaled[0], scaled[1], scaled[2])
     c_base, k_base = geometry.curvature_centre(pts[0], pts[1], pts[2])
-    if np.isfinite(c_base).all() and np.abs(c_base).max() < 1e3 and 1e-3 < abs(k_base) < 1e3:
+    if (
+        np.isfinite(c_base).all()
+        and np.abs(c_base).max() < 1e3
+        and 1e-3 < abs(k_base) < 1e3
+        and float(np.abs(c_base).max()) * s <= largest
+    ):
         np.testing.assert_allclose(centre / s, c_base, rtol=1e-8, atol=1e-8)
 
 

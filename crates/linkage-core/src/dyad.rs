@@ -89,8 +89,14 @@ fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> 
     Ok(prod.sqrt() * lit::<T>(0.25))
 }
 
-/// A power of two within a factor 2³² of `x` (1 for `x` in `[2⁻³², 2³²]`): dividing by it is
-/// exact, so it rescales without rounding.
+/// A power of two `s` for rescaling by `x` without rounding: `1` for `x` in `[2⁻³², 2³²]`
+/// (ordinary sizes keep their bits), otherwise one with `x / s` in `[1, 2)` (for a positive
+/// finite `x`; within `2³²` of `x` for zero or infinity, `1` for NaN). Dividing by it is exact.
+///
+/// Why tight: the callers divide lengths by it and then form products of the quotients with
+/// other quantities that carry the linkage's scale (velocities, other lengths). A quotient left
+/// anywhere in `[2⁻³², 2³²]` would push such a product `2³²` closer to underflow or overflow —
+/// the rates of a linkage at 1e−300 lost digits to subnormal right-hand sides that way.
 #[inline]
 pub(crate) fn pow2_scale<T: RealField + Copy>(x: T) -> T {
     let step = lit::<T>(4_294_967_296.0); // 2³²
@@ -103,6 +109,17 @@ pub(crate) fn pow2_scale<T: RealField + Copy>(x: T) -> T {
     }
     while x / s < T::one() / step && s / step > T::zero() {
         s /= step;
+    }
+    // Now within 2³² of `x`: settle the last bits (at most 32 halvings or doublings, and only
+    // for extreme sizes).
+    if x > T::zero() && x.is_finite() {
+        let two = lit::<T>(2.0);
+        while x / s >= two && (s * two).is_finite() {
+            s *= two;
+        }
+        while x / s < T::one() && s / two > T::zero() {
+            s /= two;
+        }
     }
     s
 }
@@ -176,8 +193,8 @@ impl<T: RealField + Copy> Dyad<T> {
     }
 
     /// As [`Dyad::solve`], given a cancellation-free form of the base when the caller has one:
-    /// `base()` returns the base vector `p2 − p1` and its distances to the toggle values,
-    /// `(d² − (r1 − r2)², (r1 + r2)² − d²)`.
+    /// `base()` returns the base vector `p2 − p1` and Kahan's vanishing factor for it, in length
+    /// units: `r1 + r2 − d` when `d ≥ max(r1, r2)` (stretched), else `d − |r1 − r2|` (folded).
     ///
     /// Next to a toggle Kahan's vanishing factor is `d − |r1 − r2|` (folded) or `r1 + r2 − d`
     /// (stretched); from a `d` rounded to `ε·d` it keeps only the digits its size allows, and the
@@ -192,7 +209,7 @@ impl<T: RealField + Copy> Dyad<T> {
         p1: Vec2<T>,
         p2: Vec2<T>,
         slack: T,
-        base: impl FnOnce() -> Option<(Vec2<T>, T, T)>,
+        base: impl FnOnce() -> Option<(Vec2<T>, T)>,
     ) -> Result<DyadPose<T>, DyadFailure<T>> {
         let (r1, r2) = (self.r1, self.r2);
         let (mut dv, mut d) = (p2 - p1, length(p2 - p1));
@@ -200,13 +217,9 @@ impl<T: RealField + Copy> Dyad<T> {
         let plain = (d + r1.min(r2)).min(r1 + r2) - longest;
         let mut flat = None;
         if plain < longest * lit::<T>(0.0625) {
-            if let Some((v, fold, stretch)) = base() {
+            if let Some((v, f2)) = base() {
                 (dv, d) = (v, length(v));
-                flat = Some(if d >= r1.max(r2) {
-                    stretch / (r1 + r2 + d)
-                } else {
-                    fold / (d + (r1 - r2).abs())
-                });
+                flat = Some(f2);
             }
         }
         let scale = d + r1 + r2 + p1.amax() + p2.amax();
@@ -257,7 +270,7 @@ impl<T: RealField + Copy> Dyad<T> {
         v2: Vec2<T>,
         p: Vec2<T>,
     ) -> Option<Vec2<T>> {
-        let (e1, e2) = (p - p1, p - p2);
+        let (e1, e2) = unit_rows(p - p1, p - p2);
         solve_rows(e1, e2, e1.dot(&v1), e2.dot(&v2))
     }
 
@@ -277,13 +290,29 @@ impl<T: RealField + Copy> Dyad<T> {
         v: Vec2<T>,
     ) -> Option<Vec2<T>> {
         let (e1, e2) = (p - p1, p - p2);
+        let s = pow2_scale(e1.amax().max(e2.amax()));
         let (w1, w2) = (v - v1, v - v2);
+        let sc = |x: Vec2<T>| if s == T::one() { x } else { x / s };
+        let (e1, e2) = (sc(e1), sc(e2));
         solve_rows(
             e1,
             e2,
-            e1.dot(&a1) - w1.norm_squared(),
-            e2.dot(&a2) - w2.norm_squared(),
+            e1.dot(&a1) - sc(w1).dot(&w1),
+            e2.dot(&a2) - sc(w2).dot(&w2),
         )
+    }
+}
+
+/// The rows `e1`, `e2` of the rate equations divided by one power of two near the larger
+/// (exact, and no change for ordinary sizes): the solution is the same, but the determinant
+/// and the right-hand sides `e·v` neither underflow nor overflow at any linkage scale.
+#[inline]
+fn unit_rows<T: RealField + Copy>(e1: Vec2<T>, e2: Vec2<T>) -> (Vec2<T>, Vec2<T>) {
+    let s = pow2_scale(e1.amax().max(e2.amax()));
+    if s == T::one() {
+        (e1, e2)
+    } else {
+        (e1 / s, e2 / s)
     }
 }
 
@@ -305,6 +334,30 @@ pub(crate) fn solve_rows<T: RealField + Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pow2_scale_is_one_for_ordinary_sizes_and_tight_otherwise() {
+        for x in [1.0, 2.5e-10, 4.0e9, 2f64.powi(-32), 2f64.powi(32)] {
+            assert_eq!(pow2_scale(x), 1.0, "{x:e}");
+        }
+        for x in [
+            1e-300,
+            3.7e-301,
+            2f64.powi(-1000),
+            1e300,
+            2f64.powi(1000),
+            1.7e308,
+            4e-320,
+        ] {
+            let s = pow2_scale(x);
+            assert_eq!(s.log2().fract(), 0.0, "{x:e}: {s:e} not a power of two");
+            assert!((1.0..2.0).contains(&(x / s)), "{x:e}: x/s = {}", x / s);
+        }
+        // f32 the same way.
+        let s = pow2_scale(1e-30_f32);
+        assert!((1.0..2.0).contains(&(1e-30_f32 / s)));
+        assert_eq!(pow2_scale(f64::NAN), 1.0);
+    }
 
     #[test]
     fn kahan_area_of_3_4_5() {

@@ -36,7 +36,7 @@ impl GearTrain {
         let meshes = teeth.len() - 1;
         Ok(GearTrain {
             magnitude: f64::from(teeth[0]) / f64::from(teeth[meshes]),
-            sign: if meshes % 2 == 0 { 1 } else { -1 },
+            sign: if meshes.is_multiple_of(2) { 1 } else { -1 },
         })
     }
 
@@ -97,7 +97,11 @@ impl GearTrain {
         }
         Ok(GearTrain {
             magnitude,
-            sign: if stages.len() % 2 == 0 { 1 } else { -1 },
+            sign: if stages.len().is_multiple_of(2) {
+                1
+            } else {
+                -1
+            },
         })
     }
 

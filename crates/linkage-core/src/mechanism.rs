@@ -408,8 +408,9 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     }
 
     /// For a dyad on a crank pin `A` and a fixed joint `Q` (the crank turning about a fixed
-    /// joint `O`), the base vector `p2 − p1` and its distances to the toggle values without
-    /// cancellation: `(p2 − p1, d² − (r1 − r2)², (r1 + r2)² − d²)`.
+    /// joint `O`), the base vector `p2 − p1` and Kahan's vanishing factor for it without
+    /// cancellation (see [`Dyad::solve_with_base`]): `(d² − Δ²)/(d + Δ)` folded,
+    /// `(Σ² − d²)/(Σ + d)` stretched.
     ///
     /// With `g = |Q − O|`, crank radius `r` and `ψ` the angle from `O → Q` to `O → A`,
     /// `d² = (g − r)² + 4gr·sin²(ψ/2) = (g + r)² − 4gr·cos²(ψ/2)`, so
@@ -417,6 +418,9 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// `Σ² − d² = (Σ − g − r)(Σ + g + r) + 4gr·cos²(ψ/2)` (`Δ = |r1 − r2|`, `Σ = r1 + r2`). On a
     /// change-point linkage the first products vanish exactly at the flat positions, and what
     /// is left is a product of accurate factors: the pose keeps full accuracy right up to them.
+    /// The products of two lengths are formed on the lengths divided by a power of two near the
+    /// longest (exact, and no change for ordinary sizes), so they neither underflow nor overflow
+    /// at any linkage scale.
     fn crank_base(
         &self,
         p1: usize,
@@ -424,7 +428,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         theta: T,
         pos: &[Vec2<T>],
         dyad: Dyad<T>,
-    ) -> Option<(Vec2<T>, T, T)> {
+    ) -> Option<(Vec2<T>, T)> {
         let (k, q) = self.crank_and_fixed(p1, p2)?;
         let Construction::Crank {
             centre,
@@ -440,15 +444,27 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         let psi = theta + phase - beta;
         let half = psi * lit::<T>(0.5);
         let (s, c) = half.sin_cos();
-        let four_gr = lit::<T>(4.0) * g * r;
-        let (delta, sigma) = ((dyad.r1 - dyad.r2).abs(), dyad.r1 + dyad.r2);
-        let fold = (g - r - delta) * (g - r + delta) + four_gr * s * s;
-        let stretch = (sigma - g - r) * (sigma + g + r) + four_gr * c * c;
         // Q − A = (g − r)·ĝ + r·(ĝ − ŵ), and ĝ − ŵ = 2 sin(ψ/2)·(sin(β + ψ/2), −cos(β + ψ/2)).
         let (sb, cb) = (beta + half).sin_cos();
         let qa = gv * ((g - r) / g) + Vec2::new(sb, -cb) * (lit::<T>(2.0) * r * s);
         let dv = if k == p1 { qa } else { -qa };
-        Some((dv, fold, stretch))
+        let d = crate::scalar::length(dv);
+        let (delta, sigma) = ((dyad.r1 - dyad.r2).abs(), dyad.r1 + dyad.r2);
+        let unit = crate::dyad::pow2_scale(g.max(r).max(sigma).max(d));
+        let (g, r, delta, sigma, ds) = if unit == T::one() {
+            (g, r, delta, sigma, d)
+        } else {
+            (g / unit, r / unit, delta / unit, sigma / unit, d / unit)
+        };
+        let four_gr = lit::<T>(4.0) * g * r;
+        let f2 = if d >= dyad.r1.max(dyad.r2) {
+            let stretch = (sigma - g - r) * (sigma + g + r) + four_gr * c * c;
+            stretch / (sigma + ds)
+        } else {
+            let fold = (g - r - delta) * (g - r + delta) + four_gr * s * s;
+            fold / (ds + delta)
+        };
+        Some((dv, if unit == T::one() { f2 } else { f2 * unit }))
     }
 
     /// For a dyad on a crank pin and a fixed joint (see [`Mechanism::crank_base`]), whether an

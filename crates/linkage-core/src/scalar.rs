@@ -42,14 +42,21 @@ pub(crate) fn nan<T: RealField + Copy>() -> T {
 }
 
 /// Euclidean length without overflow or underflow of the squares: `√(x² + y²)` when the sum
-/// of squares is a normal number, `hypot` (slower, scaled) when it overflowed or underflowed.
+/// of squares is a normal number, else the same formula on the vector divided by a power of two
+/// near its size, times that power ([`crate::dyad::pow2_scale`]: exact, so a linkage scaled by
+/// a power of two gets the same bits as at unit size, which `hypot` would not give).
 #[inline]
 pub(crate) fn length<T: RealField + Copy>(v: Vec2<T>) -> T {
     let n2 = v.x * v.x + v.y * v.y;
     // 2⁻⁹⁰⁰ keeps the fast path clear of the subnormal range for f64; for f32 it is zero, and
-    // f32 squares underflow only below 1e-19 anyway, where hypot takes over via `n2 == 0`.
+    // f32 squares underflow only below 1e-19 anyway, where the scaled path takes over via
+    // `n2 == 0`.
     if n2.is_finite() && n2 > T::from_subset(&1e-270_f64) {
         n2.sqrt()
+    } else if v.x.is_finite() && v.y.is_finite() && (v.x != T::zero() || v.y != T::zero()) {
+        let s = crate::dyad::pow2_scale(v.x.abs().max(v.y.abs()));
+        let (x, y) = (v.x / s, v.y / s);
+        (x * x + y * y).sqrt() * s
     } else {
         v.x.hypot(v.y)
     }

@@ -677,7 +677,7 @@ mod fast {
             let top = self.levels.len().saturating_sub(1);
             let mut s = a;
             while s < b {
-                if s % LEAF == 0 && b - s >= LEAF {
+                if s.is_multiple_of(LEAF) && b - s >= LEAF {
                     let blocks = s / LEAF;
                     let by_align = if blocks == 0 {
                         usize::MAX

@@ -397,10 +397,18 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                     } else if test && self.nhist >= 2 {
                         let prev = self.hist[new][i];
                         let predicted = prev + (prev - self.hist[old][i]) * ratio;
-                        let kept = foot + offset * s;
-                        let flipped = foot - offset * s;
-                        if (flipped - predicted).norm_squared() < (kept - predicted).norm_squared()
-                        {
+                        let kept = foot + offset * s - predicted;
+                        let flipped = foot - offset * s - predicted;
+                        // Squared distances of a linkage at 1e±300 would underflow to 0 or
+                        // overflow to ∞ and tie: compare them in units of a power of two near
+                        // the larger (exact, and no change for ordinary sizes).
+                        let unit = crate::dyad::pow2_scale(kept.amax().max(flipped.amax()));
+                        let (kept, flipped) = if unit == T::one() {
+                            (kept, flipped)
+                        } else {
+                            (kept / unit, flipped / unit)
+                        };
+                        if flipped.norm_squared() < kept.norm_squared() {
                             if choice == Choice::Continue {
                                 s = -s;
                                 self.sign[i] = -self.sign[i];
