@@ -91,9 +91,14 @@ fn put(dst: &mut [f64], k: usize, c: Centre<f64>, finite: bool) {
     dst[2 * k..2 * k + 2].copy_from_slice(&v);
 }
 
-/// Samples between two calls of a sweep's `go_on` (each sample's work is bounded, so this
-/// bounds the time between them).
+/// Samples between two calls of a sweep's `go_on`, at most.
 pub const CHUNK: usize = 4096;
+
+/// Tracker placements (solves of every joint at one angle) between two calls of `go_on`, at
+/// most: a sample costs one placement, plus the grid points walked to reach it (up to a few
+/// hundred for a jump of many turns), so counting work rather than samples bounds the time
+/// between two checks (about 10 ms here) whatever the spacing of the samples.
+pub const WORK_CHUNK: u64 = 1 << 15;
 
 /// Allocates the outputs of a sweep of `n` samples of `j` joints and `np` link pairs: the total
 /// is checked first (`MemoryError` naming it), then each buffer is reserved without aborting.
@@ -135,7 +140,8 @@ fn allocate(n: usize, j: usize, np: usize, wanted: Wanted) -> PyResult<SweepArra
 /// Sweeps `m` over `theta` with the core tracker. Pure Rust, no Python: runs with the GIL
 /// released (the allocation errors it can return are created lazily). Only what `wanted` asks
 /// is computed; instant centres and curvature use rates per unit crank angle (they do not
-/// depend on timing). `go_on` is called every [`CHUNK`] samples; when it returns false the
+/// depend on timing). `go_on` is called every [`CHUNK`] samples or [`WORK_CHUNK`] placements,
+/// whichever comes first; when it returns false the
 /// sweep stops early (the caller raises what stopped it).
 pub fn sweep_arrays<const N: usize>(
     m: &CoreMechanism<f64, N>,
@@ -159,9 +165,13 @@ pub fn sweep_arrays<const N: usize>(
     let (mut pos, mut vel, mut acc) = (zero, zero, zero);
     let (mut uvel, mut uacc) = (zero, zero);
     let mut motions = Vec::with_capacity(ids.len());
+    let mut next_check = WORK_CHUNK;
     for (k, &th) in theta.iter().enumerate() {
-        if k % CHUNK == CHUNK - 1 && !go_on() {
-            break;
+        if (k % CHUNK == CHUNK - 1 || tracker.work() >= next_check) && k > 0 {
+            if !go_on() {
+                break;
+            }
+            next_check = tracker.work().saturating_add(WORK_CHUNK);
         }
         let motion = rates.then(|| Motion::new(omega.at(k), alpha.at(k)));
         let buffers = match (wanted.acceleration, rates) {
