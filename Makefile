@@ -5,10 +5,13 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 SOURCES := Cargo.toml pyproject.toml $(shell find crates python -name '*.rs' -o -name '*.py' -o -name '*.pyi' -o -name Cargo.toml)
 FIRMWARE := thumbv7em-none-eabihf
+DIST   := dist
+# The declared minimum Rust (Cargo.toml's rust-version), checked by `make msrv`.
+MSRV   := $(shell sed -n 's/^rust-version = "\(.*\)"/\1/p' Cargo.toml)
 
 SIZE := $(shell command -v llvm-size || ls $$HOME/.rustup/toolchains/*/lib/rustlib/*/bin/llvm-size 2>/dev/null | head -n 1)
 
-.PHONY: help run test check firmware firmware-size bench fuzz clean
+.PHONY: help run test check msrv wheel wheel-test firmware firmware-size bench fuzz clean
 
 help: ## List the targets.
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | expand -t 12
@@ -22,17 +25,34 @@ $(STAMP): $(SOURCES)
 run: $(STAMP) ## Set up (venv, build) and run the main job: `linkage run` (report in ./linkage-report/).
 	$(BIN)/linkage run --force
 
-test: $(STAMP) ## Set up and run every test: Rust unit/property/doc tests, pytest + doctests, stubs, types.
+test: $(STAMP) ## Set up and run every test: Rust unit/property/doc tests, pytest + doctests, stubs, types (not the wheel: wheel-test).
 	cargo test -p linkage-core --release
-	$(BIN)/pytest tests python/linkage
+	$(BIN)/pytest tests python/linkage --ignore=tests/test_wheel.py
 	$(BIN)/python -m mypy.stubtest linkage._core
 	$(BIN)/mypy
 
-check: $(STAMP) firmware firmware-size ## Formatting, lints (clippy -D warnings, ruff) and the firmware builds.
+check: $(STAMP) firmware firmware-size ## Formatting, lints (clippy -D warnings, ruff), rustdoc -D warnings, firmware builds.
 	cargo fmt --all --check
 	cargo clippy --workspace --all-targets -- -D warnings
+	RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p linkage-core
 	$(BIN)/ruff check python tests bench
 	$(BIN)/ruff format --check python tests bench
+
+msrv: ## Check the workspace and the no_std core with the minimum Rust (Cargo.toml rust-version; installs it).
+	rustup toolchain install $(MSRV) --profile minimal
+	CARGO_TARGET_DIR=target/msrv cargo +$(MSRV) check --workspace --all-targets --locked
+	CARGO_TARGET_DIR=target/msrv cargo +$(MSRV) check -p linkage-core --no-default-features --features libm --locked
+
+wheel: $(STAMP) ## Build the shipped wheel (abi3, manylinux2014 via zig, stripped, audited) and the sdist into dist/.
+	$(BIN)/python -m pip install --quiet --group ship
+	rm -f $(DIST)/linkage_kinematics-*.whl $(DIST)/linkage_kinematics-*.tar.gz
+	PATH="$(abspath $(BIN)):$$PATH" $(BIN)/maturin build --sdist --locked --zig \
+		--compatibility manylinux2014 --auditwheel check --out $(DIST)
+	$(BIN)/auditwheel show $(DIST)/linkage_kinematics-*.whl
+	@ls -l $(DIST)/linkage_kinematics-*
+
+wheel-test: wheel ## Install the wheel into a fresh venv of each declared Python (3.9-3.13); run it outside the tree.
+	LINKAGE_WHEEL_DIST="$(CURDIR)/$(DIST)" $(BIN)/pytest tests/test_wheel.py -p no:cacheprovider
 
 firmware: ## Build the core and a firmware example (f32 + f64) for thumbv7em-none-eabihf: no std, no heap.
 	rustup target add $(FIRMWARE)
@@ -58,4 +78,4 @@ fuzz: $(STAMP) ## Long fuzzing runs: 1e5 proptest cases per property; ~2e5 hypot
 	LINKAGE_FUZZ_EXAMPLES=4000 $(BIN)/pytest tests/test_fuzz_api.py tests/test_memory_limits.py -q
 
 clean: ## Remove the venv and build products.
-	rm -rf $(VENV) target python/linkage/_core*.so
+	rm -rf $(VENV) target python/linkage/_core*.so $(DIST)/linkage_kinematics-*
