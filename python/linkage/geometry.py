@@ -7,6 +7,7 @@ gives NaN, a wrong shape raises.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -318,7 +319,8 @@ def ball_point(fb: FourBar, theta: float) -> Inflection:
             f"(radius {radius!r}): the coupler is nearly translating"
         )
     a, b = joints[2], joints[3]
-    u = (b - a) / np.linalg.norm(b - a)
+    d = b - a
+    u = d / math.hypot(float(d[0]), float(d[1]))  # hypot: no overflow at any size
     r = np.asarray(ball) - a
     local = (float(r @ u), float(u[0] * r[1] - u[1] * r[0]))
     return Inflection(pole, jpole, centre, float(radius), ball, local)
