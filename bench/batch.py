@@ -2,8 +2,9 @@
 
 10⁴ random crank-rockers and double cranks × 360 crank angles. The numpy version is the same
 closed form (Kahan's area, declared assembly) vectorised over ``(M, N)`` with ``sin``/``cos``
-of the ``N`` angles computed once. Median of repeated, interleaved runs in one process; prints the ratio and
-the largest difference between the two, relative to the linkage size.
+of the ``N`` angles computed once. Median of repeated, interleaved runs in one process; prints
+the ratio (fresh outputs, and outputs reused through ``out=``) and the largest difference
+between the two, relative to the linkage size.
 
     .venv/bin/python bench/batch.py [--m 10000] [--n 360] [--repeat 9] [--threads 1]
 """
@@ -107,6 +108,14 @@ def main() -> None:
             threads=args.threads,
         )  # fmt: skip
 
+    buf = (np.empty((args.m, args.n, 2)), np.empty((args.m, args.n), dtype=bool))
+
+    def ours_out() -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        return sweep_fourbars(
+            p["ground"], p["crank"], p["coupler"], p["rocker"], point, theta, assembly,
+            threads=args.threads, out=buf,
+        )  # fmt: skip
+
     def theirs() -> NDArray[np.float64]:
         return numpy_batch(
             p["ground"], p["crank"], p["coupler"], p["rocker"], p["along"], p["left"], sign, theta
@@ -116,16 +125,20 @@ def main() -> None:
     b = theirs()
     size = np.maximum.reduce([p["ground"], p["coupler"], p["rocker"], np.abs(point).max(-1)])
     diff = float(np.nanmax(np.abs(a - b).max(-1) / size[:, None]))
-    t_ours, t_np = medians([ours, theirs], args.repeat)
+    t_ours, t_out, t_np = medians([ours, ours_out, theirs], args.repeat)
     samples = args.m * args.n
     print(f"batch of {args.m} four-bars × {args.n} angles, threads={args.threads}")
     print(
         f"  linkage.batch.sweep_fourbars: {t_ours * 1e3:8.2f} ms  {t_ours / samples * 1e9:6.2f} ns/sample"
     )
     print(
+        f"  ... into reused out arrays:   {t_out * 1e3:8.2f} ms  {t_out / samples * 1e9:6.2f} ns/sample"
+    )
+    print(
         f"  numpy broadcast closed form:  {t_np * 1e3:8.2f} ms  {t_np / samples * 1e9:6.2f} ns/sample"
     )
     print(f"  ratio numpy / ours: {t_np / t_ours:.1f}×  (target ≥ 10×)")
+    print(f"  ratio numpy / ours with out=: {t_np / t_out:.1f}×")
     print(
         f"  valid samples: {int(valid.sum())} of {samples}; agree with numpy's NaNs: "
         f"{bool((valid == np.isfinite(b[..., 0])).all())}"

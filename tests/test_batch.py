@@ -187,3 +187,26 @@ def test_ctrl_c_interrupts_a_long_batch() -> None:
     ).stdout.split()
     assert out[0] == "interrupted", out
     assert float(out[1]) < 1.5, out
+
+
+def test_out_arrays_are_filled_and_returned() -> None:
+    th = _theta(4)
+    ref, vref = sweep_fourbars([20, 3], [10, 1], [25, 3], [25, 1], (1.5, 0.5), th)
+    buf = (np.full((2, th.size, 2), 7.0), np.zeros((2, th.size), dtype=bool))
+    p, v = sweep_fourbars([20, 3], [10, 1], [25, 3], [25, 1], (1.5, 0.5), th, out=buf)
+    assert p is buf[0] and v is buf[1]
+    np.testing.assert_array_equal(p.view(np.int64), ref.view(np.int64))
+    assert (v == vref).all()
+    with pytest.raises(LinkageError, match="out must be arrays of shapes"):
+        sweep_fourbars(20, 10, 25, 25, (0, 0), th, out=buf)
+    with pytest.raises(LinkageError, match="C-contiguous"):
+        sweep_fourbars(
+            [20, 3], [10, 1], [25, 3], [25, 1], (0, 0), th[:3],
+            out=(np.empty((2, 6, 2))[:, ::2], np.empty((2, 3), dtype=bool)),
+        )  # fmt: skip
+    with pytest.raises(TypeError, match="out must be a pair"):
+        sweep_fourbars(20, 10, 25, 25, (0, 0), th, out=(np.empty((1, th.size, 2)),))  # type: ignore[arg-type]
+    frozen = (np.empty((1, 1, 2)), np.empty((1, 1), dtype=bool))
+    frozen[0].flags.writeable = False
+    with pytest.raises(LinkageError, match="writeable"):
+        sweep_fourbars(20, 10, 25, 25, (0, 0), 0.0, out=frozen)

@@ -33,6 +33,7 @@ def sweep_fourbars(
     *,
     o: Any = None,
     c: Any = None,
+    out: tuple[NDArray[np.float64], NDArray[np.bool_]] | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """Coupler points of ``M`` four-bars at ``N`` shared crank angles.
 
@@ -57,6 +58,10 @@ def sweep_fourbars(
         Threads the linkages are split over; the results are the same bits for any count.
     o, c : array_like, optional
         Crank and rocker pivots, shape ``(2,)`` or ``(M, 2)``; ``o`` defaults to the origin.
+    out : (ndarray, ndarray), optional
+        C-contiguous writeable float64 ``(M, N, 2)`` and bool ``(M, N)`` arrays that receive the
+        results instead of new arrays (and are returned): a search that evaluates batch after
+        batch saves allocating and first touching the output each time.
 
     Returns
     -------
@@ -84,6 +89,13 @@ def sweep_fourbars(
     >>> p, ok = sweep_fourbars(3, 1, 3, 1, (1.5, 0.5), [2.0, np.pi, 4.0])
     >>> a = np.stack([np.cos([2.0, np.pi, 4.0]), np.sin([2.0, np.pi, 4.0])], axis=-1)
     >>> bool(np.allclose(p[0], a + (1.5, 0.5)))
+    True
+
+    Reusing the outputs:
+
+    >>> buf = (np.empty((1, 3, 2)), np.empty((1, 3), dtype=bool))
+    >>> p2, ok2 = sweep_fourbars(3, 1, 3, 1, (1.5, 0.5), [2.0, np.pi, 4.0], out=buf)
+    >>> p2 is buf[0] and bool((p2 == p).all())
     True
 
     A linkage that cannot reach gives NaN, flagged:
@@ -146,6 +158,15 @@ def sweep_fourbars(
         if same.any():
             k = int(np.flatnonzero(same)[0])
             raise LinkageError(f"o and c coincide (ground length 0) for linkage {k}")
+    if out is not None and not (
+        isinstance(out, tuple)
+        and len(out) == 2
+        and isinstance(out[0], np.ndarray)
+        and out[0].dtype == np.float64
+        and isinstance(out[1], np.ndarray)
+        and out[1].dtype == np.bool_
+    ):
+        raise TypeError("out must be a pair (float64 array, bool array)")
     pm = pts(pt)
     points, valid = _core.batch_sweep(
         o_m,
@@ -158,6 +179,7 @@ def sweep_fourbars(
         flat(crossed, np.bool_),
         th,
         nthreads,
+        out,
     )
     return points, valid
 

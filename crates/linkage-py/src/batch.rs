@@ -112,10 +112,12 @@ type Outputs<'py> = (Bound<'py, PyArray3<f64>>, Bound<'py, PyArray2<bool>>);
 /// Coupler points `(M, N, 2)` and validity `(M, N)` of `M` four-bars at the `N` crank angles
 /// `theta`, each row what a tracked sweep of that linkage gives. `o`, `c`: `(M, 2)` pivots;
 /// `crank`, `coupler`, `rocker`, `along`, `left`: `(M,)`; `crossed`: `(M,)` bool (the crossed
-/// assembly). `threads` split the linkages (the same bits for any count). A call of more than
+/// assembly). `threads` split the linkages (the same bits for any count). `out`, a pair of
+/// C-contiguous writeable arrays of those shapes (float64, bool), receives the results instead
+/// of new arrays (and is returned): a search that evaluates batch after batch reuses it. A call of more than
 /// about a millisecond of work runs on worker threads while this thread checks for Ctrl-C.
 #[pyfunction]
-#[pyo3(signature = (o, c, crank, coupler, rocker, along, left, crossed, theta, threads=1))]
+#[pyo3(signature = (o, c, crank, coupler, rocker, along, left, crossed, theta, threads=1, out=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn batch_sweep<'py>(
     py: Python<'py>,
@@ -129,6 +131,7 @@ pub fn batch_sweep<'py>(
     crossed: PyReadonlyArray1<'py, bool>,
     theta: PyReadonlyArray1<'py, f64>,
     #[pyo3(from_py_with = named::threads)] threads: usize,
+    out: Option<Outputs<'py>>,
 ) -> PyResult<Outputs<'py>> {
     if threads == 0 {
         return Err(linkage_error("threads must be at least 1"));
@@ -171,18 +174,41 @@ pub fn batch_sweep<'py>(
             th[k]
         )));
     }
-    let what = || format!("batch sweep of {m} linkages × {n} angles");
-    let samples = (m as u128) * (n as u128);
-    memory::check(&what, samples.saturating_mul(17))?;
-    let points = PyArray3::<f64>::zeros(py, [m, n, 2], false);
-    let valid = PyArray2::<bool>::zeros(py, [m, n], false);
+    let (points, valid) = match out {
+        Some((p, v)) => {
+            let shape = |s: &[usize]| {
+                let parts: Vec<String> = s.iter().map(usize::to_string).collect();
+                parts.join(", ")
+            };
+            if p.shape() != [m, n, 2] || v.shape() != [m, n] {
+                return Err(linkage_error(format!(
+                    "out must be arrays of shapes ({m}, {n}, 2) and ({m}, {n}), got ({}) and ({})",
+                    shape(p.shape()),
+                    shape(v.shape())
+                )));
+            }
+            if !p.is_c_contiguous() || !v.is_c_contiguous() {
+                return Err(linkage_error("out arrays must be C-contiguous"));
+            }
+            (p, v)
+        }
+        None => {
+            let what = || format!("batch sweep of {m} linkages × {n} angles");
+            let samples = (m as u128) * (n as u128);
+            memory::check(&what, samples.saturating_mul(17))?;
+            (
+                PyArray3::<f64>::zeros(py, [m, n, 2], false),
+                PyArray2::<bool>::zeros(py, [m, n], false),
+            )
+        }
+    };
     {
         let mut pw = points
             .try_readwrite()
-            .map_err(|e| linkage_error(e.to_string()))?;
+            .map_err(|e| linkage_error(format!("out must be writeable arrays not in use: {e}")))?;
         let mut vw = valid
             .try_readwrite()
-            .map_err(|e| linkage_error(e.to_string()))?;
+            .map_err(|e| linkage_error(format!("out must be writeable arrays not in use: {e}")))?;
         let flat = pw
             .as_slice_mut()
             .map_err(|_| linkage_error("internal error: output not contiguous"))?;
