@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
+from linkage import batch as batch  # in __all__ once tests/test_fuzz_api.py covers it
 from linkage import cam, catalog, drive, forces, geometry, walker
 from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar

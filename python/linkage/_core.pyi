@@ -29,6 +29,7 @@ __all__ = [
     "forces",
     "support_margins",
     "sweep_simd",
+    "batch_sweep",
 ]
 
 CAPACITY: int
@@ -114,6 +115,19 @@ class FourBar:
     ): ...
 
 def sweep_simd() -> str: ...
+def batch_sweep(
+    o: NDArray[np.float64],
+    c: NDArray[np.float64],
+    crank: NDArray[np.float64],
+    coupler: NDArray[np.float64],
+    rocker: NDArray[np.float64],
+    along: NDArray[np.float64],
+    left: NDArray[np.float64],
+    crossed: NDArray[np.bool_],
+    theta: NDArray[np.float64],
+    threads: int = 1,
+    out: tuple[NDArray[np.float64], NDArray[np.bool_]] | None = None,
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]: ...
 def catalog_names() -> tuple[list[str], list[str]]: ...
 def catalog_four_bar(name: str) -> FourBar: ...
 def catalog_linkage(name: str, scale: float = 2.0) -> tuple[Mechanism, list[str], int]: ...

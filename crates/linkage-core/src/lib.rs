@@ -45,6 +45,7 @@ compile_error!("linkage-core needs a math backend: enable the `std` feature or t
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+mod batch;
 mod bodies;
 mod cam;
 mod catalog_impl;
@@ -72,6 +73,7 @@ pub mod catalog {
     pub use crate::catalog_impl::*;
 }
 
+pub use batch::{BatchWork, FourBarBatch, GO_ON_EVERY};
 pub use bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
 pub use cam::{CamPoint, FlatFollower, RollerFollower};
 pub use centres::{

@@ -7,6 +7,7 @@
 use pyo3::prelude::*;
 
 mod args;
+mod batch;
 mod cam;
 mod catalog;
 mod centres;
@@ -47,5 +48,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(kinetostatics::forces, m)?)?;
     m.add_function(wrap_pyfunction!(support::support_margins, m)?)?;
     m.add_function(wrap_pyfunction!(fourbar::sweep_simd, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::batch_sweep, m)?)?;
     Ok(())
 }

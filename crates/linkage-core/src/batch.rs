@@ -1,0 +1,509 @@
+//! Batches of four-bars swept over shared crank angles: the evaluator of dimensional synthesis
+//! and design search.
+//!
+//! # The rule
+//! Every linkage of a batch gives exactly what a [`Tracker`] sweep of its
+//! [`FourBar::mechanism`] gives at the same angles in the same order: the same branch, NaN
+//! (and `valid = false`) where it cannot assemble. Most linkages take a branch-free fast path
+//! that gives those numbers without tracking, because for them tracking provably never changes
+//! the branch:
+//!
+//! The tracker changes the coupler–rocker dyad's orientation only at a flat position (crank pin
+//! on the ground line with coupler and rocker collinear, see
+//! [`FourBar::check_fixed_assembly_path`]): for a dyad built on a crank pin and a fixed joint —
+//! every four-bar's — it counts flat positions in closed form and never extrapolates. It walks
+//! only angles between the smallest and the largest sample, and a path that cannot be walked
+//! restarts on the orientation already held. So a linkage with no flat position in
+//! `[min θ, max θ]` (every non-change-point linkage, and a change point whose flat positions lie
+//! outside the swept angles) is on its declared assembly at every sample: the tracked sample is
+//! [`FourBar::pose`] at that angle. Other linkages (a change point with a flat position among the
+//! swept angles, or a linkage far from unit size) go through the tracker itself.
+//!
+//! # The fast kernel
+//! With the crank pin `A = O + r(cos θ, sin θ)` and the base `C − A` of length `d`, the joint
+//! `B` lies `x = (d² + (r₁ − r₂)(r₁ + r₂))/2d` along `A → C` and `h = ±2·Area(d, r₁, r₂)/d`
+//! to its left (`+` open, `−` crossed), with the area by Kahan's cancellation-free formula
+//! ([`crate::triangle_area`]); the coupler point is `P = A + along·e + left·e⊥`,
+//! `e = (B − A)/r₁`. It is evaluated branch-free over blocks of angles whose `sin`/`cos` are
+//! computed once for the whole batch, so it vectorises.
+//!
+//! Next to a toggle the kernel's Kahan factor `f₂` (the triangle inequality's slack, formed
+//! from a `d` rounded to `ε·d`) keeps only the digits its size allows, and `h ∝ √f₂` loses half
+//! of them; [`FourBar::pose`] forms that factor without cancellation. A sample whose factor is
+//! below `2⁻¹²` of the longest side (`|f₂| < 2⁻¹²·max(d, r₁, r₂)`) is therefore solved again by
+//! [`FourBar::pose`]: elsewhere the kernel's height error `≈ ε·L^{3/2}/(2√f₂)` is at most
+//! about `4·10⁻¹⁵` of the size `L`, and the valid/invalid decision (a closure miss within `8ε`
+//! of the lengths is a toggle, beyond it a failure) is made by the same code as the tracker's
+//! wherever it could go either way.
+
+use nalgebra::RealField;
+
+use crate::error::{check_finite, Error};
+use crate::fourbar::{flat_angles, Assembly, FourBar};
+use crate::scalar::{lit, nan, Vec2};
+use crate::tracker::{Rates, Tracker};
+
+/// Tracked samples between two calls of [`FourBarBatch::sweep_with`]'s `go_on`.
+pub const GO_ON_EVERY: usize = 256;
+
+/// Crank angles per block of the fast kernel (their `sin`/`cos` live on the stack).
+const BLOCK: usize = 512;
+
+/// Sizes (the largest length or coordinate) the fast kernel takes; outside, the tracker (its
+/// products of four lengths would overflow or underflow).
+const SIZE_LO: f64 = 1.0 / 65_536.0;
+const SIZE_HI: f64 = 65_536.0;
+
+/// Relative closure slack below which a sample is solved by [`FourBar::pose`] (see the module).
+const NEAR_TOGGLE: f64 = 1.0 / 4096.0;
+
+/// Angle margin (radians) kept between the swept angles and a flat position for the fast path:
+/// far above the rounding of the angles that locate it.
+const FLAT_PAD: f64 = 1e-6;
+
+/// `M` four-bars as parallel parameter slices (structure of arrays), one entry per linkage, with
+/// the meaning of [`FourBar`]'s fields.
+///
+/// ```
+/// use linkage_core::{Assembly, FourBarBatch, Vec2};
+/// // Two Hoecken linkages, the second twice the size, swept over three angles.
+/// let o = [Vec2::new(0.0, 0.0); 2];
+/// let c = [Vec2::new(20.0, 0.0), Vec2::new(40.0, 0.0)];
+/// let batch = FourBarBatch {
+///     o: &o,
+///     c: &c,
+///     crank: &[10.0, 20.0],
+///     coupler: &[25.0, 50.0],
+///     rocker: &[25.0, 50.0],
+///     along: &[50.0, 100.0],
+///     left: &[0.0, 0.0],
+///     assembly: &[Assembly::Open; 2],
+/// };
+/// let theta = [0.0, 1.0, 2.0];
+/// let mut points = [Vec2::zeros(); 6];
+/// let mut valid = [false; 6];
+/// let work = batch.sweep(&theta, &mut points, &mut valid).unwrap();
+/// assert_eq!(work.tracked, 0); // crank-rockers: the fast path
+/// assert!(valid.iter().all(|&v| v));
+/// assert!((points[3] - points[0] * 2.0).norm() < 1e-12);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct FourBarBatch<'a, T> {
+    /// Crank pivots.
+    pub o: &'a [Vec2<T>],
+    /// Rocker pivots.
+    pub c: &'a [Vec2<T>],
+    /// Crank lengths.
+    pub crank: &'a [T],
+    /// Coupler lengths.
+    pub coupler: &'a [T],
+    /// Rocker lengths.
+    pub rocker: &'a [T],
+    /// Coupler points: distance along `A → B`.
+    pub along: &'a [T],
+    /// Coupler points: distance to the left of `A → B`.
+    pub left: &'a [T],
+    /// Assemblies.
+    pub assembly: &'a [Assembly],
+}
+
+/// How a batch sweep's linkages were solved: a deterministic account of the work.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BatchWork {
+    /// Linkages on the fast path.
+    pub fast: usize,
+    /// Linkages swept by the tracker (a flat position among the swept angles, or far from unit
+    /// size).
+    pub tracked: usize,
+    /// Fast-path samples next to a toggle, solved again by [`FourBar::pose`].
+    pub exact: usize,
+    /// Whether the sweep stopped early because `go_on` said so
+    /// ([`FourBarBatch::sweep_with`]); the outputs are then partly written.
+    pub stopped: bool,
+}
+
+impl<'a, T: RealField + Copy> FourBarBatch<'a, T> {
+    /// Number of linkages (the length of `o`).
+    pub fn len(&self) -> usize {
+        self.o.len()
+    }
+
+    /// Whether the batch holds no linkage.
+    pub fn is_empty(&self) -> bool {
+        self.o.is_empty()
+    }
+
+    /// Checks that every slice has one entry per linkage.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] naming the first slice whose length differs from `o`'s.
+    pub fn check_lengths(&self) -> Result<(), Error> {
+        let m = self.len();
+        for (what, got) in [
+            ("c", self.c.len()),
+            ("crank", self.crank.len()),
+            ("coupler", self.coupler.len()),
+            ("rocker", self.rocker.len()),
+            ("along", self.along.len()),
+            ("left", self.left.len()),
+            ("assembly", self.assembly.len()),
+        ] {
+            if got != m {
+                return Err(Error::BufferLength {
+                    what,
+                    expected: m,
+                    got,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Linkage `i`, validated as [`FourBar::with_pivots`] does.
+    ///
+    /// # Errors
+    /// As [`FourBar::with_pivots`]; [`Error::BufferLength`] (`"linkage index"`) when `i` is past
+    /// the end of a slice.
+    pub fn linkage(&self, i: usize) -> Result<FourBar<T>, Error> {
+        let past = || Error::BufferLength {
+            what: "linkage index",
+            expected: i + 1,
+            got: self.len(),
+        };
+        let g = |s: &[T]| s.get(i).copied().ok_or_else(past);
+        FourBar::with_pivots(
+            *self.o.get(i).ok_or_else(past)?,
+            *self.c.get(i).ok_or_else(past)?,
+            g(self.crank)?,
+            g(self.coupler)?,
+            g(self.rocker)?,
+            (g(self.along)?, g(self.left)?),
+            *self.assembly.get(i).ok_or_else(past)?,
+        )
+    }
+
+    /// Linkage `i` as given, unchecked (the caller checked the batch and the index).
+    #[inline]
+    fn get(&self, i: usize) -> FourBar<T> {
+        FourBar {
+            o: self.o[i],
+            c: self.c[i],
+            crank: self.crank[i],
+            coupler: self.coupler[i],
+            rocker: self.rocker[i],
+            along: self.along[i],
+            left: self.left[i],
+            assembly: self.assembly[i],
+        }
+    }
+
+    /// Whether linkage `i` is swept by the tracker rather than the fast kernel when the angles
+    /// span `[lo, hi]` (their least and greatest): it has a flat position there, or is far from
+    /// unit size. A caller can weigh the work of a sub-batch by it (a tracked sample costs a
+    /// few placements, a huge jump between samples up to a few turns of them). `false` for an
+    /// index past the end.
+    pub fn is_tracked(&self, i: usize, lo: T, hi: T) -> bool {
+        i < self.len() && self.check_lengths().is_ok() && !fast_path(&self.get(i), lo, hi)
+    }
+
+    /// The first linkage that is not a valid four-bar, with its index and why.
+    pub fn first_invalid(&self) -> Option<(usize, Error)> {
+        (0..self.len()).find_map(|i| self.linkage(i).err().map(|e| (i, e)))
+    }
+
+    /// Linkages `range` of the batch (every slice cut the same way).
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] when the slices differ in length or `range` is past their end.
+    pub fn slice(&self, range: core::ops::Range<usize>) -> Result<Self, Error> {
+        self.check_lengths()?;
+        if range.start > range.end || range.end > self.len() {
+            return Err(Error::BufferLength {
+                what: "linkage range",
+                expected: range.end,
+                got: self.len(),
+            });
+        }
+        let r = range;
+        Ok(FourBarBatch {
+            o: &self.o[r.clone()],
+            c: &self.c[r.clone()],
+            crank: &self.crank[r.clone()],
+            coupler: &self.coupler[r.clone()],
+            rocker: &self.rocker[r.clone()],
+            along: &self.along[r.clone()],
+            left: &self.left[r.clone()],
+            assembly: &self.assembly[r],
+        })
+    }
+
+    /// Coupler points of every linkage at every crank angle of `theta` (the same angles, in the
+    /// same order, for all linkages; any spacing), written row-major into `points[i·N + k]`
+    /// (linkage `i`, angle `k`) with `valid[i·N + k]` whether that sample assembled. Each row is
+    /// what a [`Tracker`] sweep of linkage `i` over `theta` gives (see the module's rule); a
+    /// sample that cannot assemble is NaN.
+    ///
+    /// Linkages are independent: sweeping any sub-batch ([`FourBarBatch::slice`]) gives the same
+    /// bits for its rows, so callers may split a batch across threads freely. No heap is used.
+    ///
+    /// # Errors
+    /// Nothing is written on an error. [`Error::BufferLength`] when the parameter slices differ
+    /// in length or `points`/`valid` are not `M·N` long; [`Error::CountOverflow`] when `M·N`
+    /// overflows; [`Error::NotFinite`] (`"theta"`) for a non-finite angle; the error of
+    /// [`FourBar::with_pivots`] for the first linkage that is not a valid four-bar
+    /// ([`FourBarBatch::first_invalid`] names its index).
+    // Always inlined, so a caller compiled for wider vectors gets the kernel compiled for them.
+    #[inline(always)]
+    pub fn sweep(
+        &self,
+        theta: &[T],
+        points: &mut [Vec2<T>],
+        valid: &mut [bool],
+    ) -> Result<BatchWork, Error> {
+        self.sweep_with(theta, points, valid, &mut || true)
+    }
+
+    /// [`FourBarBatch::sweep`], calling `go_on` between linkages and every [`GO_ON_EVERY`]
+    /// samples of a tracked linkage; when it returns `false` the sweep stops early with
+    /// [`BatchWork::stopped`] set (a caller that must stay responsive, to Ctrl-C say, checks
+    /// there). The work between two calls is bounded: one fast linkage over a block of at most
+    /// 512 angles, or `GO_ON_EVERY` tracked samples (each at most a few turns of placements,
+    /// see [`Tracker`]).
+    ///
+    /// # Errors
+    /// As [`FourBarBatch::sweep`].
+    #[inline(always)]
+    pub fn sweep_with(
+        &self,
+        theta: &[T],
+        points: &mut [Vec2<T>],
+        valid: &mut [bool],
+        go_on: &mut dyn FnMut() -> bool,
+    ) -> Result<BatchWork, Error> {
+        self.check_lengths()?;
+        let (m, n) = (self.len(), theta.len());
+        let total = m.checked_mul(n).ok_or(Error::CountOverflow {
+            what: "linkages × angles",
+        })?;
+        for (what, got) in [("points", points.len()), ("valid", valid.len())] {
+            if got != total {
+                return Err(Error::BufferLength {
+                    what,
+                    expected: total,
+                    got,
+                });
+            }
+        }
+        for &t in theta {
+            check_finite("theta", t)?;
+        }
+        if let Some((_, e)) = self.first_invalid() {
+            return Err(e);
+        }
+        let mut work = BatchWork::default();
+        if total == 0 {
+            return Ok(work);
+        }
+        let (lo, hi) = theta
+            .iter()
+            .fold((theta[0], theta[0]), |(a, b), &t| (a.min(t), b.max(t)));
+        // One block of angles at a time, sin/cos once for all linkages; a tracked linkage is
+        // swept whole (every angle) at the first block.
+        let mut cos = [T::zero(); BLOCK];
+        let mut sin = [T::zero(); BLOCK];
+        let mut near = [false; BLOCK];
+        let mut start = 0;
+        while start < n {
+            let stop = (start + BLOCK).min(n);
+            let len = stop - start;
+            for (j, &t) in theta[start..stop].iter().enumerate() {
+                (sin[j], cos[j]) = t.sin_cos();
+            }
+            for i in 0..m {
+                if !go_on() {
+                    work.stopped = true;
+                    return Ok(work);
+                }
+                let fb = self.get(i);
+                if !fast_path(&fb, lo, hi) {
+                    if start == 0 {
+                        work.tracked += 1;
+                        let row = i * n..(i + 1) * n;
+                        let (p, v) = (&mut points[row.clone()], &mut valid[row]);
+                        if !tracked_row(&fb, theta, p, v, go_on)? {
+                            work.stopped = true;
+                            return Ok(work);
+                        }
+                    }
+                    continue;
+                }
+                if start == 0 {
+                    work.fast += 1;
+                }
+                let row = i * n + start..i * n + stop;
+                let out = &mut points[row.clone()];
+                let any_near = kernel(&fb, &cos[..len], &sin[..len], out, &mut near[..len]);
+                let ok = &mut valid[row];
+                for (v, p) in ok.iter_mut().zip(out.iter()) {
+                    *v = p.x.is_finite() && p.y.is_finite();
+                }
+                if any_near {
+                    for (j, (p, v)) in out.iter_mut().zip(ok.iter_mut()).enumerate() {
+                        if near[j] {
+                            work.exact += 1;
+                            (*p, *v) = match fb.pose(theta[start + j]) {
+                                Ok(pose) => (pose.coupler_point, true),
+                                Err(_) => (Vec2::new(nan(), nan()), false),
+                            };
+                        }
+                    }
+                }
+            }
+            start = stop;
+        }
+        Ok(work)
+    }
+}
+
+/// Whether linkage `fb` swept over angles in `[lo, hi]` is on its declared assembly at every
+/// sample (no flat position there) and of a size the kernel takes.
+#[inline]
+fn fast_path<T: RealField + Copy>(fb: &FourBar<T>, lo: T, hi: T) -> bool {
+    let size = fb
+        .crank
+        .max(fb.coupler)
+        .max(fb.rocker)
+        .max(fb.along.abs())
+        .max(fb.left.abs())
+        .max(fb.o.amax())
+        .max(fb.c.amax());
+    if size < lit::<T>(SIZE_LO) || size > lit::<T>(SIZE_HI) {
+        return false;
+    }
+    let [at_zero, at_pi] = flat_angles(fb.ground(), fb.crank, fb.coupler, fb.rocker);
+    if at_zero.is_none() && at_pi.is_none() {
+        return true;
+    }
+    let pad = lit::<T>(FLAT_PAD);
+    fb.check_fixed_assembly_path(lo - pad, hi + pad).is_ok()
+}
+
+/// Linkage `fb` over `theta` by the [`Tracker`], as a sweep of its mechanism does; `false`
+/// when `go_on` stopped it.
+fn tracked_row<T: RealField + Copy>(
+    fb: &FourBar<T>,
+    theta: &[T],
+    points: &mut [Vec2<T>],
+    valid: &mut [bool],
+    go_on: &mut dyn FnMut() -> bool,
+) -> Result<bool, Error> {
+    let mech = fb.mechanism();
+    let mut tracker = Tracker::new(&mech)?;
+    let mut joints = [Vec2::zeros(); 5];
+    for (k, ((&t, p), ok)) in theta
+        .iter()
+        .zip(points.iter_mut())
+        .zip(valid.iter_mut())
+        .enumerate()
+    {
+        if k % GO_ON_EVERY == GO_ON_EVERY - 1 && !go_on() {
+            return Ok(false);
+        }
+        let placed = tracker.step(t, None, &mut joints, Rates::none()).is_ok();
+        *ok = placed;
+        *p = if placed {
+            joints[FourBar::<T>::P]
+        } else {
+            Vec2::new(nan(), nan())
+        };
+    }
+    Ok(true)
+}
+
+/// The closed form over a block of crank directions, branch-free so it vectorises; `near[k]`
+/// marks the samples within [`NEAR_TOGGLE`] of a toggle (to be solved again exactly). A sample
+/// that cannot close gets a negative Kahan product, whose square root is NaN. Returns whether
+/// any sample is marked.
+#[inline(always)]
+fn kernel<T: RealField + Copy>(
+    fb: &FourBar<T>,
+    cos: &[T],
+    sin: &[T],
+    out: &mut [Vec2<T>],
+    near: &mut [bool],
+) -> bool {
+    let (o, c) = (fb.o, fb.c);
+    let (r, r1, r2) = (fb.crank, fb.coupler, fb.rocker);
+    let sign = fb.assembly.side().sign::<T>();
+    let (along, left) = (fb.along, fb.left);
+    let (half, quarter, two) = (lit::<T>(0.5), lit::<T>(0.25), lit::<T>(2.0));
+    let band = lit::<T>(NEAR_TOGGLE);
+    let inv_r1 = T::one() / r1;
+    let (rmax, rmin) = (r1.max(r2), r1.min(r2));
+    let diff = (r1 - r2) * (r1 + r2);
+    let mut any = false;
+    for (((p, nr), &cs), &sn) in out.iter_mut().zip(near.iter_mut()).zip(cos).zip(sin) {
+        let ax = o.x + r * cs;
+        let ay = o.y + r * sn;
+        let (dx, dy) = (c.x - ax, c.y - ay);
+        let d = (dx * dx + dy * dy).sqrt();
+        // Kahan's area of the triangle (d, r1, r2): with r1, r2 fixed the sorted sides are
+        // hi = max(d, rmax), lo = min(d, rmin), mid = clamp(d, rmin, rmax) — exact.
+        let hi = if d > rmax { d } else { rmax };
+        let lo = if d < rmin { d } else { rmin };
+        let mid = if d < rmin {
+            rmin
+        } else if d > rmax {
+            rmax
+        } else {
+            d
+        };
+        let f2 = lo - (hi - mid);
+        let close = f2.abs() < band * hi;
+        *nr = close;
+        any |= close;
+        let prod = (hi + (mid + lo)) * f2 * (lo + (hi - mid)) * (hi + (mid - lo));
+        let area = prod.sqrt() * quarter;
+        let inv_d = T::one() / d;
+        let (ux, uy) = (dx * inv_d, dy * inv_d);
+        let x = (d + diff * inv_d) * half;
+        let h = two * area * inv_d * sign;
+        // B − A = x·u + h·u⊥; P = A + along·e + left·e⊥ with e = (B − A)/r1.
+        let ex = (x * ux - h * uy) * inv_r1;
+        let ey = (x * uy + h * ux) * inv_r1;
+        *p = Vec2::new(ax + along * ex - left * ey, ay + along * ey + left * ex);
+    }
+    any
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mismatched_slices_are_refused_and_nothing_is_written() {
+        let o = [Vec2::new(0.0_f64, 0.0); 2];
+        let c = [Vec2::new(3.0, 0.0); 2];
+        let batch = FourBarBatch {
+            o: &o,
+            c: &c,
+            crank: &[1.0, 1.0],
+            coupler: &[3.0],
+            rocker: &[2.5, 2.5],
+            along: &[0.0, 0.0],
+            left: &[0.0, 0.0],
+            assembly: &[Assembly::Open; 2],
+        };
+        let mut p = [Vec2::zeros(); 4];
+        let mut v = [false; 4];
+        assert_eq!(
+            batch.sweep(&[0.0, 1.0], &mut p, &mut v),
+            Err(Error::BufferLength {
+                what: "coupler",
+                expected: 2,
+                got: 1
+            })
+        );
+        assert!(p.iter().all(|q| *q == Vec2::zeros()));
+    }
+}

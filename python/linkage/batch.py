@@ -1,0 +1,238 @@
+"""Batches of four-bars swept over shared crank angles: the evaluator for synthesis and search.
+
+>>> import numpy as np
+>>> from linkage.batch import sweep_fourbars
+>>> points, valid = sweep_fourbars(20, [10, 12], 25, 25, (50, 0), np.radians([0, 90, 180]))
+>>> points.shape, valid.shape, bool(valid.all())
+((2, 3, 2), (2, 3), True)
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage import _core
+from linkage._arrays import as_angles, as_count, as_real_array
+from linkage._core import LinkageError
+
+_ASSEMBLIES = ("open", "crossed")
+
+
+def sweep_fourbars(
+    ground: Any = None,
+    crank: Any = None,
+    coupler: Any = None,
+    rocker: Any = None,
+    point: Any = (0.0, 0.0),
+    theta: Any = None,
+    assembly: Any = "open",
+    threads: int = 1,
+    *,
+    o: Any = None,
+    c: Any = None,
+    out: tuple[NDArray[np.float64], NDArray[np.bool_]] | None = None,
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Coupler points of ``M`` four-bars at ``N`` shared crank angles.
+
+    Each linkage gives exactly what ``FourBar(...).sweep(theta).point`` gives: the branch the
+    tracked sweep follows (through flat positions of change-point linkages too), NaN where it
+    cannot assemble. Linkages with no flat position among the swept angles (every linkage that
+    is not a change point) take a branch-free closed form with ``sin``/``cos`` of each angle
+    computed once for the whole batch; the others are tracked.
+
+    Parameters
+    ----------
+    ground, crank, coupler, rocker : array_like
+        Link lengths, scalars or shape ``(M,)``, broadcast together (shapely-style). ``ground``
+        puts the rocker pivot at ``o + (ground, 0)``; give ``c`` instead for explicit pivots.
+    point : array_like
+        Coupler point ``(along, left)`` in coupler coordinates, shape ``(2,)`` or ``(M, 2)``.
+    theta : array_like
+        Crank angles in radians, scalar or shape ``(N,)``, in sweep order (any spacing).
+    assembly : str or array_like of str
+        ``"open"`` or ``"crossed"``, one for all or one per linkage.
+    threads : int
+        Threads the linkages are split over; the results are the same bits for any count.
+    o, c : array_like, optional
+        Crank and rocker pivots, shape ``(2,)`` or ``(M, 2)``; ``o`` defaults to the origin.
+    out : (ndarray, ndarray), optional
+        C-contiguous writeable float64 ``(M, N, 2)`` and bool ``(M, N)`` arrays that receive the
+        results instead of new arrays (and are returned): a search that evaluates batch after
+        batch saves allocating and first touching the output each time.
+
+    Returns
+    -------
+    points : ndarray, shape (M, N, 2)
+        Coupler points, NaN where a linkage cannot assemble.
+    valid : ndarray of bool, shape (M, N)
+        Whether each sample assembled.
+
+    Raises
+    ------
+    LinkageError
+        A length that is not positive and finite, coincident pivots, a non-finite angle or
+        coordinate, shapes that do not broadcast, an unknown assembly; the message names the
+        argument (and the linkage's index).
+    TypeError
+        A non-numeric argument, or neither ``ground`` nor ``c``.
+    MemoryError
+        When ``M·N`` samples do not fit in memory (the message gives the size).
+
+    Examples
+    --------
+    A parallelogram swept through its flat position keeps its shape, like ``FourBar.sweep``:
+
+    >>> import numpy as np
+    >>> p, ok = sweep_fourbars(3, 1, 3, 1, (1.5, 0.5), [2.0, np.pi, 4.0])
+    >>> a = np.stack([np.cos([2.0, np.pi, 4.0]), np.sin([2.0, np.pi, 4.0])], axis=-1)
+    >>> bool(np.allclose(p[0], a + (1.5, 0.5)))
+    True
+
+    Reusing the outputs:
+
+    >>> buf = (np.empty((1, 3, 2)), np.empty((1, 3), dtype=bool))
+    >>> p2, ok2 = sweep_fourbars(3, 1, 3, 1, (1.5, 0.5), [2.0, np.pi, 4.0], out=buf)
+    >>> p2 is buf[0] and bool((p2 == p).all())
+    True
+
+    A linkage that cannot reach gives NaN, flagged:
+
+    >>> p, ok = sweep_fourbars([20, 20], [10, 10], [25, 4], [25, 4], (0, 0), 0.0)
+    >>> ok.tolist(), bool(np.isnan(p[1, 0]).all())
+    ([[True], [False]], True)
+    """
+    if crank is None or coupler is None or rocker is None:
+        raise TypeError("sweep_fourbars() needs crank, coupler and rocker lengths")
+    if theta is None:
+        raise TypeError("sweep_fourbars() needs theta (crank angles)")
+    nthreads = as_count(threads, "threads")
+    th, _ = as_angles(theta, "theta")
+    lengths = {
+        name: _real(value, name)
+        for name, value in (("crank", crank), ("coupler", coupler), ("rocker", rocker))
+    }
+    pt = _pair(point, "point")
+    po = _pair((0.0, 0.0) if o is None else o, "o")
+    pc = None if c is None else _pair(c, "c")
+    if pc is None:
+        if ground is None:
+            raise TypeError("sweep_fourbars() needs ground (or the rocker pivot c)")
+        lengths["ground"] = _real(ground, "ground")
+    elif ground is not None:
+        raise LinkageError("give either ground or the rocker pivot c, not both")
+    crossed = _assembly(assembly)
+    shapes = {k: v.shape for k, v in lengths.items()}
+    shapes.update({"point": pt.shape[:-1], "o": po.shape[:-1], "assembly": crossed.shape})
+    if pc is not None:
+        shapes["c"] = pc.shape[:-1]
+    try:
+        (m,) = np.broadcast_shapes(*shapes.values(), (1,))
+    except ValueError:
+        described = ", ".join(f"{k} {s}" for k, s in shapes.items())
+        raise LinkageError(
+            f"the linkage parameters must broadcast to one shape (M,): {described}"
+        ) from None
+
+    def flat(a: NDArray[Any], dtype: Any = np.float64) -> NDArray[Any]:
+        return np.ascontiguousarray(np.broadcast_to(a, (m,)), dtype=dtype)
+
+    def pts(a: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.ascontiguousarray(np.broadcast_to(a, (m, 2)), dtype=np.float64)
+
+    for name in ("crank", "coupler", "rocker", "ground"):
+        if name in lengths:
+            _check_lengths(flat(lengths[name]), name)
+    for name, arr in (("point", pt), ("o", po), ("c", pc)):
+        if arr is not None:
+            _check_finite(pts(arr), name)
+    o_m = pts(po)
+    if pc is None:
+        g = flat(lengths["ground"])
+        c_m = np.ascontiguousarray(o_m + np.stack([g, np.zeros_like(g)], axis=-1))
+    else:
+        c_m = pts(pc)
+        same = np.all(c_m == o_m, axis=-1)
+        if same.any():
+            k = int(np.flatnonzero(same)[0])
+            raise LinkageError(f"o and c coincide (ground length 0) for linkage {k}")
+    if out is not None and not (
+        isinstance(out, tuple)
+        and len(out) == 2
+        and isinstance(out[0], np.ndarray)
+        and out[0].dtype == np.float64
+        and isinstance(out[1], np.ndarray)
+        and out[1].dtype == np.bool_
+    ):
+        raise TypeError("out must be a pair (float64 array, bool array)")
+    pm = pts(pt)
+    points, valid = _core.batch_sweep(
+        o_m,
+        c_m,
+        flat(lengths["crank"]),
+        flat(lengths["coupler"]),
+        flat(lengths["rocker"]),
+        np.ascontiguousarray(pm[:, 0]),
+        np.ascontiguousarray(pm[:, 1]),
+        flat(crossed, np.bool_),
+        th,
+        nthreads,
+        out,
+    )
+    return points, valid
+
+
+def _real(value: Any, name: str) -> NDArray[np.float64]:
+    arr = np.asarray(as_real_array(value, name), dtype=np.float64)
+    if arr.ndim > 1:
+        raise LinkageError(f"{name} must be a scalar or 1-D, got shape {arr.shape}")
+    return arr
+
+
+def _pair(value: Any, name: str) -> NDArray[np.float64]:
+    arr = np.asarray(as_real_array(value, name), dtype=np.float64)
+    if arr.ndim not in (1, 2) or arr.shape[-1] != 2:
+        raise LinkageError(f"{name} must have shape (2,) or (M, 2), got {arr.shape}")
+    return arr
+
+
+def _assembly(value: Any) -> NDArray[np.bool_]:
+    if isinstance(value, str):
+        values = np.asarray([value])
+        shape: tuple[int, ...] = ()
+    else:
+        values = np.asarray(value)
+        if values.ndim > 1 or values.dtype.kind not in "U":
+            raise TypeError(
+                f"assembly must be 'open', 'crossed' or a 1-D array of them, got {values.dtype}"
+                f" {values.shape}"
+            )
+        shape = values.shape
+    bad = ~np.isin(values, _ASSEMBLIES)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        where = "" if isinstance(value, str) else f"[{k}]"
+        raise LinkageError(
+            f"assembly{where} must be 'open' or 'crossed', got {str(values.reshape(-1)[k])!r}"
+        )
+    crossed: NDArray[np.bool_] = np.asarray(values == "crossed", dtype=np.bool_).reshape(shape)
+    return crossed
+
+
+def _check_lengths(arr: NDArray[np.float64], name: str) -> None:
+    bad = ~(np.isfinite(arr) & (arr > 0.0))
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise LinkageError(f"{name}[{k}] must be a positive finite length, got {float(arr[k])}")
+
+
+def _check_finite(arr: NDArray[np.float64], name: str) -> None:
+    bad = ~np.isfinite(arr).all(axis=-1)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise LinkageError(f"{name}[{k}] must be finite, got {arr[k].tolist()}")
+
+
+__all__ = ["sweep_fourbars"]

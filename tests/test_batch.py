@@ -1,0 +1,212 @@
+"""linkage.batch.sweep_fourbars: shapes, broadcasting, agreement with FourBar.sweep per linkage,
+errors naming the argument, MemoryError for absurd sizes."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+import linkage
+from linkage import LinkageError
+from linkage.batch import sweep_fourbars
+
+TAU = 2 * np.pi
+
+# (ground, crank, coupler, rocker, point, assembly): one of every Grashof class and the
+# bifurcating shapes (change point, parallelogram, kite, deltoid), and one that never assembles.
+CASES = [
+    (20.0, 10.0, 25.0, 25.0, (50.0, 0.0), "open"),  # crank-rocker (Hoecken)
+    (2.0, 3.0, 4.0, 3.5, (1.0, 0.5), "crossed"),  # double crank
+    (3.0, 2.5, 4.0, 1.0, (2.0, -1.0), "open"),  # rocker-crank
+    (20.0, 25.0, 10.0, 25.0, (5.0, 3.0), "open"),  # double rocker
+    (40.0, 20.0, 10.0, 20.0, (4.0, 1.0), "crossed"),  # triple rocker
+    (3.0, 1.0, 3.0, 1.0, (1.5, 0.5), "open"),  # parallelogram (change point)
+    (2.0, 2.0, 3.0, 3.0, (1.0, 1.0), "open"),  # kite
+    (3.0, 1.0, 1.0, 3.0, (0.5, -0.2), "crossed"),  # deltoid
+    (3.0, 1.5, 2.5, 2.0, (1.0, 0.0), "open"),  # change point, s + l = p + q
+    (10.0, 1.0, 2.0, 2.0, (0.0, 0.0), "open"),  # never assembles
+]
+
+
+def _theta(seed: int = 0) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    th = np.concatenate(
+        [
+            rng.uniform(-TAU, 2 * TAU, 150),
+            np.linspace(0, TAU, 73),  # every flat position at 0 and π on the samples
+            [np.pi - 1e-12, np.pi + 1e-9, 1e3],
+        ]
+    )
+    return th
+
+
+def test_each_row_equals_the_tracked_sweep_of_its_linkage() -> None:
+    th = _theta()
+    g, r, b, c, pt, asm = (list(x) for x in zip(*CASES, strict=True))
+    points, valid = sweep_fourbars(g, r, b, c, np.array(pt), th, np.array(asm))
+    assert points.shape == (len(CASES), th.size, 2) and points.dtype == np.float64
+    assert valid.shape == (len(CASES), th.size) and valid.dtype == np.bool_
+    for i, (gi, ri, bi, ci, pi, ai) in enumerate(CASES):
+        s = linkage.FourBar(gi, ri, bi, ci, pi, ai).sweep(th)
+        np.testing.assert_array_equal(valid[i], s.valid, err_msg=f"linkage {i}")
+        size = max(gi, ri, bi, ci, *map(abs, pi))
+        np.testing.assert_allclose(
+            points[i], s.point, rtol=0, atol=1e-13 * size, err_msg=f"linkage {i}"
+        )
+        assert np.isnan(points[i][~valid[i]]).all()
+    assert not valid[-1].any()
+
+
+def test_explicit_pivots_equal_fourbar_with_pivots() -> None:
+    rng = np.random.default_rng(3)
+    m, th = 30, _theta(1)
+    o = rng.uniform(-5, 5, (m, 2))
+    ang = rng.uniform(0, TAU, m)
+    g = rng.uniform(1.0, 3.0, m)
+    c = o + np.stack([np.cos(ang), np.sin(ang)], -1) * g[:, None]
+    crank, coupler, rocker = (rng.uniform(0.3, 3.0, m) for _ in range(3))
+    pt = rng.uniform(-2, 2, (m, 2))
+    asm = np.where(rng.random(m) < 0.5, "open", "crossed")
+    points, valid = sweep_fourbars(
+        None, crank, coupler, rocker, pt, th, asm, o=o, c=c
+    )  # fmt: skip
+    for i in range(m):
+        fb = linkage.FourBar(
+            crank=crank[i], coupler=coupler[i], rocker=rocker[i], point=pt[i],
+            assembly=str(asm[i]), o=o[i], c=c[i],
+        )  # fmt: skip
+        s = fb.sweep(th)
+        np.testing.assert_array_equal(valid[i], s.valid)
+        np.testing.assert_allclose(points[i], s.point, rtol=0, atol=1e-13 * 10)
+
+
+def test_broadcasting_and_shapes() -> None:
+    th = np.linspace(0, TAU, 7)
+    p, v = sweep_fourbars(20, 10, 25, 25, (50, 0), th)
+    assert p.shape == (1, 7, 2) and v.shape == (1, 7)
+    p3, _ = sweep_fourbars(20, [10, 10, 10], 25, 25, [(50, 0)], th, ["open"] * 3)
+    assert p3.shape == (3, 7, 2)
+    assert (p3 == p).all()
+    one, _ = sweep_fourbars(20, 10, 25, 25, (50, 0), 0.5)
+    assert one.shape == (1, 1, 2)
+    empty, ev = sweep_fourbars(20, 10, 25, 25, (50, 0), np.empty(0))
+    assert empty.shape == (1, 0, 2) and ev.shape == (1, 0)
+
+
+def test_thread_count_does_not_change_bits() -> None:
+    rng = np.random.default_rng(5)
+    m = 257
+    args = (
+        rng.uniform(1, 3, m),
+        rng.uniform(0.2, 3, m),
+        rng.uniform(0.2, 3, m),
+        rng.uniform(0.2, 3, m),
+        rng.uniform(-2, 2, (m, 2)),
+        _theta(2),
+        np.where(rng.random(m) < 0.5, "open", "crossed"),
+    )
+    ref, vref = sweep_fourbars(*args, threads=1)
+    for t in (2, 3, 64):
+        p, v = sweep_fourbars(*args, threads=t)
+        assert (v == vref).all()
+        np.testing.assert_array_equal(p.view(np.int64), ref.view(np.int64))
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "exc", "words"),
+    [
+        ({"crank": [1.0, -1.0]}, LinkageError, "crank[1]"),
+        ({"coupler": [np.nan]}, LinkageError, "coupler[0]"),
+        ({"ground": 0.0}, LinkageError, "ground[0]"),
+        ({"point": [(0.0, np.inf)]}, LinkageError, "point[0]"),
+        ({"theta": [0.0, np.nan]}, LinkageError, "theta"),
+        ({"crank": [1.0, 2.0], "rocker": [1.0, 2.0, 3.0]}, LinkageError, "rocker"),
+        ({"assembly": "sideways"}, LinkageError, "assembly"),
+        ({"assembly": ["open", "up"]}, LinkageError, "assembly[1]"),
+        ({"assembly": 3}, TypeError, "assembly"),
+        ({"crank": "long"}, TypeError, "crank"),
+        ({"point": (1.0, 2.0, 3.0)}, LinkageError, "point"),
+        ({"threads": 0}, LinkageError, "threads"),
+        ({"theta": [[0.0]]}, LinkageError, "theta"),
+        ({"ground": None}, TypeError, "ground"),
+    ],
+)
+def test_errors_name_the_argument(kwargs: dict, exc: type, words: str) -> None:
+    args = {
+        "ground": 3.0,
+        "crank": 1.0,
+        "coupler": 3.0,
+        "rocker": 2.5,
+        "point": (0.0, 0.0),
+        "theta": [0.0, 1.0],
+    }
+    args.update(kwargs)
+    with pytest.raises(exc, match=words.replace("[", r"\[").replace("]", r"\]")):
+        sweep_fourbars(**args)
+
+
+def test_coincident_pivots_and_ground_with_c_are_refused() -> None:
+    with pytest.raises(LinkageError, match="coincide"):
+        sweep_fourbars(None, 1, 3, 2, (0, 0), 0.0, o=[(1, 1), (0, 0)], c=[(2, 1), (0, 0)])
+    with pytest.raises(LinkageError, match="either ground or"):
+        sweep_fourbars(3, 1, 3, 2, (0, 0), 0.0, c=(3, 0))
+
+
+def test_absurd_sizes_are_a_memory_error_naming_the_size() -> None:
+    # 10⁵ linkages × 10⁷ angles = 10¹² samples (17 TB of output): refused before allocating.
+    m = 100_000
+    theta = np.zeros(10_000_000)
+    with pytest.raises(MemoryError, match=r"100000 linkages × 10000000 angles needs .* GB"):
+        sweep_fourbars(3.0, np.full(m, 1.0), 3.0, 2.5, (0.0, 0.0), theta)
+
+
+def test_ctrl_c_interrupts_a_long_batch() -> None:
+    # Parallelograms tracked through huge jumps: minutes of work; SIGINT after 0.5 s must end
+    # the call with KeyboardInterrupt within about half a second.
+    code = textwrap.dedent(
+        """
+        import os, signal, threading, time
+        import numpy as np
+        from linkage.batch import sweep_fourbars
+        theta = np.random.default_rng(0).uniform(-1e6, 1e6, 20000)
+        threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+        t0 = time.perf_counter()
+        try:
+            sweep_fourbars(3.0, np.full(400, 1.0), 3.0, 1.0, (1.5, 0.5), theta, threads=2)
+            print("finished")
+        except KeyboardInterrupt:
+            print("interrupted", time.perf_counter() - t0)
+        """
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True
+    ).stdout.split()
+    assert out[0] == "interrupted", out
+    assert float(out[1]) < 1.5, out
+
+
+def test_out_arrays_are_filled_and_returned() -> None:
+    th = _theta(4)
+    ref, vref = sweep_fourbars([20, 3], [10, 1], [25, 3], [25, 1], (1.5, 0.5), th)
+    buf = (np.full((2, th.size, 2), 7.0), np.zeros((2, th.size), dtype=bool))
+    p, v = sweep_fourbars([20, 3], [10, 1], [25, 3], [25, 1], (1.5, 0.5), th, out=buf)
+    assert p is buf[0] and v is buf[1]
+    np.testing.assert_array_equal(p.view(np.int64), ref.view(np.int64))
+    assert (v == vref).all()
+    with pytest.raises(LinkageError, match="out must be arrays of shapes"):
+        sweep_fourbars(20, 10, 25, 25, (0, 0), th, out=buf)
+    with pytest.raises(LinkageError, match="C-contiguous"):
+        sweep_fourbars(
+            [20, 3], [10, 1], [25, 3], [25, 1], (0, 0), th[:3],
+            out=(np.empty((2, 6, 2))[:, ::2], np.empty((2, 3), dtype=bool)),
+        )  # fmt: skip
+    with pytest.raises(TypeError, match="out must be a pair"):
+        sweep_fourbars(20, 10, 25, 25, (0, 0), th, out=(np.empty((1, th.size, 2)),))  # type: ignore[arg-type]
+    frozen = (np.empty((1, 1, 2)), np.empty((1, 1), dtype=bool))
+    frozen[0].flags.writeable = False
+    with pytest.raises(LinkageError, match="writeable"):
+        sweep_fourbars(20, 10, 25, 25, (0, 0), 0.0, out=frozen)
