@@ -377,6 +377,29 @@ def test_ball_point(fb, theta):
         assert math.isfinite(inf.radius) and inf.radius >= 0
 
 
+@FAST
+@given(
+    ground=maybe(20.0, HOSTILE),
+    crank=maybe([10.0, 5.0], HOSTILE),
+    coupler=maybe(25.0, HOSTILE),
+    rocker=maybe(25.0, HOSTILE),
+    point=maybe((50.0, 0.0), HOSTILE),
+    theta=maybe(np.linspace(0, 6.3, 7), HOSTILE),
+    assembly=maybe("open", st.one_of(NAME, HOSTILE)),
+    threads=maybe(1, COUNT),
+)
+def test_batch_sweep_fourbars(ground, crank, coupler, rocker, point, theta, assembly, threads):
+    out = call(
+        lambda: linkage.batch.sweep_fourbars(
+            ground, crank, coupler, rocker, point, theta, assembly=assembly, threads=threads
+        )
+    )
+    if out is not None:
+        pts, valid = out
+        assert pts.shape[:-1] == valid.shape and pts.shape[-1] == 2
+        assert np.isfinite(pts[valid]).all() and np.isnan(pts[~valid]).all()
+
+
 # -- drives -----------------------------------------------------------------------------------
 LAW = st.one_of(st.sampled_from(list(linkage.drive.LAWS)), NAME)
 
@@ -709,7 +732,7 @@ def test_catalogue_figures(rel_tol, samples):
 def test_every_public_name_is_exercised():
     """The lists above cover the public API: a new public name must be added to this suite."""
     covered = {
-        "OUTPUTS", "AssemblyError", "FourBar", "Leg", "LinkageError", "Mechanism", "Sweep",
+        "OUTPUTS", "AssemblyError", "FourBar", "batch", "Leg", "LinkageError", "Mechanism", "Sweep",
         "Walker", "ball_point", "cam", "catalog", "circumcentre", "curvature_centre", "drive",
         "foot_path", "gait_phases", "forces", "geometry", "mobility", "search_duty_factor",
         "straightness", "three_point_centres", "walker", "__version__",

@@ -13,8 +13,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from linkage import batch as batch  # in __all__ once tests/test_fuzz_api.py covers it
-from linkage import cam, catalog, drive, forces, geometry, walker
+from linkage import batch, cam, catalog, drive, forces, geometry, walker
 from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -44,6 +43,7 @@ __all__ = [
     "Mechanism",
     "Sweep",
     "Walker",
+    "batch",
     "ball_point",
     "cam",
     "catalog",
