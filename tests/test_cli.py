@@ -33,8 +33,10 @@ PLOTS = {
 
 
 def expected_files(outputs):
-    # Every report: the page, the data and the CAD drawing of the mechanism.
-    files = {"index.html", "data.csv", "data.npz", "summary.json", "mechanism.dxf", "mechanism.svg"}
+    # Every report: the page and the data; the CAD drawing when asked for.
+    files = {"index.html", "data.csv", "data.npz", "summary.json"}
+    if "cad" in outputs:
+        files |= {"mechanism.dxf", "mechanism.svg"}
     for o in outputs:
         files.update(PLOTS.get(o, []))
     return files

@@ -30,7 +30,7 @@ SCENE = (
     '[drive]\nkind = "constant"\nomega = 1.0\n'
 )
 FAST = ["--samples", "31", "--frames", "2", "--quiet"]
-DATA_FILES = {"data.csv", "data.npz", "summary.json", "mechanism.dxf", "mechanism.svg"}
+DATA_FILES = {"data.csv", "data.npz", "summary.json"}
 """What every report writes besides its plots and its page."""
 
 

@@ -807,7 +807,7 @@ def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
     files.append(html_report.write_index(res, folder, pngs, shown))
     res.stages["report"] = time.perf_counter() - started
     # Last: summary.json lists every file in the folder.
-    files.extend(export.write_data(res, folder))
+    files.extend(export.write_data(res, folder, cad=scene.wants("cad")))
     return files
 
 

@@ -57,8 +57,10 @@ OUTPUTS = (
     "stability",
     "slip",
     "animation",
+    "cad",
 )
-"""What a scene can ask for."""
+"""What a scene can ask for. ``cad`` writes the mechanism at its first pose and every traced
+path as ``mechanism.dxf`` and ``mechanism.svg``."""
 
 # `linkage run` with no scene: thesis 1's quadruped under its drive (also
 # examples/quadruped_hoecken.toml, kept equal by a test).
