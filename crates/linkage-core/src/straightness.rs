@@ -459,6 +459,25 @@ mod fast {
         /// Merges two sorted index lists into `out`, dropping repeated indices.
         fn merge_sorted(&self, a: &[u32], b: &[u32], out: &mut Vec<u32>) {
             out.clear();
+            // Children far apart along x (the usual case on a path): a concatenation.
+            match (a.first(), a.last(), b.first(), b.last()) {
+                (None, ..) | (_, _, None, _) => {
+                    out.extend_from_slice(a);
+                    out.extend_from_slice(b);
+                    return;
+                }
+                (_, Some(&al), Some(&bf), _) if self.before(al, bf) => {
+                    out.extend_from_slice(a);
+                    out.extend_from_slice(b);
+                    return;
+                }
+                (Some(&af), _, _, Some(&bl)) if self.before(bl, af) => {
+                    out.extend_from_slice(b);
+                    out.extend_from_slice(a);
+                    return;
+                }
+                _ => {}
+            }
             let (mut i, mut j) = (0, 0);
             while i < a.len() || j < b.len() {
                 let k = if j >= b.len() || (i < a.len() && self.before(a[i], b[j])) {
@@ -546,11 +565,15 @@ mod fast {
                 for k in s..e {
                     if finite(self.q[k]) && finite(path[k]) {
                         sorted.push(k as u32);
-                        stats = stats.merge(Stats::of_span(&self.q, path, k, k + 1));
                     }
                 }
                 if sorted.len() == e - s {
                     stats = Stats::of_span(&self.q, path, s, e);
+                } else {
+                    for &k in &sorted {
+                        let k = k as usize;
+                        stats = stats.merge(Stats::of_span(&self.q, path, k, k + 1));
+                    }
                 }
                 sorted.sort_unstable_by(|&x, &y| {
                     if self.before(x, y) {
