@@ -562,11 +562,13 @@ mod fast {
                 let e = (s + LEAF).min(n);
                 sorted.clear();
                 let mut stats = Stats::empty();
-                for k in s..e {
-                    if finite(self.q[k]) && finite(path[k]) {
-                        sorted.push(k as u32);
-                    }
-                }
+                sorted.extend(
+                    (s..e)
+                        .zip(&self.q[s..e])
+                        .zip(&path[s..e])
+                        .filter(|((_, q), p)| finite(**q) && finite(**p))
+                        .map(|((k, _), _)| k as u32),
+                );
                 if sorted.len() == e - s {
                     stats = Stats::of_span(&self.q, path, s, e);
                 } else {
