@@ -97,9 +97,14 @@ fn fit<T: RealField + Copy>(
 /// hulls' support in the line's normal direction. Each node remembers its last extreme samples
 /// and direction, which bound its support in a nearby direction in `O(1)`; only nodes that can
 /// hold the window's extreme are searched, by galloping from the last position along the hull
-/// (`O(log h)`). The whole run costs `O(n log² n)` time and `O(n log n)` memory at most: hull
-/// indices take up to `4·n·log₂(n/16)` bytes (about 64 MB for 10⁶ samples of a convex curve,
-/// far less for noisy or straight data), plus about 55 bytes per sample.
+/// (`O(log h)`). The tree is built bottom-up in `O(n log n)`: a node's lower (upper) hull
+/// chain is the lower (upper) hull of its children's, concatenated when they lie apart along
+/// `x` (the usual case on a path). The whole run costs `O(n log² n)` time and `O(n log n)`
+/// memory at most: hull indices take up to `4·n·log₂(n/16)` bytes (about 64 MB for 10⁶
+/// samples of a convex curve, far less for noisy or straight data), plus about 55 bytes per
+/// sample. On a 10⁶-sample closed foot path (a run of 193 545 samples, tolerance 0.1 % of the
+/// coupler) that is about 3·10⁶ window checks, 0.75–0.8 s in all, a fifth of it building the
+/// tree.
 ///
 /// The result is the one a direct refit of every window gives (the `O(n·w)` scan used without
 /// `alloc`, for runs of `w` samples): same run, and the line, deviation and length are computed
