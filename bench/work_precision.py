@@ -108,13 +108,52 @@ def rust_peer(native: bool) -> dict[str, tuple[float, float]]:
     return rows
 
 
+def plot(rows: list[dict], out: Path) -> None:
+    """The log-log work-precision plot, one distinct colour and line style per method (the
+    report's palette: 14 colours, then dashed)."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return
+    from linkage.report import line_style
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for k, method in enumerate(dict.fromkeys(r["method"] for r in rows)):
+        pts = [
+            (r["ns_per_sample"], max(r["max_error"], 1e-17))
+            for r in rows
+            if r["method"] == method and np.isfinite(r["max_error"])
+        ]
+        if pts:
+            x, y = zip(*pts)
+            colour, dash = line_style(k)
+            ax.loglog(x, y, marker="o", linestyle=dash, color=colour, label=method)
+    ax.set_xlabel("time per sample (ns)")
+    ax.set_ylabel("max error / longest link")
+    ax.set_title("four-bar sweep: work-precision (points: 1e3 … 1e7 samples)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out / "work_precision.png", dpi=110)
+    plt.close(fig)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true", help="sample counts up to 1e5 only")
     ap.add_argument("--out", default=str(ROOT / "bench" / "results"))
+    ap.add_argument(
+        "--replot", action="store_true", help="only redraw the plot from OUT/latest.json"
+    )
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    if args.replot:
+        plot(json.loads((out / "latest.json").read_text())["rows"], out)
+        return 0
     counts = [10**3, 10**4, 10**5] + ([] if args.quick else [10**6, 10**7])
     fb = linkage.catalog.hoecken()
     theta0 = 0.1
@@ -308,31 +347,7 @@ def main() -> int:
                 f"| {r['method']} | {r['n']:.0e} | {r['ns_per_sample']:.2f} | {r['max_error']:.1e} | {r['median_error']:.1e} |"
             )
     (out / "latest.md").write_text("\n".join(lines) + "\n")
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(figsize=(7, 5))
-        for method in dict.fromkeys(r["method"] for r in rows):
-            pts = [
-                (r["ns_per_sample"], max(r["max_error"], 1e-17))
-                for r in rows
-                if r["method"] == method and np.isfinite(r["max_error"])
-            ]
-            if pts:
-                x, y = zip(*pts)
-                ax.loglog(x, y, "o-", label=method)
-        ax.set_xlabel("time per sample (ns)")
-        ax.set_ylabel("max error / longest link")
-        ax.set_title("four-bar sweep: work-precision (points: 1e3 … 1e7 samples)")
-        ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        fig.savefig(out / "work_precision.png", dpi=110)
-    except ImportError:
-        pass
+    plot(rows, out)
     print(f"wrote {out}/latest.md, latest.json, work_precision.png")
     return 0
 
