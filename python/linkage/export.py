@@ -208,6 +208,14 @@ _DXF_PATH_COLOURS = (5, 3, 6, 4, 30, 140, 210, 94, 172, 12, 52, 232)
 """ACI colours of the path and leg layers: distinct, none yellow (unreadable on white)."""
 
 
+def _drawn(res: Result, pose: int | None, drawing: Drawing | None) -> tuple[Drawing, int]:
+    """The drawing to export (``drawing``, else built from ``res``) and the checked pose."""
+    d = drawing or drawing_of(res)
+    if d is None:
+        raise LinkageError("nothing to draw: the run has no mechanism or walker")
+    return d, _check_pose(d, pose)
+
+
 def write_dxf(
     res: Result, path: Path, pose: int | None = None, drawing: Drawing | None = None
 ) -> int:
@@ -221,10 +229,7 @@ def write_dxf(
     """
     from ezdxf.filemanagement import new as new_dxf
 
-    d = drawing or drawing_of(res)
-    if d is None:
-        raise LinkageError("nothing to draw: the run has no mechanism or walker")
-    k = _check_pose(d, pose)
+    d, k = _drawn(res, pose, drawing)
     doc = new_dxf("R2010")
     doc.header["$INSUNITS"] = INSUNITS.get(res.scene.units.strip(), 0)
     doc.header["$MEASUREMENT"] = 0 if res.scene.units in ("in", "inch", "ft", "mi") else 1
@@ -276,10 +281,7 @@ def svg_text(
     LinkageError
         If the run has nothing to draw or ``pose`` is not an assembled sample.
     """
-    d = drawing or drawing_of(res)
-    if d is None:
-        raise LinkageError("nothing to draw: the run has no mechanism or walker")
-    k = _check_pose(d, pose)
+    d, k = _drawn(res, pose, drawing)
     x0, x1, y0, y1 = d.bounds()
     w, h = x1 - x0, y1 - y0
     unit = res.scene.units.strip()

@@ -37,7 +37,7 @@ import numpy as np
 
 from linkage._core import LinkageError
 from linkage.drawing import Array, Drawing, LinkShape
-from linkage.runner import Result
+from linkage.runner import Result, torque_unit, unit_label
 
 MARKER = ".linkage-report"
 """Name of the marker file that makes a folder a report linkage wrote (and may replace)."""
@@ -367,17 +367,6 @@ def line_style(k: int) -> tuple[str, str]:
     return PALETTE[k % len(PALETTE)], "-" if (k // len(PALETTE)) % 2 == 0 else "--"
 
 
-def length_unit(units: str) -> str:
-    """The unit printed on a length axis: the scene's, or "length units" when it names none."""
-    return units or "length units"
-
-
-def _torque_unit(units: str) -> str:
-    if units == "m":
-        return "N·m"
-    return f"kg·{units}²/s²" if units else "kg·(length unit)²/s²"
-
-
 def leg_legend(names: Sequence[str], labels: Sequence[str]) -> list[str]:
     """Legend text per leg: its position label, with its own name when that differs."""
     return [lab if lab == name else f"{lab} ({name})" for name, lab in zip(names, labels)]
@@ -436,7 +425,7 @@ def _view(ax: Any, d: Drawing, equal: bool = True, margin: float = 0.06) -> None
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     ax.set_aspect("equal" if equal else "auto", adjustable="box")
-    u = length_unit(d.units)
+    u = unit_label(d.units)
     scale = "" if equal else ", not to scale"
     _tidy(ax, f"{d.axes[0]} ({u})", f"{d.axes[1]} ({u}{scale})")
 
@@ -711,7 +700,7 @@ def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
     files: list[Path] = []
     scene = res.scene
     units = scene.units
-    u = length_unit(units)
+    u = unit_label(units)
 
     def save(fig: Any, name: str) -> None:
         path = folder / name
@@ -745,7 +734,7 @@ def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
         fig = _new_figure(6, 4)
         ax = fig.subplots()
         ax.plot(np.degrees(np.mod(res.theta, 2 * math.pi)), res.forces.torque, ".", ms=2)
-        _tidy(ax, "crank angle (deg)", f"driver torque ({_torque_unit(units)})")
+        _tidy(ax, "crank angle (deg)", f"driver torque ({torque_unit(scene)})")
         ax.set_xlim(0, 360)
         ax.set_title(f"{scene.name}: torque against crank angle (Newton–Euler)")
         _margins(fig)

@@ -194,9 +194,14 @@ def format_error(error: float | None) -> str:
     return "0" if error == 0 else format_number(error, digits=2)
 
 
+def unit_label(units: str) -> str:
+    """A length unit as printed: ``units``, or ``length units`` when it is empty."""
+    return units or "length units"
+
+
 def length_unit(scene: Scene) -> str:
     """The scene's length unit, or ``length units`` when the scene names none."""
-    return scene.units or "length units"
+    return unit_label(scene.units)
 
 
 def torque_unit(scene: Scene) -> str:
