@@ -1243,21 +1243,17 @@ mod tests {
         }
     }
 
-    /// Not a check of speed: `bench/straightness.py` runs it to time the direct scan against
-    /// the fast one, in one process, on the path it writes to the file named by
-    /// `STRAIGHT_BENCH_PATH` (a first line `tol closed`, then one `x y` line per sample).
-    #[test]
-    #[ignore = "run by bench/straightness.py"]
-    fn direct_scan_timing() {
+    /// The path file named by `STRAIGHT_BENCH_PATH` (a first line `tol closed`, then one `x y`
+    /// line per sample) for the two timing helpers below.
+    fn bench_path() -> (Vec<Vec2<f64>>, f64, bool) {
         extern crate std;
-        use std::time::Instant;
         let file = std::env::var("STRAIGHT_BENCH_PATH").expect("STRAIGHT_BENCH_PATH");
         let text = std::fs::read_to_string(file).expect("readable path file");
         let mut lines = text.lines();
         let head: Vec<&str> = lines.next().expect("header").split_whitespace().collect();
         let tol: f64 = head[0].parse().expect("tol");
         let closed = head[1] == "1";
-        let path: Vec<Vec2<f64>> = lines
+        let path = lines
             .map(|l| {
                 let v: Vec<f64> = l
                     .split_whitespace()
@@ -1266,6 +1262,18 @@ mod tests {
                 Vec2::new(v[0], v[1])
             })
             .collect();
+        (path, tol, closed)
+    }
+
+    /// Not a check of speed: `bench/straightness.py` runs it to time the direct scan against
+    /// the fast one, in one process, on the path it writes to the file named by
+    /// `STRAIGHT_BENCH_PATH` (a first line `tol closed`, then one `x y` line per sample).
+    #[test]
+    #[ignore = "run by bench/straightness.py"]
+    fn direct_scan_timing() {
+        extern crate std;
+        use std::time::Instant;
+        let (path, tol, closed) = bench_path();
         let t = Instant::now();
         let direct = reference(&path, tol, closed);
         let direct_s = t.elapsed().as_secs_f64();
@@ -1288,21 +1296,7 @@ mod tests {
     fn fast_scan_timing() {
         extern crate std;
         use std::time::Instant;
-        let file = std::env::var("STRAIGHT_BENCH_PATH").expect("STRAIGHT_BENCH_PATH");
-        let text = std::fs::read_to_string(file).expect("readable path file");
-        let mut lines = text.lines();
-        let head: Vec<&str> = lines.next().expect("header").split_whitespace().collect();
-        let tol: f64 = head[0].parse().expect("tol");
-        let closed = head[1] == "1";
-        let path: Vec<Vec2<f64>> = lines
-            .map(|l| {
-                let v: Vec<f64> = l
-                    .split_whitespace()
-                    .map(|x| x.parse().expect("number"))
-                    .collect();
-                Vec2::new(v[0], v[1])
-            })
-            .collect();
+        let (path, tol, closed) = bench_path();
         let mut best = f64::INFINITY;
         let mut part = None;
         for _ in 0..3 {
