@@ -47,17 +47,7 @@ impl Side {
 /// `gap = a − (b + c) > tol` (how much the longest side exceeds the other two). A violation of at
 /// most `tol` is treated as a touching (flat) triangle of area zero; pass `tol` at rounding level.
 pub fn triangle_area<T: RealField + Copy>(a: T, b: T, c: T, tol: T) -> Result<T, T> {
-    // Sort descending with three compare-swaps.
-    let (mut a, mut b, mut c) = (a, b, c);
-    if a < b {
-        core::mem::swap(&mut a, &mut b);
-    }
-    if b < c {
-        core::mem::swap(&mut b, &mut c);
-    }
-    if a < b {
-        core::mem::swap(&mut a, &mut b);
-    }
+    let (a, b, c) = sorted_desc(a, b, c);
     let amb = a - b;
     let f2 = c - amb;
     if f2 < T::zero() {
@@ -68,9 +58,8 @@ pub fn triangle_area<T: RealField + Copy>(a: T, b: T, c: T, tol: T) -> Result<T,
     Ok(prod.sqrt() * lit::<T>(0.25))
 }
 
-/// [`triangle_area`] with its vanishing factor `f2 = (b + c) − a` (`a` the longest side) given,
-/// formed by the caller without cancellation.
-fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> Result<T, T> {
+/// `a, b, c` in descending order, by three compare-swaps.
+fn sorted_desc<T: RealField + Copy>(a: T, b: T, c: T) -> (T, T, T) {
     let (mut a, mut b, mut c) = (a, b, c);
     if a < b {
         core::mem::swap(&mut a, &mut b);
@@ -81,6 +70,13 @@ fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> 
     if a < b {
         core::mem::swap(&mut a, &mut b);
     }
+    (a, b, c)
+}
+
+/// [`triangle_area`] with its vanishing factor `f2 = (b + c) − a` (`a` the longest side) given,
+/// formed by the caller without cancellation.
+fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> Result<T, T> {
+    let (a, b, c) = sorted_desc(a, b, c);
     if f2 < T::zero() || !f2.is_finite() {
         let gap = -f2;
         return if gap <= tol { Ok(T::zero()) } else { Err(gap) };
