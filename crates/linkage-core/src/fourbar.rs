@@ -558,8 +558,11 @@ mod tests {
             }
         }
         // Evans C in closed form: |AC|² = 500 − 400 cos θ = 20²  ⇒  θ = acos(1/4).
-        if let InputRange::Between { hi, .. } = evans(20.0, 10.0, 10.0, 10.0).input_range() {
-            assert!((hi - 0.25_f64.acos()).abs() < 1e-15);
+        match evans(20.0, 10.0, 10.0, 10.0).input_range() {
+            InputRange::Between { hi, .. } => {
+                assert!((hi - 0.25_f64.acos()).abs() < 1e-15, "{hi}");
+            }
+            r => panic!("Evans C should have a limited input range, got {r:?}"),
         }
     }
 
@@ -579,11 +582,14 @@ mod tests {
             r => panic!("{r:?}"),
         }
         let fb = FourBar::new(23.05, 10.0, 12.0, 11.67, (15.0, 0.0), Assembly::Open).unwrap();
-        if let InputRange::Between { hi, .. } = fb.input_range() {
-            let p = fb.pose(hi).unwrap();
-            assert!(p.margin < 1e-6);
-            assert!(fb.transmission_angle(hi).unwrap() > core::f64::consts::PI - 1e-3);
-            assert!(fb.pose(hi + 1e-6).is_err());
+        match fb.input_range() {
+            InputRange::Between { hi, .. } => {
+                let p = fb.pose(hi).unwrap();
+                assert!(p.margin < 1e-6, "margin {} at the limit", p.margin);
+                assert!(fb.transmission_angle(hi).unwrap() > core::f64::consts::PI - 1e-3);
+                assert!(fb.pose(hi + 1e-6).is_err(), "assembles past its limit");
+            }
+            r => panic!("Evans A should have a limited input range, got {r:?}"),
         }
     }
 

@@ -34,7 +34,7 @@
 //! let fb = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
 //! assert_eq!(fb.grashof(), GrashofClass::CrankRocker);
 //! let pose = fb.pose(0.0).unwrap();
-//! assert!((pose.coupler_point - pose.a).norm() - 50.0 < 1e-12);
+//! assert!(((pose.coupler_point - pose.a).norm() - 50.0).abs() < 1e-12);
 //! ```
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]

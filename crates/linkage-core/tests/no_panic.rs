@@ -271,7 +271,7 @@ fn exercise_mechanism(m: &Mechanism<f64, 8>, theta: f64, omega: f64, alpha: f64,
 }
 
 proptest! {
-    #![proptest_config(common::config("tests/no_panic.proptest-regressions"))]
+    #![proptest_config(common::config("proptest-regressions/no_panic.txt"))]
 
     #[test]
     fn four_bars_never_panic(
