@@ -27,7 +27,7 @@ def leg():
 
 
 def test_thesis_two_leg_torque():
-    """DOMAIN.md: 20 rpm clockwise, 0.5·9.81 N at the foot (along x, as the source's listing
+    """docs/domain.md: 20 rpm clockwise, 0.5·9.81 N at the foot (along x, as the source's listing
     applies it), no gravity in the source's model."""
     theta = np.radians(np.arange(0, 360, 1.0))
     f = forces(

@@ -119,7 +119,7 @@ def test_unassemblable_samples_are_nan_with_mask_and_gap():
 
 
 def test_evans_input_limits_golden():
-    """DOMAIN.md / thesis 1 §1.4.3.6: about 27°…333°, −81°…+81°, −75°…+75°."""
+    """docs/domain.md / thesis 1 §1.4.3.6: about 27°…333°, −81°…+81°, −75°…+75°."""
     lo, hi = map(math.degrees, linkage.catalog.evans_a().input_limits())
     assert abs(lo - 27) < 1 and abs(hi - 333) < 1
     lo, hi = map(math.degrees, linkage.catalog.evans_b().input_limits())

@@ -244,7 +244,7 @@ mod tests {
         assert!(b.contains(coupler, 4) && b.contains(coupler, 2) && b.contains(coupler, 3));
     }
 
-    /// Peaucellier: 8 links, 10 revolutes (DOMAIN.md); Hart: 6 links, 7 revolutes.
+    /// Peaucellier: 8 links, 10 revolutes (docs/domain.md); Hart: 6 links, 7 revolutes.
     #[test]
     fn inversors_have_one_degree_of_freedom() {
         let p = Bodies::of(&catalog::peaucellier::<f64>().mechanism).mobility();

@@ -1,4 +1,4 @@
-//! The straight-line linkages of thesis 1, chapter 1 (DOMAIN.md; lengths in mm, after Norton,
+//! The straight-line linkages of thesis 1, chapter 1 (docs/domain.md; lengths in mm, after Norton,
 //! "Diseño de Maquinaria"), and a pantograph that scales the Hoecken foot path.
 //!
 //! Four-bars are placed with the crank pivot `O` at the origin and the rocker pivot `C` on the

@@ -537,7 +537,7 @@ mod tests {
         assert_eq!(fb(3.0, 2.5, 4.0, 1.0).grashof(), GrashofClass::RockerCrank);
     }
 
-    /// Evans linkages' input ranges: DOMAIN.md (thesis 1 §1.4.3.6, after Norton) gives about
+    /// Evans linkages' input ranges: docs/domain.md (thesis 1 §1.4.3.6, after Norton) gives about
     /// 27°…333°, −81°…+81°, −75°…+75°.
     #[test]
     fn evans_input_limits_golden() {

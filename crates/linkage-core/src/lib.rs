@@ -29,7 +29,7 @@
 //! # Example
 //! ```
 //! use linkage_core::{FourBar, Assembly, GrashofClass};
-//! // Hoecken straight-line linkage, mm (DOMAIN.md): ground 20, crank 10, coupler 25, rocker 25,
+//! // Hoecken straight-line linkage, mm (docs/domain.md): ground 20, crank 10, coupler 25, rocker 25,
 //! // foot on the coupler line 50 from A.
 //! let fb = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
 //! assert_eq!(fb.grashof(), GrashofClass::CrankRocker);
@@ -68,7 +68,12 @@ mod support;
 mod tracker;
 mod uniform_sweep;
 
-/// The straight-line linkages of the source documents (DOMAIN.md), ready to sweep.
+/// The repository README's Rust examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;
+
+/// The straight-line linkages of the source documents (docs/domain.md), ready to sweep.
 pub mod catalog {
     pub use crate::catalog_impl::*;
 }

@@ -20,7 +20,7 @@ fn trace(l: &Linkage<f64>, lo: f64, hi: f64, n: usize) -> Vec<Vec2<f64>> {
 }
 
 /// Peaucellier: P is the inverse of A in the circle of radius √(40² − 20²) about D, and A runs on
-/// a circle through D, so P runs on the line x = 1200/30 = 40 (DOMAIN.md; any kinematics text).
+/// a circle through D, so P runs on the line x = 1200/30 = 40 (docs/domain.md; any kinematics text).
 #[test]
 fn peaucellier_traces_exact_line() {
     let pts = trace(&catalog::peaucellier(), -1.68, 1.68, 2001);
@@ -34,7 +34,7 @@ fn peaucellier_traces_exact_line() {
 }
 
 /// Hart's inversor: O4, E and P stay collinear with |O4E|·|O4P| constant, E on a circle through
-/// O4, so P runs on a line perpendicular to O2O4 (DOMAIN.md). Here x = 7.5.
+/// O4, so P runs on a line perpendicular to O2O4 (docs/domain.md). Here x = 7.5.
 #[test]
 fn hart_traces_exact_line() {
     let pts = trace(&catalog::hart(), -PI, PI, 4001);

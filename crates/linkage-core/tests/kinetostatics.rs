@@ -31,7 +31,7 @@ fn massless(n: usize) -> Vec<Inertia<f64>> {
     ]
 }
 
-/// Thesis 2 (DOMAIN.md): the Hoecken leg in metres, link masses, inertias and centres of mass.
+/// Thesis 2 (docs/domain.md): the Hoecken leg in metres, link masses, inertias and centres of mass.
 fn thesis_two() -> (FourBar<f64>, Vec<Inertia<f64>>) {
     let fb = FourBar::new(0.020, 0.010, 0.025, 0.025, (0.050, 0.0), Assembly::Open).unwrap();
     let i = |mass, along, inertia| Inertia {
