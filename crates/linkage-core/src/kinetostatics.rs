@@ -429,3 +429,129 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
         power / rel
     }
 }
+
+/// A load along a sweep: one force and torque per sample, on `body` at `joint`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoadSeries<'a, T> {
+    /// The body loaded.
+    pub body: BodyId,
+    /// The joint the force acts at.
+    pub joint: usize,
+    /// The force at each sample.
+    pub force: &'a [Vec2<T>],
+    /// The torque at each sample (counter-clockwise positive).
+    pub torque: &'a [T],
+}
+
+/// Where [`Dynamics::sweep`] writes, one entry per sample (`reactions`/`couples`: one row of
+/// [`Dynamics::reaction_layout`]'s length per sample). Samples that do not assemble, or sit at a
+/// toggle where statics cannot decide the reactions, are NaN with `valid` false.
+#[derive(Debug)]
+pub struct ForceSweep<'a, T> {
+    /// Driver torque by Newton–Euler.
+    pub torque: &'a mut [T],
+    /// Driver torque by the power method (an independent check of `torque`).
+    pub power_torque: &'a mut [T],
+    /// Whether the sample was solved.
+    pub valid: &'a mut [bool],
+    /// Joint reactions, row-major `(sample, reaction)`.
+    pub reactions: &'a mut [Vec2<T>],
+    /// Slider couples, row-major `(sample, reaction)`; zero at pins.
+    pub couples: &'a mut [T],
+}
+
+impl<T: RealField + Copy, const N: usize> Dynamics<'_, T, N> {
+    /// Kinetostatics along a sweep: the mechanism tracked through crank angles `theta` at
+    /// crank rates `omega`, `alpha` (one per sample), each sample solved by [`Dynamics::solve`]
+    /// and [`Dynamics::power_torque`] under `loads`.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] when an input or output slice does not hold one entry (one row
+    /// for reactions and couples) per sample; [`Error::UnknownJoint`] for a load at a joint
+    /// beyond the mechanism; what [`crate::Tracker::new`] returns for a mechanism it cannot
+    /// track. A sample that cannot be solved is not an error (it is NaN and not `valid`).
+    pub fn sweep(
+        &self,
+        theta: &[T],
+        omega: &[T],
+        alpha: &[T],
+        loads: &[LoadSeries<'_, T>],
+        out: ForceSweep<'_, T>,
+    ) -> Result<(), Error> {
+        let n = theta.len();
+        let nr = self.reaction_layout().count();
+        let len = |what: &'static str, expected: usize, got: usize| {
+            if expected == got {
+                Ok(())
+            } else {
+                Err(Error::BufferLength {
+                    what,
+                    expected,
+                    got,
+                })
+            }
+        };
+        len("omega (one per angle)", n, omega.len())?;
+        len("alpha (one per angle)", n, alpha.len())?;
+        for l in loads {
+            len("load force (one per angle)", n, l.force.len())?;
+            len("load torque (one per angle)", n, l.torque.len())?;
+            if l.joint >= self.mech.len() {
+                return Err(Error::UnknownJoint {
+                    joint: self.mech.len(),
+                    refers_to: l.joint,
+                });
+            }
+        }
+        len("torque", n, out.torque.len())?;
+        len("power torque", n, out.power_torque.len())?;
+        len("valid", n, out.valid.len())?;
+        let rows = n.checked_mul(nr).ok_or(Error::BufferLength {
+            what: "reactions (samples × reactions)",
+            expected: usize::MAX,
+            got: out.reactions.len(),
+        })?;
+        len("reactions (samples × reactions)", rows, out.reactions.len())?;
+        len("couples (samples × reactions)", rows, out.couples.len())?;
+        let nan = crate::scalar::nan::<T>();
+        let j = self.mech.len();
+        let mut tracker = crate::tracker::Tracker::new(self.mech)?;
+        let (mut p, mut v, mut a) = ([Vec2::zeros(); N], [Vec2::zeros(); N], [Vec2::zeros(); N]);
+        let mut sample_loads = Vec::with_capacity(loads.len());
+        for k in 0..n {
+            out.valid[k] = false;
+            out.torque[k] = nan;
+            out.power_torque[k] = nan;
+            let row = k * nr..(k + 1) * nr;
+            out.reactions[row.clone()].fill(Vec2::new(nan, nan));
+            out.couples[row.clone()].fill(nan);
+            let rates = crate::tracker::Rates::acceleration(&mut v[..j], &mut a[..j]);
+            let motion = crate::mechanism::Motion::new(omega[k], alpha[k]);
+            if tracker
+                .step(theta[k], Some(motion), &mut p[..j], rates)
+                .is_err()
+            {
+                continue;
+            }
+            sample_loads.clear();
+            sample_loads.extend(loads.iter().map(|l| Load {
+                body: l.body,
+                joint: l.joint,
+                force: l.force[k],
+                torque: l.torque[k],
+            }));
+            let Ok(sol) = self.solve(&p[..j], &v[..j], &a[..j], &sample_loads) else {
+                continue;
+            };
+            out.valid[k] = true;
+            out.torque[k] = sol.torque;
+            out.power_torque[k] = self.power_torque(&p[..j], &v[..j], &a[..j], &sample_loads);
+            // `solve` returns one reaction per layout entry, in its order.
+            for (q, r) in sol.reactions.iter().take(nr).enumerate() {
+                out.reactions[k * nr + q] = r.force;
+                out.couples[k * nr + q] = r.couple;
+            }
+        }
+        Ok(())
+    }
+}

@@ -91,7 +91,7 @@ pub use fourbar::{Assembly, FourBar, FourBarPose, GrashofClass, InputRange};
 pub use gear_train::GearTrain;
 pub use inflection::{inflection, Inflection};
 #[cfg(feature = "alloc")]
-pub use kinetostatics::{Dynamics, ForceSolution, Inertia, Load, Reaction};
+pub use kinetostatics::{Dynamics, ForceSolution, ForceSweep, Inertia, Load, LoadSeries, Reaction};
 pub use mechanism::{Construction, LineDirection, Mechanism, Motion};
 pub use motion::rate_margin;
 pub use motion_law::{Derivatives, Discontinuity, MotionLaw, Program, Segment};
@@ -99,6 +99,6 @@ pub use scalar::Vec2;
 pub use schedule::ScheduleTable;
 pub use slider::{Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
-pub use support::{convex_hull, stability_margin};
+pub use support::{convex_hull, stability_margin, support_margins};
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
 pub use uniform_sweep::{AngleMode, MAX_TABLE};

@@ -153,6 +153,69 @@ pub fn stability_margin<T: RealField + Copy>(p: Vec2<T>, hull: &[Vec2<T>]) -> Op
     Some(if inside { nearest * s } else { -nearest * s })
 }
 
+/// Support polygons and stability margins along a sweep of `cg.len()` samples with `feet`
+/// pads each: for sample `s`, the convex hull of the finite points among
+/// `pads[s·feet .. (s+1)·feet]` (a pad in the air is NaN) and the [`stability_margin`] of
+/// `cg[s]` from it.
+///
+/// Writes sample `s`'s hull counter-clockwise into row `s` of `hulls` (rows of `feet + 1`
+/// points, the unused tail set to NaN), its vertex count into `counts[s]` and the margin into
+/// `margins[s]` (NaN when no pad is down or `cg[s]` is not finite). `scratch` holds one
+/// sample's pads while they are sorted.
+///
+/// # Errors
+/// [`Error::BufferLength`] when `pads` does not hold `feet` points per sample, `hulls` not
+/// `feet + 1` per sample, `counts` or `margins` not one per sample, or `scratch` fewer than
+/// `feet`.
+pub fn support_margins<T: RealField + Copy>(
+    pads: &[Vec2<T>],
+    feet: usize,
+    cg: &[Vec2<T>],
+    scratch: &mut [Vec2<T>],
+    hulls: &mut [Vec2<T>],
+    counts: &mut [usize],
+    margins: &mut [T],
+) -> Result<(), Error> {
+    let n = cg.len();
+    let check = |what: &'static str, expected: Option<usize>, got: usize| match expected {
+        Some(e) if e == got => Ok(()),
+        e => Err(Error::BufferLength {
+            what,
+            expected: e.unwrap_or(usize::MAX),
+            got,
+        }),
+    };
+    check("pads (samples × feet)", n.checked_mul(feet), pads.len())?;
+    let row = feet.checked_add(1);
+    check(
+        "hulls (samples × (feet + 1))",
+        row.and_then(|r| r.checked_mul(n)),
+        hulls.len(),
+    )?;
+    check("counts (one per sample)", Some(n), counts.len())?;
+    check("margins (one per sample)", Some(n), margins.len())?;
+    if scratch.len() < feet {
+        return Err(Error::BufferLength {
+            what: "scratch (feet)",
+            expected: feet,
+            got: scratch.len(),
+        });
+    }
+    let nan = crate::scalar::nan::<T>();
+    let row = feet + 1;
+    for (s, &c) in cg.iter().enumerate() {
+        let pts = &mut scratch[..feet];
+        pts.copy_from_slice(&pads[s * feet..(s + 1) * feet]);
+        let out = &mut hulls[s * row..(s + 1) * row];
+        // `out` holds feet + 1 ≥ finite pads + 1 points: the hull always fits.
+        let h = convex_hull(pts, out)?;
+        out[h..].fill(Vec2::new(nan, nan));
+        counts[s] = h;
+        margins[s] = stability_margin(c, &out[..h]).unwrap_or(nan);
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -183,5 +246,65 @@ mod tests {
             Some(-0.5)
         );
         assert_eq!(stability_margin::<f64>(Vec2::new(1.0, 0.5), &[]), None);
+    }
+
+    #[test]
+    fn margins_along_a_sweep_skip_pads_in_the_air() {
+        let nan = f64::NAN;
+        // Sample 0: a 2 × 2 square of pads; sample 1: one pad lifted (a triangle); sample 2:
+        // every pad lifted.
+        let up = Vec2::new(nan, nan);
+        let sq = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(2.0, 0.0),
+            Vec2::new(2.0, 2.0),
+            Vec2::new(0.0, 2.0),
+        ];
+        let mut pads = [up; 12];
+        pads[..4].copy_from_slice(&sq);
+        pads[4..8].copy_from_slice(&[sq[0], sq[1], up, sq[3]]);
+        let cg = [
+            Vec2::new(1.0, 1.0),
+            Vec2::new(1.0, 0.5),
+            Vec2::new(1.0, 1.0),
+        ];
+        let mut scratch = [Vec2::zeros(); 4];
+        let mut hulls = [Vec2::zeros(); 15];
+        let (mut counts, mut margins) = ([9; 3], [0.0; 3]);
+        support_margins(
+            &pads,
+            4,
+            &cg,
+            &mut scratch,
+            &mut hulls,
+            &mut counts,
+            &mut margins,
+        )
+        .unwrap();
+        assert_eq!(counts, [4, 3, 0]);
+        assert_eq!(margins[0], 1.0, "centre of the square");
+        // The triangle (0,0), (2,0), (0,2): (1, 0.5) is 0.5 from the bottom edge and
+        // |1 + 0.5 − 2|/√2 ≈ 0.354 from the hypotenuse.
+        assert!(
+            (margins[1] - 0.5 / 2f64.sqrt()).abs() < 1e-15,
+            "{}",
+            margins[1]
+        );
+        assert!(margins[2].is_nan(), "no pad down: no margin");
+        assert!(
+            hulls[4].x.is_nan() && hulls[8].x.is_nan(),
+            "unused hull rows are NaN"
+        );
+        // A wrong buffer is an error, not a panic.
+        let err = support_margins(
+            &pads,
+            4,
+            &cg,
+            &mut scratch,
+            &mut hulls[..14],
+            &mut counts,
+            &mut margins,
+        );
+        assert!(matches!(err, Err(Error::BufferLength { .. })), "{err:?}");
     }
 }

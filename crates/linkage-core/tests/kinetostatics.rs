@@ -1,7 +1,10 @@
 //! Kinetostatics: a static case by hand, Newton–Euler against the power method, and the work
 //! of the driver against the change of energy.
 
-use linkage_core::{Assembly, Bodies, Dynamics, FourBar, Inertia, Load, Mechanism, Motion, Vec2};
+use linkage_core::{
+    Assembly, Bodies, Dynamics, Error, ForceSweep, FourBar, Inertia, Load, LoadSeries, Mechanism,
+    Motion, Vec2,
+};
 use std::f64::consts::PI;
 
 type State = (Vec<Vec2<f64>>, Vec<Vec2<f64>>, Vec<Vec2<f64>>);
@@ -192,4 +195,90 @@ fn wrong_inertia_count_is_an_error() {
     let (fb, inertia) = thesis_two();
     let m = fb.mechanism();
     assert!(Dynamics::new(&m, &inertia[..3], Vec2::zeros()).is_err());
+}
+
+/// The sweep gives, sample for sample, what `solve` and `power_torque` give on the posed
+/// mechanism (thesis 2 leg, gravity, the foot force varying along the sweep); a sample past a
+/// triple rocker's limit is NaN and not valid; wrong lengths are errors.
+#[test]
+fn sweep_equals_the_per_sample_solve() {
+    let (fb, inertia) = thesis_two();
+    let m = fb.mechanism();
+    let coupler = Bodies::of(&m).ids().nth(2).unwrap();
+    let dynamics = Dynamics::new(&m, &inertia, Vec2::new(0.0, -9.81)).unwrap();
+    let n = 97;
+    let theta: Vec<f64> = (0..n).map(|k| 0.3 + k as f64 * 0.065).collect();
+    let omega: Vec<f64> = theta.iter().map(|t| -2.0 + 0.5 * t.sin()).collect();
+    let alpha: Vec<f64> = theta.iter().map(|t| 0.25 * t.cos()).collect();
+    let force: Vec<Vec2<f64>> = theta.iter().map(|t| Vec2::new(4.9, t.cos())).collect();
+    let torque: Vec<f64> = theta.iter().map(|t| 1e-3 * t).collect();
+    let loads = [LoadSeries {
+        body: coupler,
+        joint: 4,
+        force: &force,
+        torque: &torque,
+    }];
+    let nr = dynamics.reaction_layout().count();
+    let (mut tq, mut pw, mut ok) = (vec![0.0; n], vec![0.0; n], vec![false; n]);
+    let (mut re, mut co) = (vec![Vec2::zeros(); n * nr], vec![0.0; n * nr]);
+    let out = ForceSweep {
+        torque: &mut tq,
+        power_torque: &mut pw,
+        valid: &mut ok,
+        reactions: &mut re,
+        couples: &mut co,
+    };
+    dynamics.sweep(&theta, &omega, &alpha, &loads, out).unwrap();
+    for k in 0..n {
+        let (p, v, a) = state(&m, theta[k], omega[k], alpha[k]);
+        let load = [Load {
+            body: coupler,
+            joint: 4,
+            force: force[k],
+            torque: torque[k],
+        }];
+        let sol = dynamics.solve(&p, &v, &a, &load).unwrap();
+        assert!(ok[k], "sample {k} should solve");
+        assert!(
+            (tq[k] - sol.torque).abs() <= 1e-13 * (1.0 + sol.torque.abs()),
+            "{k}"
+        );
+        let power = dynamics.power_torque(&p, &v, &a, &load);
+        assert!((pw[k] - power).abs() <= 1e-13 * (1.0 + power.abs()), "{k}");
+        for (q, r) in sol.reactions.iter().enumerate() {
+            assert!(
+                (re[k * nr + q] - r.force).norm() <= 1e-12 * (1.0 + r.force.norm()),
+                "{k}"
+            );
+            assert_eq!(co[k * nr + q], r.couple, "{k}/{q}");
+        }
+    }
+    // Evans C (a triple rocker, limits ±75.5°): samples past its limit are NaN, not valid.
+    let evans = FourBar::new(20.0, 10.0, 10.0, 10.0, (0.0, 10.0), Assembly::Open).unwrap();
+    let me = evans.mechanism();
+    let de = Dynamics::new(&me, &massless(4), Vec2::zeros()).unwrap();
+    let th = [0.0, 2.0, 0.5];
+    let nre = de.reaction_layout().count();
+    let (mut tq, mut pw, mut ok) = ([0.0; 3], [0.0; 3], [true; 3]);
+    let (mut re, mut co) = (vec![Vec2::zeros(); 3 * nre], vec![0.0; 3 * nre]);
+    let out = ForceSweep {
+        torque: &mut tq,
+        power_torque: &mut pw,
+        valid: &mut ok,
+        reactions: &mut re,
+        couples: &mut co,
+    };
+    de.sweep(&th, &[1.0; 3], &[0.0; 3], &[], out).unwrap();
+    assert_eq!(ok, [true, false, true]);
+    assert!(tq[1].is_nan() && pw[1].is_nan() && re[nre].x.is_nan());
+    // One omega short: an error naming the slice, nothing solved.
+    let out = ForceSweep {
+        torque: &mut tq,
+        power_torque: &mut pw,
+        valid: &mut ok,
+        reactions: &mut re,
+        couples: &mut co,
+    };
+    let err = de.sweep(&th, &[1.0; 2], &[0.0; 3], &[], out);
+    assert!(matches!(err, Err(Error::BufferLength { .. })), "{err:?}");
 }

@@ -1,6 +1,6 @@
 //! Mirrors `linkage_core::kinetostatics`: driver torque and joint reactions along a sweep.
 
-use linkage_core::{Bodies, BodyId, Dynamics, Inertia, Load, Motion, Rates, Tracker, Vec2};
+use linkage_core::{Bodies, BodyId, Dynamics, ForceSweep, Inertia, LoadSeries, Vec2};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -9,7 +9,6 @@ use crate::args::{count, xy, Real, RealPair, Strict};
 use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
 use crate::memory;
-use crate::CAPACITY;
 
 fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
     a.as_slice()
@@ -67,6 +66,7 @@ pub fn forces<'py>(
                 "load joint index {joint} out of range"
             )));
         }
+        let f: Vec<Vec2<f64>> = f.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect();
         load_data.push((id, joint, f, t));
     }
     let inertia: Vec<Inertia<f64>> = inertia
@@ -89,54 +89,39 @@ pub fn forces<'py>(
         .collect();
     let nr = layout.len();
     let what = || format!("forces of {n} samples × {nr} reactions");
-    // torque, power (n each), reactions n × nr × 2, couples n × nr; valid one byte a sample.
-    let (nu, ru) = (n as u128, nr as u128);
-    memory::check(&what, memory::bytes_of::<f64>(2 * nu + 3 * nu * ru) + nu)?;
+    // torque, power (n each), reactions n × nr × 2 (twice: the core's and numpy's), couples
+    // n × nr, the loads' forces n × 2 each; valid one byte a sample.
+    let (nu, ru, lu) = (n as u128, nr as u128, loads.len() as u128);
+    memory::check(
+        &what,
+        memory::bytes_of::<f64>(2 * nu + 5 * nu * ru + 2 * nu * lu) + nu,
+    )?;
     let mut torque = memory::filled(&what, n, f64::NAN)?;
     let mut power = memory::filled(&what, n, f64::NAN)?;
     let mut valid = memory::filled(&what, n, false)?;
-    let mut forces = memory::filled(&what, n * nr * 2, f64::NAN)?;
+    let mut reactions = memory::filled(&what, n * nr, Vec2::new(f64::NAN, f64::NAN))?;
     let mut couples = memory::filled(&what, n * nr, f64::NAN)?;
     let result = py.detach(|| {
-        let j = m.len();
-        let mut tracker = Tracker::new(&m)?;
-        let (mut p, mut v, mut ac) = (
-            [Vec2::zeros(); CAPACITY],
-            [Vec2::zeros(); CAPACITY],
-            [Vec2::zeros(); CAPACITY],
-        );
-        let mut sample_loads = Vec::with_capacity(load_data.len());
-        for k in 0..n {
-            let rates = Rates::acceleration(&mut v[..j], &mut ac[..j]);
-            if tracker
-                .step(th[k], Some(Motion::new(w[k], a[k])), &mut p[..j], rates)
-                .is_err()
-            {
-                continue;
-            }
-            sample_loads.clear();
-            sample_loads.extend(load_data.iter().map(|(id, joint, f, t)| Load {
-                body: *id,
+        let series: Vec<LoadSeries<'_, f64>> = load_data
+            .iter()
+            .map(|(body, joint, force, torque)| LoadSeries {
+                body: *body,
                 joint: *joint,
-                force: Vec2::new(f[2 * k], f[2 * k + 1]),
-                torque: t[k],
-            }));
-            let Ok(sol) = dynamics.solve(&p[..j], &v[..j], &ac[..j], &sample_loads) else {
-                continue;
-            };
-            valid[k] = true;
-            torque[k] = sol.torque;
-            power[k] = dynamics.power_torque(&p[..j], &v[..j], &ac[..j], &sample_loads);
-            // `solve` returns one reaction per layout entry, in its order.
-            for (q, r) in sol.reactions.iter().take(nr).enumerate() {
-                forces[(k * nr + q) * 2] = r.force.x;
-                forces[(k * nr + q) * 2 + 1] = r.force.y;
-                couples[k * nr + q] = r.couple;
-            }
-        }
-        Ok::<_, linkage_core::Error>(())
+                force,
+                torque,
+            })
+            .collect();
+        let out = ForceSweep {
+            torque: &mut torque,
+            power_torque: &mut power,
+            valid: &mut valid,
+            reactions: &mut reactions,
+            couples: &mut couples,
+        };
+        dynamics.sweep(th, w, a, &series, out)
     });
     result.map_err(to_py)?;
+    let forces: Vec<f64> = reactions.iter().flat_map(|r| [r.x, r.y]).collect();
     let d = PyDict::new(py);
     d.set_item("torque", PyArray1::from_vec(py, torque))?;
     d.set_item("power_torque", PyArray1::from_vec(py, power))?;

@@ -1,6 +1,6 @@
 //! Mirrors `linkage_core::support`: support polygons and stability margins per sample.
 
-use linkage_core::{convex_hull, stability_margin, Vec2};
+use linkage_core::{support_margins as core_support_margins, Vec2};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3};
 use pyo3::prelude::*;
 
@@ -34,42 +34,38 @@ pub fn support_margins<'py>(
     let c = cg
         .as_slice()
         .map_err(|_| linkage_error("cg must be a contiguous float64 array"))?;
-    // Outputs: margin and count (n each), hulls (n × (k + 1) × 2); scratch 2k + 1 points. The
-    // input holds n·k·2 floats, so these sizes fit usize; the bytes are checked all the same.
+    // Outputs: margin and count (n each, twice for the count), hulls (n × (k + 1) × 2, twice:
+    // the core's points and numpy's floats); copies of the inputs as points (n·k·2 + n·2);
+    // scratch 2k floats. The input holds n·k·2 floats, so these sizes fit usize; the bytes are
+    // checked all the same.
     let what = || format!("support polygons of {n} samples × {k} feet");
-    let cells = (n as u128) * (k as u128 + 1) * 2;
+    let (nu, ku) = (n as u128, k as u128);
+    let cells = nu * (ku + 1) * 2;
     memory::check(
         &what,
-        memory::bytes_of::<f64>(cells + 2 * n as u128 + 4 * k as u128 + 2),
+        memory::bytes_of::<f64>(2 * cells + 3 * nu + nu * ku * 2 + 2 * nu + 2 * ku),
     )?;
     let mut margin = memory::filled(&what, n, f64::NAN)?;
-    let mut hulls = memory::filled(&what, n * (k + 1) * 2, f64::NAN)?;
-    let mut counts = memory::filled(&what, n, 0u64)?;
-    let mut pts = memory::with_capacity(&what, k)?;
-    let mut out = memory::filled(&what, k + 1, Vec2::zeros())?;
-    let result = py.detach(|| {
-        for s in 0..n {
-            pts.clear();
-            for q in 0..k {
-                let (x, y) = (p[(s * k + q) * 2], p[(s * k + q) * 2 + 1]);
-                if x.is_finite() && y.is_finite() {
-                    pts.push(Vec2::new(x, y));
-                }
-            }
-            // `out` has room for k + 1 ≥ finite points + 1: the hull always fits.
-            let h = convex_hull(&mut pts, &mut out)?;
-            counts[s] = h as u64; // h ≤ k + 1, far below u64::MAX
-            for (i, v) in out[..h].iter().enumerate() {
-                hulls[(s * (k + 1) + i) * 2] = v.x;
-                hulls[(s * (k + 1) + i) * 2 + 1] = v.y;
-            }
-            if let Some(m) = stability_margin(Vec2::new(c[2 * s], c[2 * s + 1]), &out[..h]) {
-                margin[s] = m;
-            }
-        }
-        Ok::<_, linkage_core::Error>(())
-    });
-    result.map_err(crate::error::to_py)?;
+    let mut hull_pts = memory::filled(&what, n * (k + 1), Vec2::zeros())?;
+    let mut counts = memory::filled(&what, n, 0usize)?;
+    let mut scratch = memory::filled(&what, k, Vec2::zeros())?;
+    let pads: Vec<Vec2<f64>> = p.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect();
+    let cg: Vec<Vec2<f64>> = c.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect();
+    py.detach(|| {
+        core_support_margins(
+            &pads,
+            k,
+            &cg,
+            &mut scratch,
+            &mut hull_pts,
+            &mut counts,
+            &mut margin,
+        )
+    })
+    .map_err(crate::error::to_py)?;
+    let hulls: Vec<f64> = hull_pts.iter().flat_map(|v| [v.x, v.y]).collect();
+    // h ≤ k + 1, far below u64::MAX.
+    let counts: Vec<u64> = counts.iter().map(|&h| h as u64).collect();
     let hulls = PyArray1::from_vec(py, hulls)
         .reshape([n, k + 1, 2])?
         .into_any();
