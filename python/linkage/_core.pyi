@@ -26,6 +26,7 @@ __all__ = [
     "gear_train_compound",
     "schedule_eval",
     "cam_geometry",
+    "degrees_of_freedom",
     "forces",
     "support_margins",
     "sweep_simd",
@@ -167,6 +168,7 @@ def cam_geometry(
     roller_radius: float | None = None,
     offset: float = 0.0,
 ) -> dict[str, NDArray[np.float64]]: ...
+def degrees_of_freedom(links: int, lower_pairs: int, higher_pairs: int) -> int: ...
 def forces(
     mech: Mechanism,
     theta: NDArray[np.float64],

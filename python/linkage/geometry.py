@@ -49,11 +49,8 @@ class Mobility:
     """``j1``: revolute and prismatic pairs (one freedom each)."""
     higher_pairs: int
     """``j2``: pairs with two freedoms, e.g. a cam contact that rolls and slides."""
-
-    @property
-    def degrees_of_freedom(self) -> int:
-        """``F``."""
-        return 3 * (self.links - 1) - 2 * self.lower_pairs - self.higher_pairs
+    degrees_of_freedom: int
+    """``F``, counted by the core."""
 
 
 def mobility(links: int, lower_pairs: int, higher_pairs: int = 0) -> Mobility:
@@ -73,7 +70,8 @@ def mobility(links: int, lower_pairs: int, higher_pairs: int = 0) -> Mobility:
             raise LinkageError(f"{name} must be non-negative, got {v}")
     if links < 1:
         raise LinkageError("links must count the ground at least")
-    return Mobility(int(links), int(lower_pairs), int(higher_pairs))
+    n, j1, j2 = int(links), int(lower_pairs), int(higher_pairs)
+    return Mobility(n, j1, j2, _core.degrees_of_freedom(n, j1, j2))
 
 
 def curvature_centre(

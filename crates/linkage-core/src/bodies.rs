@@ -78,6 +78,17 @@ impl Mobility {
         let f = 3 * (n - 1) - 2 * j1 - j2;
         f.clamp(i64::MIN as i128, i64::MAX as i128) as i64
     }
+
+    /// `F = 3(n − 1) − 2·j1 − j2`, or `None` when it falls outside the `i64` range (only for
+    /// counts no real mechanism has).
+    pub fn checked_degrees_of_freedom(&self) -> Option<i64> {
+        let (n, j1, j2) = (
+            self.links as i128,
+            self.lower_pairs as i128,
+            self.higher_pairs as i128,
+        );
+        i64::try_from(3 * (n - 1) - 2 * j1 - j2).ok()
+    }
 }
 
 impl<const N: usize> Bodies<N> {

@@ -8,6 +8,7 @@ use pyo3::prelude::*;
 
 mod args;
 mod batch;
+mod bodies;
 mod cam;
 mod catalog;
 mod centres;
@@ -46,6 +47,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drives::schedule_eval, m)?)?;
     m.add_function(wrap_pyfunction!(cam::cam_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(kinetostatics::forces, m)?)?;
+    m.add_function(wrap_pyfunction!(bodies::degrees_of_freedom, m)?)?;
     m.add_function(wrap_pyfunction!(support::support_margins, m)?)?;
     m.add_function(wrap_pyfunction!(fourbar::sweep_simd, m)?)?;
     m.add_function(wrap_pyfunction!(batch::batch_sweep, m)?)?;
