@@ -25,6 +25,7 @@ __all__ = [
     "gear_train_simple",
     "gear_train_compound",
     "schedule_eval",
+    "stance_schedule",
     "cam_geometry",
     "degrees_of_freedom",
     "forces",
@@ -161,6 +162,13 @@ def schedule_eval(
     t: NDArray[np.float64],
     single: bool,
 ) -> NDArray[np.float64]: ...
+def stance_schedule(
+    theta: NDArray[np.float64],
+    u: NDArray[np.float64],
+    foot_speed: float,
+    duty_factor: float,
+    samples: int,
+) -> tuple[float, NDArray[np.float64], NDArray[np.float64], float, tuple[float, float]]: ...
 def cam_geometry(
     phi: NDArray[np.float64],
     y: NDArray[np.float64],

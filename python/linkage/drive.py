@@ -367,54 +367,20 @@ def crank_schedule(
     d = np.asarray(fp.stance.direction)
     # Stance crank angles, unwrapped so they increase.
     th_st = theta[idx] + 2 * np.pi * (idx < idx[0])
-    u = np.abs(vel[idx] @ d)
-    if (u <= 0).any():
-        raise LinkageError("the foot stops along the stance line; no constant-speed schedule")
-    # t(θ) in stance: dt = |u| dθ / V.
-    t_st = np.concatenate([[0.0], np.cumsum(0.5 * (u[1:] + u[:-1]) * np.diff(th_st))]) / v_target
-    stance_time = float(t_st[-1])
-    period = stance_time / beta
-    swing_time = period - stance_time
-    if not (np.isfinite(period) and stance_time > 0 and swing_time > 0):
-        raise LinkageError(
-            f"foot speed {v_target:g} gives a stance of {stance_time:g} s: no usable schedule"
-        )
-    w0, w1 = v_target / u[0], v_target / u[-1]
-    swing_angle = 2 * np.pi - (th_st[-1] - th_st[0])
-    bump = swing_angle / swing_time - 0.5 * (w0 + w1)
-    # ω(τ) = w1 + (w0 − w1)τ + 6·bump·τ(1 − τ), τ = t/T_sw ∈ [0, 1]; its minimum sits at an end
-    # or at the vertex of the parabola.
-    tau = np.linspace(0.0, 1.0, 1001)
-    w_swing = w1 + (w0 - w1) * tau + 6 * bump * tau * (1 - tau)
-    if w_swing.min() <= 0:
-        raise LinkageError(
-            f"duty factor {beta} needs the crank to stop during the swing (minimum speed "
-            f"{w_swing.min():.3g} rad/s); raise the duty factor or lower the foot speed"
-        )
-
-    def at(t: NDArray[np.float64]) -> tuple[Array, Array]:
-        th_out = np.empty_like(t)
-        w_out = np.empty_like(t)
-        st = t <= stance_time
-        th_out[st] = np.interp(t[st], t_st, th_st)
-        w_out[st] = v_target / np.interp(th_out[st], th_st, u)
-        tt = (t[~st] - stance_time) / swing_time
-        th_out[~st] = th_st[-1] + swing_time * (
-            w1 * tt + 0.5 * (w0 - w1) * tt**2 + 6 * bump * (tt**2 / 2 - tt**3 / 3)
-        )
-        w_out[~st] = w1 + (w0 - w1) * tt + 6 * bump * tt * (1 - tt)
-        return th_out, w_out
-
-    dt = period / samples
-    t_tab = dt * np.arange(samples, dtype=np.float64)
-    th_tab, w_tab = at(t_tab)
+    u = np.ascontiguousarray(np.abs(vel[idx] @ d))
+    # The schedule itself (stance at V/u, a swing closing the turn) is the core's
+    # StanceSchedule; here only the stance is found and the result measured.
+    dt, th_tab, w_tab, stance_time, stance_angles = _core.stance_schedule(
+        np.ascontiguousarray(th_st), u, v_target, beta, samples
+    )
+    period = dt * samples
     sched = CrankSchedule(
         dt=dt,
         theta=th_tab.astype(np.float32),
         omega=w_tab.astype(np.float32),
         foot_speed=v_target,
         duty_factor=beta,
-        stance_angles=(float(th_st[0]), float(th_st[-1])),
+        stance_angles=stance_angles,
         speed_ripple=0.0,
         peak_alpha=0.0,
     )

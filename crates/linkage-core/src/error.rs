@@ -77,6 +77,14 @@ pub enum Error {
         /// Which result.
         what: &'static str,
     },
+    /// A crank-speed schedule cannot hold the foot speed asked for: `why` says what fails,
+    /// `value` the figure that fails (a time in s or a crank speed in rad/s).
+    ScheduleInfeasible {
+        /// What fails.
+        why: &'static str,
+        /// The failing figure.
+        value: f64,
+    },
     /// A count or index is so large that the arithmetic on it would overflow `usize`.
     CountOverflow {
         /// Which count.
@@ -137,6 +145,9 @@ impl fmt::Display for Error {
             ),
             Error::CountOverflow { what } => {
                 write!(f, "{what} is too large: the count overflows")
+            }
+            Error::ScheduleInfeasible { why, value } => {
+                write!(f, "no crank schedule: {why} ({})", Num(value))
             }
         }
     }

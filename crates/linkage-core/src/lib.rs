@@ -96,7 +96,7 @@ pub use mechanism::{Construction, LineDirection, Mechanism, Motion};
 pub use motion::rate_margin;
 pub use motion_law::{Derivatives, Discontinuity, MotionLaw, Program, Segment};
 pub use scalar::Vec2;
-pub use schedule::ScheduleTable;
+pub use schedule::{ScheduleTable, StanceSchedule};
 pub use slider::{Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
 pub use support::{convex_hull, stability_margin, support_margins};

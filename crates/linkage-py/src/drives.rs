@@ -200,3 +200,53 @@ pub fn schedule_eval<'py>(
         .reshape([t.len(), 3])?
         .into_any())
 }
+
+/// The constant-foot-speed crank schedule (`linkage_core::StanceSchedule`) fitted to stance
+/// samples `theta` (increasing crank angles) and `u` (foot speed along the stance line per
+/// radian), tabulated at `samples` uniform times. Returns `(dt, theta (samples,), omega
+/// (samples,), stance_time, (stance start, stance end))`.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+pub fn stance_schedule<'py>(
+    py: Python<'py>,
+    theta: PyReadonlyArray1<'py, f64>,
+    u: PyReadonlyArray1<'py, f64>,
+    foot_speed: Real,
+    duty_factor: Real,
+    samples: &Bound<'py, PyAny>,
+) -> PyResult<(
+    f64,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    f64,
+    (f64, f64),
+)> {
+    let (th, u) = (slice("theta", &theta)?, slice("u", &u)?);
+    let samples = crate::args::count("samples", samples)?;
+    if samples == 0 {
+        return Err(linkage_error("samples must be at least 1"));
+    }
+    let what = || format!("a crank schedule of {samples} samples");
+    memory::check(
+        &what,
+        memory::bytes_of::<f64>(2 * samples as u128 + th.len() as u128),
+    )?;
+    let mut times = memory::filled(&what, th.len(), 0.0)?;
+    let mut tab_th = memory::filled(&what, samples, 0.0)?;
+    let mut tab_w = memory::filled(&what, samples, 0.0)?;
+    let (dt, stance_time, angles) = py
+        .detach(|| {
+            let s =
+                linkage_core::StanceSchedule::fit(th, u, &mut times, foot_speed.0, duty_factor.0)?;
+            let dt = s.fill(&mut tab_th, &mut tab_w)?;
+            Ok::<_, linkage_core::Error>((dt, s.stance_time(), s.stance_angles()))
+        })
+        .map_err(to_py)?;
+    Ok((
+        dt,
+        PyArray1::from_vec(py, tab_th),
+        PyArray1::from_vec(py, tab_w),
+        stance_time,
+        angles,
+    ))
+}

@@ -45,6 +45,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drives::gear_train_simple, m)?)?;
     m.add_function(wrap_pyfunction!(drives::gear_train_compound, m)?)?;
     m.add_function(wrap_pyfunction!(drives::schedule_eval, m)?)?;
+    m.add_function(wrap_pyfunction!(drives::stance_schedule, m)?)?;
     m.add_function(wrap_pyfunction!(cam::cam_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(kinetostatics::forces, m)?)?;
     m.add_function(wrap_pyfunction!(bodies::degrees_of_freedom, m)?)?;
