@@ -112,6 +112,7 @@ class FourBar:
             tuple[float, float],
             float,
             tuple[float, float],
+            tuple[float, float],
         ]
         | None
     ): ...

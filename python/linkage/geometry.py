@@ -7,7 +7,6 @@ gives NaN, a wrong shape raises.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -310,15 +309,10 @@ def ball_point(fb: FourBar, theta: float) -> Inflection:
         raise LinkageError(
             f"no inflection circle at theta = {th}: a toggle, or the coupler is translating"
         )
-    pole, jpole, centre, radius, ball = res
+    pole, jpole, centre, radius, ball, local = res
     if not np.isfinite([*pole, *jpole, *centre, radius]).all():
         raise LinkageError(
             f"the inflection circle at theta = {th} is not representable in float64 "
             f"(radius {radius!r}): the coupler is nearly translating"
         )
-    a, b = joints[2], joints[3]
-    d = b - a
-    u = d / math.hypot(float(d[0]), float(d[1]))  # hypot: no overflow at any size
-    r = np.asarray(ball) - a
-    local = (float(r @ u), float(u[0] * r[1] - u[1] * r[0]))
     return Inflection(pole, jpole, centre, float(radius), ball, local)

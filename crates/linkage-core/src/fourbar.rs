@@ -103,6 +103,28 @@ pub struct FourBarPose<T: RealField + Copy> {
     pub margin: T,
 }
 
+impl<T: RealField + Copy> FourBarPose<T> {
+    /// World point `p` in the coupler's frame: `(along, left)` with the origin at `A`, `along`
+    /// the coupler line toward `B` and `left` of it — the frame of [`FourBar::along`] and
+    /// [`FourBar::left`].
+    /// The coupler's direction is normalised by an overflow-free length, so the result is
+    /// right at any scale.
+    ///
+    /// ```
+    /// use linkage_core::{catalog, FourBar};
+    /// let fb = catalog::hoecken::<f64>();
+    /// let pose = fb.pose(1.0).unwrap();
+    /// let local = pose.to_coupler_frame(pose.coupler_point);
+    /// assert!((local.x - 50.0).abs() < 1e-12 && local.y.abs() < 1e-12);
+    /// ```
+    pub fn to_coupler_frame(&self, p: Vec2<T>) -> Vec2<T> {
+        let d = self.b - self.a;
+        let u = d / crate::scalar::length(d);
+        let r = p - self.a;
+        Vec2::new(r.dot(&u), cross(u, r))
+    }
+}
+
 /// A four-bar linkage: ground pivots `O` (crank) and `C` (rocker), crank `O A`, coupler `A B`,
 /// rocker `C B`, and a coupler point in coupler coordinates.
 ///

@@ -10,6 +10,16 @@ use crate::mechanism::Mechanism;
 use crate::memory;
 use crate::CAPACITY;
 
+/// Pole, inflection pole, circle centre, radius, Ball point, Ball point in the coupler frame.
+type InflectionTuple = (
+    (f64, f64),
+    (f64, f64),
+    (f64, f64),
+    f64,
+    (f64, f64),
+    (f64, f64),
+);
+
 /// Most threads one fast sweep starts: more only add start-up time (the bits are the same for
 /// any split), and an absurd request must not exhaust the system's threads.
 const MAX_THREADS: usize = 256;
@@ -262,21 +272,20 @@ impl FourBar {
     }
 
     /// Inflection circle of the coupler at `theta`: (pole, inflection pole, centre, radius,
-    /// Ball point), points as (x, y) with NaN where undefined; None where it cannot be formed.
-    #[allow(clippy::type_complexity)]
-    fn coupler_inflection(
-        &self,
-        theta: Real,
-    ) -> Option<((f64, f64), (f64, f64), (f64, f64), f64, (f64, f64))> {
+    /// Ball point, Ball point in the coupler frame), points as (x, y) with NaN where undefined;
+    /// None where it cannot be formed.
+    fn coupler_inflection(&self, theta: Real) -> Option<InflectionTuple> {
         let inf = self.inner.coupler_inflection(theta.0)?;
+        let pose = self.inner.pose(theta.0).ok()?;
         let xy = |p: Vec2<f64>| (p.x, p.y);
-        let ball = inf.ball_point.finite().map_or((f64::NAN, f64::NAN), xy);
+        let ball = inf.ball_point.finite();
         Some((
             xy(inf.pole),
             xy(inf.inflection_pole),
             xy(inf.centre),
             inf.radius,
-            ball,
+            ball.map_or((f64::NAN, f64::NAN), xy),
+            ball.map_or((f64::NAN, f64::NAN), |p| xy(pose.to_coupler_frame(p))),
         ))
     }
 
