@@ -460,6 +460,7 @@ impl<T: RealField + Copy> BurmesterCurve<T> {
 
 /// A shortcoming of a synthesised linkage found by sweeping it through its precision positions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Defect {
     /// At precision position `pose` the linkage is on the other assembly branch (a circuit
     /// defect): it reaches the crank angle there, but not the position.
