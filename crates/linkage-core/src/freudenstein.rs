@@ -12,7 +12,9 @@
 //! K1 cos ψ − K2 cos φ + K3 = cos(φ − ψ),   K1 = d/a,  K2 = d/c,  K3 = (a² − b² + c² + d²)/(2ac),
 //! ```
 //!
-//! linear in `K1, K2, K3`. Three precision points `(φ_j, ψ_j)` give a 3×3 linear system; more
+//! linear in `K1, K2, K3` (Norton's labelling; Freudenstein's paper and other texts arrange the
+//! angles and signs differently — this form is the one derived above, and the tests check it
+//! against the loop of a known linkage). Three precision points `(φ_j, ψ_j)` give a 3×3 linear system; more
 //! give a linear least-squares problem (solved here by Givens rotations, row by row, with no
 //! heap). Back from the `K`s: `a = d/K1`, `c = d/K2`, `b² = a² + c² + d² − 2ac·K3`. A negative
 //! `a` (or `c`) is a link of length `|a|` turned by `π`: the generator records that offset.

@@ -725,3 +725,40 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn generic_over_f32() {
+    let fb = FourBar::<f32>::with_pivots(
+        Vec2::new(0.3, -0.2),
+        Vec2::new(2.3, 0.4),
+        0.7,
+        1.9,
+        1.6,
+        (0.8, 0.6),
+        Assembly::Open,
+    )
+    .unwrap();
+    let mut poses = Vec::new();
+    let mut pins = Vec::new();
+    for t in [0.4_f32, 1.3, 2.5] {
+        let p = fb.pose(t).unwrap();
+        let d = p.b - p.a;
+        poses.push(BodyPose::new(p.coupler_point.x, p.coupler_point.y, d.y.atan2(d.x)).unwrap());
+        pins.push((p.a, p.b));
+    }
+    let p3: [BodyPose<f32>; 3] = poses.clone().try_into().unwrap();
+    let crank = centre_point(&p3, pins[0].0).unwrap();
+    let rocker = centre_point(&p3, pins[0].1).unwrap();
+    assert!((crank.centre - fb.o).norm() < 1e-4 && (rocker.centre - fb.c).norm() < 1e-4);
+    let cand = MotionCandidate::new(&poses, crank, rocker).unwrap();
+    assert_eq!(cand.check.defect, None);
+    assert!(cand.check.position_error < 1e-4);
+    let f = FourBar::<f32>::new(1.0, 0.45, 1.1, 0.8, (0.0, 0.0), Assembly::Open).unwrap();
+    let phi = [0.6_f32, 1.3, 2.0];
+    let psi = phi.map(|t| {
+        let b = f.pose(t).unwrap().b - f.c;
+        b.y.atan2(b.x)
+    });
+    let gen = FunctionGenerator::synthesise(&phi, &psi, 1.0).unwrap();
+    assert!((gen.four_bar.crank - 0.45).abs() < 1e-4 && (gen.four_bar.rocker - 0.8).abs() < 1e-4);
+}
