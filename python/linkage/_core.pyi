@@ -32,6 +32,12 @@ __all__ = [
     "support_margins",
     "sweep_simd",
     "batch_sweep",
+    "burmester_centre_point",
+    "burmester_circle_point",
+    "burmester_curve",
+    "motion_candidates",
+    "chebyshev_points",
+    "function_generator",
 ]
 
 CAPACITY: int
@@ -190,3 +196,23 @@ def forces(
 def support_margins(
     points: NDArray[np.float64], cg: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.uint64]]: ...
+
+# Precision-point synthesis (crates/linkage-py/src/precision.rs).
+def burmester_centre_point(
+    poses: list[tuple[float, float, float]], circle: tuple[float, float]
+) -> tuple[float, float]: ...
+def burmester_circle_point(
+    poses: list[tuple[float, float, float]], centre: tuple[float, float]
+) -> tuple[float, float]: ...
+def burmester_curve(
+    poses: list[tuple[float, float, float]], beta: NDArray[np.float64]
+) -> tuple[int, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]: ...
+def motion_candidates(
+    poses: list[tuple[float, float, float]],
+    crank: NDArray[np.float64],
+    rocker: NDArray[np.float64],
+) -> dict[str, Any]: ...
+def chebyshev_points(x0: float, x1: float, n: int) -> NDArray[np.float64]: ...
+def function_generator(
+    phi: list[float], psi: list[float], ground: float, samples: NDArray[np.float64]
+) -> dict[str, Any]: ...

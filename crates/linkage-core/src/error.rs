@@ -90,6 +90,33 @@ pub enum Error {
         /// Which count.
         what: &'static str,
     },
+    /// Fewer items than a synthesis needs (e.g. two poses for a three-pose problem).
+    TooFew {
+        /// What was counted.
+        what: &'static str,
+        /// The least number needed.
+        needed: usize,
+        /// The number given.
+        got: usize,
+    },
+    /// Two precision positions (poses of a body, or input–output pairs of a function) are the
+    /// same to rounding, so they set one condition instead of two.
+    CoincidentPositions {
+        /// Index of the first (0-based).
+        first: usize,
+        /// Index of the second (0-based).
+        second: usize,
+    },
+    /// The synthesis is degenerate: the sought point is at infinity or not unique.
+    Degenerate {
+        /// What is degenerate and why.
+        what: &'static str,
+    },
+    /// The precision positions admit no real solution.
+    NoSolution {
+        /// Which solution and why.
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for Error {
@@ -149,6 +176,16 @@ impl fmt::Display for Error {
             Error::ScheduleInfeasible { why, value } => {
                 write!(f, "no crank schedule: {why} ({})", Num(value))
             }
+            Error::TooFew { what, needed, got } => {
+                write!(f, "needs at least {needed} {what}, got {got}")
+            }
+            Error::CoincidentPositions { first, second } => write!(
+                f,
+                "precision positions {first} and {second} coincide (to rounding): they set one \
+                 condition, not two"
+            ),
+            Error::Degenerate { what } => write!(f, "degenerate synthesis: {what}"),
+            Error::NoSolution { what } => write!(f, "no solution: {what}"),
         }
     }
 }

@@ -25,6 +25,9 @@
 //! - `libm`: use `libm` for targets without `std` (e.g. `thumbv7em-none-eabihf`).
 //! - `alloc` (implied by `std`): kinetostatics, which needs a dense linear solve sized by the
 //!   linkage. Firmware builds without it carry none of it.
+//! - `synthesis` (default, implies `alloc`): precision-point synthesis — Burmester motion
+//!   generation ([`BurmesterCurve`], [`centre_point`], [`MotionCandidate`]) and Freudenstein
+//!   function generation ([`FunctionGenerator`]).
 //!
 //! # Example
 //! ```
@@ -47,12 +50,16 @@ extern crate alloc;
 
 mod batch;
 mod bodies;
+#[cfg(feature = "synthesis")]
+mod burmester;
 mod cam;
 mod catalog_impl;
 mod centres;
 mod dyad;
 mod error;
 mod fourbar;
+#[cfg(feature = "synthesis")]
+mod freudenstein;
 mod gear_train;
 mod inflection;
 #[cfg(feature = "alloc")]
@@ -80,6 +87,11 @@ pub mod catalog {
 
 pub use batch::{BatchWork, FourBarBatch, GO_ON_EVERY};
 pub use bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
+#[cfg(feature = "synthesis")]
+pub use burmester::{
+    centre_point, circle_point, pole, BodyPose, BurmesterCurve, BurmesterPair, Defect,
+    MotionCandidate, MotionCheck, MAX_POSES,
+};
 pub use cam::{CamPoint, FlatFollower, RollerFollower};
 pub use centres::{
     circumcentre, instant_centre, line_intersection, path_curvature, relative_centre, BodyMotion,
@@ -88,6 +100,8 @@ pub use centres::{
 pub use dyad::{triangle_area, Dyad, DyadFailure, DyadPose, Side};
 pub use error::Error;
 pub use fourbar::{Assembly, FourBar, FourBarPose, GrashofClass, InputRange};
+#[cfg(feature = "synthesis")]
+pub use freudenstein::{chebyshev_spacing, Freudenstein, FunctionCheck, FunctionGenerator};
 pub use gear_train::GearTrain;
 pub use inflection::{inflection, Inflection};
 #[cfg(feature = "alloc")]

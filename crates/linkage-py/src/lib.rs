@@ -18,6 +18,7 @@ mod fourbar;
 mod kinetostatics;
 mod mechanism;
 mod memory;
+mod precision;
 mod support;
 
 /// Maximum joints of a mechanism built from Python.
@@ -52,5 +53,11 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(support::support_margins, m)?)?;
     m.add_function(wrap_pyfunction!(fourbar::sweep_simd, m)?)?;
     m.add_function(wrap_pyfunction!(batch::batch_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(precision::burmester_centre_point, m)?)?;
+    m.add_function(wrap_pyfunction!(precision::burmester_circle_point, m)?)?;
+    m.add_function(wrap_pyfunction!(precision::burmester_curve, m)?)?;
+    m.add_function(wrap_pyfunction!(precision::motion_candidates, m)?)?;
+    m.add_function(wrap_pyfunction!(precision::chebyshev_points, m)?)?;
+    m.add_function(wrap_pyfunction!(precision::function_generator, m)?)?;
     Ok(())
 }

@@ -1,0 +1,477 @@
+"""Precision-point synthesis: Burmester motion generation and Freudenstein function generation.
+
+Every linkage returned is checked by sweeping it with the branch tracker through its precision
+positions, and says whether it reaches them all on one circuit, in order, without a toggle
+(``reaches``) — a candidate that would switch branch is flagged, never passed silently.
+
+>>> import numpy as np, linkage
+>>> from linkage._precision import motion
+>>> fb = linkage.FourBar(ground=2, crank=0.7, coupler=1.9, rocker=1.6, point=(0.8, 0.6))
+>>> s = fb.sweep([0.4, 1.3, 2.5])
+>>> a, b = s.joints[:, 2], s.joints[:, 3]
+>>> poses = np.column_stack([s.point, np.arctan2(*(b - a).T[::-1])])
+>>> best = motion(poses, circle_points=[a[0], b[0]])[0]
+>>> best.reaches, round(best.linkage.crank, 12), round(best.linkage.rocker, 12)
+(True, 0.7, 1.6)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage import _core
+from linkage._arrays import as_count, as_finite
+from linkage._core import LinkageError
+from linkage._fourbar import FourBar
+
+__all__ = [
+    "Dyad",
+    "FunctionGenerator",
+    "MotionCandidate",
+    "centre_point_curve",
+    "chebyshev_points",
+    "circle_point_curve",
+    "function",
+    "motion",
+]
+
+_DEFECTS = ("branch", "toggle", "order", "flat-position", "input-limit")
+
+
+@dataclass(frozen=True)
+class Dyad:
+    """A revolute dyad of Burmester theory: ``centre`` the fixed pivot, ``circle`` the moving
+    pivot where it lies at the first pose."""
+
+    centre: tuple[float, float]
+    circle: tuple[float, float]
+
+    @property
+    def radius(self) -> float:
+        """Crank length ``|circle − centre|``."""
+        return math.hypot(self.circle[0] - self.centre[0], self.circle[1] - self.centre[1])
+
+
+@dataclass(frozen=True)
+class MotionCandidate:
+    """A four-bar that carries the body through the poses, with the check of its sweep.
+
+    ``linkage`` is driven by ``crank`` (its pivot ``o``) with ``rocker`` (pivot ``c``); its
+    coupler point is the body's reference point. ``reaches`` is True when turning the crank one
+    way (``direction``: +1 counter-clockwise, −1 clockwise) carries the body through every pose
+    in order on one circuit; else ``defect`` says why: ``"branch"`` (pose ``defect_pose`` is on
+    the other assembly: a circuit defect), ``"toggle"`` (the crank meets an input limit on the
+    way to pose ``defect_pose``), ``"order"`` (the poses come in another order) or
+    ``"flat-position"`` (the motion passes a change-point linkage's flat position).
+    ``crank_angles`` are the crank angles at the poses along the travel (NaN past a defect);
+    ``position_error``/``angle_error`` the largest mismatch of the tracked sweep at the poses
+    reached; ``min_transmission_angle`` the smallest transmission angle over the travel, folded
+    to [0, π/2].
+    """
+
+    linkage: FourBar
+    crank: Dyad
+    rocker: Dyad
+    reaches: bool
+    defect: str | None
+    defect_pose: int | None
+    direction: int
+    crank_angles: NDArray[np.float64]
+    position_error: float
+    angle_error: float
+    min_transmission_angle: float
+    grashof: str
+
+
+@dataclass(frozen=True)
+class FunctionGenerator:
+    """A four-bar whose output angle follows ``y = f(x)`` (Freudenstein's equation).
+
+    The input ``x`` maps linearly to the crank angle over ``crank_range`` and ``y`` to the
+    rocker angle (from the ground line ``o → c``) over ``psi_range`` plus ``output_offset``
+    (0, or π when the output link points opposite). ``structural_error`` is the largest
+    ``|ψ(x) − ψ_desired(x)|`` over ``x`` (radians of output angle; ``structural_error_y`` in
+    ``y`` units), from the tracked sweep; ``error`` its samples. ``precision_points`` holds the
+    ``(x, y)`` pairs met, ``precision_angles`` their ``(φ, ψ)``. ``reaches`` / ``defect`` as for
+    :class:`MotionCandidate` (``"branch"``, ``"input-limit"``, ``"flat-position"``).
+    """
+
+    linkage: FourBar
+    structural_error: float
+    structural_error_y: float
+    precision_points: NDArray[np.float64]
+    precision_angles: NDArray[np.float64]
+    k: tuple[float, float, float]
+    crank_range: tuple[float, float]
+    psi_range: tuple[float, float]
+    output_offset: float
+    x: NDArray[np.float64]
+    error: NDArray[np.float64]
+    reaches: bool
+    defect: str | None
+    min_transmission_angle: float
+    grashof: str
+
+
+def _poses(poses: Any, counts: Sequence[int]) -> list[tuple[float, float, float]]:
+    try:
+        arr = np.asarray(poses, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"poses must be an array_like of (x, y, angle) rows: {exc}") from None
+    if arr.ndim != 2 or arr.shape[1] != 3:
+        raise LinkageError(f"poses must have shape (k, 3) of (x, y, angle), got {arr.shape}")
+    k = arr.shape[0]
+    if k < min(counts):
+        raise LinkageError(f"needs at least {min(counts)} poses, got {k}")
+    if k not in counts:
+        raise LinkageError(
+            f"precision-point synthesis takes {' or '.join(map(str, counts))} poses, got {k}"
+        )
+    if not np.all(np.isfinite(arr)):
+        raise LinkageError("poses must be finite")
+    return [(float(x), float(y), float(a)) for x, y, a in arr]
+
+
+def _points(value: Any, name: str) -> NDArray[np.float64]:
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be an array_like of (x, y) points: {exc}") from None
+    if arr.ndim == 1 and arr.shape == (2,):
+        arr = arr.reshape(1, 2)
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise LinkageError(f"{name} must have shape (m, 2), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise LinkageError(f"{name} must be finite")
+    return arr
+
+
+def _curve(poses: Any, n: Any) -> tuple[int, NDArray[np.float64], NDArray[np.float64]]:
+    p = _poses(poses, (4,))
+    count = as_count(n, "n")
+    if count < 1:
+        raise LinkageError(f"n must be ≥ 1, got {count}")
+    beta = 2.0 * np.pi * np.arange(count, dtype=np.float64) / count
+    free, centres, circles, _ = _core.burmester_curve(p, beta)
+    return int(free), centres, circles
+
+
+def centre_point_curve(poses: Any, n: int = 360) -> NDArray[np.float64]:
+    """The centre-point (Burmester) curve of four poses, sampled: ``(2n, 2)``.
+
+    The curve is parametrised by the crank's rotation ``β`` from pose 0 to a pose ``k`` (the
+    one that conditions the compatibility equation best), sampled at ``β = 2πi/n``; rows
+    ``[0, n)`` hold the first solution at each ``β``, rows ``[n, 2n)`` the second, NaN where
+    the curve has no real point at that ``β``. Plotting each half as a line gives the curve
+    (NaN rows break it).
+
+    Raises
+    ------
+    LinkageError
+        Not 4 poses, non-finite or coincident poses, or poses without a Burmester curve (pure
+        translations, rotations about one point).
+    """
+    _, centres, _ = _curve(poses, n)
+    return np.concatenate([centres[:, 0], centres[:, 1]])
+
+
+def circle_point_curve(poses: Any, n: int = 360) -> NDArray[np.float64]:
+    """The circle-point curve of four poses (moving pivots where they lie at pose 0), sampled
+    as :func:`centre_point_curve` (row ``i`` pairs with row ``i`` of that curve)."""
+    _, _, circles = _curve(poses, n)
+    return np.concatenate([circles[:, 0], circles[:, 1]])
+
+
+def _dyads_three(
+    p: list[tuple[float, float, float]], circle_points: Any, centre_points: Any
+) -> list[Dyad]:
+    dyads: list[Dyad] = []
+    if circle_points is not None:
+        for i, (x, y) in enumerate(_points(circle_points, "circle_points")):
+            try:
+                g = _core.burmester_centre_point(p, (float(x), float(y)))
+            except LinkageError as exc:
+                raise LinkageError(f"circle_points[{i}]: {exc}") from None
+            dyads.append(Dyad(centre=(g[0], g[1]), circle=(float(x), float(y))))
+    if centre_points is not None:
+        for i, (x, y) in enumerate(_points(centre_points, "centre_points")):
+            try:
+                k = _core.burmester_circle_point(p, (float(x), float(y)))
+            except LinkageError as exc:
+                raise LinkageError(f"centre_points[{i}]: {exc}") from None
+            dyads.append(Dyad(centre=(float(x), float(y)), circle=(k[0], k[1])))
+    return dyads
+
+
+def _dyads_four(p: list[tuple[float, float, float]], beta: Any, n: Any) -> list[Dyad]:
+    if beta is None:
+        count = as_count(n, "n")
+        if count < 1:
+            raise LinkageError(f"n must be ≥ 1, got {count}")
+        b = 2.0 * np.pi * np.arange(count, dtype=np.float64) / count
+    else:
+        b = np.ascontiguousarray(np.atleast_1d(np.asarray(beta, dtype=np.float64)))
+        if b.ndim != 1 or not np.all(np.isfinite(b)):
+            raise LinkageError("beta must be finite angles, a scalar or 1-D")
+    _, centres, circles, _ = _core.burmester_curve(p, b)
+    out = []
+    for g, k in zip(centres.reshape(-1, 2), circles.reshape(-1, 2)):
+        if np.all(np.isfinite(g)) and np.all(np.isfinite(k)):
+            out.append(Dyad(centre=(float(g[0]), float(g[1])), circle=(float(k[0]), float(k[1]))))
+    return out
+
+
+def motion(
+    poses: Any,
+    *,
+    circle_points: Any = None,
+    centre_points: Any = None,
+    beta: Any = None,
+    n: int = 36,
+    top: int | None = None,
+) -> list[MotionCandidate]:
+    """Four-bars that carry a body through 3 or 4 poses (Burmester motion generation).
+
+    Parameters
+    ----------
+    poses : array_like (k, 3)
+        ``(x, y, angle)`` of the body's reference point and angle (radians), k = 3 or 4. The
+        reference point becomes the coupler point.
+    circle_points, centre_points : array_like (m, 2), three poses only
+        Moving pivots (where they lie at pose 0) and/or fixed pivots of the dyads wanted: each
+        gives one dyad (its centre point is the circumcentre of its three positions; a centre
+        point's circle point comes by kinematic inversion). At least two dyads in all.
+    beta, n : four poses only
+        The dyads at crank rotations ``beta`` along the Burmester curve (see
+        :func:`centre_point_curve`), or at ``n`` rotations evenly spaced over a turn.
+    top : int, optional
+        Return only the first ``top`` candidates.
+
+    Returns
+    -------
+    list of MotionCandidate
+        One per ordered pair of distinct dyads (first drives) that makes a four-bar: those that
+        reach every pose on one circuit in order first, then by smallest transmission angle
+        (largest first).
+
+    Raises
+    ------
+    LinkageError
+        Bad poses (shape, count, NaN, coincident), a chosen point whose dyad is degenerate (its
+        centre at infinity or not unique), poses without a Burmester curve, fewer than two
+        dyads.
+    TypeError
+        Points chosen for four poses, or ``beta`` for three.
+    """
+    p = _poses(poses, (3, 4))
+    if len(p) == 3:
+        if beta is not None:
+            raise TypeError("beta applies to four poses; three take circle_points/centre_points")
+        if circle_points is None and centre_points is None:
+            raise LinkageError(
+                "three poses leave two free choices per dyad: give circle_points= and/or "
+                "centre_points= (at least two dyads)"
+            )
+        dyads = _dyads_three(p, circle_points, centre_points)
+    else:
+        if circle_points is not None or centre_points is not None:
+            raise TypeError(
+                "four poses fix the dyads to the Burmester curves: choose them by beta= or n="
+            )
+        dyads = _dyads_four(p, beta, n)
+    if len(dyads) < 2:
+        raise LinkageError(f"needs at least 2 dyads to make a four-bar, got {len(dyads)}")
+    pairs = [(i, j) for i in range(len(dyads)) for j in range(len(dyads)) if i != j]
+    row = [[*dyads[i].centre, *dyads[i].circle] for i, _ in pairs]
+    crank = np.ascontiguousarray(row, dtype=np.float64).reshape(-1, 4)
+    row = [[*dyads[j].centre, *dyads[j].circle] for _, j in pairs]
+    rocker = np.ascontiguousarray(row, dtype=np.float64).reshape(-1, 4)
+    r = _core.motion_candidates(p, crank, rocker)
+    out = []
+    for m, (i, j) in enumerate(pairs):
+        if not r["ok"][m]:
+            continue
+        q = r["params"][m]
+        fb = FourBar(
+            crank=q[4],
+            coupler=q[5],
+            rocker=q[6],
+            point=(q[7], q[8]),
+            assembly="crossed" if q[9] else "open",
+            o=(q[0], q[1]),
+            c=(q[2], q[3]),
+        )
+        code = int(r["defect"][m])
+        pose = int(r["defect_pose"][m])
+        out.append(
+            MotionCandidate(
+                linkage=fb,
+                crank=dyads[i],
+                rocker=dyads[j],
+                reaches=code < 0,
+                defect=None if code < 0 else _DEFECTS[code],
+                defect_pose=None if pose < 0 else pose,
+                direction=int(r["direction"][m]),
+                crank_angles=np.array(r["crank_angles"][m][: len(p)]),
+                position_error=float(r["position_error"][m]),
+                angle_error=float(r["angle_error"][m]),
+                min_transmission_angle=float(r["min_transmission"][m]),
+                grashof=str(r["grashof"][m]),
+            )
+        )
+    out.sort(key=lambda c: (not c.reaches, -c.min_transmission_angle))
+    if top is not None:
+        out = out[: as_count(top, "top")]
+    return out
+
+
+def chebyshev_points(x0: float, x1: float, n: int) -> NDArray[np.float64]:
+    """``n`` Chebyshev precision points on ``[x0, x1]``, increasing:
+    ``(x0 + x1)/2 − (x1 − x0)/2 · cos((2j + 1)π / 2n)``.
+
+    >>> chebyshev_points(0.0, 1.0, 3).round(6)
+    array([0.066987, 0.5     , 0.933013])
+    """
+    a, b = as_finite(x0, "x0"), as_finite(x1, "x1")
+    pts: NDArray[np.float64] = _core.chebyshev_points(a, b, as_count(n, "n"))
+    return pts
+
+
+def _pair(value: Any, name: str) -> tuple[float, float]:
+    if isinstance(value, (str, bytes)) or not isinstance(value, (Sequence, np.ndarray)):
+        raise TypeError(f"{name} must be a pair (start, end), got {type(value).__name__}")
+    if len(value) != 2:
+        raise LinkageError(f"{name} must be a pair (start, end), got {len(value)} values")
+    a, b = as_finite(value[0], f"{name}[0]"), as_finite(value[1], f"{name}[1]")
+    if a == b:
+        raise LinkageError(f"{name} must have distinct ends, got {a} twice")
+    return a, b
+
+
+def _call(f: Callable[[float], Any], x: float) -> float:
+    y = f(x)
+    try:
+        v = float(y)
+    except (TypeError, ValueError):
+        raise TypeError(f"f({x}) must be a real number, got {type(y).__name__}") from None
+    if not math.isfinite(v):
+        raise LinkageError(f"f({x}) = {v} is not finite")
+    return v
+
+
+def function(
+    f: Callable[[float], Any],
+    x_range: Sequence[float],
+    phi_range: Sequence[float],
+    psi_range: Sequence[float],
+    points: int | Sequence[float] = 3,
+    spacing: str = "chebyshev",
+    *,
+    ground: float = 1.0,
+    y_range: Sequence[float] | None = None,
+    n_check: int = 1001,
+) -> FunctionGenerator:
+    """A four-bar function generator for ``y = f(x)`` by Freudenstein's equation.
+
+    ``x`` over ``x_range`` maps linearly to the input angle over ``phi_range`` and ``y`` over
+    ``y_range`` (default ``(f(x0), f(x1))``) to the output angle over ``psi_range`` (radians,
+    both from the ground line, which runs from ``o = (0, 0)`` to ``c = (ground, 0)``).
+
+    Parameters
+    ----------
+    points : int or sequence of float
+        Number of precision points (3: exact; more: least squares on Freudenstein's
+        equation), or the ``x`` values themselves.
+    spacing : {"chebyshev", "uniform"}
+        Where ``points`` precision points go: Chebyshev spacing, or evenly with both ends.
+    n_check : int
+        Samples of ``x`` for the structural error (tracked sweep of the linkage).
+
+    Raises
+    ------
+    LinkageError
+        Bad ranges, fewer than 3 or coincident precision points, a singular system, no real
+        linkage (a link of infinite or imaginary length), ``f`` not finite.
+    TypeError
+        ``f`` not callable or not returning a real number.
+    """
+    if not callable(f):
+        raise TypeError(f"f must be callable, got {type(f).__name__}")
+    x0, x1 = _pair(x_range, "x_range")
+    phi0, phi1 = _pair(phi_range, "phi_range")
+    psi0, psi1 = _pair(psi_range, "psi_range")
+    y0, y1 = _pair(y_range, "y_range") if y_range is not None else (_call(f, x0), _call(f, x1))
+    if y0 == y1:
+        raise LinkageError(f"f(x0) = f(x1) = {y0}: give y_range to scale the output")
+    if isinstance(points, (int, np.integer)) and not isinstance(points, bool):
+        m = as_count(points, "points")
+        if m < 3:
+            raise LinkageError(f"needs at least 3 precision points, got {m}")
+        if spacing == "chebyshev":
+            xs = chebyshev_points(x0, x1, m)
+        elif spacing == "uniform":
+            xs = np.linspace(x0, x1, m)
+        else:
+            raise LinkageError(f"spacing must be 'chebyshev' or 'uniform', got {spacing!r}")
+    else:
+        xs = np.asarray(points, dtype=np.float64).reshape(-1)
+        if xs.size < 3:
+            raise LinkageError(f"needs at least 3 precision points, got {xs.size}")
+        if not np.all(np.isfinite(xs)):
+            raise LinkageError("precision points must be finite")
+    count = as_count(n_check, "n_check")
+    if count < 2:
+        raise LinkageError(f"n_check must be ≥ 2, got {count}")
+    g = as_finite(ground, "ground")
+    ys = np.array([_call(f, float(x)) for x in xs])
+
+    def phi_of(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        return phi0 + (x - x0) / (x1 - x0) * (phi1 - phi0)
+
+    def psi_of(y: NDArray[np.float64]) -> NDArray[np.float64]:
+        return psi0 + (y - y0) / (y1 - y0) * (psi1 - psi0)
+
+    phi, psi = phi_of(xs), psi_of(ys)
+    grid = np.linspace(x0, x1, count)
+    r = _core.function_generator(
+        [float(v) for v in phi], [float(v) for v in psi], g, np.ascontiguousarray(phi_of(grid))
+    )
+    q = r["params"]
+    fb = FourBar(
+        crank=q[4],
+        coupler=q[5],
+        rocker=q[6],
+        point=(q[7], q[8]),
+        assembly="crossed" if q[9] else "open",
+        o=(q[0], q[1]),
+        c=(q[2], q[3]),
+    )
+    want = psi_of(np.array([_call(f, float(x)) for x in grid]))
+    err = np.asarray(r["output"], dtype=np.float64) - want
+    err = (err + np.pi) % (2 * np.pi) - np.pi
+    worst = float(np.max(np.abs(err))) if np.all(np.isfinite(err)) else math.nan
+    code = int(r["defect"])
+    off = float(r["input_offset"])
+    return FunctionGenerator(
+        linkage=fb,
+        structural_error=worst,
+        structural_error_y=worst * abs((y1 - y0) / (psi1 - psi0)),
+        precision_points=np.column_stack([xs, ys]),
+        precision_angles=np.column_stack([phi, psi]),
+        k=(float(r["k"][0]), float(r["k"][1]), float(r["k"][2])),
+        crank_range=(phi0 + off, phi1 + off),
+        psi_range=(psi0, psi1),
+        output_offset=float(r["output_offset"]),
+        x=grid,
+        error=err,
+        reaches=code < 0,
+        defect=None if code < 0 else _DEFECTS[code],
+        min_transmission_angle=float(r["min_transmission"]),
+        grashof=str(r["grashof"]),
+    )

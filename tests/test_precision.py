@@ -1,0 +1,317 @@
+"""Precision-point synthesis: Burmester motion generation, Freudenstein function generation.
+
+Golden values are by construction: a known four-bar's coupler poses, or its own input-output
+function, are synthesised and the same four-bar must come back (no textbook figures are quoted:
+the worked examples of Norton, Shigley/Uicker, Sandor & Erdman and McCarthy were not at hand to
+check their numbers). Consistency tests compute one quantity two ways.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import linkage
+from linkage._precision import (
+    centre_point_curve,
+    chebyshev_points,
+    circle_point_curve,
+    function,
+    motion,
+)
+
+TAU = 2 * math.pi
+
+
+def coupler_poses(fb: linkage.FourBar, theta):
+    """Poses (x, y, angle of A→B) of ``fb``'s coupler at crank angles ``theta`` (no tracking:
+    each on the declared assembly), and the pins A, B."""
+    s = fb.sweep(np.asarray(theta, dtype=float))
+    a, b = s.joints[:, 2], s.joints[:, 3]
+    d = b - a
+    return np.column_stack([s.point, np.arctan2(d[:, 1], d[:, 0])]), a, b
+
+
+def crank_rocker(assembly: str = "open") -> linkage.FourBar:
+    return linkage.FourBar(
+        crank=0.7,
+        coupler=1.9,
+        rocker=1.6,
+        point=(0.8, 0.6),
+        o=(0.3, -0.2),
+        c=(2.3, 0.4),
+        assembly=assembly,
+    )
+
+
+def same(a: linkage.FourBar, b: linkage.FourBar, tol: float = 1e-12) -> bool:
+    pa = np.array([*a.o, *a.c, a.crank, a.coupler, a.rocker, *a.point])
+    pb = np.array([*b.o, *b.c, b.crank, b.coupler, b.rocker, *b.point])
+    return bool(np.max(np.abs(pa - pb)) <= tol and a.assembly == b.assembly)
+
+
+def reproduces(c, poses, tol=1e-12) -> float:
+    """Largest mismatch of the candidate's own tracked sweep at its crank angles."""
+    s = c.linkage.sweep(c.crank_angles)
+    a, b = s.joints[:, 2], s.joints[:, 3]
+    ang = np.arctan2(b[:, 1] - a[:, 1], b[:, 0] - a[:, 0])
+    offset = poses[0, 2] - ang[0]
+    dang = (ang + offset - poses[:, 2] + np.pi) % TAU - np.pi
+    return float(max(np.max(np.abs(s.point - poses[:, :2])), np.max(np.abs(dang))))
+
+
+def test_three_poses_recover_a_four_bar_from_circle_points():
+    fb = crank_rocker()
+    poses, a, b = coupler_poses(fb, [0.4, 1.3, 2.5])
+    cands = motion(poses, circle_points=[a[0], b[0]])
+    assert len(cands) == 2  # each dyad driving once
+    first = next(c for c in cands if np.allclose(c.crank.centre, fb.o, atol=1e-12))
+    assert first.reaches and first.defect is None and first.direction == 1
+    assert same(first.linkage, fb)
+    assert first.grashof == "crank-rocker"
+    np.testing.assert_allclose(first.crank_angles, [0.4, 1.3, 2.5], atol=1e-12)
+    assert first.position_error <= 1e-12 and first.angle_error <= 1e-12
+    # The sweep of the returned linkage through the poses reproduces them (two ways).
+    assert reproduces(first, poses) <= 1e-12
+    # Candidates come valid first.
+    assert cands[0].reaches or not any(c.reaches for c in cands)
+
+
+def test_three_poses_from_centre_points_invert_exactly():
+    fb = crank_rocker()
+    poses, a, b = coupler_poses(fb, [0.4, 1.3, 2.5])
+    cands = motion(poses, centre_points=[fb.o, fb.c])
+    first = next(c for c in cands if np.allclose(c.crank.centre, fb.o))
+    np.testing.assert_allclose(first.crank.circle, a[0], atol=1e-12)
+    np.testing.assert_allclose(first.rocker.circle, b[0], atol=1e-12)
+    assert same(first.linkage, fb) and first.reaches
+
+
+def test_four_poses_recover_the_dyads_on_the_burmester_curves():
+    fb = crank_rocker()
+    theta = np.array([0.2, 0.9, 1.7, 2.6])
+    poses, a, b = coupler_poses(fb, theta)
+    rocker_angle = np.arctan2(b[:, 1] - fb.c[1], b[:, 0] - fb.c[0])
+    # The free rotation is to one of poses 1-3; try the crank's and rocker's rotations to each.
+    beta = [theta[k] - theta[0] for k in (1, 2, 3)] + [
+        rocker_angle[k] - rocker_angle[0] for k in (1, 2, 3)
+    ]
+    cands = motion(poses, beta=beta)
+    hits = [c for c in cands if same(c.linkage, fb, 1e-9)]
+    assert hits and all(c.reaches for c in hits)
+    assert reproduces(hits[0], poses) <= 1e-9
+
+
+def test_burmester_curves_pair_concyclic_points():
+    poses = np.array([[0.0, 0.0, 0.0], [1.0, 0.3, 0.4], [1.8, 1.1, 0.9], [2.1, 2.0, 1.6]])
+    g = centre_point_curve(poses, n=360)
+    k = circle_point_curve(poses, n=360)
+    assert g.shape == k.shape == (720, 2)
+    ok = np.all(np.isfinite(g), axis=1)
+    assert ok.sum() > 400
+    assert np.array_equal(ok, np.all(np.isfinite(k), axis=1))
+    # Each circle point's four positions lie on a circle about its centre point.
+    c, s = np.cos(poses[:, 2]), np.sin(poses[:, 2])
+    w = k[ok] - poses[0, :2]
+    w = np.column_stack([c[0] * w[:, 0] + s[0] * w[:, 1], -s[0] * w[:, 0] + c[0] * w[:, 1]])
+    radii = []
+    for j in range(4):
+        pos = poses[j, :2] + np.column_stack(
+            [c[j] * w[:, 0] - s[j] * w[:, 1], s[j] * w[:, 0] + c[j] * w[:, 1]]
+        )
+        radii.append(np.hypot(*(pos - g[ok]).T))
+    r = np.array(radii)
+    assert np.max(np.abs(r - r[0]) / np.maximum(r[0], 1.0)) < 1e-9
+
+
+def test_branch_defect_is_flagged_never_passed():
+    fb = crank_rocker()
+    p_open, a, b = coupler_poses(fb, [0.4, 1.3])
+    p_crossed, _, _ = coupler_poses(crank_rocker("crossed"), [2.5])
+    poses = np.vstack([p_open, p_crossed])
+    cands = motion(poses, circle_points=[a[0], b[0]])
+    first = next(c for c in cands if np.allclose(c.crank.centre, fb.o))
+    assert not first.reaches
+    assert first.defect == "branch" and first.defect_pose == 2
+
+
+def test_order_defect_is_flagged():
+    fb = crank_rocker()
+    theta = np.array([0.0, 3.0, 1.5, 4.5])
+    poses, a, b = coupler_poses(fb, theta)
+    rocker_angle = np.arctan2(b[:, 1] - fb.c[1], b[:, 0] - fb.c[0])
+    beta = [theta[k] - theta[0] for k in (1, 2, 3)] + [
+        rocker_angle[k] - rocker_angle[0] for k in (1, 2, 3)
+    ]
+    hits = [c for c in motion(poses, beta=beta) if same(c.linkage, fb, 1e-9)]
+    assert hits and all(c.defect == "order" for c in hits)
+
+
+def test_chebyshev_spacing():
+    h = math.sqrt(3) / 4
+    np.testing.assert_allclose(chebyshev_points(0.0, 1.0, 3), [0.5 - h, 0.5, 0.5 + h], atol=1e-15)
+    x = chebyshev_points(1.0, 4.0, 6)
+    np.testing.assert_allclose(x + x[::-1], 5.0, atol=1e-14)
+    j = np.arange(6)
+    np.testing.assert_allclose(x, 2.5 - 1.5 * np.cos((2 * j + 1) * np.pi / 12), atol=1e-15)
+
+
+def rocker_angle_of(fb: linkage.FourBar, theta: float) -> float:
+    b = fb.sweep([theta]).joints[0, 3]
+    return math.atan2(b[1] - fb.c[1], b[0] - fb.c[0])
+
+
+def test_function_generation_recovers_a_known_linkage():
+    fb = linkage.FourBar(ground=1.0, crank=0.45, coupler=1.1, rocker=0.8)
+
+    def f(x: float) -> float:
+        return rocker_angle_of(fb, x)
+
+    lo, hi = 0.5, 2.2
+    r = function(f, (lo, hi), (lo, hi), (f(lo), f(hi)))
+    assert same(r.linkage, fb)
+    assert r.reaches and r.defect is None
+    assert r.structural_error < 1e-11
+    assert r.precision_points.shape == (3, 2)
+    np.testing.assert_allclose(r.precision_points[:, 0], chebyshev_points(lo, hi, 3))
+    d, a, b, c = 1.0, 0.45, 1.1, 0.8
+    np.testing.assert_allclose(r.k, [d / a, d / c, (a * a - b * b + c * c + d * d) / (2 * a * c)])
+    # Least squares over 7 points of the same function is exact too.
+    r7 = function(f, (lo, hi), (lo, hi), (f(lo), f(hi)), points=7)
+    assert same(r7.linkage, fb)
+
+
+def test_function_generation_structural_error_two_ways():
+    # y = log10 x on [1, 2]; φ from 45° over 60°, ψ from 135° over 90° (figures measured here).
+    phi = (math.radians(45), math.radians(105))
+    psi = (math.radians(135), math.radians(225))
+    r = function(math.log10, (1.0, 2.0), phi, psi)
+    assert r.reaches
+    assert 1e-6 < r.structural_error < math.radians(1.0)
+    # The error at the precision points is zero: the returned linkage, swept there.
+    for (x, _), (p, q) in zip(r.precision_points, r.precision_angles):
+        theta = p + (r.crank_range[0] - phi[0])
+        out = rocker_angle_of(r.linkage, theta) - r.output_offset
+        assert abs((out - q + np.pi) % TAU - np.pi) < 1e-12
+    # The error curve equals the sweep of the returned linkage against the desired output.
+    theta = r.crank_range[0] + (r.x - 1.0) * (r.crank_range[1] - r.crank_range[0])
+    s = r.linkage.sweep(theta)
+    b = s.joints[:, 3]
+    out = np.arctan2(b[:, 1] - r.linkage.c[1], b[:, 0] - r.linkage.c[0]) - r.output_offset
+    want = psi[0] + np.log10(r.x) / math.log10(2.0) * (psi[1] - psi[0])
+    err = (out - want + np.pi) % TAU - np.pi
+    np.testing.assert_allclose(err, r.error, atol=1e-12)
+    assert r.structural_error == pytest.approx(np.max(np.abs(err)), abs=1e-12)
+    assert r.structural_error_y == pytest.approx(
+        r.structural_error * math.log10(2.0) / (psi[1] - psi[0])
+    )
+
+
+@pytest.mark.parametrize(
+    ("poses", "kwargs", "exc", "match"),
+    [
+        ([[0, 0, 0], [1, 0, 0.1]], {"circle_points": [[0, 1]]}, linkage.LinkageError, "at least 3"),
+        ([[0, 0, 0]] * 5, {}, linkage.LinkageError, "3 or 4 poses"),
+        (
+            [[0, 0, 0], [1, 0, np.nan], [0, 1, 0]],
+            {"circle_points": [[0, 1]]},
+            linkage.LinkageError,
+            "finite",
+        ),
+        (
+            [[0, 0, 0.1], [1, 0.5, 0.4], [0, 0, 0.1]],
+            {"circle_points": [[0.3, 0.3], [1, 1]]},
+            linkage.LinkageError,
+            "0 and 2 coincide",
+        ),
+        ([[0, 0, 0], [1, 0, 0.1], [2, 0.5, 0.2]], {}, linkage.LinkageError, "circle_points="),
+        (
+            [[0, 0, 0.5], [1, 1, 0.5], [3, 3, 0.5]],
+            {"circle_points": [[0.2, -0.7], [1, 0]]},
+            linkage.LinkageError,
+            r"circle_points\[0\].*infinity",
+        ),
+        (
+            [[0, 0, 0.2], [1, 0, 0.2], [1, 1, 0.2], [0, 2, 0.2]],
+            {},
+            linkage.LinkageError,
+            "pure translations",
+        ),
+        ([[0, 0, 0], [1, 0, 0.1], [2, 0.5, 0.2]], {"beta": [0.1]}, TypeError, "beta"),
+        (
+            [[0, 0, 0], [1, 0, 0.1], [2, 0.5, 0.2], [2, 1, 0.4]],
+            {"circle_points": [[0, 1]]},
+            TypeError,
+            "beta",
+        ),
+        (
+            [[0, 0, 0], [1, 0, 0.1], [2, 0.5, 0.2]],
+            {"circle_points": [[5, 5]]},
+            linkage.LinkageError,
+            "at least 2 dyads",
+        ),
+    ],
+)
+def test_motion_bad_input(poses, kwargs, exc, match):
+    with pytest.raises(exc, match=match):
+        motion(np.asarray(poses, dtype=float), **kwargs)
+
+
+def test_function_bad_input():
+    rng = (0.0, 1.0)
+    with pytest.raises(TypeError, match="callable"):
+        function(3.0, rng, rng, rng)  # type: ignore[arg-type]
+    with pytest.raises(linkage.LinkageError, match="at least 3"):
+        function(math.exp, rng, rng, (0.5, 1.5), points=2)
+    with pytest.raises(linkage.LinkageError, match="distinct"):
+        function(math.exp, (1.0, 1.0), rng, rng)
+    with pytest.raises(linkage.LinkageError, match="not finite"):
+        function(lambda x: math.nan, rng, rng, rng)
+    with pytest.raises(linkage.LinkageError, match="y_range"):
+        function(math.cos, (-1.0, 1.0), rng, rng)
+    with pytest.raises(linkage.LinkageError, match="coincide"):
+        function(math.exp, rng, (0.5, 1.5), (1.0, 2.0), points=[0.2, 0.5, 0.2])
+    with pytest.raises(linkage.LinkageError, match="spacing"):
+        function(math.exp, rng, (0.5, 1.5), (1.0, 2.0), spacing="random")
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    lens=st.tuples(*[st.floats(0.3, 3.0)] * 4),
+    start=st.floats(0.0, TAU),
+    steps=st.lists(st.floats(0.2, 1.5), min_size=2, max_size=2),
+    crossed=st.lists(st.booleans(), min_size=3, max_size=3),
+)
+def test_every_candidate_reaches_or_is_flagged(lens, start, steps, crossed):
+    g, r, b, c = lens
+    theta = np.cumsum([start, *steps])
+    rows, pins = [], []
+    for t, x in zip(theta, crossed):
+        fb = linkage.FourBar(
+            ground=g,
+            crank=r,
+            coupler=b,
+            rocker=c,
+            point=(0.4, 0.3),
+            assembly="crossed" if x else "open",
+        )
+        p, a, bb = coupler_poses(fb, [t])
+        if not np.all(np.isfinite(p)):
+            return
+        rows.append(p[0])
+        pins.append((a[0], bb[0]))
+    poses = np.array(rows)
+    try:
+        cands = motion(poses, circle_points=[pins[0][0], pins[0][1]])
+    except linkage.LinkageError:
+        return
+    for cand in cands:
+        if cand.reaches:
+            size = max(cand.linkage.ground, cand.linkage.crank, cand.linkage.coupler, 1.0)
+            assert reproduces(cand, poses) <= 1e-9 * size
+        else:
+            assert cand.defect in ("branch", "toggle", "order", "flat-position")
