@@ -273,10 +273,10 @@ def test_default_scene_equals_the_example_file():
 
 
 def test_scene_scale_multiplies_every_length_of_a_catalogue_four_bar():
-    from linkage import catalog, runner, scene
+    from linkage import build, catalog, scene
 
     base = catalog.hoecken()
-    mech = runner.build_mechanism(
+    mech = build.build_mechanism(
         scene.parse(
             'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\nscale = 2.5\n'
             '[drive]\nkind = "constant"\nrpm = 50.0\n'
@@ -293,7 +293,7 @@ def test_scene_scale_multiplies_every_length_of_a_catalogue_four_bar():
     text = (Path(__file__).parent.parent / "examples" / "biped_custom_legs.toml").read_text()
     big = text.replace('catalog = "hoecken",', 'catalog = "hoecken", scale = 2.0,')
     assert big != text
-    legs = runner.build_walker(scene.parse(big)).legs
+    legs = build.build_walker(scene.parse(big)).legs
     for leg in legs:
         for name in ("ground", "crank", "coupler", "rocker"):
             assert getattr(leg.linkage, name) == 2.0 * getattr(base, name)

@@ -11,7 +11,7 @@ import ezdxf
 import numpy as np
 import pytest
 
-from linkage import LinkageError, export, runner, scene
+from linkage import LinkageError, export, figures, runner, scene
 
 ROOT = Path(__file__).resolve().parents[1]
 SVG = "{http://www.w3.org/2000/svg}"
@@ -249,7 +249,7 @@ def test_a_slider_crank_draws_its_block_on_its_guide(tmp_path):
     m.slider("B", "A", 30, "G", direction=(1, 0))
     theta = np.linspace(0, 2 * np.pi, 73)
     s = m.sweep(theta)
-    res = runner.Result(
+    res = figures.Result(
         scene=Scene(name="slider", path=None, outputs=("trajectory",), units="mm"),
         time=theta,
         theta=theta,

@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from linkage import LinkageError, runner, scene
+from linkage import LinkageError, figures, runner, scene
 from linkage.html_report import MAX_FRAMES, frames, page, write_index
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -223,14 +223,14 @@ def browser() -> Iterator[Browser]:
         b.close()
 
 
-def _result(name: str | None) -> runner.Result:
+def _result(name: str | None) -> figures.Result:
     if name == "slider-crank":
         return _slider_crank()
     sc = scene.parse(scene.DEFAULT_SCENE) if name is None else scene.load(EXAMPLES / name)
     return runner.run(sc)
 
 
-def _slider_crank() -> runner.Result:
+def _slider_crank() -> figures.Result:
     """An offset slider-crank from the Python API (scenes have no sliders), with a coupler
     point: a run as ``linkage run`` would hand it to the report."""
     from linkage import Mechanism
@@ -247,8 +247,8 @@ def _slider_crank() -> runner.Result:
         'name = "slider-crank"\nunits = "mm"\noutputs = ["trajectory"]\n'
         '[mechanism]\ncatalog = "hoecken"\n[drive]\nkind = "constant"\nomega = 6.283185307\n'
     )
-    res = runner.Result(scene=sc, time=t, theta=theta, mechanism=m, sweep=m.sweep(theta))
-    res.figures.append(runner.Row("stroke", "40", "mm", "exact"))
+    res = figures.Result(scene=sc, time=t, theta=theta, mechanism=m, sweep=m.sweep(theta))
+    res.figures.append(figures.Row("stroke", "40", "mm", "exact"))
     return res
 
 
@@ -367,7 +367,7 @@ def test_page_in_chromium(browser: Browser, tmp_path: Path, name: str | None, ki
     assert float(table["time"][0]) == pytest.approx(res.time[k], abs=_last_digit(table["time"][0]))
     assert table["time"][1] == "s"
     assert table["crank angle"][1] == "°"
-    length = runner.length_unit(res.scene)
+    length = figures.length_unit(res.scene)
     if kind == "walker":
         assert table["stability margin"][1] == length
         assert res.simulation is not None

@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from linkage import runner, scene
-from linkage.runner import Row, format_number, significant_digits
+from linkage import figures, runner, scene
+from linkage.figures import Row, format_number, significant_digits
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
@@ -152,7 +152,7 @@ def test_the_old_stride_and_slip_discrepancies_are_within_their_errors(results):
 
 def test_check_counts_share_only_the_ends_with_the_run():
     for n in (8, 9, 361, 721, 800, 5761):
-        half, double = runner.check_counts(n)
+        half, double = figures.check_counts(n)
         assert math.gcd(half - 1, n - 1) == 1 and double == 2 * n - 1
         t = np.linspace(0, 1, n)
         shared = np.intersect1d(np.round(t, 12), np.round(np.linspace(0, 1, half), 12))

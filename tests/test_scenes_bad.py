@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from linkage import runner, scene
+from linkage import build, runner, scene
 from linkage.cli import main
 
 ROOT = Path(__file__).parent.parent
@@ -114,14 +114,14 @@ def test_samples_override_beyond_the_memory_cap_is_refused_before_writing(tmp_pa
 
 def test_memory_estimate_grows_with_samples_and_outputs():
     sc = scene.load(ROOT / "examples" / "hoecken.toml")
-    mech = runner.build_mechanism(sc)
-    small, big = runner.estimate_memory(sc, mech, 1000), runner.estimate_memory(sc, mech, 10**6)
+    mech = build.build_mechanism(sc)
+    small, big = build.estimate_memory(sc, mech, 1000), build.estimate_memory(sc, mech, 10**6)
     assert small < big <= scene.MEMORY_CAP
     plain = scene.parse(
         'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
         '[drive]\nkind = "constant"\nrpm = 50.0\n'
     )
-    assert runner.estimate_memory(plain, mech, 10**6) < big
+    assert build.estimate_memory(plain, mech, 10**6) < big
 
 
 def test_no_assembled_sample_under_a_samples_override_is_an_error():

@@ -36,7 +36,7 @@ from numpy.typing import NDArray
 
 from linkage._core import LinkageError
 from linkage.drawing import Drawing, mechanism_drawing, walker_drawing
-from linkage.runner import Result, Row, length_unit, torque_unit
+from linkage.figures import Result, Row, length_unit, torque_unit
 
 Array = NDArray[np.float64]
 

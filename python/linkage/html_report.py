@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 
 from linkage._core import LinkageError
 from linkage.drawing import Drawing
-from linkage.runner import Result, length_unit
+from linkage.figures import Result, length_unit
 
 Array = NDArray[np.float64]
 
@@ -209,9 +209,9 @@ def _views(res: Result, drawings: Sequence[Drawing] | None = None) -> list[dict[
         if len(d) != len(res.time):
             raise LinkageError(f"a drawing of {len(d)} samples for a run of {len(res.time)}")
     if res.walker is not None and res.simulation is not None:
+        from linkage.build import build_drive
         from linkage.drawing import leg_angles, walker_drawing
         from linkage.drive import CrankSchedule
-        from linkage.runner import build_drive
 
         walker, sim = res.walker, res.simulation
         side_top = [

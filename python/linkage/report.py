@@ -37,7 +37,7 @@ import numpy as np
 
 from linkage._core import LinkageError
 from linkage.drawing import Array, Drawing, LinkShape
-from linkage.runner import Result, torque_unit, unit_label
+from linkage.figures import Result, torque_unit, unit_label
 
 MARKER = ".linkage-report"
 """Name of the marker file that makes a folder a report linkage wrote (and may replace)."""
@@ -659,9 +659,9 @@ def _pose_sample(d: Drawing) -> int:
 def _walker_views(res: Result, units: str) -> list[tuple[Drawing, bool]]:
     """The side and top views of a run's walker, each with whether it is drawn to scale (the
     side view of legs that all lie in the horizontal plane is only a few pad heights tall)."""
+    from linkage.build import build_drive
     from linkage.drawing import leg_angles, walker_drawing
     from linkage.drive import CrankSchedule
-    from linkage.runner import build_drive
 
     walker, sim = res.walker, res.simulation
     assert walker is not None and sim is not None

@@ -21,7 +21,7 @@ Validation is complete: :func:`load` and :func:`parse` check every key's type an
 references between sections, and then build the study once without running it (the linkage,
 walker, drive, cam and masses, and the first assembled sample) so that whatever
 :func:`linkage.runner.run` would reject is rejected here, with the file, line and key. A scene's
-estimated memory (see :func:`linkage.runner.estimate_memory`) must stay under
+estimated memory (see :func:`linkage.build.estimate_memory`) must stay under
 :data:`MEMORY_CAP`.
 """
 
@@ -117,7 +117,7 @@ SAMPLES_MAX = 10**9
 """Most samples in one run (the memory estimate usually refuses far fewer)."""
 MEMORY_CAP = 2 * 1024**3
 """Largest estimated memory of a run, in bytes (2 GiB); see
-:func:`linkage.runner.estimate_memory`."""
+:func:`linkage.build.estimate_memory`."""
 FILE_MAX = 1 << 20
 """Largest scene file, in bytes (1 MiB; a scene is a few hundred bytes)."""
 NAME = re.compile(r"[a-z0-9][a-z0-9_-]{0,63}")
@@ -412,9 +412,9 @@ def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene
     if "cam" in outputs and scene.cam is None:
         raise scene.error((), "outputs", "'cam' needs a [cam] section")
     # Build the study once without running it: whatever `run` would reject is rejected here.
-    from linkage import runner
+    from linkage import build
 
-    runner.validate(scene)
+    build.validate(scene)
     return scene
 
 

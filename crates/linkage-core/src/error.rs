@@ -78,12 +78,19 @@ pub enum Error {
         what: &'static str,
     },
     /// A crank-speed schedule cannot hold the foot speed asked for: `why` says what fails,
-    /// `value` the figure that fails (a time in s or a crank speed in rad/s).
+    /// `figure` names the figure that shows it, `value` and `unit` give it, `hint` says what to
+    /// change (may be empty).
     ScheduleInfeasible {
         /// What fails.
         why: &'static str,
-        /// The failing figure.
+        /// The figure that shows it.
+        figure: &'static str,
+        /// Its value.
         value: f64,
+        /// Its unit.
+        unit: &'static str,
+        /// What to change.
+        hint: &'static str,
     },
     /// A count or index is so large that the arithmetic on it would overflow `usize`.
     CountOverflow {
@@ -173,8 +180,18 @@ impl fmt::Display for Error {
             Error::CountOverflow { what } => {
                 write!(f, "{what} is too large: the count overflows")
             }
-            Error::ScheduleInfeasible { why, value } => {
-                write!(f, "no crank schedule: {why} ({})", Num(value))
+            Error::ScheduleInfeasible {
+                why,
+                figure,
+                value,
+                unit,
+                hint,
+            } => {
+                write!(f, "{why} ({figure} {} {unit})", Sig3(value))?;
+                if !hint.is_empty() {
+                    write!(f, "; {hint}")?;
+                }
+                Ok(())
             }
             Error::TooFew { what, needed, got } => {
                 write!(f, "needs at least {needed} {what}, got {got}")
@@ -207,6 +224,34 @@ impl fmt::Display for Num {
     }
 }
 
+/// A figure to three significant digits (the error messages' figures are for reading).
+struct Sig3(f64);
+
+impl fmt::Display for Sig3 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || !a.is_finite() {
+            write!(f, "{}", self.0)
+        } else if (1e-3..1e6).contains(&a) {
+            // Decimals so that three significant digits show: 2 for [1, 10), 0 from 100 up.
+            let mut decimals = 2usize;
+            let mut top = 10.0;
+            while a >= top && decimals > 0 {
+                decimals -= 1;
+                top *= 10.0;
+            }
+            let mut bottom = 1.0;
+            while a < bottom {
+                decimals += 1;
+                bottom /= 10.0;
+            }
+            write!(f, "{:.*}", decimals, self.0)
+        } else {
+            write!(f, "{:.2e}", self.0)
+        }
+    }
+}
+
 /// Checks that `value` is a positive finite length.
 pub(crate) fn check_length<T: nalgebra::RealField + Copy>(
     what: &'static str,
@@ -234,5 +279,29 @@ pub(crate) fn check_finite<T: nalgebra::RealField + Copy>(
             what,
             value: crate::scalar::to_f64(value),
         })
+    }
+}
+
+#[cfg(test)]
+mod sig3_tests {
+    use super::Sig3;
+    extern crate std;
+    use std::format;
+
+    #[test]
+    fn three_significant_digits() {
+        let cases = [
+            (-3.524_584, "-3.52"),
+            (0.001_234_5, "0.00123"),
+            (12.349, "12.3"),
+            (999.4, "999"),
+            (123_456.0, "123456"),
+            (1.5e7, "1.50e7"),
+            (2.5e-5, "2.50e-5"),
+            (0.0, "0"),
+        ];
+        for (x, want) in cases {
+            assert_eq!(format!("{}", Sig3(x)), want, "{x}");
+        }
     }
 }

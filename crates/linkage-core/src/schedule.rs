@@ -200,8 +200,11 @@ impl<'a, T: RealField + Copy> StanceSchedule<'a, T> {
             check_finite("stance foot speed per radian", u[k])?;
             if u[k] <= T::zero() {
                 return Err(Error::ScheduleInfeasible {
-                    why: "the foot stops along the stance line (speed per radian of crank)",
+                    why: "the foot stops along the stance line",
+                    figure: "its speed per radian of crank",
                     value: u[k].to_subset().unwrap_or(f64::NAN),
+                    unit: "length/rad",
+                    hint: "no constant-speed schedule exists",
                 });
             }
             if k > 0 && theta[k] <= theta[k - 1] {
@@ -224,15 +227,21 @@ impl<'a, T: RealField + Copy> StanceSchedule<'a, T> {
         let f = |x: T| x.to_subset().unwrap_or(f64::NAN);
         if !(period.is_finite() && stance_time > T::zero() && swing_time > T::zero()) {
             return Err(Error::ScheduleInfeasible {
-                why: "the stance takes no time or overflows at this foot speed (stance time, s)",
+                why: "the stance takes no time or overflows at this foot speed",
+                figure: "stance time",
                 value: f(stance_time),
+                unit: "s",
+                hint: "",
             });
         }
         let swing_angle = T::two_pi() - (theta[n - 1] - theta[0]);
         if swing_angle <= T::zero() {
             return Err(Error::ScheduleInfeasible {
-                why: "the stance covers a whole crank turn (swing angle, rad)",
+                why: "the stance covers a whole crank turn",
+                figure: "swing angle",
                 value: f(swing_angle),
+                unit: "rad",
+                hint: "",
             });
         }
         let (w0, w1) = (foot_speed / u[0], foot_speed / u[n - 1]);
@@ -250,9 +259,11 @@ impl<'a, T: RealField + Copy> StanceSchedule<'a, T> {
         let slowest = schedule.slowest_swing_speed();
         if !slowest.is_finite() || slowest <= T::zero() {
             return Err(Error::ScheduleInfeasible {
-                why: "the duty factor needs the crank to stop during the swing; raise the duty \
-                      factor or lower the foot speed (minimum crank speed, rad/s)",
+                why: "the duty factor needs the crank to stop during the swing",
+                figure: "minimum crank speed",
                 value: f(slowest),
+                unit: "rad/s",
+                hint: "raise the duty factor or lower the foot speed",
             });
         }
         Ok(schedule)

@@ -1,0 +1,632 @@
+"""Building a scene's objects — mechanism, walker, drive, cam, masses — and validating a scene
+without running it.
+
+The builders (:func:`build_mechanism`, :func:`build_walker`, :func:`build_drive`,
+:func:`build_cam`, :func:`build_masses`) turn any error into a :class:`SceneError` located at
+the key that caused it, and :func:`validate` — called by :func:`linkage.scene.parse` — runs them
+once without computing anything, checks the memory estimate and finds a first assembled sample,
+so ``linkage check`` refuses whatever ``linkage run`` would.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage import catalog
+from linkage._core import LinkageError
+from linkage._fourbar import FourBar
+from linkage._mechanism import Mechanism
+from linkage.drive import (
+    ConstantSpeed,
+    CrankSchedule,
+    Geared,
+    GearTrain,
+    Program,
+    Segment,
+    crank_schedule,
+)
+from linkage.figures import check_counts
+from linkage.forces import LinkMass, PointLoad, forces
+from linkage.scene import (
+    CYCLES_MAX,
+    MEMORY_CAP,
+    SAMPLES_MAX,
+    SPEED_RANGE,
+    TIME_RANGE,
+    Scene,
+    SceneError,
+    _did_you_mean,
+)
+from linkage.walker import Walker, gait_phases
+
+Array = NDArray[np.float64]
+
+
+# What `run` may raise from a stage besides LinkageError: numpy and arithmetic errors on data
+# the validation did not foresee, turned into a LinkageError naming the stage.
+ARITHMETIC = (ValueError, ArithmeticError, IndexError, TypeError)
+
+CHUNK = 1 << 16
+"""Samples per block when validation walks a run's crank angles (bounded memory)."""
+
+
+@contextmanager
+def _blame(scene: Scene, path: tuple[Any, ...], key: str) -> Iterator[None]:
+    """Turn an error from building ``key`` into a located :class:`SceneError`."""
+    try:
+        yield
+    except SceneError:
+        raise
+    except (LinkageError, *ARITHMETIC) as exc:
+        raise scene.error(path, key, str(exc) or type(exc).__name__) from None
+
+
+def build_mechanism(scene: Scene) -> FourBar | Mechanism:
+    """The scene's mechanism.
+
+    Raises
+    ------
+    SceneError
+        Located at the key that made the build fail.
+    """
+    m = scene.mechanism or {}
+    sec = ("mechanism",)
+    if "catalog" in m:
+        with _blame(scene, sec, "catalog"):
+            item = catalog.get(m["catalog"])
+        scale = float(m.get("scale", 1.0))
+        if scale != 1.0:
+            if not isinstance(item, FourBar):
+                raise scene.error(
+                    sec, "scale", f"only catalogue four-bars can be scaled, not {m['catalog']!r}"
+                )
+            with _blame(scene, sec, "scale"):
+                item = _scaled(item, scale)
+        return item
+    if "ground" in m:
+        with _blame(scene, sec, "ground"):
+            return FourBar(
+                ground=m["ground"],
+                crank=m["crank"],
+                coupler=m["coupler"],
+                rocker=m["rocker"],
+                point=tuple(m.get("point", (0.0, 0.0))),
+                assembly=m.get("assembly", "open"),
+            )
+    mech = Mechanism()
+    for idx, j in enumerate(m["joints"]):
+        with _blame(scene, ("mechanism", "joints", idx), JOINT_KEY[j["kind"]]):
+            _add_joint(mech, j)
+    if "trace" in m:
+        with _blame(scene, sec, "trace"):
+            mech.trace = m["trace"]
+    return mech
+
+
+JOINT_KEY = {"fixed": "at", "crank": "radius", "dyad": "r2", "point": "on"}
+"""The key blamed when building a joint of each kind fails."""
+
+
+def _scaled(fb: FourBar, k: float) -> FourBar:
+    """``fb`` with every length, its pivots and its coupler point multiplied by ``k``."""
+    return FourBar(
+        o=(fb.o[0] * k, fb.o[1] * k),
+        c=(fb.c[0] * k, fb.c[1] * k),
+        crank=fb.crank * k,
+        coupler=fb.coupler * k,
+        rocker=fb.rocker * k,
+        point=(fb.point[0] * k, fb.point[1] * k),
+        assembly=fb.assembly,
+    )
+
+
+def _turn_program(segments: Any) -> Program:
+    """A program over one turn from ``duration_deg``/``rise``/``law`` segments (a cam, a lift)."""
+    segs = [
+        Segment(math.radians(s["duration_deg"]), s.get("rise", 0.0), s.get("law")) for s in segments
+    ]
+    return Program(0.0, segs)
+
+
+def build_walker(scene: Scene) -> Walker:
+    """The scene's walker: a catalogue model, or legs built from catalogue four-bars.
+
+    Raises
+    ------
+    SceneError
+        Located at the key that made the build fail.
+    """
+    from dataclasses import replace
+
+    from linkage.walker import Leg
+
+    w = scene.walker or {}
+    sec = ("walker",)
+    if "model" in w:
+        with _blame(scene, sec, "model"):
+            walker: Walker = getattr(catalog, w["model"])()
+    else:
+        legs = []
+        for idx, spec in enumerate(w["legs"]):
+            lp = ("walker", "legs", idx)
+            with _blame(scene, lp, "catalog"):
+                fb = catalog.get(spec["catalog"])
+            if not isinstance(fb, FourBar):
+                raise scene.error(lp, "catalog", f"{spec['catalog']!r} is not a four-bar")
+            k = float(spec.get("scale", 1.0))
+            if k != 1.0:
+                with _blame(scene, lp, "scale"):
+                    fb = _scaled(fb, k)
+            lift = None
+            if "lift" in spec:
+                with _blame(scene, lp, "lift"):
+                    lift = _turn_program(spec["lift"])
+            with _blame(scene, lp, "name"):
+                legs.append(
+                    Leg(
+                        spec["name"],
+                        fb,
+                        mount=tuple(float(v) for v in spec["mount"]),  # type: ignore[arg-type]
+                        phase=math.radians(spec.get("phase_deg", 0.0)),
+                        plane=spec.get("plane", "sagittal"),
+                        mirror=bool(spec.get("mirror", False)),
+                        foot_offset=tuple(spec.get("foot_offset", (0.0, 0.0))),
+                        lift=lift,
+                        pad=float(spec.get("pad", 0.0)),
+                    )
+                )
+        with _blame(scene, sec, "legs"):
+            walker = Walker(legs)
+    names = [leg.name for leg in walker.legs]
+    if "gait" in w:
+        with _blame(scene, sec, "gait"):
+            walker = walker.with_phases([float(p) for p in gait_phases(w["gait"], names)])
+    if "phases_deg" in w:
+        if len(w["phases_deg"]) != len(names):
+            raise scene.error(
+                sec,
+                "phases_deg",
+                f"need {len(names)} phases, one per leg ({', '.join(names)}), "
+                f"got {len(w['phases_deg'])}",
+            )
+        with _blame(scene, sec, "phases_deg"):
+            walker = walker.with_phases([math.radians(p) for p in w["phases_deg"]])
+    if "pad" in w:
+        with _blame(scene, sec, "pad"):
+            walker = Walker(
+                [replace(leg, pad=float(w["pad"])) for leg in walker.legs],
+                walker.cg,
+                walker.ground_tol,
+                walker.body_underside,
+            )
+    if "cg" in w or "ground_tol" in w:
+        with _blame(scene, sec, "cg" if "cg" in w else "ground_tol"):
+            walker = Walker(
+                walker.legs,
+                cg=tuple(w.get("cg", walker.cg)),
+                ground_tol=w.get("ground_tol", walker.ground_tol),
+                body_underside=walker.body_underside,
+            )
+    return walker
+
+
+def build_drive(scene: Scene, leg: FourBar | Mechanism) -> tuple[Any, float]:
+    """The scene's drive and its natural duration (one crank cycle or program period).
+
+    Raises
+    ------
+    SceneError
+        Located at the key that made the build fail.
+    """
+    d = scene.drive
+    sec = ("drive",)
+    train = None
+    if "gears" in d:
+        with _blame(scene, sec, "gears"):
+            train = GearTrain.simple(d["gears"])
+    kind = d["kind"]
+    if kind == "constant":
+        key = "rpm" if "rpm" in d else "omega"
+        motor = d["rpm"] * 2 * math.pi / 60 if "rpm" in d else d["omega"]
+        drive: Any = ConstantSpeed(motor)
+        crank = motor * (train.ratio * train.sign if train else 1.0)
+        lo, hi = SPEED_RANGE
+        if not lo <= abs(crank) <= hi:
+            raise scene.error(
+                sec,
+                "gears" if train else key,
+                f"the crank turns at {abs(crank):.3g} rad/s"
+                + (" through the gears" if train else "")
+                + f"; it must be between {lo:g} and {hi:g} rad/s",
+            )
+        period = 2 * math.pi / abs(crank)
+    elif kind == "program":
+        with _blame(scene, sec, "segments"):
+            segs = [
+                Segment(s["duration"], math.radians(s.get("rise_deg", 0.0)), s.get("law"))
+                for s in d["segments"]
+            ]
+        with _blame(scene, sec, "start_deg"):
+            drive = Program(math.radians(d.get("start_deg", 0.0)), segs)
+        period = drive.period
+    else:
+        try:
+            drive = crank_schedule(leg, d["foot_speed"], d["duty_factor"])
+        except SceneError:
+            raise
+        except (LinkageError, *ARITHMETIC) as exc:
+            key = "duty_factor" if "duty" in str(exc) else "foot_speed"
+            raise scene.error(sec, key, f"no crank schedule: {exc}") from None
+        period = drive.period
+    if train is not None and kind != "schedule":
+        drive = Geared(drive, train)
+    return drive, period
+
+
+def run_duration(scene: Scene, period: float) -> float:
+    """The run's length in seconds: ``duration``, or ``cycles`` (default 1) times ``period``.
+
+    Raises
+    ------
+    SceneError
+        When it is not a positive finite time of at most a million cycles.
+    """
+    d = scene.drive
+    key = "duration" if "duration" in d else "cycles"
+    duration = float(d.get("duration", period * d.get("cycles", 1.0)))
+    if not (math.isfinite(duration) and TIME_RANGE[0] <= duration):
+        raise scene.error(
+            ("drive",),
+            key,
+            f"the run lasts {duration:.3g} s; it must be at least {TIME_RANGE[0]:g} s",
+        )
+    if not math.isfinite(period) or period <= 0 or duration / period > CYCLES_MAX:
+        raise scene.error(
+            ("drive",),
+            key,
+            f"the run lasts {duration:.3g} s, {duration / period:.3g} cycles of {period:.3g} s; "
+            f"at most {CYCLES_MAX:g} cycles",
+        )
+    return duration
+
+
+def build_cam(scene: Scene) -> Any:
+    """The scene's disc cam (None without a [cam] section).
+
+    Raises
+    ------
+    SceneError
+        Located at the key that made the build fail.
+    """
+    from linkage.cam import DiscCam
+
+    if scene.cam is None:
+        return None
+    c = scene.cam
+    sec = ("cam",)
+    with _blame(scene, sec, "segments"):
+        program = _turn_program(c["segments"])
+    with _blame(scene, sec, "base_radius"):
+        return DiscCam(
+            program,
+            c["base_radius"],
+            roller_radius=c.get("roller_radius"),
+            offset=c.get("offset", 0.0),
+            pressure_limit=math.radians(c.get("pressure_limit_deg", 30.0)),
+        )
+
+
+def build_masses(
+    scene: Scene, mech: FourBar | Mechanism
+) -> tuple[dict[str, LinkMass], list[PointLoad]]:
+    """The scene's link masses and point loads, checked against the mechanism's links and
+    joints.
+
+    Raises
+    ------
+    SceneError
+        Located at the link or load that is wrong.
+    """
+    m = mech.mechanism() if isinstance(mech, FourBar) else mech
+    links = m.links
+    moving = list(links[1:])
+    masses: dict[str, LinkMass] = {}
+    for name, v in (scene.masses or {}).items():
+        if name not in moving:
+            raise scene.error(
+                ("masses",),
+                name,
+                f"unknown link {name!r}{_did_you_mean(name, moving)}; "
+                f"the moving links are {', '.join(moving)}",
+            )
+        with _blame(scene, ("masses", name), "mass"):
+            masses[name] = LinkMass(
+                v["mass"], tuple(v.get("centre", (0.0, 0.0))), v.get("inertia", 0.0)
+            )
+    if scene.wants("torque"):
+        missing = [name for name in moving if name not in masses]
+        if missing:
+            raise scene.error(
+                (),
+                "masses",
+                f"missing for links {', '.join(missing)}: 'torque' needs every moving link "
+                "(mass = 0 for a massless one)",
+            )
+    loads = []
+    for k, ld in enumerate(scene.loads):
+        if ld["link"] not in links:
+            raise scene.error(
+                ("loads", k),
+                "link",
+                f"unknown link {ld['link']!r}{_did_you_mean(ld['link'], links)}; "
+                f"links are {', '.join(links)}",
+            )
+        if ld["joint"] not in m.joint_names:
+            raise scene.error(
+                ("loads", k),
+                "joint",
+                f"unknown joint {ld['joint']!r}{_did_you_mean(ld['joint'], m.joint_names)}; "
+                f"joints are {', '.join(m.joint_names)}",
+            )
+        with _blame(scene, ("loads", k), "force"):
+            loads.append(
+                PointLoad(ld["link"], ld["joint"], tuple(ld["force"]), ld.get("torque", 0.0))
+            )
+    return masses, loads
+
+
+# -- validation: everything `run` would reject, found without running ------------------------
+
+
+def validate(scene: Scene, samples: int | None = None) -> None:
+    """Build the scene's study without running it, so that whatever :func:`run` would reject
+    is rejected first, located at the key that causes it: the linkage or walker, the drive and
+    the run's length, the masses and loads, the cam, the memory estimate (at most
+    :data:`~linkage.scene.MEMORY_CAP`), and — walking the run's crank angles in blocks — a first
+    assembled sample (a walker's legs must assemble at every one).
+
+    Raises
+    ------
+    SceneError
+        For the first problem found.
+    """
+    study, leg = build_study(scene)
+    n = sample_count(scene, samples)
+    check_memory_estimate(scene, study, n, given=samples is not None)
+    drive, period = build_drive(scene, leg)
+    duration = run_duration(scene, period)
+    if scene.cam is not None:
+        build_cam(scene)
+    if isinstance(study, Walker):
+        with _blame(scene, ("drive",), "kind"):
+            check_legs(scene, study, drive, duration, n)
+        return
+    if scene.masses is not None or scene.loads:
+        masses, loads = build_masses(scene, study)
+        if scene.wants("torque"):
+            with _blame(scene, (), "masses"):
+                forces(
+                    study,
+                    theta=np.zeros(2),
+                    omega=1.0,
+                    masses=masses,
+                    gravity=scene.gravity,
+                    loads=loads,
+                )
+    with _blame(scene, ("drive",), "kind"):
+        for t in _blocks(n, duration):
+            theta = drive.angles(t)[0]
+            if study.sweep(theta, outputs=("point",)).valid.any():
+                return
+    raise no_assembly(scene, study, drive, duration, n)
+
+
+def build_study(scene: Scene) -> tuple[FourBar | Mechanism | Walker, FourBar | Mechanism]:
+    if scene.walker is not None:
+        walker = build_walker(scene)
+        return walker, walker.legs[0].linkage
+    mech = build_mechanism(scene)
+    return mech, mech
+
+
+def sample_count(scene: Scene, samples: int | None) -> int:
+    n = samples if samples is not None else scene.drive.get("samples", 721)
+    if isinstance(n, bool) or not isinstance(n, int) or not 8 <= n <= SAMPLES_MAX:
+        raise SceneError(f"samples must be a whole number from 8 to {SAMPLES_MAX}, got {n!r}")
+    return n
+
+
+def _blocks(n: int, duration: float) -> Iterator[Array]:
+    """The run's sample times ``np.linspace(0, duration, n)``, in blocks of :data:`CHUNK`."""
+    step = duration / (n - 1)
+    for a in range(0, n, CHUNK):
+        b = min(n, a + CHUNK)
+        t = np.arange(a, b, dtype=np.float64) * step
+        if b == n:
+            t[-1] = duration
+        yield t
+
+
+def check_legs(scene: Scene, walker: Walker, drive: Any, duration: float, n: int) -> None:
+    """Every leg must assemble at every crank angle of the run (else `simulate` refuses)."""
+    per_leg = isinstance(drive, CrankSchedule)
+    for idx, leg in enumerate(walker.legs):
+        for t in _blocks(n, duration):
+            if per_leg:
+                theta = drive.angles(t + leg.phase / (2 * math.pi) * drive.period)[0]
+            else:
+                theta = drive.angles(t)[0] + leg.phase
+            ok = leg.linkage.sweep(theta, outputs=("point",)).valid
+            if not ok.all():
+                bad = float(theta[int(np.argmin(ok))])
+                where: tuple[tuple[Any, ...], str] = (
+                    (("walker", "legs", idx), "catalog")
+                    if scene.walker and "legs" in scene.walker
+                    else (("walker",), "model")
+                )
+                raise scene.error(
+                    *where,
+                    f"leg {leg.name!r} cannot be assembled at crank angle "
+                    f"{math.degrees(bad) % 360:.1f}° (a leg must assemble at every sample)",
+                )
+
+
+def no_assembly(
+    scene: Scene, mech: FourBar | Mechanism, drive: Any, duration: float, n: int
+) -> SceneError:
+    """The error for a run in which no sample assembles, with the reason."""
+    m = scene.mechanism or {}
+    t0 = np.zeros(1)
+    theta0 = float(drive.angles(t0)[0][0])
+    if isinstance(mech, FourBar):
+        ranges = mech.input_ranges()
+        key = "ground" if "ground" in m else "catalog"
+        if not ranges:
+            g = math.dist(mech.o, mech.c)
+            near, far = abs(g - mech.crank), g + mech.crank
+            lo, hi = abs(mech.coupler - mech.rocker), mech.coupler + mech.rocker
+            gap = near - hi if near > hi else lo - far
+            return scene.error(
+                ("mechanism",),
+                key,
+                f"no sample assembles: the crank end stays {near:.6g} … {far:.6g} from the "
+                f"rocker pivot, the coupler and rocker reach {lo:.6g} … {hi:.6g} "
+                f"(closure gap {gap:.3g})",
+            )
+        spans = ", ".join(f"{math.degrees(a):.1f}° … {math.degrees(b):.1f}°" for a, b in ranges)
+        return scene.error(
+            ("drive",),
+            "start_deg" if "start_deg" in scene.drive else "kind",
+            f"no sample assembles: the drive never turns the crank to where the linkage "
+            f"assembles ({spans}); it starts at {math.degrees(theta0):.1f}°",
+        )
+    if "joints" in m:
+        failed = _first_unplaced(m["joints"], theta0)
+        if failed is not None:
+            idx, j, pos = failed
+            if j["kind"] == "dyad":
+                dist = math.dist(pos[j["p1"]], pos[j["p2"]])
+                r1, r2 = j["r1"], j["r2"]
+                gap = dist - (r1 + r2) if dist > r1 + r2 else abs(r1 - r2) - dist
+                return scene.error(
+                    ("mechanism", "joints", idx),
+                    "r1",
+                    f"no sample assembles: at the first sample {j['p1']!r} and {j['p2']!r} are "
+                    f"{dist:.6g} apart, r1 and r2 reach {abs(r1 - r2):.6g} … {r1 + r2:.6g} "
+                    f"(closure gap {gap:.3g})",
+                )
+            return scene.error(
+                ("mechanism", "joints", idx),
+                JOINT_KEY[j["kind"]],
+                f"no sample assembles: joint {j['name']!r} cannot be placed at the first sample",
+            )
+    return scene.error(
+        ("mechanism",),
+        next(iter(m), "catalog"),
+        f"no sample assembles over the run's {n} samples",
+    )
+
+
+def _add_joint(mech: Mechanism, j: dict[str, Any]) -> None:
+    kind = j["kind"]
+    if kind == "fixed":
+        mech.fixed(j["name"], j["at"])
+    elif kind == "crank":
+        mech.crank(j["name"], j["centre"], j["radius"], math.radians(j.get("phase_deg", 0.0)))
+    elif kind == "dyad":
+        mech.dyad(j["name"], j["p1"], j["p2"], j["r1"], j["r2"], j.get("side", "left"))
+    else:
+        mech.point(j["name"], tuple(j["on"]), (j["along"], j.get("left", 0.0)))
+
+
+def _first_unplaced(
+    joints: list[dict[str, Any]], theta: float
+) -> tuple[int, dict[str, Any], dict[str, Any]] | None:
+    """The first joint of a joint program that cannot be placed at crank angle ``theta``, and
+    the positions of the joints before it (found by solving ever longer prefixes)."""
+    crank = next(k for k, j in enumerate(joints) if j["kind"] == "crank")
+    placed: dict[str, Any] = {}
+    for k in range(crank + 1, len(joints) + 1):
+        mech = Mechanism()
+        for j in joints[:k]:
+            _add_joint(mech, j)
+        s = mech.sweep(np.array([theta]), outputs=("joints",))
+        if not s.valid[0]:
+            return k - 1, joints[k - 1], placed
+        placed = {name: tuple(s.joints[0, i]) for i, name in enumerate(s.joint_names)}
+    return None
+
+
+def estimate_memory(scene: Scene, study: FourBar | Mechanism | Walker, samples: int) -> int:
+    """Bytes a run of ``samples`` samples is estimated to need: 8 bytes × the numbers it keeps
+    per sample × 2 (the arrays and the temporaries of the stage that makes them, or their copy
+    in the report's table), plus 64 MiB for the interpreter and the plots.
+
+    Numbers per sample: time, angle, speed, acceleration (4); a mechanism's trajectory (2 per
+    joint + 4), rates (6 per joint + 6), instant centres (5 per link pair) and curvature (4),
+    torque (8 per joint + 4); a walker's feet (12 per leg) plus one leg's sweep (2 per joint +
+    8). Calibrated on peak resident memory (``/usr/bin/time``, 2e5 → 6e5 samples): the Hoecken
+    example without straightness and animation grows by 1065 bytes per sample, estimated 1408;
+    the hexapod by 1210, estimated 1504 — an estimate about 1.3 times the measured growth.
+    """
+    per = 4
+    if isinstance(study, Walker):
+        legs = len(study.legs)
+        joints = max(_joints(leg.linkage) for leg in study.legs)
+        per += 12 * legs + 2 * joints + 8
+    else:
+        j = _joints(study)
+        per += 2 * j + 4
+        if scene.wants("velocity", "acceleration", "straightness"):
+            per += 6 * j + 6
+        if scene.wants("instant_centres", "curvature"):
+            links = len((study.mechanism() if isinstance(study, FourBar) else study).links)
+            per += 5 * links * (links - 1) // 2 + 4
+        if scene.wants("torque"):
+            per += 8 * j + 4
+    return 8 * per * samples * 2 + (64 << 20)
+
+
+def _joints(mech: FourBar | Mechanism) -> int:
+    return 5 if isinstance(mech, FourBar) else len(mech.joint_names)
+
+
+def check_memory_estimate(
+    scene: Scene, study: FourBar | Mechanism | Walker, samples: int, given: bool = False
+) -> None:
+    """Refuse a run whose :func:`estimate_memory` exceeds :data:`~linkage.scene.MEMORY_CAP`.
+
+    Raises
+    ------
+    SceneError
+        Located at ``[drive] samples`` (unlocated when ``samples`` was given by the caller).
+    """
+    need = estimate_memory(scene, study, samples)
+    if need <= MEMORY_CAP:
+        return
+    per = (need - (64 << 20)) / samples
+    most = int((MEMORY_CAP - (64 << 20)) / per)
+    problem = (
+        f"{samples} samples would need about {need / 2**30:.3g} GiB (estimated), more than the "
+        f"{MEMORY_CAP / 2**30:g} GiB limit; at most {most} samples for these outputs"
+    )
+    if given:
+        raise SceneError(f"samples: {problem}")
+    raise scene.error(("drive",), "samples", problem)
+
+
+def affordable_checks(scene: Scene, study: FourBar | Mechanism | Walker, n: int) -> tuple[int, ...]:
+    """:func:`check_counts` within the memory limit, with every run alive at once: both when
+    they fit, else the half only, else none (the figures then carry no error estimate)."""
+    half, double = check_counts(n)
+    if estimate_memory(scene, study, n + half + double) <= MEMORY_CAP:
+        return (half, double)
+    if estimate_memory(scene, study, n + half) <= MEMORY_CAP:
+        return (half,)
+    return ()

@@ -1,0 +1,272 @@
+"""Figures as a report prints them: a row of figure, value, unit and error estimate, numbers
+with the digits their error supports, units of the scene, and the sample counts at which a run
+is repeated to estimate its errors.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any, Union
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage._fourbar import FourBar
+from linkage._mechanism import Mechanism
+from linkage._sweep import Sweep
+from linkage.forces import Forces
+from linkage.geometry import StraightPart
+from linkage.scene import (
+    Scene,
+)
+from linkage.walker import Simulation, Walker
+
+Array = NDArray[np.float64]
+Value = Union[float, int, str, tuple[float, ...], None]
+"""A figure's typed value: a number, a pair such as a range, a word (a class), or ``None`` for
+a value that is not a finite number (an infinite radius, an undefined margin)."""
+
+
+class _AsText:
+    """The default :attr:`Row.value`: the row's text (a word, a list of names)."""
+
+
+_AS_TEXT = _AsText()
+
+
+class Row(tuple[str, str, str, str]):
+    """One figure of the table: iterable as four strings — (figure, value, unit, error
+    estimate) — as the terminal shows them, and carrying the typed :attr:`value`, :attr:`unit`
+    and :attr:`error` (a number, or ``None`` when there is none) for the JSON summary.
+    """
+
+    value: Value
+    error: float | None
+    exact: bool
+
+    def __new__(
+        cls,
+        figure: str,
+        text: str,
+        unit: str = "",
+        note: str = "",
+        value: Value | _AsText = _AS_TEXT,
+        error: float | None = None,
+        exact: bool = False,
+    ) -> Row:
+        self = super().__new__(cls, (figure, text, unit, note))
+        self.value = (text or None) if isinstance(value, _AsText) else value
+        self.error = error
+        self.exact = exact
+        return self
+
+    @property
+    def figure(self) -> str:
+        return self[0]
+
+    @property
+    def text(self) -> str:
+        return self[1]
+
+    @property
+    def unit(self) -> str:
+        return self[2]
+
+    @property
+    def note(self) -> str:
+        return self[3]
+
+
+@dataclass
+class Result:
+    """Everything a run computed."""
+
+    scene: Scene
+    time: Array
+    theta: Array
+    figures: list[tuple[str, str, str, str]] = field(default_factory=list)
+    """The figures table: each a :class:`Row` (four strings, with the typed value, unit and
+    error as attributes); typed as plain 4-tuples so that callers may add rows of their own."""
+    stages: dict[str, float] = field(default_factory=dict)
+    """Seconds per stage, in the order run: only the stages the outputs needed."""
+    sweep: Sweep | None = None
+    rates: Sweep | None = None
+    geometry: Sweep | None = None
+    straight: StraightPart | None = None
+    forces: Forces | None = None
+    cam: Any = None
+    simulation: Simulation | None = None
+    mechanism: FourBar | Mechanism | None = None
+    walker: Walker | None = None
+    drive: Any = None
+    """The drive the run used (its crank angles over time)."""
+    arrays: dict[str, Array] = field(default_factory=dict)
+    check_samples: tuple[int, ...] = ()
+    """Sample counts of the runs at other resolutions that give the sampled figures their
+    error estimates (:func:`check_counts`)."""
+
+
+# -- numbers as the table prints them ---------------------------------------------------------
+
+SIG_MAX = 6
+"""Significant digits of a figure known to better than a millionth (exact, or nearly)."""
+SIG_UNKNOWN = 4
+"""Significant digits of a figure without an error estimate."""
+
+
+def significant_digits(x: float, error: float | None) -> int:
+    """Digits of ``x`` its ``error`` supports: down to one digit below the error's leading
+    digit, between 2 and :data:`SIG_MAX` (:data:`SIG_UNKNOWN` without an error)."""
+    if error is None or not math.isfinite(error) or error < 0:
+        return SIG_UNKNOWN
+    if x == 0 or not math.isfinite(x):
+        return 2
+    if error == 0:
+        return SIG_MAX
+    digits = math.floor(math.log10(abs(x))) - math.floor(math.log10(error)) + 2
+    return max(2, min(SIG_MAX, digits))
+
+
+def format_number(x: float, error: float | None = None, digits: int | None = None) -> str:
+    """``x`` with the significant digits its ``error`` supports (or ``digits``): positional
+    from 0.001 to 10⁶, else ``1.4e-4`` style; ``∞``/``−∞``/``NaN`` spelled as such. An exact
+    value (``error == 0``) gets up to :data:`SIG_MAX` digits, without trailing zeros.
+
+    >>> format_number(44.2523, 0.155), format_number(0.0014, 1e-7), format_number(6.6e-4, 1.2e-4)
+    ('44.25', '0.00140000', '6.6e-4')
+    >>> format_number(12741226936709.7, None), format_number(3, 0), format_number(2 / 3, 0)
+    ('1.274e13', '3', '0.666667')
+    """
+    if math.isnan(x):
+        return "NaN"
+    if math.isinf(x):
+        return "∞" if x > 0 else "−∞"
+    sig = digits if digits is not None else significant_digits(x, error)
+    if x == 0:
+        return "0"
+
+    def trim(text: str) -> str:
+        if error == 0 and digits is None and "." in text:
+            return text.rstrip("0").rstrip(".")
+        return text
+
+    mag = math.floor(math.log10(abs(x)))
+    if -3 <= mag < 6:
+        text = f"{x:.{max(0, sig - 1 - mag)}f}"
+        if float(text) != 0 or x == 0:
+            return trim(text)
+    mant, _, exp = f"{x:.{sig - 1}e}".partition("e")
+    return f"{trim(mant)}e{int(exp)}"
+
+
+def format_error(error: float | None) -> str:
+    """An error estimate to two significant digits (``0`` when the values agreed exactly)."""
+    if error is None or not math.isfinite(error):
+        return "unknown"
+    return "0" if error == 0 else format_number(error, digits=2)
+
+
+def unit_label(units: str) -> str:
+    """A length unit as printed: ``units``, or ``length units`` when it is empty."""
+    return units or "length units"
+
+
+def length_unit(scene: Scene) -> str:
+    """The scene's length unit, or ``length units`` when the scene names none."""
+    return unit_label(scene.units)
+
+
+def torque_unit(scene: Scene) -> str:
+    """The unit of a torque: force × length, with masses in kg and times in s."""
+    if scene.units == "m":
+        return "N·m"
+    if scene.units:
+        return f"kg·{scene.units}²/s²"
+    return "kg·(length unit)²/s²"
+
+
+def sci(x: float) -> str:
+    return format_number(x, digits=2)
+
+
+def spread(x: float, others: Sequence[float | None]) -> float | None:
+    """The largest difference between ``x`` and the same figure at the other resolutions."""
+    diffs = [abs(x - o) for o in others if o is not None]
+    if not diffs or not all(math.isfinite(d) for d in diffs):
+        return None
+    return max(diffs)
+
+
+def versus(ns: Sequence[int]) -> str:
+    if not ns:
+        return "no second resolution within the memory limit"
+    return f"vs {' and '.join(map(str, ns))} samples"
+
+
+def row(
+    figure: str,
+    x: float,
+    unit: str,
+    others: Sequence[float | None],
+    ns: Sequence[int],
+    note: str = "",
+) -> Row:
+    """A sampled figure: ``x`` at the run's samples, its error estimated as the largest
+    difference from ``others``, the same figure at ``ns`` samples."""
+    err = spread(x, others) if math.isfinite(x) else None
+    told = f"±{format_error(err)} ({versus(ns)})"
+    return Row(
+        figure,
+        format_number(x, err),
+        unit,
+        f"{told}; {note}" if note else told,
+        value=x if math.isfinite(x) else None,
+        error=err,
+    )
+
+
+def exact(figure: str, x: float, unit: str, note: str = "exact", error: float = 0.0) -> Row:
+    """A figure that does not depend on the sampling (``error`` its round-off, if known)."""
+    return Row(figure, format_number(x, error), unit, note, value=x, error=error, exact=True)
+
+
+def pair(
+    figure: str,
+    pair: tuple[float, float],
+    unit: str,
+    others: Sequence[tuple[float, float] | None],
+    ns: Sequence[int],
+    sep: str = " … ",
+) -> Row:
+    """A pair of sampled figures (a range, min/max), the error the larger of the two."""
+    e0 = spread(pair[0], [o[0] if o else None for o in others])
+    e1 = spread(pair[1], [o[1] if o else None for o in others])
+    err = None if e0 is None or e1 is None else max(e0, e1)
+    text = sep.join(format_number(v, err) for v in pair)
+    return Row(
+        figure,
+        text,
+        unit,
+        f"±{format_error(err)} ({versus(ns)})",
+        value=tuple(float(v) for v in pair),
+        error=err,
+    )
+
+
+def check_counts(n: int, double: bool = True) -> tuple[int, ...]:
+    """The sample counts a run of ``n`` samples is checked at: about half as many, on a grid
+    that shares only its ends with the run's (``n_half − 1`` coprime to ``n − 1``, so that no
+    extreme is found again at a shared sample), and — when ``double`` — twice as many, on the
+    run's grid refined (every sample and the midpoints). The first catches aliasing (a
+    figure that depends on where the samples fall), the second the slow convergence of
+    extremes; a figure's error estimate is its largest difference from the two.
+
+    >>> check_counts(721), check_counts(8, double=False)
+    ((360, 1441), (4,))
+    """
+    half = max(3, (n - 1) // 2 + 1)
+    while half > 3 and math.gcd(half - 1, n - 1) != 1:
+        half -= 1
+    return (half, 2 * n - 1) if double else (half,)
