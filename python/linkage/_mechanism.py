@@ -8,8 +8,8 @@ from typing import Any
 from linkage import _core
 from linkage._arrays import as_angles, as_finite, as_length, as_point, as_rate
 from linkage._core import LinkageError
+from linkage._mobility import Mobility, mobility
 from linkage._sweep import OUTPUTS, Sweep
-from linkage.geometry import Mobility, mobility
 
 DEFAULT_OUTPUTS = ("point", "joints")
 

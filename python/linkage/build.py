@@ -22,6 +22,7 @@ from linkage import catalog
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage.cam import DiscCam
 from linkage.drive import (
     ConstantSpeed,
     CrankSchedule,
@@ -43,7 +44,7 @@ from linkage.scene import (
     SceneError,
     _did_you_mean,
 )
-from linkage.walker import Walker, gait_phases
+from linkage.walker import Leg, Walker, gait_phases
 
 Array = NDArray[np.float64]
 
@@ -143,8 +144,6 @@ def build_walker(scene: Scene) -> Walker:
         Located at the key that made the build fail.
     """
     from dataclasses import replace
-
-    from linkage.walker import Leg
 
     w = scene.walker or {}
     sec = ("walker",)
@@ -304,7 +303,6 @@ def build_cam(scene: Scene) -> Any:
     SceneError
         Located at the key that made the build fail.
     """
-    from linkage.cam import DiscCam
 
     if scene.cam is None:
         return None

@@ -72,6 +72,7 @@ from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._sweep import Sweep
+from linkage.walker import Simulation, Walker
 
 Array = NDArray[np.float64]
 Bounds = tuple[float, float, float, float]
@@ -355,7 +356,6 @@ def walker_drawing(
         For an unknown ``view``, a ``leg_theta`` of the wrong shape, or a leg that does not
         assemble at a sample.
     """
-    from linkage.walker import Simulation, Walker
 
     if not isinstance(walker, Walker):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")

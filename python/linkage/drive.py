@@ -34,6 +34,9 @@ from linkage._arrays import (
     check_memory,
 )
 from linkage._core import LinkageError
+from linkage._fourbar import FourBar
+from linkage._mechanism import Mechanism
+from linkage.geometry import foot_path
 
 Array = NDArray[np.float64]
 LAWS: tuple[str, ...] = tuple(_core.motion_law_names())
@@ -336,9 +339,6 @@ def crank_schedule(
         For bad numbers, a foot path with no straight part, or a swing that would need the crank
         to stop or reverse (duty factor too low for that stance).
     """
-    from linkage._fourbar import FourBar
-    from linkage._mechanism import Mechanism
-    from linkage.geometry import foot_path
 
     if not isinstance(leg, (FourBar, Mechanism)):
         raise TypeError(f"leg must be a FourBar or Mechanism, got {type(leg).__name__}")

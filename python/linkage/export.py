@@ -34,8 +34,9 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage import __version__
 from linkage._core import LinkageError
-from linkage.drawing import Drawing, mechanism_drawing, walker_drawing
+from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.figures import Result, Row, length_unit, torque_unit
 
 Array = NDArray[np.float64]
@@ -83,8 +84,6 @@ def drawing_of(res: Result) -> Drawing | None:
     when the run has neither (it always has one after :func:`linkage.runner.run`)."""
     units = res.scene.units
     if res.simulation is not None and res.walker is not None:
-        from linkage.drawing import leg_angles
-
         leg_theta = None
         if res.scene.drive.get("kind") == "schedule" and res.drive is not None:
             leg_theta = leg_angles(res.walker, res.simulation, res.drive, per_leg_time=True)
@@ -476,7 +475,6 @@ def figure_json(row: Sequence[str]) -> dict[str, Any]:
 
 def summary(res: Result, files: Sequence[str], columns: Sequence[str], pose: int | None) -> Any:
     """The ``summary.json`` object of a run."""
-    from linkage import __version__
 
     scene = res.scene
     pose_info = None

@@ -8,7 +8,7 @@ gives NaN, a wrong shape raises.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -16,9 +16,9 @@ from numpy.typing import NDArray
 from linkage import _core
 from linkage._arrays import as_angles, as_count, as_finite, as_flag, as_points
 from linkage._core import LinkageError
-
-if TYPE_CHECKING:  # pragma: no cover
-    from linkage._fourbar import FourBar
+from linkage._fourbar import FourBar
+from linkage._mobility import Mobility as Mobility  # re-exported: linkage.geometry.Mobility
+from linkage._mobility import mobility as mobility
 
 Points = NDArray[np.float64]
 
@@ -36,41 +36,6 @@ def _rows(*arrays: Points) -> tuple[tuple[int, ...], list[Points]]:
         ) from None
     flat = [np.ascontiguousarray(np.broadcast_to(a, shape).reshape(-1, 2)) for a in arrays]
     return shape[:-1], flat
-
-
-@dataclass(frozen=True)
-class Mobility:
-    """Kutzbach–Gruebler count ``F = 3(n − 1) − 2·j1 − j2``."""
-
-    links: int
-    """``n``, the ground included."""
-    lower_pairs: int
-    """``j1``: revolute and prismatic pairs (one freedom each)."""
-    higher_pairs: int
-    """``j2``: pairs with two freedoms, e.g. a cam contact that rolls and slides."""
-    degrees_of_freedom: int
-    """``F``, counted by the core."""
-
-
-def mobility(links: int, lower_pairs: int, higher_pairs: int = 0) -> Mobility:
-    """Mobility of a planar linkage by Kutzbach–Gruebler, higher pairs included.
-
-    >>> mobility(4, 4).degrees_of_freedom        # four-bar (thesis 2: F = 3(4 − 1) − 2·4)
-    1
-    >>> mobility(3, 2, 1).degrees_of_freedom     # cam, follower, frame: 2 pins + the contact
-    1
-    >>> mobility(5, 6).degrees_of_freedom        # a five-bar truss with a pinned diagonal
-    0
-    """
-    for name, v in (("links", links), ("lower_pairs", lower_pairs), ("higher_pairs", higher_pairs)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-            raise TypeError(f"{name} must be an int, got {type(v).__name__}")
-        if v < 0:
-            raise LinkageError(f"{name} must be non-negative, got {v}")
-    if links < 1:
-        raise LinkageError("links must count the ground at least")
-    n, j1, j2 = int(links), int(lower_pairs), int(higher_pairs)
-    return Mobility(n, j1, j2, _core.degrees_of_freedom(n, j1, j2))
 
 
 def curvature_centre(
@@ -293,8 +258,6 @@ def ball_point(fb: FourBar, theta: float) -> Inflection:
     LinkageError
         At a toggle or where the coupler is instantaneously translating (no finite pole).
     """
-    from linkage._fourbar import FourBar
-
     if not isinstance(fb, FourBar):
         raise TypeError(f"fb must be a FourBar, got {type(fb).__name__}")
     angles, scalar = as_angles(theta, "theta")

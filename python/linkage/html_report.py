@@ -27,7 +27,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage._core import LinkageError
-from linkage.drawing import Drawing
+from linkage.build import build_drive
+from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
+from linkage.drive import CrankSchedule
 from linkage.figures import Result, length_unit
 
 Array = NDArray[np.float64]
@@ -209,10 +211,6 @@ def _views(res: Result, drawings: Sequence[Drawing] | None = None) -> list[dict[
         if len(d) != len(res.time):
             raise LinkageError(f"a drawing of {len(d)} samples for a run of {len(res.time)}")
     if res.walker is not None and res.simulation is not None:
-        from linkage.build import build_drive
-        from linkage.drawing import leg_angles, walker_drawing
-        from linkage.drive import CrankSchedule
-
         walker, sim = res.walker, res.simulation
         side_top = [
             next((d for d in given if d.feet is not None and d.axes[1] == ax), None)
@@ -231,7 +229,6 @@ def _views(res: Result, drawings: Sequence[Drawing] | None = None) -> list[dict[
             _view(top, idx, "top view"),
         ]
         return views if sagittal else views[::-1]
-    from linkage.drawing import mechanism_drawing
 
     assert res.mechanism is not None and res.sweep is not None
     mech = next((d for d in given if d.feet is None), None)

@@ -35,8 +35,19 @@ from typing import Any
 
 import numpy as np
 
+from linkage import __version__, export, html_report
 from linkage._core import LinkageError
-from linkage.drawing import Array, Drawing, LinkShape
+from linkage.build import build_drive
+from linkage.drawing import (
+    Array,
+    Drawing,
+    LinkShape,
+    clip_to,
+    leg_angles,
+    mechanism_drawing,
+    walker_drawing,
+)
+from linkage.drive import CrankSchedule
 from linkage.figures import Result, torque_unit, unit_label
 
 MARKER = ".linkage-report"
@@ -324,7 +335,6 @@ def _commit(folder: Path, target: Path, tmp: Path, force: bool) -> None:
 
 
 def _version() -> str:
-    from linkage import __version__
 
     return str(__version__)
 
@@ -659,9 +669,6 @@ def _pose_sample(d: Drawing) -> int:
 def _walker_views(res: Result, units: str) -> list[tuple[Drawing, bool]]:
     """The side and top views of a run's walker, each with whether it is drawn to scale (the
     side view of legs that all lie in the horizontal plane is only a few pad heights tall)."""
-    from linkage.build import build_drive
-    from linkage.drawing import leg_angles, walker_drawing
-    from linkage.drive import CrankSchedule
 
     walker, sim = res.walker, res.simulation
     assert walker is not None and sim is not None
@@ -686,7 +693,6 @@ def _drawing_figure(
 
 
 def _mechanism_drawing(res: Result, units: str) -> Drawing:
-    from linkage.drawing import mechanism_drawing
 
     assert res.mechanism is not None and res.sweep is not None
     return mechanism_drawing(res.mechanism, res.sweep, units)
@@ -788,8 +794,6 @@ def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
             views = [(drawing, True)]
         files.append(_animation(res, views, folder / "animation.gif", frames))
 
-    from linkage import export, html_report
-
     # The page embeds the plots and redraws the animation from the drawings already built.
     shown = [d for d, _ in walker_views] or ([drawing] if drawing is not None else None)
     pngs = [p for p in files if p.suffix == ".png"]
@@ -803,7 +807,6 @@ def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
 def _trajectory(res: Result, d: Drawing) -> Any:
     """The trace path with the mechanism drawn at its first assembled pose, the straight part
     and the centres of curvature that fall in the view."""
-    from linkage.drawing import clip_to
 
     s = res.sweep
     assert s is not None

@@ -36,8 +36,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from linkage import catalog
 from linkage._core import LinkageError
 from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
+from linkage.drive import LAWS
+from linkage.walker import GAITS
 
 if sys.version_info >= (3, 11):  # pragma: no cover - depends on the interpreter
     import tomllib
@@ -59,6 +62,7 @@ OUTPUTS = (
     "animation",
     "cad",
 )
+
 """What a scene can ask for. ``cad`` writes the mechanism at its first pose and every traced
 path as ``mechanism.dxf`` and ``mechanism.svg``."""
 
@@ -479,8 +483,6 @@ def _mechanism(m: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
                 sec, k, f"belongs to {what[owner]}, not to a mechanism given by {form!r}"
             )
     if form == "catalog":
-        from linkage import catalog
-
         if m["catalog"] not in catalog.names():
             raise scene.error(
                 sec,
@@ -598,8 +600,6 @@ def _walker(w: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
     if "gait" in w and "phases_deg" in w:
         raise scene.error(sec, "phases_deg", "give a gait or phases_deg, not both")
     if "gait" in w:
-        from linkage.walker import GAITS
-
         if w["gait"] not in GAITS:
             raise scene.error(
                 sec, "gait", f"unknown gait {w['gait']!r}{_did_you_mean(w['gait'], GAITS)}"
@@ -611,7 +611,6 @@ def _walker(w: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
 
 
 def _legs(legs: Sequence[Mapping[str, Any]], scene: Scene) -> None:
-    from linkage import catalog
 
     if not legs:
         raise scene.error(("walker",), "legs", "is empty: a walker needs at least one leg")
@@ -653,7 +652,6 @@ def _turn(
 ) -> None:
     """Segments of a program over one turn (a cam, a leg's lift): they span 360° and rise back
     to the start."""
-    from linkage.drive import LAWS
 
     if not segments:
         raise scene.error(owner, key, "is empty: give segments spanning 360°")
@@ -705,7 +703,6 @@ def _drive(d: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
             )
         if not d["segments"]:
             raise scene.error(sec, "segments", "is empty: give at least one segment")
-        from linkage.drive import LAWS
 
         for idx, s in enumerate(d["segments"]):
             sp = ("drive", "segments", idx)

@@ -1,0 +1,45 @@
+"""Kutzbach–Gruebler mobility: the count, done by the core, behind :func:`linkage.mobility`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from linkage import _core
+from linkage._core import LinkageError
+
+
+@dataclass(frozen=True)
+class Mobility:
+    """Kutzbach–Gruebler count ``F = 3(n − 1) − 2·j1 − j2``."""
+
+    links: int
+    """``n``, the ground included."""
+    lower_pairs: int
+    """``j1``: revolute and prismatic pairs (one freedom each)."""
+    higher_pairs: int
+    """``j2``: pairs with two freedoms, e.g. a cam contact that rolls and slides."""
+    degrees_of_freedom: int
+    """``F``, counted by the core."""
+
+
+def mobility(links: int, lower_pairs: int, higher_pairs: int = 0) -> Mobility:
+    """Mobility of a planar linkage by Kutzbach–Gruebler, higher pairs included.
+
+    >>> mobility(4, 4).degrees_of_freedom        # four-bar (thesis 2: F = 3(4 − 1) − 2·4)
+    1
+    >>> mobility(3, 2, 1).degrees_of_freedom     # cam, follower, frame: 2 pins + the contact
+    1
+    >>> mobility(5, 6).degrees_of_freedom        # a five-bar truss with a pinned diagonal
+    0
+    """
+    for name, v in (("links", links), ("lower_pairs", lower_pairs), ("higher_pairs", higher_pairs)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+            raise TypeError(f"{name} must be an int, got {type(v).__name__}")
+        if v < 0:
+            raise LinkageError(f"{name} must be non-negative, got {v}")
+    if links < 1:
+        raise LinkageError("links must count the ground at least")
+    n, j1, j2 = int(links), int(lower_pairs), int(higher_pairs)
+    return Mobility(n, j1, j2, _core.degrees_of_freedom(n, j1, j2))
