@@ -235,7 +235,6 @@ impl<T: RealField + Copy> FourBar<T> {
     /// The four-bar as a [`Mechanism`] program: `O, C` fixed, `A` crank, `B` dyad, `P` point.
     pub fn mechanism(&self) -> Mechanism<T, 5> {
         let mut m = Mechanism::new();
-        // Lengths were validated on construction, so these pushes cannot fail.
         let steps = [
             m.fixed(self.o),
             m.fixed(self.c),

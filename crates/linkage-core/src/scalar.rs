@@ -48,10 +48,17 @@ pub(crate) fn nan<T: RealField + Copy>() -> T {
 #[inline]
 pub(crate) fn length<T: RealField + Copy>(v: Vec2<T>) -> T {
     let n2 = v.x * v.x + v.y * v.y;
-    // 2⁻⁹⁰⁰ keeps the fast path clear of the subnormal range for f64; for f32 it is zero, and
-    // f32 squares underflow only below 1e-19 anyway, where the scaled path takes over via
-    // `n2 == 0`.
-    if n2.is_finite() && n2 > T::from_subset(&1e-270_f64) {
+    // The fast path only where the sum of squares is far above the subnormal range: above
+    // 1e-270 (about 2⁻⁸⁹⁷) for f64; that literal is zero in f32, whose squares turn subnormal
+    // below |v| ≈ 1e-19, so there the bound is ε⁵ ≈ 2.4e-35 (f32's smallest normal is 1.2e-38).
+    let tiny = T::from_subset(&1e-270_f64);
+    let tiny = if tiny > T::zero() {
+        tiny
+    } else {
+        let e = T::default_epsilon();
+        e * e * e * e * e
+    };
+    if n2.is_finite() && n2 > tiny {
         n2.sqrt()
     } else if v.x.is_finite() && v.y.is_finite() && (v.x != T::zero() || v.y != T::zero()) {
         let s = crate::dyad::pow2_scale(v.x.abs().max(v.y.abs()));
@@ -59,5 +66,30 @@ pub(crate) fn length<T: RealField + Copy>(v: Vec2<T>) -> T {
         (x * x + y * y).sqrt() * s
     } else {
         v.x.hypot(v.y)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{length, Vec2};
+
+    /// A 3-4-5 triangle at sizes where the squares are subnormal or overflow: the length is
+    /// right to the last bit in f32 and f64 (f32 squares turn subnormal below ~1e-19).
+    #[test]
+    fn length_is_exact_where_the_squares_are_not_normal() {
+        for s in [1e-21_f32, 3e-20, 1.0, 1e19, 1e37] {
+            let l = length(Vec2::new(3.0 * s, 4.0 * s));
+            assert!(
+                (l - 5.0 * s).abs() <= f32::EPSILON * 5.0 * s,
+                "f32 at {s}: {l}"
+            );
+        }
+        for s in [1e-160_f64, 1e-140, 1.0, 1e160, 1e300] {
+            let l = length(Vec2::new(3.0 * s, 4.0 * s));
+            assert!(
+                (l - 5.0 * s).abs() <= f64::EPSILON * 5.0 * s,
+                "f64 at {s}: {l}"
+            );
+        }
     }
 }
