@@ -30,6 +30,9 @@ __all__ = [
     "support_margins",
     "sweep_simd",
     "batch_sweep",
+    "leg_gait",
+    "four_bar_gaits",
+    "gait_columns",
 ]
 
 CAPACITY: int
@@ -179,3 +182,23 @@ def forces(
 def support_margins(
     points: NDArray[np.float64], cg: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.uint64]]: ...
+def leg_gait(
+    path: NDArray[np.float64],
+    rate: NDArray[np.float64],
+    tol: float,
+    ground: float | None = None,
+) -> tuple[dict[str, float], NDArray[np.bool_]]: ...
+def four_bar_gaits(
+    o: NDArray[np.float64],
+    c: NDArray[np.float64],
+    crank: NDArray[np.float64],
+    coupler: NDArray[np.float64],
+    rocker: NDArray[np.float64],
+    along: NDArray[np.float64],
+    left: NDArray[np.float64],
+    crossed: NDArray[np.bool_],
+    samples: int,
+    rel_tol: float,
+    threads: int = 1,
+) -> NDArray[np.float64]: ...
+def gait_columns() -> list[str]: ...

@@ -53,6 +53,7 @@ mod centres;
 mod dyad;
 mod error;
 mod fourbar;
+mod gait;
 mod gear_train;
 mod inflection;
 #[cfg(feature = "alloc")]
@@ -83,6 +84,7 @@ pub use centres::{
 pub use dyad::{triangle_area, Dyad, DyadFailure, DyadPose, Side};
 pub use error::Error;
 pub use fourbar::{Assembly, FourBar, FourBarPose, GrashofClass, InputRange};
+pub use gait::{FourBarGait, GaitScratch, LegGait};
 pub use gear_train::GearTrain;
 pub use inflection::{inflection, Inflection};
 #[cfg(feature = "alloc")]

@@ -14,6 +14,7 @@ mod centres;
 mod drives;
 mod error;
 mod fourbar;
+mod gait;
 mod kinetostatics;
 mod mechanism;
 mod memory;
@@ -49,5 +50,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(support::support_margins, m)?)?;
     m.add_function(wrap_pyfunction!(fourbar::sweep_simd, m)?)?;
     m.add_function(wrap_pyfunction!(batch::batch_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(gait::leg_gait, m)?)?;
+    m.add_function(wrap_pyfunction!(gait::four_bar_gaits, m)?)?;
+    m.add_function(wrap_pyfunction!(gait::gait_columns, m)?)?;
     Ok(())
 }
