@@ -22,7 +22,7 @@ from linkage import _core
 design = pytest.importorskip("linkage.design")
 
 HERE = Path(__file__).resolve().parent
-EXAMPLE = HERE.parent / "examples" / "design_study.toml"
+EXAMPLE = HERE.parent / "examples" / "studies" / "hoecken_family_study.toml"
 
 
 def small(**kw):

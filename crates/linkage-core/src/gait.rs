@@ -118,8 +118,11 @@ impl<T: RealField + Copy> LegGait<T> {
             });
         }
         for (p, v) in path.iter().zip(rate) {
-            check_finite("foot path", p.x + p.y)?;
-            check_finite("foot rate", v.x + v.y)?;
+            // Component by component: a sum of huge finite values could overflow.
+            check_finite("foot path", p.x)?;
+            check_finite("foot path", p.y)?;
+            check_finite("foot rate", v.x)?;
+            check_finite("foot rate", v.y)?;
         }
         let ground = match ground {
             Some(g) => {
@@ -309,9 +312,10 @@ pub struct GaitScratch<'a, T> {
 impl<T: RealField + Copy> FourBar<T> {
     /// The leg figures of this four-bar, its coupler point the foot, over `samples` crank
     /// angles `θ_k = 2πk/samples` with the stance within `rel_tol` times the path's extent
-    /// (`max(Δx, Δy)`) of its lowest level. Points come from [`FourBar::uniform_sweep`]
-    /// (`AngleMode::Recurrence` re-anchored every 64 samples: within a few ulps of the
-    /// tracker's points, one `sin_cos` per 64 samples); the foot rate
+    /// (`max(Δx, Δy)`) of its lowest level. The joint `B` comes from
+    /// [`FourBar::uniform_sweep`] (`AngleMode::Recurrence` re-anchored every 64 samples: within a
+    /// few ulps of the tracker's points, one `sin_cos` per 64 samples) and the foot from it as
+    /// the kernel places it, `P = A + along·e + left·e⊥` with `e = (B − A)/r₁`; the foot rate
     /// `dP/dθ` in closed form from the joints: with `u = B − A`, `w = B − C` and
     /// `A' = r(−sin θ, cos θ)`, the rocker turns at `ω₄ = (u·A')/(w × u)`, the coupler at
     /// `ω₃ = u × (B' − A')/|u|²`, and `P' = A' + ω₃ (P − A)⊥`. The transmission angle is
@@ -356,18 +360,20 @@ impl<T: RealField + Copy> FourBar<T> {
             left: T::zero(),
             ..*self
         };
-        let swept = self
-            .uniform_sweep(T::zero(), dtheta, 0, mode, foot)
-            .and_then(|()| to_b.uniform_sweep(T::zero(), dtheta, 0, mode, joint_b));
-        if swept.is_err() {
+        if to_b
+            .uniform_sweep(T::zero(), dtheta, 0, mode, joint_b)
+            .is_err()
+        {
             return FourBarGait::failed();
         }
         let (r, r1, r2) = (self.crank, self.coupler, self.rocker);
-        let inv_r1_sq = T::one() / (r1 * r1);
+        let inv_r1 = T::one() / r1;
+        let inv_r1_sq = inv_r1 * inv_r1;
+        let (along, left) = (self.along * inv_r1, self.left * inv_r1);
         let mut min_sin = T::one();
         let mut ok = true;
         for (((p, b), v), e) in foot
-            .iter()
+            .iter_mut()
             .zip(joint_b.iter())
             .zip(rate.iter_mut())
             .zip(dirs.iter())
@@ -376,6 +382,8 @@ impl<T: RealField + Copy> FourBar<T> {
             let a = self.o + *e * r;
             let da = Vec2::new(-sn, cs) * r;
             let u = *b - a;
+            // The foot on the coupler as the kernel places it: P = A + along·e + left·e⊥.
+            *p = a + u * along + Vec2::new(-u.y, u.x) * left;
             let w = *b - self.c;
             let uw = cross(w, u);
             let w4 = u.dot(&da) / uw;
@@ -385,7 +393,7 @@ impl<T: RealField + Copy> FourBar<T> {
             *v = da + Vec2::new(-pa.y, pa.x) * w3;
             min_sin = min_sin.min(uw.abs() / (r1 * r2));
             // NaN (no assembly) or an infinite rate (a toggle of the rocker) fails the turn.
-            ok &= (p.x + p.y + v.x + v.y).is_finite();
+            ok &= p.x.is_finite() & p.y.is_finite() & v.x.is_finite() & v.y.is_finite();
         }
         if !ok {
             return FourBarGait::failed();
