@@ -269,3 +269,27 @@ fn batch_rows_are_single_leg_figures_and_a_split_changes_no_bit() {
     assert!(batch.gaits(n, 2.5e-3, &mut scratch, &mut short).is_err());
     assert!(batch.gaits(n, -1.0, &mut scratch, &mut whole).is_err());
 }
+
+#[test]
+fn f32_legs_give_the_f64_figures_to_single_precision() {
+    let fb32 = FourBar::new(20.0_f32, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
+    let n = 360;
+    let mut points = vec![Vec2::<f32>::zeros(); 4 * n];
+    let mut stance = vec![false; n];
+    let mut scratch = GaitScratch {
+        points: &mut points,
+        stance: &mut stance,
+    };
+    let g32 = fb32.gait(n, 2.5e-3, &mut scratch).unwrap();
+    let g64 = gait(&hoecken(), n, 2.5e-3);
+    assert!(g32.full_turn);
+    // Measured: the same stance samples; the figures agree to f32 rounding of a 50 mm leg
+    // (a height within f32 rounding of the band's edge could move one sample in another case).
+    assert_eq!(g32.gait.stance_count, g64.gait.stance_count);
+    assert!((f64::from(g32.gait.stride) - g64.gait.stride).abs() < 1e-4);
+    assert!((f64::from(g32.gait.lift) - g64.gait.lift).abs() < 1e-4);
+    assert!((f64::from(g32.gait.straightness) - g64.gait.straightness).abs() < 1e-5);
+    assert!((f64::from(g32.gait.speed_variation) - g64.gait.speed_variation).abs() < 1e-5);
+    assert!((f64::from(g32.min_transmission) - g64.min_transmission).abs() < 1e-5);
+    assert!((f64::from(g32.gait.peak_torque) - g64.gait.peak_torque).abs() < 1e-3);
+}
