@@ -97,6 +97,8 @@ class Family:
     scale: float = 1.0
     """A typical foot-path size: length constraints are scaled by it for the optimiser."""
     batched: bool = False
+    units: str = "mm"
+    """The unit of the family's lengths (its reference's)."""
 
     def bounds(self) -> dict[str, tuple[float, float]]:
         """``{parameter: (lower, upper)}``."""
@@ -331,6 +333,7 @@ FAMILIES: dict[str, Family] = {
         doc="Theo Jansen's eight-bar Strandbeest leg (crank 15).",
         joints=_jansen_joints,
         scale=70.0,
+        units="holy-number units",
     ),
     "klann": Family(
         name="klann",

@@ -175,10 +175,18 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
     objs = list(study.objectives)
     col = {n: k for k, n in enumerate(FIGURES)}
     pairs = [(a, b) for i, a in enumerate(objs) for b in objs[i + 1 :]] or [(objs[0], objs[0])]
-    fig, axes = plt.subplots(1, len(pairs), figsize=(4.2 * len(pairs), 4.0), squeeze=False)
+    ncols = min(3, len(pairs))
+    nrows = -(-len(pairs) // ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(4.4 * ncols, 4.0 * nrows), squeeze=False)
+    for ax in axes.flat[len(pairs) :]:
+        ax.set_visible(False)
     f_all, g_all = objectives_and_constraints(study, result.figures)
     feas = (g_all <= 0).all(axis=1)
-    for ax, (a, b) in zip(axes[0], pairs):
+
+    def unit(name: str) -> str:
+        return UNITS[name].replace("length", fam.units)
+
+    for ax, (a, b) in zip(axes.flat, pairs):
         fa, fb = result.figures[:, col[a]], result.figures[:, col[b]]
         ax.scatter(fa[feas], fb[feas], s=4, c="0.75", label="feasible candidates")
         ax.scatter(fa[result.front], fb[result.front], s=10, c="C0", label="Pareto front")
@@ -190,8 +198,8 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
             c="C3",
             label=fam.reference_name.split(" (")[0],
         )
-        ax.set_xlabel(f"{a} ({UNITS[a]})")
-        ax.set_ylabel(f"{b} ({UNITS[b]})")
+        ax.set_xlabel(f"{a} ({unit(a)})")
+        ax.set_ylabel(f"{b} ({unit(b)})")
         ax.grid(alpha=0.3)
     axes[0][0].legend(fontsize=7)
     fig.suptitle(f"{study.name}: {fam.doc} {result.evaluations} legs, seed {study.seed}")
@@ -201,7 +209,9 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
     names.append("pareto.png")
     picks = chosen(result, choose)
     if picks:
-        fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4.0), squeeze=False)
+        fig, axes = plt.subplots(
+            1, len(picks), figsize=(4.2 * len(picks), 3.6 + 0.3 * len(objs)), squeeze=False
+        )
         theta = np.linspace(0, 2 * math.pi, 361)
         for ax, i in zip(axes[0], picks):
             m = fam.mechanism(result.x[i])
@@ -224,12 +234,13 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
                 ax.plot(j0[[ka, kb], 0], j0[[ka, kb], 1], c="0.3", lw=1.5)
             figs = dict(zip(FIGURES, result.figures[i]))
             ax.set_title(
-                f"design {picks.index(i) + 1}: " + ", ".join(f"{o} {figs[o]:.3g}" for o in objs),
+                f"design {picks.index(i) + 1}\n"
+                + "\n".join(f"{o} {figs[o]:.3g} {unit(o)}" for o in objs),
                 fontsize=8,
             )
             ax.set_aspect("equal")
-            ax.set_xlabel("x (length)")
-            ax.set_ylabel("y (length)")
+            ax.set_xlabel(f"x ({fam.units})")
+            ax.set_ylabel(f"y ({fam.units}); foot bar not drawn")
         fig.tight_layout()
         fig.savefig(folder / "designs.png", dpi=110)
         plt.close(fig)
@@ -242,7 +253,7 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
     summary = {
         "study": study.name,
         "family": fam.name,
-        "objectives": {o: UNITS[o] for o in objs},
+        "objectives": {o: unit(o) for o in objs},
         "seed": study.seed,
         "evaluations": result.evaluations,
         "generations": result.generations,
