@@ -156,3 +156,23 @@ def test_duty_factor_search_with_schedule():
     assert beta == 0.65 and margin > 5.0
     beta, slip = search_duty_factor(q, 80.0, "slip", duty_factors=(0.5, 0.55, 0.6))
     assert slip < 1e-2
+
+
+def test_stance_and_figures_come_from_the_core_leg_figures():
+    """One implementation: the walker's stance mask, duty factor, stride and lift are the
+    core's leg figures (``_core.leg_gait``) of each foot's sagittal path with the walker's
+    ground and tolerance."""
+    q = linkage.catalog.quadruped_hoecken()
+    sim = q.simulate(THETA)
+    for i in range(len(sim.legs)):
+        path = np.ascontiguousarray(sim.feet[:, i, [0, 2]])
+        rate = np.ascontiguousarray(sim.foot_velocity[:, i, [0, 2]])
+        g, stance = _core.leg_gait(path, rate, 0.1, sim.ground)
+        np.testing.assert_array_equal(stance, sim.stance[:, i])
+        assert g == sim.gaits[i]
+        # The rule itself: within the tolerance of the lowest foot level.
+        np.testing.assert_array_equal(stance, sim.feet[:, i, 2] <= sim.ground + 0.1)
+    assert sim.duty_factor == pytest.approx(np.full(4, 0.58), abs=0.005)
+    # A negative tolerance is an error, not an empty stance.
+    with pytest.raises(linkage.LinkageError, match="stance tolerance"):
+        Walker(q.legs, ground_tol=-1.0).simulate(THETA)

@@ -38,6 +38,9 @@ __all__ = [
     "motion_candidates",
     "chebyshev_points",
     "function_generator",
+    "leg_gait",
+    "four_bar_gaits",
+    "gait_columns",
 ]
 
 CAPACITY: int
@@ -216,3 +219,23 @@ def chebyshev_points(x0: float, x1: float, n: int) -> NDArray[np.float64]: ...
 def function_generator(
     phi: list[float], psi: list[float], ground: float, samples: NDArray[np.float64]
 ) -> dict[str, Any]: ...
+def leg_gait(
+    path: NDArray[np.float64],
+    rate: NDArray[np.float64],
+    tol: float,
+    ground: float | None = None,
+) -> tuple[dict[str, float], NDArray[np.bool_]]: ...
+def four_bar_gaits(
+    o: NDArray[np.float64],
+    c: NDArray[np.float64],
+    crank: NDArray[np.float64],
+    coupler: NDArray[np.float64],
+    rocker: NDArray[np.float64],
+    along: NDArray[np.float64],
+    left: NDArray[np.float64],
+    crossed: NDArray[np.bool_],
+    samples: int,
+    rel_tol: float,
+    threads: int = 1,
+) -> NDArray[np.float64]: ...
+def gait_columns() -> list[str]: ...

@@ -108,6 +108,17 @@ def jansen() -> Mechanism:
     return _linkage("jansen")
 
 
+def klann() -> Mechanism:
+    """A Klann-type leg (Stephenson III six-bar): the reference of :mod:`linkage.legs`'
+    ``klann`` family — proportions after Bastien & Birglen (2022), not the patent's (see
+    :data:`linkage.legs.KLANN_REF`); the foot is ``F``."""
+    from linkage.legs import family
+
+    fam = family("klann")
+    m: Mechanism = fam.mechanism(fam.reference)
+    return m
+
+
 def names() -> tuple[str, ...]:
     """Every catalogue name."""
     return FOUR_BARS + MULTI_LOOP

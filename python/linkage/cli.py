@@ -121,6 +121,14 @@ def _catalog(args: argparse.Namespace, state: dict[str, Path]) -> int:
     return 0
 
 
+def _design(args: argparse.Namespace, state: dict[str, Path]) -> int:
+    try:
+        from linkage import design
+    except ImportError as exc:
+        raise LinkageError(str(exc)) from None
+    return design.main_design(args.study, args.out, args.force, args.checkpoint, args.quiet)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``linkage`` console script."""
     parser = argparse.ArgumentParser(
@@ -163,6 +171,17 @@ def main(argv: Sequence[str] | None = None) -> int:
         "--no-cache", action="store_true", help="recompute instead of using the user cache"
     )
     cat.set_defaults(func=_catalog)
+    des = sub.add_parser(
+        "design", help="search walking-leg designs (a [design] study): Pareto front and report"
+    )
+    des.add_argument("study", help="study file (TOML with a [design] section); see examples/")
+    des.add_argument("--out", help="report folder (default ./linkage-report/<study name>)")
+    des.add_argument("--force", action="store_true", help="replace an earlier report it wrote")
+    des.add_argument(
+        "--checkpoint", help="checkpoint file (default .<out>.checkpoint beside the report)"
+    )
+    des.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    des.set_defaults(func=_design)
     args = parser.parse_args(argv)
     if getattr(args, "samples", None) is not None and args.samples < 8:
         parser.error("--samples must be at least 8")

@@ -15,6 +15,7 @@ the body is held level at constant height, and the ground is the lowest level an
 
 from __future__ import annotations
 
+import copy
 import itertools
 import math
 from collections.abc import Sequence
@@ -163,6 +164,11 @@ class Simulation:
     spread: Array
     """Largest minus smallest stance-foot velocity along x, per sample (0 with < 2 feet down)."""
     cycle: float = field(default=2 * math.pi)
+    gaits: tuple[dict[str, float], ...] = ()
+    """Per leg, the core's leg figures (``linkage_core::LegGait``: stance count and runs, duty
+    factor, stride, lift, straightness, speed variation, peak torque) of its foot path in the
+    sagittal plane ``(x, z)`` with this simulation's ground and tolerance; the stance mask,
+    duty factor, stride and lift height above come from them (one implementation)."""
 
     @property
     def min_margin(self) -> float:
@@ -177,8 +183,7 @@ class Simulation:
     @property
     def duty_factor(self) -> Array:
         """Share of the samples each leg spends in stance."""
-        d: Array = self.stance.mean(axis=0)
-        return d
+        return np.array([g["duty_factor"] for g in self.gaits], dtype=float)
 
     @property
     def pr_ratio(self) -> Array:
@@ -191,18 +196,12 @@ class Simulation:
     @property
     def stride(self) -> Array:
         """Foot travel along x during stance (the body's advance per step), per leg."""
-        out = np.full(len(self.legs), np.nan)
-        for i in range(len(self.legs)):
-            x = self.feet[self.stance[:, i], i, 0]
-            if len(x):
-                out[i] = float(np.ptp(x))
-        return out
+        return np.array([g["stride"] for g in self.gaits], dtype=float)
 
     @property
     def lift_height(self) -> Array:
         """Highest foot point above the ground, per leg: the obstacle it can step over."""
-        h: Array = self.feet[:, :, 2].max(axis=0) - self.ground
-        return h
+        return np.array([g["lift"] for g in self.gaits], dtype=float)
 
     @property
     def slip_distance(self) -> Array:
@@ -366,7 +365,14 @@ class Walker:
         ground = float(z.min())
         extent = float(np.ptp(feet.reshape(-1, 3), axis=0).max())
         tol = self.ground_tol if self.ground_tol is not None else 2.5e-3 * extent
-        stance = z <= ground + tol
+        # Stance by the core's leg figures (the same code as the design search's).
+        stance = np.empty((n, m), dtype=bool)
+        gaits = []
+        for i in range(m):
+            path = np.ascontiguousarray(np.stack([feet[:, i, 0], z[:, i]], axis=1))
+            rate = np.ascontiguousarray(np.stack([vel[:, i, 0], vel[:, i, 2]], axis=1))
+            g, stance[:, i] = _core.leg_gait(path, rate, tol, ground)
+            gaits.append(g)
         vx = np.where(stance, vel[:, :, 0], np.nan)
         with np.errstate(invalid="ignore"), _quiet():
             body_v = -np.nanmean(vx, axis=1)
@@ -400,6 +406,7 @@ class Walker:
             margin=margin,
             slip_velocity=vx + body_v[:, None],
             spread=spread,
+            gaits=tuple(gaits),
         )
 
     def body_clearance(self, samples: int = 721) -> float:
@@ -516,9 +523,11 @@ def search_duty_factor(
         )
     betas = [as_finite(b, "duty_factors[]") for b in duty_factors]
     best: tuple[float, float] | None = None
+    # The schedule sweeps the leg over the same fine grid for every duty factor: sweep it once.
+    leg = _memo_sweeps(walker.legs[0].linkage)
     for beta in betas:
         try:
-            sched = crank_schedule(walker.legs[0].linkage, foot_speed, beta)
+            sched = crank_schedule(leg, foot_speed, beta)
         except LinkageError:
             continue
         t = np.linspace(0.0, sched.period, samples)
@@ -532,6 +541,36 @@ def search_duty_factor(
     if best is None:
         raise LinkageError("no duty factor gives a feasible schedule")
     return best[0], best[1] if objective == "margin" else -best[1]
+
+
+def _memo_sweeps(linkage: FourBar | Mechanism) -> Any:
+    """The same linkage whose sweeps at constant crank speed are remembered by their angles
+    (the foot path a crank schedule samples, the same for every duty factor). Sweeps are
+    deterministic, so a remembered one is the one the call would compute."""
+    base = type(linkage)
+    cache: dict[tuple[bytes, float, tuple[str, ...]], Any] = {}
+
+    class Memo(base):  # type: ignore[valid-type,misc]
+        def sweep(self, theta: Any = None, omega: Any = None, *args: Any, **kw: Any) -> Any:
+            outputs = kw.get("outputs")
+            plain = (
+                not args
+                and set(kw) <= {"outputs"}
+                and isinstance(omega, float)
+                and isinstance(theta, np.ndarray)
+                and theta.dtype == np.float64
+                and isinstance(outputs, tuple)
+            )
+            if not plain:
+                return super().sweep(theta, omega, *args, **kw)
+            key = (theta.tobytes(), float(omega), tuple(str(o) for o in outputs or ()))
+            if key not in cache:
+                cache[key] = super().sweep(theta, omega, outputs=outputs)
+            return cache[key]
+
+    memo = copy.copy(linkage)
+    memo.__class__ = Memo
+    return memo
 
 
 def leg_labels(mounts: Sequence[Sequence[float]]) -> tuple[str, ...]:

@@ -60,6 +60,7 @@ mod error;
 mod fourbar;
 #[cfg(feature = "synthesis")]
 mod freudenstein;
+mod gait;
 mod gear_train;
 mod inflection;
 #[cfg(feature = "alloc")]
@@ -102,6 +103,7 @@ pub use error::Error;
 pub use fourbar::{Assembly, FourBar, FourBarPose, GrashofClass, InputRange};
 #[cfg(feature = "synthesis")]
 pub use freudenstein::{chebyshev_spacing, Freudenstein, FunctionCheck, FunctionGenerator};
+pub use gait::{FourBarGait, GaitScratch, LegGait};
 pub use gear_train::GearTrain;
 pub use inflection::{inflection, Inflection};
 #[cfg(feature = "alloc")]

@@ -15,6 +15,7 @@ mod centres;
 mod drives;
 mod error;
 mod fourbar;
+mod gait;
 mod kinetostatics;
 mod mechanism;
 mod memory;
@@ -59,5 +60,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(precision::motion_candidates, m)?)?;
     m.add_function(wrap_pyfunction!(precision::chebyshev_points, m)?)?;
     m.add_function(wrap_pyfunction!(precision::function_generator, m)?)?;
+    m.add_function(wrap_pyfunction!(gait::leg_gait, m)?)?;
+    m.add_function(wrap_pyfunction!(gait::four_bar_gaits, m)?)?;
+    m.add_function(wrap_pyfunction!(gait::gait_columns, m)?)?;
     Ok(())
 }

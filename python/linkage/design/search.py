@@ -1,0 +1,396 @@
+"""The search: a study (family, bounds, objectives, constraints, budget, seed, where it
+runs), its evaluation in chunks (in this process, on a LocalCluster or on a scheduler's
+cluster), NSGA-II by ask and tell with a checkpoint after every generation, the Pareto front
+and where the family's reference design sits relative to it."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import pickle
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import distributed
+import numpy as np
+from numpy.typing import NDArray
+from pymoo.algorithms.moo.nsga2 import NSGA2  # type: ignore[import-untyped]
+from pymoo.core.problem import Problem  # type: ignore[import-untyped]
+
+from linkage._core import LinkageError
+from linkage.legs import FIGURES, OBJECTIVES, Settings, family
+
+Array = NDArray[np.float64]
+
+
+# -- the study ----------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Constraints:
+    """Feasibility: the whole turn on one circuit and one stance run (always), and bounds."""
+
+    min_transmission: float = 20.0
+    """Smallest transmission angle (degrees)."""
+    foot_below_hip: float = 0.0
+    """Least depth of the ground below the hip (crank pivot), foot bar included."""
+    min_lift: float = 0.0
+    """Least lift (the obstacle the swing clears)."""
+    min_duty: float = 0.4
+    """Least duty factor (0.5: two legs in antiphase always have a foot down)."""
+
+
+@dataclass(frozen=True)
+class Study:
+    """A design study: family, bounds, objectives, constraints, budget, seed, execution."""
+
+    family: str = "fourbar"
+    objectives: tuple[str, ...] = ("stride", "straightness", "speed_variation")
+    bounds: dict[str, tuple[float, float]] = field(default_factory=dict)
+    constraints: Constraints = field(default_factory=Constraints)
+    settings: Settings = field(default_factory=Settings)
+    population: int = 64
+    budget: int = 640
+    seed: int = 1
+    workers: int = 0
+    """0: evaluate in this process; n: a LocalCluster of n single-threaded worker processes."""
+    scheduler: str | None = None
+    """Address of a running Dask scheduler (``tcp://host:8786``): use that cluster."""
+    chunk: int = 256
+    """Candidates per task."""
+    name: str = "design"
+
+    def __post_init__(self) -> None:
+        fam = family(self.family)
+        for o in self.objectives:
+            if o not in OBJECTIVES:
+                raise LinkageError(f"unknown objective {o!r}; choose from {', '.join(OBJECTIVES)}")
+        if not self.objectives:
+            raise LinkageError("a study needs at least one objective")
+        for k, (lo, hi) in self.bounds.items():
+            if k not in fam.params:
+                raise LinkageError(
+                    f"family {fam.name!r} has no parameter {k!r}; it has {', '.join(fam.params)}"
+                )
+            if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+                raise LinkageError(f"bounds of {k!r} must be finite with lower < upper")
+        if self.population < 4:
+            raise LinkageError(f"population must be at least 4, got {self.population}")
+        if self.budget < self.population:
+            raise LinkageError(
+                f"budget ({self.budget}) must be at least one population ({self.population})"
+            )
+        if self.workers < 0 or self.chunk < 1:
+            raise LinkageError("workers must be ≥ 0 and chunk ≥ 1")
+
+    @property
+    def generations(self) -> int:
+        """Generations the budget pays for (the first population included)."""
+        return self.budget // self.population
+
+    def box(self) -> tuple[Array, Array]:
+        """Lower and upper bounds of every parameter (the family's, overridden)."""
+        fam = family(self.family)
+        b = fam.bounds()
+        b.update(self.bounds)
+        return (
+            np.array([b[p][0] for p in fam.params], dtype=float),
+            np.array([b[p][1] for p in fam.params], dtype=float),
+        )
+
+    def fingerprint(self) -> str:
+        """What a checkpoint must match to be resumed (everything but where it runs)."""
+        d = {
+            "family": self.family,
+            "objectives": self.objectives,
+            "box": [v.tolist() for v in self.box()],
+            "constraints": self.constraints.__dict__,
+            "settings": self.settings.__dict__,
+            "population": self.population,
+            "seed": self.seed,
+        }
+        return hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:16]
+
+
+def objectives_and_constraints(study: Study, figs: Array) -> tuple[Array, Array]:
+    """pymoo's ``F`` (minimised) and ``G`` (≤ 0 feasible) from figures. Constraints are
+    scaled to comparable sizes (angles by 90°, lengths by the family's scale, the duty factor
+    as it is) so that the optimiser's summed violation weighs them alike. A candidate without
+    figures (no full turn) gets the worst objectives the optimiser can rank (1e12, never
+    reported) and violates every constraint by 10."""
+    col = {n: figs[:, k] for k, n in enumerate(FIGURES)}
+    f = np.stack([-OBJECTIVES[o] * col[o] for o in study.objectives], axis=1)
+    c = study.constraints
+    size = family(study.family).scale
+    with np.errstate(invalid="ignore"):
+        g = np.stack(
+            [
+                1.0 - col["full_turn"],
+                np.abs(col["stance_runs"] - 1.0),
+                (c.min_transmission - col["min_transmission"]) / 90.0,
+                (c.foot_below_hip - col["hip_depth"]) / size,
+                (c.min_lift - col["lift"]) / size,
+                c.min_duty - col["duty_factor"],
+            ],
+            axis=1,
+        )
+    bad = ~np.isfinite(f).all(axis=1)
+    f[bad] = 1e12
+    g[~np.isfinite(g)] = 10.0
+    return f, g
+
+
+# -- evaluation (serial or on Dask) -------------------------------------------------------
+
+
+def evaluate_chunk(family_name: str, x: Array, settings: Settings) -> Array:
+    """Figures of one chunk of candidates (what a Dask task runs)."""
+    return family(family_name).evaluate(x, settings)
+
+
+class Evaluator:
+    """Evaluates candidates in this process, on a LocalCluster or on a scheduler's cluster,
+    in chunks of ``chunk`` candidates gathered in order (the same figures either way)."""
+
+    def __init__(self, study: Study) -> None:
+        self.study = study
+        self.client: Any = None
+        self.cluster: Any = None
+        if study.scheduler:
+            self.client = distributed.Client(study.scheduler, timeout="20s")  # type: ignore[no-untyped-call]
+        elif study.workers > 0:
+            self.cluster = distributed.LocalCluster(  # type: ignore[no-untyped-call]
+                n_workers=study.workers,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,
+            )
+            self.client = distributed.Client(self.cluster)  # type: ignore[no-untyped-call]
+
+    def __call__(self, x: Array) -> Array:
+        s = self.study
+        if self.client is None:
+            return evaluate_chunk(s.family, x, s.settings)
+        parts = [x[i : i + s.chunk] for i in range(0, len(x), s.chunk)]
+        futures = self.client.map(
+            evaluate_chunk, [s.family] * len(parts), parts, [s.settings] * len(parts), pure=False
+        )
+        return np.concatenate(self.client.gather(futures), axis=0)
+
+    def close(self) -> None:
+        if self.client is not None:
+            self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+
+    def __enter__(self) -> Evaluator:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+
+# -- the search ---------------------------------------------------------------------------
+
+
+class _Box(Problem):  # type: ignore[misc]
+    """The search space for pymoo: evaluation is done outside (ask/tell), so it pickles."""
+
+    def __init__(self, n_var: int, n_obj: int, n_constr: int, xl: Array, xu: Array) -> None:
+        super().__init__(n_var=n_var, n_obj=n_obj, n_ieq_constr=n_constr, xl=xl, xu=xu)
+
+
+@dataclass
+class Front:
+    """The search's result: every candidate evaluated (parameters and figures, in order), the
+    indices of the final Pareto front, and the study."""
+
+    study: Study
+    x: Array
+    figures: Array
+    front: NDArray[np.int64]
+    generations: int
+    evaluations: int
+    seconds: float = 0.0
+
+    def front_x(self) -> Array:
+        return self.x[self.front]
+
+    def front_figures(self) -> Array:
+        return self.figures[self.front]
+
+
+CHECKPOINT_MAGIC = "linkage-design-checkpoint-1"
+
+
+def _save_checkpoint(path: Path, state: dict[str, Any]) -> None:
+    """Write atomically (temp file, then rename) a checkpoint the tool owns."""
+    tmp = path.with_name(f".{path.name}.partial-{os.getpid()}")
+    with open(tmp, "wb") as fh:
+        pickle.dump({"magic": CHECKPOINT_MAGIC, **state}, fh)
+        fh.flush()
+        os.fsync(fh.fileno())
+    os.replace(tmp, path)
+
+
+def _load_checkpoint(path: Path, study: Study) -> dict[str, Any] | None:
+    if not path.exists():
+        return None
+    try:
+        with open(path, "rb") as fh:
+            state = pickle.load(fh)
+    except Exception as exc:
+        raise LinkageError(
+            f"{path}: not a readable design checkpoint ({exc}); remove it or choose another "
+            f"--checkpoint (nothing was overwritten)"
+        ) from None
+    if not isinstance(state, dict) or state.get("magic") != CHECKPOINT_MAGIC:
+        raise LinkageError(
+            f"{path} is not a linkage design checkpoint; refusing to overwrite it "
+            f"(choose another --checkpoint)"
+        )
+    if state.get("fingerprint") != study.fingerprint():
+        raise LinkageError(
+            f"{path} is the checkpoint of a different study (family, bounds, objectives, "
+            f"constraints, population or seed changed); remove it or choose another --checkpoint"
+        )
+    return state
+
+
+def search(
+    study: Study,
+    checkpoint: str | Path | None = None,
+    progress: bool = False,
+    stop_after: int | None = None,
+) -> Front:
+    """Run NSGA-II over the study's family; returns the :class:`Front`.
+
+    With ``checkpoint`` the state is saved atomically after every generation and a search
+    started again with the same study resumes from it (to the same front: the optimiser's
+    random state is part of the checkpoint). ``stop_after`` ends after that many generations
+    in this call (a stopped search, for tests). ``progress`` draws a bar on stderr.
+    """
+    if not isinstance(study, Study):
+        raise TypeError(f"study must be a Study, got {type(study).__name__}")
+    fam = family(study.family)
+    xl, xu = study.box()
+    n_con = 6
+    path = Path(checkpoint) if checkpoint is not None else None
+    state = _load_checkpoint(path, study) if path is not None else None
+    t0 = time.perf_counter()
+    if state is None:
+        problem = _Box(len(fam.params), len(study.objectives), n_con, xl, xu)
+        algorithm = NSGA2(pop_size=study.population)
+        algorithm.setup(problem, termination=("n_gen", study.generations), seed=study.seed)
+        xs: list[Array] = []
+        figs: list[Array] = []
+        gen = 0
+    else:
+        algorithm = state["algorithm"]
+        xs, figs, gen = state["x"], state["figures"], state["generation"]
+    done_here = 0
+    with Evaluator(study) as ev:
+        while gen < study.generations:
+            if stop_after is not None and done_here >= stop_after:
+                break
+            pop = algorithm.ask()
+            x = np.asarray(pop.get("X"), dtype=float)
+            fig = ev(x)
+            f, g = objectives_and_constraints(study, fig)
+            pop.set("F", f, "G", g)
+            algorithm.tell(infills=pop)
+            xs.append(x)
+            figs.append(fig)
+            gen += 1
+            done_here += 1
+            if path is not None:
+                _save_checkpoint(
+                    path,
+                    {
+                        "fingerprint": study.fingerprint(),
+                        "algorithm": algorithm,
+                        "x": xs,
+                        "figures": figs,
+                        "generation": gen,
+                    },
+                )
+            if progress:
+                _bar(gen, study.generations, sum(len(v) for v in xs))
+    if progress and sys.stderr.isatty():
+        sys.stderr.write("\n")
+    x_all = np.concatenate(xs) if xs else np.empty((0, len(fam.params)))
+    f_all = np.concatenate(figs) if figs else np.empty((0, len(FIGURES)))
+    return Front(
+        study=study,
+        x=x_all,
+        figures=f_all,
+        front=pareto_front(study, f_all),
+        generations=gen,
+        evaluations=len(x_all),
+        seconds=time.perf_counter() - t0,
+    )
+
+
+def _bar(done: int, total: int, evaluations: int) -> None:
+    """A progress bar on a terminal (redrawn in place); elsewhere a line every tenth."""
+    width = 30
+    full = int(width * done / max(total, 1))
+    text = (
+        f"[{'#' * full}{'.' * (width - full)}] generation {done}/{total}, "
+        f"{evaluations} legs evaluated"
+    )
+    if sys.stderr.isatty():
+        sys.stderr.write("\r" + text)
+    elif done == total or done % max(1, total // 10) == 0:
+        sys.stderr.write(text + "\n")
+    sys.stderr.flush()
+
+
+def pareto_front(study: Study, figs: Array) -> NDArray[np.int64]:
+    """Indices of the feasible candidates no other feasible candidate dominates (over every
+    candidate evaluated, in order; duplicates keep their first)."""
+    f, g = objectives_and_constraints(study, figs)
+    ok = np.flatnonzero((g <= 0).all(axis=1))
+    if len(ok) == 0:
+        return np.empty(0, dtype=np.int64)
+    ff = f[ok]
+    keep = []
+    for i in range(len(ff)):
+        dominated = np.any(np.all(ff <= ff[i], axis=1) & np.any(ff < ff[i], axis=1))
+        duplicate = np.any(np.all(ff[:i] == ff[i], axis=1))
+        if not dominated and not duplicate:
+            keep.append(ok[i])
+    return np.asarray(keep, dtype=np.int64)
+
+
+def reference_figures(study: Study) -> Array:
+    """Figures of the family's reference design (the sources' choice) under the study."""
+    fam = family(study.family)
+    row: Array = fam.evaluate(np.asarray([fam.reference], dtype=float), study.settings)[0]
+    return row
+
+
+def placement(study: Study, result: Front) -> dict[str, Any]:
+    """Where the reference design sits relative to the front: whether it is feasible, which
+    front designs dominate it (indices into ``result.x``) and, per objective, its rank among
+    the front's values (0 = better than every front design)."""
+    ref = reference_figures(study)
+    f_ref, g_ref = objectives_and_constraints(study, ref[None, :])
+    f_front, _ = objectives_and_constraints(study, result.front_figures())
+    dom = [
+        int(result.front[i])
+        for i in range(len(f_front))
+        if np.all(f_front[i] <= f_ref[0]) and np.any(f_front[i] < f_ref[0])
+    ]
+    ranks = {o: int(np.sum(f_front[:, k] < f_ref[0, k])) for k, o in enumerate(study.objectives)}
+    return {
+        "feasible": bool((g_ref <= 0).all()),
+        "dominated_by": dom,
+        "rank": ranks,
+        "figures": {n: float(v) for n, v in zip(FIGURES, ref)},
+    }

@@ -1,0 +1,200 @@
+"""Study files: a TOML ``[design]`` section read into a :class:`~linkage.design.Study`, with
+``file:line: [section] key: problem`` messages for every mistake."""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage._core import LinkageError
+from linkage.design.search import Constraints, Study
+from linkage.legs import FAMILIES, OBJECTIVES, Settings
+
+Array = NDArray[np.float64]
+
+
+# -- study files --------------------------------------------------------------------------
+
+_TOP_KEYS = {
+    "family": str,
+    "objectives": list,
+    "population": int,
+    "budget": int,
+    "seed": int,
+    "workers": int,
+    "scheduler": str,
+    "chunk": int,
+    "samples": int,
+    "stance_tol": float,
+    "foot_bar": float,
+    "choose": int,
+    "bounds": dict,
+    "constraints": dict,
+}
+_CONSTRAINT_KEYS = ("min_transmission", "foot_below_hip", "min_lift", "min_duty")
+
+
+@dataclass(frozen=True)
+class StudyFile:
+    """A study read from a TOML file: the study, how many front designs to draw and export
+    (``choose``), and the file it came from."""
+
+    study: Study
+    choose: int
+    path: Path
+
+
+def load_study(path: str | Path) -> StudyFile:
+    """Read a study file: a ``[design]`` section (family, objectives, population, budget,
+    seed, workers or scheduler, chunk, samples, stance_tol, foot_bar, choose) with
+    ``[design.bounds]`` (``parameter = [lower, upper]``) and ``[design.constraints]``.
+    Errors name ``file:line: [section] key``."""
+    from linkage._toml_lines import Locator, NotText, decode
+
+    p = Path(path)
+    try:
+        data = p.read_bytes()
+    except OSError as exc:
+        raise LinkageError(f"{p}: cannot read the study: {exc.strerror or exc}") from None
+    try:
+        text = decode(data)
+    except NotText as exc:
+        raise LinkageError(f"{p}:{exc.line}: {exc.problem}") from None
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover
+        import tomli as tomllib
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        line = getattr(exc, "lineno", None) or _line_of(str(exc))
+        raise LinkageError(f"{p}:{line}: not valid TOML: {exc}") from None
+    loc = Locator(text, str(p))
+
+    def err(section: Sequence[str], key: str, problem: str) -> LinkageError:
+        return LinkageError(loc.message(list(section), key, problem))
+
+    name = str(doc.get("name", p.stem)) if isinstance(doc.get("name", ""), str) else p.stem
+    for key in doc:
+        if key not in ("design", "name"):
+            raise err([], key, "unknown key (a study file has name and a [design] section)")
+    d = doc.get("design")
+    if not isinstance(d, dict):
+        raise err([], "design", "missing: a study file needs a [design] section")
+    for key, value in d.items():
+        want = _TOP_KEYS.get(key)
+        if want is None:
+            raise err(["design"], key, f"unknown key; expected one of {', '.join(_TOP_KEYS)}")
+        ok = (
+            isinstance(value, (int, float)) and not isinstance(value, bool)
+            if want is float
+            else isinstance(value, want) and not isinstance(value, bool)
+        )
+        if not ok:
+            raise err(["design"], key, f"must be {want.__name__}, got {value!r}")
+    fam_name = d.get("family", "fourbar")
+    if fam_name not in FAMILIES:
+        raise err(
+            ["design"], "family", f"unknown family {fam_name!r}; choose from {', '.join(FAMILIES)}"
+        )
+    fam = FAMILIES[fam_name]
+    objectives = d.get("objectives", ["stride", "straightness", "speed_variation"])
+    for o in objectives:
+        if o not in OBJECTIVES:
+            raise err(
+                ["design"],
+                "objectives",
+                f"unknown objective {o!r}; choose from {', '.join(OBJECTIVES)}",
+            )
+    if not objectives:
+        raise err(["design"], "objectives", "needs at least one objective")
+    bounds: dict[str, tuple[float, float]] = {}
+    for key, value in d.get("bounds", {}).items():
+        if key not in fam.params:
+            raise err(
+                ["design", "bounds"],
+                key,
+                f"family {fam_name!r} has no parameter {key!r}; it has {', '.join(fam.params)}",
+            )
+        if (
+            not isinstance(value, list)
+            or len(value) != 2
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+            or not all(math.isfinite(v) for v in value)
+            or not value[0] < value[1]
+        ):
+            raise err(
+                ["design", "bounds"],
+                key,
+                f"must be [lower, upper] with finite lower < upper, got {value!r}",
+            )
+        bounds[key] = (float(value[0]), float(value[1]))
+    cons: dict[str, float] = {}
+    for key, value in d.get("constraints", {}).items():
+        if key not in _CONSTRAINT_KEYS:
+            raise err(
+                ["design", "constraints"],
+                key,
+                f"unknown constraint; expected one of {', '.join(_CONSTRAINT_KEYS)}",
+            )
+        if (
+            not isinstance(value, (int, float))
+            or isinstance(value, bool)
+            or not math.isfinite(value)
+        ):
+            raise err(["design", "constraints"], key, f"must be a finite number, got {value!r}")
+        cons[key] = float(value)
+    ints = {
+        "population": (4, 10**7),
+        "budget": (4, 10**12),
+        "seed": (0, 2**32 - 1),
+        "workers": (0, 4096),
+        "chunk": (1, 10**7),
+        "samples": (16, 10**6),
+        "choose": (0, 50),
+    }
+    for key, (lo, hi) in ints.items():
+        if key in d and not lo <= d[key] <= hi:
+            raise err(["design"], key, f"must be between {lo} and {hi}, got {d[key]}")
+    for key in ("stance_tol", "foot_bar"):
+        if key in d and not (math.isfinite(d[key]) and d[key] >= 0):
+            raise err(["design"], key, f"must be a finite number ≥ 0, got {d[key]}")
+    if "workers" in d and "scheduler" in d:
+        raise err(["design"], "scheduler", "give workers or scheduler, not both")
+    population = int(d.get("population", 64))
+    budget = int(d.get("budget", 10 * population))
+    if budget < population:
+        raise err(["design"], "budget", f"must be at least one population ({population})")
+    settings = Settings(
+        samples=int(d.get("samples", 360)),
+        stance_tol=float(d.get("stance_tol", 2.5e-3)),
+        foot_bar=float(d.get("foot_bar", 0.0)),
+    )
+    study = Study(
+        family=fam_name,
+        objectives=tuple(objectives),
+        bounds=bounds,
+        constraints=Constraints(**cons),
+        settings=settings,
+        population=population,
+        budget=budget,
+        seed=int(d.get("seed", 1)),
+        workers=int(d.get("workers", 0)),
+        scheduler=d.get("scheduler"),
+        chunk=int(d.get("chunk", 256)),
+        name=name,
+    )
+    return StudyFile(study=study, choose=int(d.get("choose", 3)), path=p)
+
+
+def _line_of(message: str) -> int:
+    import re
+
+    m = re.search(r"line (\d+)", message)
+    return int(m.group(1)) if m else 1
