@@ -103,7 +103,7 @@ def test_batched_figures_match_one_leg_and_any_thread_count():
     np.testing.assert_allclose(mech, one[i], rtol=1e-7, atol=1e-9)
 
 
-def test_duty_factor_search_caches_the_foot_path_and_gives_the_same_answer():
+def test_duty_factor_search_finds_the_stance_once_and_gives_the_same_answer():
     from linkage.drive import crank_schedule
     from linkage.walker import search_duty_factor
 

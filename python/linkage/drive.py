@@ -315,47 +315,37 @@ class CrankSchedule:
         return out[:, 0], out[:, 1], out[:, 2]
 
 
-def crank_schedule(
-    leg: Any,
-    foot_speed: float,
-    duty_factor: float,
-    samples: int = 720,
-    tol: float | None = None,
-    resolution: int = 7201,
-) -> CrankSchedule:
-    """A crank speed schedule that keeps a leg's foot at constant speed along its stance line.
+@dataclass(frozen=True)
+class StanceProfile:
+    """A leg's stance as a crank schedule needs it (see :func:`stance_profile`): the same for
+    every foot speed and duty factor, so a search over them finds it once."""
 
-    In stance (the straight part of the foot path within ``tol``, default 0.2 % of the path's
-    extent) the crank runs at ``ω(θ) = V/|u(θ)|``, ``u`` the foot's velocity along the stance
-    line per radian of crank, so the stance lasts ``stride/V``. With duty factor ``β`` the period
-    is ``T = stride/(V·β)``; the swing covers the remaining crank angle in ``(1 − β)T`` with a
-    speed that starts and ends at the stance speeds (continuous ω) plus a parabolic bump sized to
-    close the turn — bounded acceleration. ``leg`` is a :class:`FourBar` or :class:`Mechanism`
-    whose trace point is the foot.
+    theta: NDArray[np.float64]
+    """Stance crank angles (rad), increasing (unwrapped across 2π)."""
+    u: NDArray[np.float64]
+    """The foot's speed along the stance line per radian of crank at each angle."""
+    direction: NDArray[np.float64]
+    """Unit direction of the stance line."""
+
+
+def stance_profile(leg: Any, tol: float | None = None, resolution: int = 7201) -> StanceProfile:
+    """The stance of ``leg`` (a :class:`FourBar` or :class:`Mechanism` whose trace point is the
+    foot): the straight part of its foot path within ``tol`` (default 0.2 % of the path's
+    extent), sampled at ``resolution`` crank angles over a turn.
 
     Raises
     ------
     LinkageError
-        For bad numbers, a foot path with no straight part, or a swing that would need the crank
-        to stop or reverse (duty factor too low for that stance).
+        When the leg does not assemble over a whole turn, or for bad numbers.
     """
-
     if not isinstance(leg, (FourBar, Mechanism)):
         raise TypeError(f"leg must be a FourBar or Mechanism, got {type(leg).__name__}")
-    v_target = as_length(foot_speed, "foot_speed")
-    beta = as_finite(duty_factor, "duty_factor")
-    if not 0 < beta < 1:
-        raise LinkageError(f"duty_factor must be between 0 and 1, got {beta}")
-    samples = as_count(samples, "samples", 8)
     resolution = as_count(resolution, "resolution", 16)
     if tol is not None:
         tol = as_finite(tol, "tol")
-    # Per resolution sample: angle, joints and joint velocities, flags; per table sample: 20
-    # checked times with their angles, speeds and a sweep.
+    # Per resolution sample: angle, joints and joint velocities, flags.
     joints = 5 if isinstance(leg, FourBar) else max(1, len(leg))
     check_memory(resolution * 8 * (8 + 4 * joints), f"a crank schedule at resolution {resolution}")
-    check_memory(samples * 20 * 8 * (12 + 4 * joints), f"a crank schedule of {samples} samples")
-
     theta = np.linspace(0.0, 2 * np.pi, resolution)
     s = leg.sweep(theta, omega=1.0, outputs=("point", "velocity"))
     if not s.valid.all():
@@ -364,14 +354,58 @@ def crank_schedule(
     extent = float(np.ptp(path, axis=0).max())
     fp = foot_path(path, tol if tol is not None else 2e-3 * extent)
     idx = fp.stance.indices
-    d = np.asarray(fp.stance.direction)
+    d = np.asarray(fp.stance.direction, dtype=np.float64)
     # Stance crank angles, unwrapped so they increase.
-    th_st = theta[idx] + 2 * np.pi * (idx < idx[0])
+    th_st = np.ascontiguousarray(theta[idx] + 2 * np.pi * (idx < idx[0]))
     u = np.ascontiguousarray(np.abs(vel[idx] @ d))
+    return StanceProfile(theta=th_st, u=u, direction=d)
+
+
+def crank_schedule(
+    leg: Any,
+    foot_speed: float,
+    duty_factor: float,
+    samples: int = 720,
+    tol: float | None = None,
+    resolution: int = 7201,
+    stance: StanceProfile | None = None,
+) -> CrankSchedule:
+    """A crank speed schedule that keeps a leg's foot at constant speed along its stance line.
+
+    In stance (the straight part of the foot path within ``tol``, default 0.2 % of the path's
+    extent: :func:`stance_profile`, or ``stance`` when given) the crank runs at
+    ``ω(θ) = V/|u(θ)|``, ``u`` the foot's velocity along the stance line per radian of crank,
+    so the stance lasts ``stride/V``. With duty factor ``β`` the period is ``T = stride/(V·β)``;
+    the swing covers the remaining crank angle in ``(1 − β)T`` with a speed that starts and ends
+    at the stance speeds (continuous ω) plus a parabolic bump sized to close the turn — bounded
+    acceleration (the core's ``StanceSchedule``). ``leg`` is a :class:`FourBar` or
+    :class:`Mechanism` whose trace point is the foot.
+
+    Raises
+    ------
+    LinkageError
+        For bad numbers, a foot path with no straight part, or a swing that would need the crank
+        to stop or reverse (duty factor too low for that stance).
+    """
+    if not isinstance(leg, (FourBar, Mechanism)):
+        raise TypeError(f"leg must be a FourBar or Mechanism, got {type(leg).__name__}")
+    v_target = as_length(foot_speed, "foot_speed")
+    beta = as_finite(duty_factor, "duty_factor")
+    if not 0 < beta < 1:
+        raise LinkageError(f"duty_factor must be between 0 and 1, got {beta}")
+    samples = as_count(samples, "samples", 8)
+    # Per table sample: 20 checked times with their angles, speeds and a sweep.
+    joints = 5 if isinstance(leg, FourBar) else max(1, len(leg))
+    check_memory(samples * 20 * 8 * (12 + 4 * joints), f"a crank schedule of {samples} samples")
+    if stance is None:
+        stance = stance_profile(leg, tol, resolution)
+    elif not isinstance(stance, StanceProfile):
+        raise TypeError(f"stance must be a StanceProfile, got {type(stance).__name__}")
+    th_st, u, d = stance.theta, stance.u, stance.direction
     # The schedule itself (stance at V/u, a swing closing the turn) is the core's
     # StanceSchedule; here only the stance is found and the result measured.
     dt, th_tab, w_tab, stance_time, stance_angles = _core.stance_schedule(
-        np.ascontiguousarray(th_st), u, v_target, beta, samples
+        th_st, u, v_target, beta, samples
     )
     period = dt * samples
     sched = CrankSchedule(

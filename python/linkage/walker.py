@@ -15,7 +15,6 @@ the body is held level at constant height, and the ground is the lowest level an
 
 from __future__ import annotations
 
-import copy
 import itertools
 import math
 from collections.abc import Sequence
@@ -38,7 +37,7 @@ from linkage._arrays import (
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
-from linkage.drive import Program
+from linkage.drive import Program, crank_schedule, stance_profile
 
 Array = NDArray[np.float64]
 PLANES = ("sagittal", "horizontal")
@@ -510,8 +509,6 @@ def search_duty_factor(
     phase) that maximises the minimum stability margin (``"margin"``) or minimises the slip per
     cycle among stable runs (``"slip"``). Duty factors whose schedule is infeasible are skipped.
     Returns ``(duty factor, objective value)``."""
-    from linkage.drive import crank_schedule
-
     if not isinstance(walker, Walker):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
     objective = as_choice(objective, "objective", ("margin", "slip"))
@@ -523,11 +520,12 @@ def search_duty_factor(
         )
     betas = [as_finite(b, "duty_factors[]") for b in duty_factors]
     best: tuple[float, float] | None = None
-    # The schedule sweeps the leg over the same fine grid for every duty factor: sweep it once.
-    leg = _memo_sweeps(walker.legs[0].linkage)
+    # The stance is the same for every duty factor: find it once.
+    leg = walker.legs[0].linkage
+    stance = stance_profile(leg)
     for beta in betas:
         try:
-            sched = crank_schedule(leg, foot_speed, beta)
+            sched = crank_schedule(leg, foot_speed, beta, stance=stance)
         except LinkageError:
             continue
         t = np.linspace(0.0, sched.period, samples)
@@ -541,36 +539,6 @@ def search_duty_factor(
     if best is None:
         raise LinkageError("no duty factor gives a feasible schedule")
     return best[0], best[1] if objective == "margin" else -best[1]
-
-
-def _memo_sweeps(linkage: FourBar | Mechanism) -> Any:
-    """The same linkage whose sweeps at constant crank speed are remembered by their angles
-    (the foot path a crank schedule samples, the same for every duty factor). Sweeps are
-    deterministic, so a remembered one is the one the call would compute."""
-    base = type(linkage)
-    cache: dict[tuple[bytes, float, tuple[str, ...]], Any] = {}
-
-    class Memo(base):  # type: ignore[valid-type,misc]
-        def sweep(self, theta: Any = None, omega: Any = None, *args: Any, **kw: Any) -> Any:
-            outputs = kw.get("outputs")
-            plain = (
-                not args
-                and set(kw) <= {"outputs"}
-                and isinstance(omega, float)
-                and isinstance(theta, np.ndarray)
-                and theta.dtype == np.float64
-                and isinstance(outputs, tuple)
-            )
-            if not plain:
-                return super().sweep(theta, omega, *args, **kw)
-            key = (theta.tobytes(), float(omega), tuple(str(o) for o in outputs or ()))
-            if key not in cache:
-                cache[key] = super().sweep(theta, omega, outputs=outputs)
-            return cache[key]
-
-    memo = copy.copy(linkage)
-    memo.__class__ = Memo
-    return memo
 
 
 def leg_labels(mounts: Sequence[Sequence[float]]) -> tuple[str, ...]:
