@@ -29,7 +29,7 @@ import shutil
 import signal
 import sys
 import threading
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -262,11 +262,28 @@ def _os_message(exc: OSError, tmp: Path, folder: Path) -> str:
 def write(res: Result, folder: Path, frames: int = 48, force: bool = False) -> list[Path]:
     """Write the report for ``res`` to ``folder``; returns the files written (in ``folder``).
 
-    The report is written into a temporary sibling folder, its marker last, and renamed into
-    place. An existing ``folder`` is replaced only with ``force`` and only if linkage wrote it
-    (see the module docstring). On any failure — an exception, ``KeyboardInterrupt``, a full disk
-    — the temporary folder is removed and an earlier report is left as it was; an ``OSError``
-    becomes a ``LinkageError`` naming the path.
+    The report is written as :func:`write_folder` writes any folder: into a temporary sibling,
+    its marker last, renamed into place; an existing ``folder`` is replaced only with ``force``
+    and only if linkage wrote it (see the module docstring).
+    """
+    return write_folder(
+        folder,
+        res.scene.name,
+        lambda tmp: [p.name for p in _write_files(res, tmp, frames)],
+        force,
+    )
+
+
+def write_folder(
+    folder: Path, name: str, fill: Callable[[Path], Sequence[str]], force: bool = False
+) -> list[Path]:
+    """Write a folder of results safely: ``fill(tmp)`` writes the files into a temporary
+    sibling of ``folder`` and returns their names; the marker (naming them and ``name``) is
+    written last and the folder renamed into place. An existing ``folder`` is replaced only
+    with ``force`` and only if linkage wrote it. On any failure — an exception,
+    ``KeyboardInterrupt``, a full disk — the temporary folder is removed and an earlier folder
+    is left as it was; an ``OSError`` becomes a ``LinkageError`` naming the path. Returns the
+    files written (in ``folder``).
     """
     target = _resolve(folder)
     earlier = os.path.lexists(target)
@@ -283,11 +300,11 @@ def write(res: Result, folder: Path, frames: int = 48, force: bool = False) -> l
                 p.mkdir()
                 created.append(p)
             tmp = _make_sibling(parent, target.name, "partial")
-        names = [p.name for p in _write_files(res, tmp, frames)]
+        names = list(fill(tmp))
         marker = {
             "tool": "linkage",
             "version": _version(),
-            "scene": res.scene.name,
+            "scene": name,
             "written": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "files": sorted(names),
         }

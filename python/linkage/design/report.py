@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._core import LinkageError
+from linkage import report
 from linkage.design.search import (
     Front,
     Study,
@@ -94,39 +94,10 @@ def write_report(
     ``pareto.png`` (objectives pairwise, with units, the reference design marked),
     ``designs.png`` (the chosen designs' foot paths and linkages), one scene per chosen design
     (``design-<k>.toml``) and ``summary.json`` (the reference's placement)."""
-    from linkage import report
-
     out = Path(os.path.expanduser(str(folder)))
-    target = report._resolve(out)
-    earlier = os.path.lexists(target)
-    if earlier:
-        report._check_existing(out, target, force)
-    parent = target.parent
-    parent.mkdir(parents=True, exist_ok=True)
-    tmp: Path | None = None
-    try:
-        with report._sigint_held():
-            tmp = report._make_sibling(parent, target.name, "partial")
-        names = _write_files(result, tmp, choose)
-        marker = {
-            "tool": "linkage",
-            "version": report._version(),
-            "scene": result.study.name,
-            "files": sorted(names),
-        }
-        (tmp / report.MARKER).write_text(json.dumps(marker, indent=2) + "\n", encoding="utf-8")
-        with report._sigint_held():
-            report._commit(out, target, tmp, force)
-    except BaseException as exc:
-        with report._sigint_held():
-            if tmp is not None:
-                report._discard_partial(tmp)
-        if isinstance(exc, OSError):
-            raise LinkageError(
-                f"{out}: cannot write the report: {exc} (nothing was written)"
-            ) from None
-        raise
-    return [target / n for n in names]
+    return report.write_folder(
+        out, result.study.name, lambda tmp: _write_files(result, tmp, choose), force
+    )
 
 
 def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
@@ -278,8 +249,6 @@ def main_design(
 ) -> int:
     """``linkage design study.toml``: search, write the report, print where the reference
     design sits."""
-    from linkage import report
-
     sf = load_study(path)
     folder = Path(out) if out else report.default_folder(sf.study.name)
     report.prepare(folder, force)
