@@ -206,7 +206,7 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
             figs = dict(zip(FIGURES, result.figures[i]))
             ax.set_title(
                 f"design {picks.index(i) + 1}\n"
-                + "\n".join(f"{o} {figs[o]:.3g} {unit(o)}" for o in objs),
+                + "\n".join(f"{o} {figs[o]:#.3g} {unit(o)}" for o in objs),
                 fontsize=8,
             )
             ax.set_aspect("equal")
