@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import linkage
-from linkage.cam import DiscCam, leg_lift_cam
+from linkage.cam import DiscCam, leg_lift, leg_lift_cam
 from linkage.drive import Program, Segment
 
 
@@ -105,3 +105,27 @@ def test_bad_cams():
         DiscCam(rise_dwell(), -1.0)
     with pytest.raises(TypeError, match="Program"):
         DiscCam("rise", 10.0)
+
+
+def test_one_leg_lift_for_the_cam_the_hexapod_and_the_example_scene():
+    """Thesis 2's lift is one model: the cam's follower, the hexapod's feet (in m) and the
+    example scene's cam (turned by a quarter turn, its mounting angle) all follow leg_lift."""
+    from pathlib import Path
+
+    from linkage import build, scene
+
+    t = np.linspace(0.0, 2 * np.pi, 721)
+    s = leg_lift(1.4).eval(t)[0]
+    assert s.max() == pytest.approx(1.4) and s.min() == 0.0
+    assert (s[(t > np.pi / 2 + 1e-9) & (t < 3 * np.pi / 2 - 1e-9)] == 0).all()  # stance half
+    np.testing.assert_array_equal(leg_lift_cam().program.eval(t)[0], s)
+    feet = {leg.lift.eval(t)[0].tobytes() for leg in linkage.catalog.hexapod_tripod().legs}
+    assert len(feet) == 1
+    np.testing.assert_allclose(leg_lift(0.0014).eval(t)[0] * 1e3, s, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(
+        linkage.catalog.hexapod_tripod().legs[0].lift.eval(t)[0] * 1e3, s, atol=1e-15
+    )
+    example = Path(__file__).resolve().parent.parent / "examples" / "thesis2_leg_torque.toml"
+    cam = build.build_cam(scene.load(example))
+    turned = leg_lift(0.0014).eval((t - np.pi / 2) % (2 * np.pi))[0]
+    np.testing.assert_allclose(cam.program.eval(t)[0], turned, atol=1e-15)

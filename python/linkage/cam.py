@@ -169,12 +169,30 @@ class DiscCam:
         return out
 
 
-def leg_lift_cam(roller_radius: float = 2.0, base_radius: float = 6.5) -> DiscCam:
-    """Thesis 2's leg-lift cam: a 1.4 mm simple-harmonic rise over half a turn and the return
-    over the other half (mm). The source's drawing gives 13 mm across the cam; read here as the
-    base-circle diameter, with a 2 mm roller — both assumptions, as the source does not say."""
-    prog = Program(
-        0.0,
-        [Segment(math.pi, 1.4, "simple-harmonic"), Segment(math.pi, -1.4, "simple-harmonic")],
+def leg_lift(height: float = 1.4) -> Program:
+    """Thesis 2's leg lift, the one model of it that the hexapod walker and its cam share: the
+    foot up by ``height`` at crank angle 0 (the middle of the Hoecken leg's swing), down to the
+    ground over a quarter turn with a simple-harmonic law, on the ground for the half turn of the
+    stance, and up again over the last quarter turn. Thesis 2 gives the height (1.4 mm) and the
+    harmonic law; the quarter-turn ramps keep the foot down over the whole straight part.
+
+    >>> p = leg_lift()
+    >>> [round(float(x), 6) for x in p.eval([0.0, math.pi / 2, math.pi, 2 * math.pi])[0]]
+    [1.4, 0.0, 0.0, 1.4]
+    """
+    h = float(height)
+    return Program(
+        h,
+        [
+            Segment(math.pi / 2, -h, "simple-harmonic"),
+            Segment(math.pi),
+            Segment(math.pi / 2, h, "simple-harmonic"),
+        ],
     )
-    return DiscCam(prog, base_radius, roller_radius=roller_radius)
+
+
+def leg_lift_cam(roller_radius: float = 2.0, base_radius: float = 6.5) -> DiscCam:
+    """Thesis 2's leg-lift cam (mm): :func:`leg_lift` as a disc cam. The source's drawing gives
+    13 mm across the cam; read here as the base-circle diameter, with a 2 mm roller — both
+    assumptions, as the source does not say."""
+    return DiscCam(leg_lift(1.4), base_radius, roller_radius=roller_radius)

@@ -33,7 +33,7 @@ from linkage._arrays import as_count, as_finite, check_memory
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
-from linkage.drive import Program, Segment
+from linkage.cam import leg_lift
 from linkage.geometry import straightness
 from linkage.walker import Leg, Walker, gait_phases
 
@@ -465,15 +465,7 @@ def hexapod_tripod() -> Walker:
     simple-harmonic cam during the half turn off the straight part; tripod gait {L1, R2, L3}
     against {R1, L2, R3}. Legs at x = 0.06, 0, −0.06 m and 0.02 m either side of the midline,
     5 mm pads, centre of gravity at the centre (the body layout is this model's assumption)."""
-    h = 0.0014
-    lift = Program(
-        h,
-        [
-            Segment(math.pi / 2, -h, "simple-harmonic"),
-            Segment(math.pi),
-            Segment(math.pi / 2, h, "simple-harmonic"),
-        ],
-    )
+    lift = leg_lift(0.0014)  # the cam's lift (linkage.cam.leg_lift), in m
     names = ["L1", "L2", "L3", "R1", "R2", "R3"]
     phases = gait_phases("tripod", names)
     legs = []
