@@ -149,7 +149,7 @@ def build_walker(scene: Scene) -> Walker:
     sec = ("walker",)
     if "model" in w:
         with _blame(scene, sec, "model"):
-            walker: Walker = getattr(catalog, w["model"])()
+            walker: Walker = catalog.WALKERS[w["model"]]()
     else:
         legs = []
         for idx, spec in enumerate(w["legs"]):

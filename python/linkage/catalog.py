@@ -23,6 +23,7 @@ import json
 import math
 import os
 import sys
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
@@ -408,7 +409,7 @@ def format_table(rows: list[Figures], rel_tol: float) -> list[str]:
     ]
     for r in [head, *body]:
         lines.append("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
-    lines.append("walkers: quadruped_hoecken, hexapod_tripod")
+    lines.append(f"walkers: {', '.join(WALKERS)}")
     return lines
 
 
@@ -485,3 +486,10 @@ def hexapod_tripod() -> Walker:
             )
         )
     return Walker(legs, cg=(0.0, 0.0), ground_tol=1e-5)
+
+
+WALKERS: dict[str, Callable[[], Walker]] = {
+    "quadruped_hoecken": quadruped_hoecken,
+    "hexapod_tripod": hexapod_tripod,
+}
+"""The walker models, by the name a scene's ``[walker] model`` gives: the one list of them."""

@@ -246,7 +246,7 @@ WALKER = {
     "cg": "pair",
     "ground_tol": "length",
 }
-WALKER_MODELS = ("quadruped_hoecken", "hexapod_tripod")
+WALKER_MODELS = tuple(catalog.WALKERS)
 LEG = {
     "name": "str",
     "catalog": "str",
