@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import as_angles, as_count, as_real_array
@@ -22,17 +22,17 @@ _ASSEMBLIES = ("open", "crossed")
 
 
 def sweep_fourbars(
-    ground: Any = None,
-    crank: Any = None,
-    coupler: Any = None,
-    rocker: Any = None,
-    point: Any = (0.0, 0.0),
-    theta: Any = None,
-    assembly: Any = "open",
+    ground: ArrayLike | None = None,
+    crank: ArrayLike | None = None,
+    coupler: ArrayLike | None = None,
+    rocker: ArrayLike | None = None,
+    point: ArrayLike = (0.0, 0.0),
+    theta: ArrayLike | None = None,
+    assembly: str | ArrayLike = "open",
     threads: int = 1,
     *,
-    o: Any = None,
-    c: Any = None,
+    o: ArrayLike | None = None,
+    c: ArrayLike | None = None,
     out: tuple[NDArray[np.float64], NDArray[np.bool_]] | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """Coupler points of ``M`` four-bars at ``N`` shared crank angles.

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from typing import Any, Protocol
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import (
@@ -43,7 +43,7 @@ LAWS: tuple[str, ...] = tuple(_core.motion_law_names())
 """Names of the motion laws."""
 
 
-def motion_law(name: str, u: Any) -> tuple[Array, Array, Array, Array]:
+def motion_law(name: str, u: ArrayLike) -> tuple[Array, Array, Array, Array]:
     """A dimensionless rise law on ``u ∈ [0, 1]``: ``(s, s', s'', s''')``, derivatives in ``u``.
 
     Laws: constant-velocity, constant-acceleration, simple-harmonic, cycloidal, 3-4-5, 4-5-6-7,
@@ -85,7 +85,7 @@ class Segment:
 class Drive(Protocol):
     """Anything that gives crank angle, speed and acceleration against time."""
 
-    def angles(self, t: Any) -> tuple[Array, Array, Array]:
+    def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
         """``(θ, ω, α)`` at times ``t``."""
         ...
 
@@ -130,14 +130,14 @@ class Program:
         """Duration of one period."""
         return _sum(float(s.duration) for s in self.segments)
 
-    def eval(self, t: Any) -> tuple[Array, Array, Array, Array]:
+    def eval(self, t: ArrayLike) -> tuple[Array, Array, Array, Array]:
         """Value and first three derivatives at ``t``."""
         tt, _ = as_angles(t, "t")
         out = _core.program_eval(*self._args(), tt)
         _check_rows(out, tt, ("value", "rate", "second derivative", "third derivative"))
         return out[:, 0], out[:, 1], out[:, 2], out[:, 3]
 
-    def angles(self, t: Any) -> tuple[Array, Array, Array]:
+    def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
         """``(θ, ω, α)`` at times ``t``."""
         y, v, a, _ = self.eval(t)
         return y, v, a
@@ -156,7 +156,7 @@ class ConstantSpeed:
     omega: float
     theta0: float = 0.0
 
-    def angles(self, t: Any) -> tuple[Array, Array, Array]:
+    def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
         """``(θ, ω, α)`` at times ``t``."""
         tt, _ = as_angles(t, "t")
         w = as_finite(self.omega, "omega")
@@ -255,7 +255,7 @@ class Geared:
     motor: Drive
     train: GearTrain
 
-    def angles(self, t: Any) -> tuple[Array, Array, Array]:
+    def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
         """``(θ, ω, α)`` of the crank at times ``t``."""
         th, w, a = self.motor.angles(t)
         k = self.train.ratio * self.train.sign
@@ -299,7 +299,7 @@ class CrankSchedule:
         """One period (s)."""
         return self.dt * len(self.theta)
 
-    def angles(self, t: Any, single: bool = False) -> tuple[Array, Array, Array]:
+    def angles(self, t: ArrayLike, single: bool = False) -> tuple[Array, Array, Array]:
         """``(θ, ω, α)`` at times ``t``, interpolated by the core in f64, or in f32 as firmware
         would (``single=True``)."""
         tt, _ = as_angles(t, "t")
@@ -328,7 +328,9 @@ class StanceProfile:
     """Unit direction of the stance line."""
 
 
-def stance_profile(leg: Any, tol: float | None = None, resolution: int = 7201) -> StanceProfile:
+def stance_profile(
+    leg: FourBar | Mechanism, tol: float | None = None, resolution: int = 7201
+) -> StanceProfile:
     """The stance of ``leg`` (a :class:`FourBar` or :class:`Mechanism` whose trace point is the
     foot): the straight part of its foot path within ``tol`` (default 0.2 % of the path's
     extent), sampled at ``resolution`` crank angles over a turn.
@@ -362,7 +364,7 @@ def stance_profile(leg: Any, tol: float | None = None, resolution: int = 7201) -
 
 
 def crank_schedule(
-    leg: Any,
+    leg: FourBar | Mechanism,
     foot_speed: float,
     duty_factor: float,
     samples: int = 720,

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import (
@@ -35,6 +35,7 @@ from linkage._arrays import (
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage.drive import Drive
 
 Array = NDArray[np.float64]
 
@@ -65,8 +66,8 @@ class PointLoad:
 
     link: str
     joint: str
-    force: Any = (0.0, 0.0)
-    torque: Any = 0.0
+    force: ArrayLike = (0.0, 0.0)
+    torque: ArrayLike = 0.0
 
 
 @dataclass
@@ -120,12 +121,12 @@ def _rate(value: Any, name: str, n: int) -> Array:
 
 def forces(
     linkage_obj: FourBar | Mechanism,
-    theta: Any = None,
-    omega: Any = None,
-    alpha: Any = 0.0,
+    theta: ArrayLike | None = None,
+    omega: ArrayLike | None = None,
+    alpha: ArrayLike = 0.0,
     *,
-    time: Any = None,
-    drive: Any = None,
+    time: ArrayLike | None = None,
+    drive: Drive | None = None,
     masses: Mapping[str, LinkMass | Sequence[Any]],
     gravity: Sequence[float] = (0.0, -9.81),
     loads: Sequence[PointLoad] = (),

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import as_angles, as_count, as_finite, as_flag, as_points
@@ -39,7 +39,7 @@ def _rows(*arrays: Points) -> tuple[tuple[int, ...], list[Points]]:
 
 
 def curvature_centre(
-    point: Any, velocity: Any, acceleration: Any
+    point: ArrayLike, velocity: ArrayLike, acceleration: ArrayLike
 ) -> tuple[Points, NDArray[np.float64]]:
     """Centre of curvature and signed curvature of paths from velocity and acceleration.
 
@@ -61,7 +61,7 @@ def curvature_centre(
     return centres.reshape(*shape, 2), kappa.reshape(shape)
 
 
-def circumcentre(p0: Any, p1: Any, p2: Any) -> Points:
+def circumcentre(p0: ArrayLike, p1: ArrayLike, p2: ArrayLike) -> Points:
     """Centre of the circle through three points, shape ``(..., 2)``; NaN when they are
     collinear or coincide.
 
@@ -74,7 +74,7 @@ def circumcentre(p0: Any, p1: Any, p2: Any) -> Points:
     return out
 
 
-def three_point_centres(path: Any, step: int = 1) -> Points:
+def three_point_centres(path: ArrayLike, step: int = 1) -> Points:
     """The first source's three-point estimate of the centre of curvature (thesis 1 §2.1.1):
     the circumcentre of samples ``k − step, k, k + step`` for each interior sample ``k``.
 
@@ -117,7 +117,7 @@ class StraightPart:
 
 
 def straightness(
-    path: Any, tol: float, closed: bool = False, velocity: Any = None
+    path: ArrayLike, tol: float, closed: bool = False, velocity: ArrayLike | None = None
 ) -> StraightPart | None:
     """The near-straight part of a path: the longest run of consecutive samples that stays
     within ``tol`` of its own least-squares line (at least 3 samples), or None.
@@ -189,7 +189,7 @@ class FootPath:
         return 1.0 - self.stance_fraction
 
 
-def foot_path(path: Any, tol: float, velocity: Any = None) -> FootPath:
+def foot_path(path: ArrayLike, tol: float, velocity: ArrayLike | None = None) -> FootPath:
     """Split one closed cycle of a foot path (without a repeated end sample) into stance and
     swing: stance is :func:`straightness` on the closed path, swing the rest.
 

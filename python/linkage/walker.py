@@ -22,7 +22,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import (
@@ -37,7 +37,7 @@ from linkage._arrays import (
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
-from linkage.drive import Program, crank_schedule, stance_profile
+from linkage.drive import Drive, Program, crank_schedule, stance_profile
 
 Array = NDArray[np.float64]
 PLANES = ("sagittal", "horizontal")
@@ -296,11 +296,11 @@ class Walker:
 
     def simulate(
         self,
-        theta: Any = None,
+        theta: ArrayLike | None = None,
         omega: float = 1.0,
         *,
-        time: Any = None,
-        drive: Any = None,
+        time: ArrayLike | None = None,
+        drive: Drive | None = None,
         per_leg_time: bool = False,
     ) -> Simulation:
         """Simulate at crank angles ``theta`` (constant speed ``omega``, rad/s) or at times
@@ -344,6 +344,7 @@ class Walker:
         for i, leg in enumerate(self.legs):
             if per_leg_time:
                 shift = leg.phase / (2 * math.pi) * period
+                assert drive is not None  # checked above with per_leg_time
                 thi, wi, _ = drive.angles(t + shift)
                 feet[:, i], vel[:, i] = replace(leg, phase=0.0).feet(thi, wi)
             else:
