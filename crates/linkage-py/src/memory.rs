@@ -77,3 +77,34 @@ pub fn filled<T: Clone>(what: &dyn Fn() -> String, len: usize, value: T) -> Resu
     v.resize(len, value); // within the capacity: no reallocation
     Ok(v)
 }
+
+/// A new zero-filled numpy array of `shape` and element type `T`, made by numpy itself (so the
+/// result owns numpy memory a sweep writes straight into), or `MemoryError` naming the size.
+///
+/// Call [`check`] on the total first; this then catches what only the allocation itself can
+/// tell (an address-space limit): numpy's own `MemoryError` is replaced by one naming `what`.
+/// (`PyArray::zeros` would panic on that failure instead of raising.)
+pub fn zeros<'py, T: numpy::Element, D: numpy::ndarray::Dimension>(
+    py: pyo3::Python<'py>,
+    what: &dyn Fn() -> String,
+    shape: &[usize],
+) -> Result<pyo3::Bound<'py, numpy::PyArray<T, D>>, PyErr> {
+    use pyo3::prelude::*;
+    use pyo3::types::PyTuple;
+    let len = shape
+        .iter()
+        .fold(1u128, |a, &s| a.saturating_mul(s as u128));
+    let bytes = bytes_of::<T>(len);
+    let zeros = py
+        .import(pyo3::intern!(py, "numpy"))?
+        .getattr(pyo3::intern!(py, "zeros"))?;
+    let dims = PyTuple::new(py, shape)?;
+    let arr = zeros.call1((dims, T::get_dtype(py))).map_err(|e| {
+        if e.is_instance_of::<PyMemoryError>(py) {
+            memory_error(&what(), bytes, " (the allocation failed)")
+        } else {
+            e
+        }
+    })?;
+    Ok(arr.cast_into::<numpy::PyArray<T, D>>()?)
+}
