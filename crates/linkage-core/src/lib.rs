@@ -96,6 +96,9 @@ pub use schedule::ScheduleTable;
 pub use slider::{Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
 pub use support::{convex_hull, stability_margin};
-pub use sweep::{sweep, sweep_pairs, Rate, SweepOutputs, Swept, SWEEP_CHUNK, SWEEP_WORK_CHUNK};
+pub use sweep::{
+    sweep, sweep_pairs, sweep_planned, Plan, Rate, SweepOutputs, Swept, SWEEP_CHUNK,
+    SWEEP_WORK_CHUNK,
+};
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
 pub use uniform_sweep::{AngleMode, MAX_TABLE};

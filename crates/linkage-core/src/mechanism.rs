@@ -322,6 +322,23 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         Ok(index)
     }
 
+    /// The same program in a mechanism of capacity `M` (constructions copied as they are, bit
+    /// for bit): a sweep of a small linkage held at a large capacity runs on arrays sized to
+    /// it.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the program has more than `M` joints.
+    pub fn resized<const M: usize>(&self) -> Result<Mechanism<T, M>, Error> {
+        let mut m = Mechanism::<T, M>::new();
+        if self.len > M {
+            return Err(Error::CapacityExceeded { capacity: M });
+        }
+        m.steps[..self.len].copy_from_slice(self.constructions());
+        m.len = self.len;
+        m.driver = self.driver;
+        Ok(m)
+    }
+
     /// Adds a fixed joint. See [`Construction::Fixed`].
     ///
     /// # Errors

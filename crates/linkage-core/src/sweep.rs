@@ -14,6 +14,7 @@ use crate::bodies::{Bodies, BodyId, GROUND};
 use crate::centres::{path_curvature, relative_centre, BodyMotion, Centre};
 use crate::error::Error;
 use crate::mechanism::{Mechanism, Motion};
+use crate::motion::rate_margin;
 use crate::scalar::{lit, nan, Vec2};
 use crate::tracker::{Rates, Tracker};
 
@@ -93,8 +94,23 @@ pub struct Swept {
     /// Samples written: all of them, or fewer when `go_on` stopped the sweep (the rows after
     /// them are left as they were).
     pub samples: usize,
-    /// Tracker placements done ([`Tracker::work`]).
+    /// Tracker placements done ([`Tracker::work`]; 0 when the held pass swept it).
     pub work: u64,
+    /// Whether the held pass swept it (see [`Plan`]).
+    pub held: bool,
+}
+
+/// How [`sweep_planned`] sweeps. Every plan gives the same results, bit for bit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Plan {
+    /// The held pass when there are at least as many samples as the tracker's grid points
+    /// per turn (so its check costs at most one pose per sample), the tracker otherwise.
+    #[default]
+    Auto,
+    /// The tracker, sample by sample.
+    Tracked,
+    /// The held pass whenever it applies, however few the samples.
+    Held,
 }
 
 /// Checks that `got` has `expected` elements.
@@ -126,8 +142,246 @@ impl<T: RealField + Copy, const N: usize> Motions<T, N> {
     }
 }
 
+/// What one sweep call needs besides its outputs: the mechanism, its bodies, what is asked,
+/// and scratch rows.
+struct Engine<'m, T: RealField + Copy, const N: usize> {
+    mech: &'m Mechanism<T, N>,
+    bodies: Bodies<N>,
+    /// Joints and body pairs.
+    j: usize,
+    np: usize,
+    rates: bool,
+    wants_centres: bool,
+    wants_curvature: bool,
+    /// Velocities for accelerations asked without them.
+    own_vel: [Vec2<T>; N],
+    /// Unit-drive rates of centres and curvature.
+    uvel: [Vec2<T>; N],
+    uacc: [Vec2<T>; N],
+    motions: Motions<T, N>,
+}
+
+impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
+    /// Writes sample `k` as invalid: NaN rows everywhere, `gap` its gap.
+    fn invalid(&self, out: &mut SweepOutputs<'_, T>, k: usize, gap: T) {
+        let nan_t = nan::<T>();
+        let nan2 = Vec2::new(nan_t, nan_t);
+        out.valid[k] = false;
+        out.margin[k] = nan_t;
+        out.regular[k] = false;
+        out.gap[k] = gap;
+        let row = k * self.j..(k + 1) * self.j;
+        for buf in [
+            Some(&mut *out.joints),
+            out.velocity.as_deref_mut(),
+            out.acceleration.as_deref_mut(),
+            out.curvature_centres.as_deref_mut(),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            buf[row.clone()].fill(nan2);
+        }
+        if let Some(c) = out.curvature.as_deref_mut() {
+            c[row].fill(nan_t);
+        }
+        let pairs = k * self.np..(k + 1) * self.np;
+        for buf in [
+            out.centres.as_deref_mut(),
+            out.centre_directions.as_deref_mut(),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            buf[pairs.clone()].fill(nan2);
+        }
+    }
+
+    /// Writes what follows a valid sample `k` whose joints are in place: its flags, and the
+    /// instant centres and curvatures asked for (per unit crank angle).
+    fn valid(
+        &mut self,
+        out: &mut SweepOutputs<'_, T>,
+        k: usize,
+        margin: T,
+        regular: bool,
+    ) -> Result<(), Error> {
+        out.valid[k] = true;
+        out.margin[k] = margin;
+        out.regular[k] = regular;
+        out.gap[k] = T::zero();
+        if !(self.wants_centres || self.wants_curvature) {
+            return Ok(());
+        }
+        let (j, np) = (self.j, self.np);
+        let nan2 = Vec2::new(nan::<T>(), nan::<T>());
+        let zero = [Vec2::zeros(); N];
+        let pos = &out.joints[k * j..(k + 1) * j];
+        let unit_acc = self.wants_curvature.then_some(&mut self.uacc[..j]);
+        self.mech
+            .motion(pos, Motion::unit(), &mut self.uvel[..j], unit_acc, None)?;
+        if self.wants_centres {
+            let bodies = &self.bodies;
+            for id in bodies.ids() {
+                let m = BodyMotion::of(bodies, id, pos, &self.uvel[..j], &zero[..j], &zero[..j])
+                    .conditioned(margin);
+                if id == GROUND {
+                    self.motions.ground = m;
+                } else {
+                    self.motions.of[id.joint][usize::from(id.slot)] = m;
+                }
+            }
+            let mut q = k * np;
+            for (a, ka) in bodies.ids().enumerate() {
+                for kb in bodies.ids().skip(a + 1) {
+                    let ic = relative_centre(
+                        bodies,
+                        (ka, self.motions.get(ka)),
+                        (kb, self.motions.get(kb)),
+                        pos,
+                    );
+                    let (finite, far) = match ic {
+                        Centre::Finite(p) => (p, nan2),
+                        Centre::AtInfinity(d) => (nan2, d),
+                        Centre::Undefined => (nan2, nan2),
+                    };
+                    if let Some(c) = out.centres.as_deref_mut() {
+                        c[q] = finite;
+                    }
+                    if let Some(d) = out.centre_directions.as_deref_mut() {
+                        d[q] = far;
+                    }
+                    q += 1;
+                }
+            }
+        }
+        if self.wants_curvature {
+            for i in 0..j {
+                let (kappa, centre) = path_curvature(pos[i], self.uvel[i], self.uacc[i]);
+                if let Some(c) = out.curvature.as_deref_mut() {
+                    c[k * j + i] = kappa;
+                }
+                if let Some(c) = out.curvature_centres.as_deref_mut() {
+                    c[k * j + i] = centre.finite().unwrap_or(nan2);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The tracker, sample by sample.
+    fn tracked(
+        &mut self,
+        tracker: &mut Tracker<'m, T, N>,
+        theta: &[T],
+        (omega, alpha): (Rate<'_, T>, Rate<'_, T>),
+        out: &mut SweepOutputs<'_, T>,
+        go_on: &mut dyn FnMut() -> bool,
+    ) -> Result<Swept, Error> {
+        let j = self.j;
+        let mut next_check = SWEEP_WORK_CHUNK;
+        for (k, &th) in theta.iter().enumerate() {
+            if k > 0 && (k % SWEEP_CHUNK == 0 || tracker.work() >= next_check) {
+                if !go_on() {
+                    return Ok(Swept {
+                        samples: k,
+                        work: tracker.work(),
+                        held: false,
+                    });
+                }
+                next_check = tracker.work().saturating_add(SWEEP_WORK_CHUNK);
+            }
+            let row = k * j..(k + 1) * j;
+            let motion = self.rates.then(|| Motion::new(omega.at(k), alpha.at(k)));
+            let buffers = match (out.velocity.as_deref_mut(), out.acceleration.as_deref_mut()) {
+                (Some(v), Some(a)) => Rates::acceleration(&mut v[row.clone()], &mut a[row.clone()]),
+                (None, Some(a)) => Rates::acceleration(&mut self.own_vel[..j], &mut a[row.clone()]),
+                (Some(v), None) => Rates::velocity(&mut v[row.clone()]),
+                (None, None) => Rates::none(),
+            };
+            match tracker.step(th, motion, &mut out.joints[row], buffers) {
+                Ok(s) => self.valid(out, k, s.margin, s.regular)?,
+                Err(
+                    e @ (Error::CannotAssemble { .. }
+                    | Error::Coincident { .. }
+                    | Error::NotFinite { .. }),
+                ) => {
+                    let gap = match e {
+                        Error::CannotAssemble { gap, .. } => lit(gap),
+                        _ => nan::<T>(),
+                    };
+                    self.invalid(out, k, gap);
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(Swept {
+            samples: theta.len(),
+            work: tracker.work(),
+            held: false,
+        })
+    }
+
+    /// The held pass: every sample posed on the declared orientations, no walk (valid only
+    /// after [`Tracker::holds_everywhere`]). Returns `None`, having written some rows, at the
+    /// first sample whose own margin is below the toggle margin or that does not assemble:
+    /// the tracker must sweep then.
+    fn held(
+        &mut self,
+        toggle_margin: T,
+        theta: &[T],
+        (omega, alpha): (Rate<'_, T>, Rate<'_, T>),
+        out: &mut SweepOutputs<'_, T>,
+        go_on: &mut dyn FnMut() -> bool,
+    ) -> Result<Option<Swept>, Error> {
+        let j = self.j;
+        let m_star = rate_margin::<T>();
+        for (k, &th) in theta.iter().enumerate() {
+            if k > 0 && k % SWEEP_CHUNK == 0 && !go_on() {
+                return Ok(Some(Swept {
+                    samples: k,
+                    work: 0,
+                    held: true,
+                }));
+            }
+            // The tracker's order: the angle, the pose, then the drive.
+            if !th.is_finite() {
+                self.invalid(out, k, nan::<T>());
+                continue;
+            }
+            let row = k * j..(k + 1) * j;
+            let margin = match self.mech.pose(th, &mut out.joints[row.clone()]) {
+                Ok(m) if m >= toggle_margin => m,
+                _ => return Ok(None),
+            };
+            let regular = if self.rates {
+                let (w, a) = (omega.at(k), alpha.at(k));
+                if !(w.is_finite() && a.is_finite()) {
+                    self.invalid(out, k, nan::<T>());
+                    continue;
+                }
+                let pos = &out.joints[row.clone()];
+                let vel = match out.velocity.as_deref_mut() {
+                    Some(v) => &mut v[row.clone()],
+                    None => &mut self.own_vel[..j],
+                };
+                let acc = out.acceleration.as_deref_mut().map(|a| &mut a[row.clone()]);
+                self.mech.motion(pos, Motion::new(w, a), vel, acc, None)?
+            } else {
+                margin >= m_star
+            };
+            self.valid(out, k, margin, regular)?;
+        }
+        Ok(Some(Swept {
+            samples: theta.len(),
+            work: 0,
+            held: true,
+        }))
+    }
+}
+
 /// Sweeps `mech` over the driver angles `theta` on tracked branches (see [`Tracker`]),
-/// writing only the outputs `out` asks for.
+/// writing only the outputs `out` asks for; [`sweep_planned`] with [`Plan::Auto`].
 ///
 /// `omega`, `alpha`: the crank's angular velocity and acceleration, for velocities and
 /// accelerations (unused otherwise). Instant centres and curvatures use rates per unit crank
@@ -173,49 +427,66 @@ pub fn sweep<T: RealField + Copy, const N: usize>(
     out: SweepOutputs<'_, T>,
     go_on: &mut dyn FnMut() -> bool,
 ) -> Result<Swept, Error> {
+    sweep_planned(mech, theta, omega, alpha, out, go_on, Plan::Auto)
+}
+
+/// [`sweep`], choosing how: the tracker sample by sample, or the held pass.
+///
+/// # The held pass
+/// Tracking costs a walk of the canonical path between samples (see [`Tracker`]): cheap for
+/// samples in order, up to hundreds of placements per sample for angles in arbitrary order.
+/// Most linkages never come near a toggle: when every grid point of the turn places on the
+/// declared orientations with every dyad's margin at least the toggle margin (one pose per
+/// grid point), the tracker provably keeps those orientations everywhere, and each sample
+/// whose own margins clear the toggle margin is simply posed on them — one pose per sample,
+/// whatever the order of the samples, and the same bits as the tracker. A sample that does not
+/// clear it sends the whole sweep back to the tracker (its rows are rewritten).
+///
+/// # Errors
+/// As [`sweep`].
+pub fn sweep_planned<T: RealField + Copy, const N: usize>(
+    mech: &Mechanism<T, N>,
+    theta: &[T],
+    omega: Rate<'_, T>,
+    alpha: Rate<'_, T>,
+    mut out: SweepOutputs<'_, T>,
+    go_on: &mut dyn FnMut() -> bool,
+    plan: Plan,
+) -> Result<Swept, Error> {
     let (n, j) = (theta.len(), mech.len());
     let mut tracker = Tracker::new(mech)?;
     let bodies = Bodies::of(mech);
     let nb = bodies.count();
     let np = nb * nb.saturating_sub(1) / 2;
-    let SweepOutputs {
-        joints,
-        valid,
-        margin,
-        regular,
-        gap,
-        mut velocity,
-        mut acceleration,
-        mut centres,
-        mut centre_directions,
-        mut curvature_centres,
-        mut curvature,
-    } = out;
     let rows = n.saturating_mul(j);
-    check_len("joints", rows, joints.len())?;
-    check_len("valid", n, valid.len())?;
-    check_len("margin", n, margin.len())?;
-    check_len("regular", n, regular.len())?;
-    check_len("gap", n, gap.len())?;
+    check_len("joints", rows, out.joints.len())?;
+    check_len("valid", n, out.valid.len())?;
+    check_len("margin", n, out.margin.len())?;
+    check_len("regular", n, out.regular.len())?;
+    check_len("gap", n, out.gap.len())?;
     for (what, len, got) in [
-        ("velocity", rows, velocity.as_ref().map(|v| v.len())),
-        ("acceleration", rows, acceleration.as_ref().map(|v| v.len())),
+        ("velocity", rows, out.velocity.as_ref().map(|v| v.len())),
+        (
+            "acceleration",
+            rows,
+            out.acceleration.as_ref().map(|v| v.len()),
+        ),
         (
             "centres",
             n.saturating_mul(np),
-            centres.as_ref().map(|v| v.len()),
+            out.centres.as_ref().map(|v| v.len()),
         ),
         (
             "centre_directions",
             n.saturating_mul(np),
-            centre_directions.as_ref().map(|v| v.len()),
+            out.centre_directions.as_ref().map(|v| v.len()),
         ),
         (
             "curvature_centres",
             rows,
-            curvature_centres.as_ref().map(|v| v.len()),
+            out.curvature_centres.as_ref().map(|v| v.len()),
         ),
-        ("curvature", rows, curvature.as_ref().map(|v| v.len())),
+        ("curvature", rows, out.curvature.as_ref().map(|v| v.len())),
     ] {
         if let Some(got) = got {
             check_len(what, len, got)?;
@@ -226,17 +497,7 @@ pub fn sweep<T: RealField + Copy, const N: usize>(
             check_len(what, n, v.len())?;
         }
     }
-
-    let nan_t = nan::<T>();
-    let nan2 = Vec2::new(nan_t, nan_t);
     let zero = [Vec2::zeros(); N];
-    let rates = velocity.is_some() || acceleration.is_some();
-    let wants_centres = centres.is_some() || centre_directions.is_some();
-    let wants_curvature = curvature.is_some() || curvature_centres.is_some();
-    // Velocities for accelerations asked without them, and the unit-drive rates of centres
-    // and curvature.
-    let mut own_vel = zero;
-    let (mut uvel, mut uacc) = (zero, zero);
     let still = BodyMotion::of(
         &bodies,
         GROUND,
@@ -245,124 +506,33 @@ pub fn sweep<T: RealField + Copy, const N: usize>(
         &zero[..0],
         &zero[..0],
     );
-    let mut motions = Motions {
-        ground: still,
-        of: [[still; 2]; N],
+    let mut engine = Engine {
+        mech,
+        bodies,
+        j,
+        np,
+        rates: out.velocity.is_some() || out.acceleration.is_some(),
+        wants_centres: out.centres.is_some() || out.centre_directions.is_some(),
+        wants_curvature: out.curvature.is_some() || out.curvature_centres.is_some(),
+        own_vel: zero,
+        uvel: zero,
+        uacc: zero,
+        motions: Motions {
+            ground: still,
+            of: [[still; 2]; N],
+        },
     };
-    let mut next_check = SWEEP_WORK_CHUNK;
-    for (k, &th) in theta.iter().enumerate() {
-        if k > 0 && (k % SWEEP_CHUNK == 0 || tracker.work() >= next_check) {
-            if !go_on() {
-                return Ok(Swept {
-                    samples: k,
-                    work: tracker.work(),
-                });
-            }
-            next_check = tracker.work().saturating_add(SWEEP_WORK_CHUNK);
-        }
-        let row = k * j..(k + 1) * j;
-        let pos = &mut joints[row.clone()];
-        let motion = rates.then(|| Motion::new(omega.at(k), alpha.at(k)));
-        let buffers = match (velocity.as_deref_mut(), acceleration.as_deref_mut()) {
-            (Some(v), Some(a)) => Rates::acceleration(&mut v[row.clone()], &mut a[row.clone()]),
-            (None, Some(a)) => Rates::acceleration(&mut own_vel[..j], &mut a[row.clone()]),
-            (Some(v), None) => Rates::velocity(&mut v[row.clone()]),
-            (None, None) => Rates::none(),
-        };
-        let step = tracker.step(th, motion, pos, buffers);
-        let s = match step {
-            Ok(s) => s,
-            Err(
-                e @ (Error::CannotAssemble { .. }
-                | Error::Coincident { .. }
-                | Error::NotFinite { .. }),
-            ) => {
-                valid[k] = false;
-                margin[k] = nan_t;
-                regular[k] = false;
-                gap[k] = match e {
-                    Error::CannotAssemble { gap, .. } => lit(gap),
-                    _ => nan_t,
-                };
-                for buf in [
-                    Some(&mut *joints),
-                    velocity.as_deref_mut(),
-                    acceleration.as_deref_mut(),
-                    curvature_centres.as_deref_mut(),
-                ]
-                .into_iter()
-                .flatten()
-                {
-                    buf[row.clone()].fill(nan2);
-                }
-                if let Some(c) = curvature.as_deref_mut() {
-                    c[row.clone()].fill(nan_t);
-                }
-                let pairs = k * np..(k + 1) * np;
-                for buf in [centres.as_deref_mut(), centre_directions.as_deref_mut()]
-                    .into_iter()
-                    .flatten()
-                {
-                    buf[pairs.clone()].fill(nan2);
-                }
-                continue;
-            }
-            Err(e) => return Err(e),
-        };
-        valid[k] = true;
-        margin[k] = s.margin;
-        regular[k] = s.regular;
-        gap[k] = T::zero();
-        if !(wants_centres || wants_curvature) {
-            continue;
-        }
-        let pos = &joints[row.clone()];
-        let unit_acc = wants_curvature.then_some(&mut uacc[..j]);
-        mech.motion(pos, Motion::unit(), &mut uvel[..j], unit_acc, None)?;
-        if wants_centres {
-            for id in bodies.ids() {
-                let m = BodyMotion::of(&bodies, id, pos, &uvel[..j], &zero[..j], &zero[..j])
-                    .conditioned(s.margin);
-                if id == GROUND {
-                    motions.ground = m;
-                } else {
-                    motions.of[id.joint][usize::from(id.slot)] = m;
-                }
-            }
-            let mut q = k * np;
-            for (a, ka) in bodies.ids().enumerate() {
-                for kb in bodies.ids().skip(a + 1) {
-                    let ic =
-                        relative_centre(&bodies, (ka, motions.get(ka)), (kb, motions.get(kb)), pos);
-                    let (finite, far) = match ic {
-                        Centre::Finite(p) => (p, nan2),
-                        Centre::AtInfinity(d) => (nan2, d),
-                        Centre::Undefined => (nan2, nan2),
-                    };
-                    if let Some(c) = centres.as_deref_mut() {
-                        c[q] = finite;
-                    }
-                    if let Some(d) = centre_directions.as_deref_mut() {
-                        d[q] = far;
-                    }
-                    q += 1;
-                }
-            }
-        }
-        if wants_curvature {
-            for i in 0..j {
-                let (kappa, centre) = path_curvature(pos[i], uvel[i], uacc[i]);
-                if let Some(c) = curvature.as_deref_mut() {
-                    c[k * j + i] = kappa;
-                }
-                if let Some(c) = curvature_centres.as_deref_mut() {
-                    c[k * j + i] = centre.finite().unwrap_or(nan2);
-                }
-            }
+    let try_held = match plan {
+        Plan::Tracked => false,
+        Plan::Held => true,
+        Plan::Auto => n >= tracker.grid_points_per_turn(),
+    };
+    let mut scratch = zero;
+    if try_held && tracker.holds_everywhere(&mut scratch[..j]) {
+        let tm = tracker.toggle_margin();
+        if let Some(done) = engine.held(tm, theta, (omega, alpha), &mut out, go_on)? {
+            return Ok(done);
         }
     }
-    Ok(Swept {
-        samples: n,
-        work: tracker.work(),
-    })
+    engine.tracked(&mut tracker, theta, (omega, alpha), &mut out, go_on)
 }

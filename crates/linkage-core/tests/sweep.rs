@@ -13,8 +13,8 @@
 //! Cases per property: `LINKAGE_PROPTEST_CASES` (default 2000).
 
 use linkage_core::{
-    catalog, sweep, sweep_pairs, Assembly, Error, FourBar, Mechanism, Motion, Rate, Rates,
-    SweepOutputs, Swept, Tracker, Vec2, SWEEP_CHUNK,
+    catalog, sweep, sweep_pairs, sweep_planned, Assembly, Error, FourBar, Mechanism, Motion, Plan,
+    Rate, Rates, SweepOutputs, Swept, Tracker, Vec2, SWEEP_CHUNK,
 };
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -62,6 +62,17 @@ fn engine<const N: usize>(
     omega: Rate<'_, f64>,
     alpha: Rate<'_, f64>,
 ) -> All<f64> {
+    engine_with(Plan::Auto, m, theta, omega, alpha).0
+}
+
+/// The engine on `plan`, with every output asked for; and whether the held pass swept it.
+fn engine_with<const N: usize>(
+    plan: Plan,
+    m: &Mechanism<f64, N>,
+    theta: &[f64],
+    omega: Rate<'_, f64>,
+    alpha: Rate<'_, f64>,
+) -> (All<f64>, bool) {
     let mut b = buffers(theta.len(), m.len(), sweep_pairs(m));
     let out = SweepOutputs {
         joints: &mut b.joints,
@@ -76,9 +87,9 @@ fn engine<const N: usize>(
         curvature_centres: Some(&mut b.curvature_centres),
         curvature: Some(&mut b.curvature),
     };
-    let done = sweep(m, theta, omega, alpha, out, &mut || true).unwrap();
+    let done = sweep_planned(m, theta, omega, alpha, out, &mut || true, plan).unwrap();
     assert_eq!(done.samples, theta.len());
-    b
+    (b, done.held)
 }
 
 /// The reference: one `Tracker::step` per sample, positions and rates only (what the sweep
@@ -229,12 +240,20 @@ fn angles() -> impl Strategy<Value = Vec<f64>> {
 proptest! {
     #![proptest_config(common::config("tests/sweep.proptest-regressions"))]
 
-    /// Positions, validity, margins, gaps and rates equal the tracker's, bit for bit.
+    /// Positions, validity, margins, gaps and rates equal the tracker's, bit for bit, on
+    /// every plan (the held pass where it applies).
     #[test]
-    fn equals_the_tracker_on_four_bars(fb in fourbar(), theta in angles(), w in -3.0f64..3.0) {
+    fn equals_the_tracker_on_four_bars(
+        fb in fourbar(),
+        theta in angles(),
+        w in -3.0f64..3.0,
+        held in any::<bool>(),
+    ) {
         let m = fb.mechanism();
         let omega: Vec<f64> = (0..theta.len()).map(|k| w + 0.1 * k as f64).collect();
-        let got = engine(&m, &theta, Rate::PerSample(&omega), Rate::Scalar(0.5));
+        let plan = if held { Plan::Held } else { Plan::Tracked };
+        let (got, took) = engine_with(plan, &m, &theta, Rate::PerSample(&omega), Rate::Scalar(0.5));
+        prop_assert!(held || !took);
         let want = reference(&m, &theta, &omega, 0.5);
         prop_assert!(same_points(&got.joints, &want.joints));
         prop_assert!(same_points(&got.velocity, &want.velocity));
@@ -299,10 +318,27 @@ fn equals_the_tracker_on_the_catalogue() {
     let mut theta: Vec<f64> = (0..2000).map(|k| -3.0 + 0.011 * k as f64).collect();
     theta.extend([f64::NAN, 1e9, 1e9 + 0.25, -40.0]);
     let omega: Vec<f64> = (0..theta.len()).map(|k| (k as f64 * 0.37).sin()).collect();
+    let mut held = Vec::new();
     for name in catalog::MULTI_LOOP {
         let l = catalog::linkage_by_name::<f64>(name).unwrap();
         let m = &l.mechanism;
-        let got = engine(m, &theta, Rate::PerSample(&omega), Rate::Scalar(0.25));
+        let (got, took) = engine_with(
+            Plan::Held,
+            m,
+            &theta,
+            Rate::PerSample(&omega),
+            Rate::Scalar(0.25),
+        );
+        held.push(took);
+        let (tracked, _) = engine_with(
+            Plan::Tracked,
+            m,
+            &theta,
+            Rate::PerSample(&omega),
+            Rate::Scalar(0.25),
+        );
+        assert!(same_points(&got.centres, &tracked.centres), "{name}");
+        assert!(same_floats(&got.curvature, &tracked.curvature), "{name}");
         let want = reference(m, &theta, &omega, 0.25);
         assert!(same_points(&got.joints, &want.joints), "{name}");
         assert!(same_points(&got.velocity, &want.velocity), "{name}");
@@ -312,6 +348,37 @@ fn equals_the_tracker_on_the_catalogue() {
         assert!(same_floats(&got.margin, &want.margin), "{name}");
         assert!(same_floats(&got.gap, &want.gap), "{name}");
     }
+    // The held pass applies to some of them (so the comparison above tests it).
+    assert!(held.iter().any(|&h| h), "{held:?}");
+}
+
+/// 10⁵ angles in arbitrary order on linkages clear of toggles: the held pass sweeps them
+/// (one pose per sample, no walk) and gives the tracker's bits; a change point is tracked.
+#[test]
+fn held_pass_on_arbitrary_angles() {
+    let mut x = 0x2545_f491_4f6c_dd1d_u64;
+    let theta: Vec<f64> = (0..100_000)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 40.0 - 20.0
+        })
+        .collect();
+    let hoecken = catalog::hoecken::<f64>().mechanism();
+    let omega = Rate::Scalar(2.0);
+    let (got, held) = engine_with(Plan::Auto, &hoecken, &theta, omega, Rate::Scalar(0.0));
+    assert!(held);
+    let want = reference(&hoecken, &theta, &[2.0; 100_000], 0.0);
+    assert!(same_points(&got.joints, &want.joints));
+    assert!(same_points(&got.velocity, &want.velocity));
+    assert!(same_points(&got.acceleration, &want.acceleration));
+    assert!(same_floats(&got.margin, &want.margin));
+    assert_eq!(got.regular, want.regular);
+    // A parallelogram passes flat positions: never held.
+    let par = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.5, 0.0), Assembly::Open).unwrap();
+    let (_, held) = engine_with(Plan::Held, &par.mechanism(), &theta[..10], omega, omega);
+    assert!(!held);
 }
 
 /// Intersection of the lines through `a`, `b` and through `c`, `d`.
@@ -570,4 +637,24 @@ fn runs_in_f32() {
         assert!(((v.x as f64) - u.x).abs() < 1e-2 * (1.0 + u.x.abs()));
     }
     assert_eq!(valid, got.valid);
+}
+
+/// A program copied to a smaller capacity sweeps to the same bits; too small is an error.
+#[test]
+fn resized_mechanism_sweeps_the_same() {
+    let big = catalog::jansen::<f64>().mechanism;
+    let small = big.resized::<8>().unwrap();
+    assert_eq!(small.constructions(), big.constructions());
+    assert_eq!(small.driver(), big.driver());
+    assert_eq!(
+        big.resized::<4>().unwrap_err(),
+        Error::CapacityExceeded { capacity: 4 }
+    );
+    let theta: Vec<f64> = (0..3000).map(|k| 0.37 * k as f64).collect();
+    let a = engine(&big, &theta, Rate::Scalar(1.0), Rate::Scalar(0.1));
+    let b = engine(&small, &theta, Rate::Scalar(1.0), Rate::Scalar(0.1));
+    assert!(same_points(&a.joints, &b.joints));
+    assert!(same_points(&a.acceleration, &b.acceleration));
+    assert!(same_points(&a.centres, &b.centres));
+    assert!(same_floats(&a.curvature, &b.curvature));
 }

@@ -309,7 +309,13 @@ impl Mechanism {
                         false
                     }
                 };
-                linkage_core::sweep(&mech, th, w, a, out, &mut go_on)
+                // The program on arrays sized to it (the same bits at any capacity).
+                match mech.len() {
+                    0..=8 => run(&mech.resized::<8>()?, th, w, a, out, &mut go_on),
+                    9..=16 => run(&mech.resized::<16>()?, th, w, a, out, &mut go_on),
+                    17..=32 => run(&mech.resized::<32>()?, th, w, a, out, &mut go_on),
+                    _ => run(&mech, th, w, a, out, &mut go_on),
+                }
             })
             .map_err(to_py)?;
             if let Some(e) = stopped {
@@ -338,6 +344,18 @@ impl Mechanism {
         }
         Ok(d)
     }
+}
+
+/// The core sweep of a mechanism of capacity `N`.
+fn run<const N: usize>(
+    mech: &CoreMechanism<f64, N>,
+    theta: &[f64],
+    omega: Rate<'_, f64>,
+    alpha: Rate<'_, f64>,
+    out: SweepOutputs<'_, f64>,
+    go_on: &mut dyn FnMut() -> bool,
+) -> Result<linkage_core::Swept, linkage_core::Error> {
+    linkage_core::sweep(mech, theta, omega, alpha, out, go_on)
 }
 
 /// A writeable numpy array's elements as a slice (the arrays here are made C-contiguous).
