@@ -324,11 +324,13 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
 
     /// The held pass: every sample posed on the declared orientations, no walk (valid only
     /// after [`Tracker::holds_everywhere`]). Returns `None`, having written some rows, at the
-    /// first sample whose own margin is below the toggle margin or that does not assemble:
+    /// first sample whose own `watched` margins are below the toggle margin or that does not
+    /// assemble:
     /// the tracker must sweep then.
     fn held(
         &mut self,
         toggle_margin: T,
+        watched: &[bool],
         theta: &[T],
         (omega, alpha): (Rate<'_, T>, Rate<'_, T>),
         out: &mut SweepOutputs<'_, T>,
@@ -350,8 +352,11 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
                 continue;
             }
             let row = k * j..(k + 1) * j;
-            let margin = match self.mech.pose(th, &mut out.joints[row.clone()]) {
-                Ok(m) if m >= toggle_margin => m,
+            let margin = match self
+                .mech
+                .pose_watched(th, &mut out.joints[row.clone()], watched)
+            {
+                Ok((m, w)) if w >= toggle_margin => m,
                 _ => return Ok(None),
             };
             let regular = if self.rates {
@@ -436,9 +441,10 @@ pub fn sweep<T: RealField + Copy, const N: usize>(
 /// Tracking costs a walk of the canonical path between samples (see [`Tracker`]): cheap for
 /// samples in order, up to hundreds of placements per sample for angles in arbitrary order.
 /// Most linkages never come near a toggle: when every grid point of the turn places on the
-/// declared orientations with every dyad's margin at least the toggle margin (one pose per
-/// grid point), the tracker provably keeps those orientations everywhere, and each sample
-/// whose own margins clear the toggle margin is simply posed on them — one pose per sample,
+/// declared orientations with the margin of every dyad that may flip at least the toggle
+/// margin (one pose per grid point; a four-bar-like dyad on a crank pin and a fixed joint with
+/// no flat position never flips), the tracker provably keeps those orientations everywhere,
+/// and each sample whose own such margins clear the toggle margin is simply posed on them — one pose per sample,
 /// whatever the order of the samples, and the same bits as the tracker. A sample that does not
 /// clear it sends the whole sweep back to the tracker (its rows are rewritten).
 ///
@@ -528,9 +534,11 @@ pub fn sweep_planned<T: RealField + Copy, const N: usize>(
         Plan::Auto => n >= tracker.grid_points_per_turn(),
     };
     let mut scratch = zero;
-    if try_held && tracker.holds_everywhere(&mut scratch[..j]) {
+    let mut watched = [false; N];
+    if try_held && tracker.holds_everywhere(&mut scratch[..j], &mut watched[..j]) {
         let tm = tracker.toggle_margin();
-        if let Some(done) = engine.held(tm, theta, (omega, alpha), &mut out, go_on)? {
+        let watched = &watched[..j];
+        if let Some(done) = engine.held(tm, watched, theta, (omega, alpha), &mut out, go_on)? {
             return Ok(done);
         }
     }
