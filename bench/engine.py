@@ -10,6 +10,8 @@ difference between the two (relative to the linkage size; ∞-norm). Times are C
 - point + velocity + acceleration, 10⁶ angles — target ≥ 8×;
 - instant centres + curvature, 10⁶ angles — target ≥ 5×;
 - Jansen's leg, all joints, 2·10⁵ angles (numpy: a chain of its five dyads) — target ≥ 4×;
+  (the coupler point and Jansen rows are repeated on evenly spaced angles in order, the
+  tracker's best case, for reference; the others use arbitrary angles in arbitrary order);
 - one sample per call — target ≥ 3×;
 - a batch of 10⁴ four-bars × 360 angles (bench/batch.py's case) — target ≥ 10×.
 
@@ -60,9 +62,7 @@ def perp(x: F, y: F) -> tuple[F, F]:
     return -y, x
 
 
-def dyad(
-    p1x: F, p1y: F, p2x: F, p2y: F, r1: float, r2: float, sign: float
-) -> tuple[F, F]:
+def dyad(p1x: F, p1y: F, p2x: F, p2y: F, r1: float, r2: float, sign: float) -> tuple[F, F]:
     """The joint at ``r1`` from p1 and ``r2`` from p2, on the side ``sign`` (+1 left of p1 → p2)."""
     dx, dy = p2x - p1x, p2y - p1y
     d2 = dx * dx + dy * dy
@@ -199,6 +199,11 @@ def main() -> None:
     t = cpu_medians([lambda: fb.sweep(theta).point, lambda: fourbar_pos(theta)], repeat)
     row(f"coupler point, {n} angles", t[0], t[1], 8, diff, n)
 
+    # 1b. The same on evenly spaced angles in order (the tracker's best case, for reference).
+    lin = np.linspace(0.0, 2 * np.pi, n)
+    t = cpu_medians([lambda: fb.sweep(lin).point, lambda: fourbar_pos(lin)], repeat)
+    row("  (same, linspace angles in order)", t[0], t[1], 8, 0.0, n)
+
     # 2. Point, velocity, acceleration.
     w, al = 2.0, 0.5
     outs = ("point", "velocity", "acceleration")
@@ -209,7 +214,10 @@ def main() -> None:
         rel(s.acceleration, np.stack([a[4], a[5]], -1), SIZE * (w * w + al)),
     )
     t = cpu_medians(
-        [lambda: fb.sweep(theta, omega=w, alpha=al, outputs=outs), lambda: fourbar_rates(theta, w, al)],
+        [
+            lambda: fb.sweep(theta, omega=w, alpha=al, outputs=outs),
+            lambda: fourbar_rates(theta, w, al),
+        ],
         repeat,
     )
     row("point + velocity + acceleration", t[0], t[1], 8, diff, n)
@@ -240,13 +248,17 @@ def main() -> None:
     t = cpu_medians([lambda: jansen.sweep(th_j).joints, lambda: jansen_numpy(th_j)], repeat)
     row(f"Jansen all joints, {nj} angles", t[0], t[1], 4, diff, nj)
 
+    lin_j = np.linspace(0.0, 2 * np.pi, nj)
+    t = cpu_medians([lambda: jansen.sweep(lin_j).joints, lambda: jansen_numpy(lin_j)], repeat)
+    row("  (same, linspace angles in order)", t[0], t[1], 4, 0.0, nj)
+
     # 5. One sample per call.
     one = np.array([0.7])
     calls = 2000
 
     def ours_one() -> None:
         for _ in range(calls):
-            fb.sweep(one).point
+            _ = fb.sweep(one).point
 
     def numpy_one() -> None:
         for _ in range(calls):

@@ -243,8 +243,10 @@ impl Mechanism {
             rate("omega", &omega, n, 0.0)?,
             rate("alpha", &alpha, n, 0.0)?,
         );
-        let mech = self.snapshot();
-        let (j, np) = (mech.len(), sweep_pairs(&mech));
+        // The program on arrays sized to it (the same bits at any capacity), copied under the
+        // lock.
+        let mech = Sweepable::of(&self.lock());
+        let (j, np) = mech.shape();
         let rates = velocity || acceleration;
         // The total is checked first (a `MemoryError` naming it), then numpy allocates each
         // output and the core writes into it: no copy, and pages are touched once.
@@ -309,12 +311,11 @@ impl Mechanism {
                         false
                     }
                 };
-                // The program on arrays sized to it (the same bits at any capacity).
-                match mech.len() {
-                    0..=8 => run(&mech.resized::<8>()?, th, w, a, out, &mut go_on),
-                    9..=16 => run(&mech.resized::<16>()?, th, w, a, out, &mut go_on),
-                    17..=32 => run(&mech.resized::<32>()?, th, w, a, out, &mut go_on),
-                    _ => run(&mech, th, w, a, out, &mut go_on),
+                match &mech {
+                    Sweepable::S8(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
+                    Sweepable::S16(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
+                    Sweepable::S32(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
+                    Sweepable::S64(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
                 }
             })
             .map_err(to_py)?;
@@ -323,39 +324,63 @@ impl Mechanism {
             }
         }
         let d = PyDict::new(py);
-        d.set_item("joints", joints)?;
-        d.set_item("valid", valid)?;
-        d.set_item("margin", margin)?;
-        d.set_item("regular", regular)?;
-        d.set_item("gap", gap)?;
+        d.set_item(pyo3::intern!(py, "joints"), joints)?;
+        d.set_item(pyo3::intern!(py, "valid"), valid)?;
+        d.set_item(pyo3::intern!(py, "margin"), margin)?;
+        d.set_item(pyo3::intern!(py, "regular"), regular)?;
+        d.set_item(pyo3::intern!(py, "gap"), gap)?;
         for (key, arr) in [
-            ("velocity", vel),
-            ("acceleration", acc),
-            ("instant_centres", centres),
-            ("instant_centre_directions", directions),
-            ("curvature_centres", curv_centres),
+            (pyo3::intern!(py, "velocity"), vel),
+            (pyo3::intern!(py, "acceleration"), acc),
+            (pyo3::intern!(py, "instant_centres"), centres),
+            (pyo3::intern!(py, "instant_centre_directions"), directions),
+            (pyo3::intern!(py, "curvature_centres"), curv_centres),
         ] {
             if let Some(arr) = arr {
                 d.set_item(key, arr)?;
             }
         }
         if let Some(k) = curv {
-            d.set_item("curvature", k)?;
+            d.set_item(pyo3::intern!(py, "curvature"), k)?;
         }
         Ok(d)
     }
 }
 
-/// The core sweep of a mechanism of capacity `N`.
-fn run<const N: usize>(
-    mech: &CoreMechanism<f64, N>,
-    theta: &[f64],
-    omega: Rate<'_, f64>,
-    alpha: Rate<'_, f64>,
-    out: SweepOutputs<'_, f64>,
-    go_on: &mut dyn FnMut() -> bool,
-) -> Result<linkage_core::Swept, linkage_core::Error> {
-    linkage_core::sweep(mech, theta, omega, alpha, out, go_on)
+/// A copy of a program at the least capacity of 8, 16, 32, 64 that holds it: a sweep's arrays
+/// (tracker history, rate scratch) are sized to the linkage, not to [`CAPACITY`]. (On the
+/// stack: boxing the small ones would cost an allocation per call.)
+#[allow(clippy::large_enum_variant)]
+enum Sweepable {
+    S8(CoreMechanism<f64, 8>),
+    S16(CoreMechanism<f64, 16>),
+    S32(CoreMechanism<f64, 32>),
+    S64(Box<CoreMechanism<f64, CAPACITY>>),
+}
+
+impl Sweepable {
+    fn of(m: &CoreMechanism<f64, CAPACITY>) -> Self {
+        // `resized` fails only for a program longer than the capacity asked for.
+        if let Ok(s) = m.resized::<8>() {
+            Sweepable::S8(s)
+        } else if let Ok(s) = m.resized::<16>() {
+            Sweepable::S16(s)
+        } else if let Ok(s) = m.resized::<32>() {
+            Sweepable::S32(s)
+        } else {
+            Sweepable::S64(Box::new(m.clone()))
+        }
+    }
+
+    /// Joints and body pairs.
+    fn shape(&self) -> (usize, usize) {
+        match self {
+            Sweepable::S8(m) => (m.len(), sweep_pairs(m)),
+            Sweepable::S16(m) => (m.len(), sweep_pairs(m)),
+            Sweepable::S32(m) => (m.len(), sweep_pairs(m)),
+            Sweepable::S64(m) => (m.len(), sweep_pairs(m.as_ref())),
+        }
+    }
 }
 
 /// A writeable numpy array's elements as a slice (the arrays here are made C-contiguous).
