@@ -71,7 +71,7 @@ class Mechanism:
     def _from_core(
         cls, core: Any, names: Sequence[str], trace: int, links: Sequence[str] | None = None
     ) -> Mechanism:
-        m = cls()
+        m = cls.__new__(cls)  # no empty core program to build and throw away
         m._core = core
         m._names = list(names)
         m._trace = m._names[trace]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -16,6 +17,12 @@ of every pair of links, and the path curvature of every joint."""
 
 RATE_MARGIN = 32.0 * float(np.sqrt(np.finfo(np.float64).eps))
 """The core's rate margin (``linkage_core::rate_margin``): below it rates are NaN."""
+
+
+@functools.lru_cache(maxsize=256)
+def _pairs(links: tuple[str, ...]) -> tuple[tuple[str, str], ...]:
+    """The pairs ``(links[k], links[m])``, ``k < m`` (one per mechanism, not per sweep)."""
+    return tuple((links[k], links[m]) for k in range(len(links)) for m in range(k + 1, len(links)))
 
 
 class Sweep:
@@ -75,9 +82,7 @@ class Sweep:
         """Times of the samples, for a sweep driven in time (else None)."""
         self.links = links
         """Link names, the ground first (joints of each link joined by '-')."""
-        self.link_pairs = tuple(
-            (links[k], links[m]) for k in range(len(links)) for m in range(k + 1, len(links))
-        )
+        self.link_pairs = _pairs(links)
         """The pairs of links whose instant centres ``instant_centres`` holds, in order."""
         self.trace = joint_names[trace]
         self.outputs = outputs

@@ -73,6 +73,7 @@ mod schedule;
 mod slider;
 mod straightness;
 mod support;
+mod sweep;
 mod tracker;
 mod uniform_sweep;
 
@@ -116,5 +117,9 @@ pub use schedule::{ScheduleTable, StanceSchedule};
 pub use slider::{Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
 pub use support::{convex_hull, stability_margin, support_margins};
+pub use sweep::{
+    sweep, sweep_pairs, sweep_planned, Plan, Rate, SweepOutputs, Swept, SWEEP_CHUNK,
+    SWEEP_WORK_CHUNK,
+};
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
 pub use uniform_sweep::{AngleMode, MAX_TABLE};

@@ -322,6 +322,23 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         Ok(index)
     }
 
+    /// The same program in a mechanism of capacity `M` (constructions copied as they are, bit
+    /// for bit): a sweep of a small linkage held at a large capacity runs on arrays sized to
+    /// it.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the program has more than `M` joints.
+    pub fn resized<const M: usize>(&self) -> Result<Mechanism<T, M>, Error> {
+        let mut m = Mechanism::<T, M>::new();
+        if self.len > M {
+            return Err(Error::CapacityExceeded { capacity: M });
+        }
+        m.steps[..self.len].copy_from_slice(self.constructions());
+        m.len = self.len;
+        m.driver = self.driver;
+        Ok(m)
+    }
+
     /// Adds a fixed joint. See [`Construction::Fixed`].
     ///
     /// # Errors
@@ -510,6 +527,62 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         };
         let odd = parity(from) != parity(to);
         Some(odd)
+    }
+
+    /// Whether a tracked sweep may ever change joint `i`'s orientation: false for joints
+    /// without a branch and for a dyad on a crank pin and a fixed joint with no flat position
+    /// (the tracker turns such a dyad only at its flat positions, counted in closed form, and
+    /// never by extrapolation: see [`Mechanism::flat_crossings`]); true otherwise.
+    pub(crate) fn may_flip(&self, i: usize) -> bool {
+        match self.steps[i] {
+            Construction::Dyad { p1, p2, dyad, .. } => {
+                let Some((k, q)) = self.crank_and_fixed(p1, p2) else {
+                    return true;
+                };
+                let (Construction::Crank { centre, radius, .. }, Construction::Fixed { at: qp }) =
+                    (self.steps[k], self.steps[q])
+                else {
+                    return true;
+                };
+                let Construction::Fixed { at: o } = self.steps[centre] else {
+                    return true;
+                };
+                let g = crate::scalar::length(qp - o);
+                let [at_zero, at_pi] = crate::fourbar::flat_angles(g, radius, dyad.r1, dyad.r2);
+                at_zero.is_some() || at_pi.is_some()
+            }
+            Construction::Slider { .. } => true,
+            _ => false,
+        }
+    }
+
+    /// [`Mechanism::pose`] (the same bits), returning also the smallest margin of the joints
+    /// `watched` marks (1 when none is marked).
+    pub(crate) fn pose_watched(
+        &self,
+        theta: T,
+        joints: &mut [Vec2<T>],
+        watched: &[bool],
+    ) -> Result<(T, T), Error> {
+        let mut margin = T::one();
+        let mut least = T::one();
+        for i in 0..self.len {
+            joints[i] = match self.candidates(i, theta, joints, T::zero())? {
+                Candidates::One(p) => p,
+                Candidates::Two {
+                    foot,
+                    offset,
+                    margin: m,
+                } => {
+                    margin = margin.min(m);
+                    if watched[i] {
+                        least = least.min(m);
+                    }
+                    foot + offset * self.steps[i].initial_sign()
+                }
+            };
+        }
+        Ok((margin, least))
     }
 
     /// The crank joint and the fixed joint of a dyad on `p1`, `p2`, when it is built on a crank

@@ -307,6 +307,41 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         self.fine as usize
     }
 
+    /// Whether the orientations held now (those the constructions declare, on a new tracker)
+    /// are what every sample gets, whatever the samples: every grid point of the turn places
+    /// on them, with the margin of every dyad that may flip ([`Mechanism::may_flip`], marked
+    /// in `watched`) at least the toggle margin.
+    ///
+    /// Why that suffices, for samples whose own watched margins clear the toggle margin too: a
+    /// placement changes an orientation only for a dyad that may flip and is near a toggle (its
+    /// margin, or its margin at the previous point of the walk, below the toggle margin). The
+    /// walk places only grid points and the samples; by induction on the placements, every one
+    /// is made on the held orientations, so its margins are the ones checked here — no watched
+    /// dyad is near, none flips (a coarse probe that would flip only makes the walk take grid
+    /// steps, which keep). So each sample's pose is [`Mechanism::pose`] at its angle, bit for
+    /// bit. Costs one pose per grid point (`M`, 1024 by default).
+    pub(crate) fn holds_everywhere(&self, scratch: &mut [Vec2<T>], watched: &mut [bool]) -> bool {
+        let held = self
+            .sign
+            .iter()
+            .zip(self.mech.constructions())
+            .all(|(&s, c)| (s < 0) == (c.initial_sign() < T::zero()));
+        for (i, w) in watched.iter_mut().enumerate() {
+            *w = self.mech.may_flip(i);
+        }
+        held && (0..self.fine).all(|idx| {
+            matches!(
+                self.mech.pose_watched(self.grid_angle(idx), scratch, watched),
+                Ok((_, m)) if m >= self.toggle_margin
+            )
+        })
+    }
+
+    /// The assembly margin below which a dyad is near a toggle.
+    pub(crate) fn toggle_margin(&self) -> T {
+        self.toggle_margin
+    }
+
     /// The grid step `h = 2π/M`.
     fn h(&self) -> T {
         T::two_pi() / lit::<T>(self.fine as f64)

@@ -1,11 +1,11 @@
-//! Mirrors `linkage_core::mechanism` and `linkage_core::tracker`: the mechanism builder and
-//! the sweep over numpy arrays.
+//! Mirrors `linkage_core::mechanism` and `linkage_core::sweep`: the mechanism builder, and
+//! the sweep over numpy arrays (checked and allocated here, computed by the core).
 
 use linkage_core::{
-    path_curvature, relative_centre, Bodies, BodyId, BodyMotion, Centre, Error, LineDirection,
-    Mechanism as CoreMechanism, Motion, Rates, Reach, Side, Tracker, Vec2,
+    sweep_pairs, Bodies, LineDirection, Mechanism as CoreMechanism, Rate, Reach, Side,
+    SweepOutputs, Vec2,
 };
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use numpy::{Ix1, Ix2, Ix3, PyArray, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -16,252 +16,13 @@ use crate::error::{linkage_error, to_py};
 use crate::memory;
 use crate::CAPACITY;
 
-/// A per-sample rate input: one value for every sample, or one per sample.
-#[derive(Clone, Copy)]
-pub enum Rate<'a> {
-    /// The same value at every sample.
-    Scalar(f64),
-    /// One value per sample.
-    PerSample(&'a [f64]),
-}
-
-impl Rate<'_> {
-    #[inline]
-    fn at(&self, k: usize) -> f64 {
-        match self {
-            Rate::Scalar(x) => *x,
-            Rate::PerSample(v) => v[k],
-        }
-    }
-}
-
-/// What a sweep computes besides positions.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Wanted {
-    /// Joint velocities for the given drive.
-    pub velocity: bool,
-    /// Joint accelerations for the given drive.
-    pub acceleration: bool,
-    /// Instant centres of every pair of links.
-    pub instant_centres: bool,
-    /// Path curvature of every joint.
-    pub curvature: bool,
-}
-
-/// Flat sweep results (`n` samples, `j` joints, `p` link pairs), row-major.
-pub struct SweepArrays {
-    /// `n·j·2` positions (NaN where invalid).
-    pub joints: Vec<f64>,
-    /// Whether each sample assembled.
-    pub valid: Vec<bool>,
-    /// Smallest dyad margin per sample (NaN where invalid).
-    pub margin: Vec<f64>,
-    /// Whether each valid sample is clear of the rate margin (its rates are numbers).
-    pub regular: Vec<bool>,
-    /// How much the lengths miss closure (0 where valid, NaN where undetermined).
-    pub gap: Vec<f64>,
-    /// `n·j·2` velocities, if asked.
-    pub velocity: Option<Vec<f64>>,
-    /// `n·j·2` accelerations, if asked.
-    pub acceleration: Option<Vec<f64>>,
-    /// `n·p·2` finite instant centres (NaN otherwise), if asked.
-    pub centres: Option<Vec<f64>>,
-    /// `n·p·2` directions of instant centres at infinity (NaN otherwise), if asked.
-    pub centre_directions: Option<Vec<f64>>,
-    /// `n·j·2` finite centres of curvature (NaN otherwise), if asked.
-    pub curvature_centres: Option<Vec<f64>>,
-    /// `n·j` signed curvatures, if asked.
-    pub curvature: Option<Vec<f64>>,
-}
-
-/// The pairs `(k, l)`, `k < l`, of `count` bodies.
-pub fn body_pairs(count: usize) -> Vec<(usize, usize)> {
-    (0..count)
-        .flat_map(|k| (k + 1..count).map(move |l| (k, l)))
-        .collect()
-}
-
-/// Writes centre `c` as row `k` of `dst`: its point if `finite` is asked and it is finite, its
-/// direction if `finite` is not asked and it is at infinity, NaN otherwise.
-fn put(dst: &mut [f64], k: usize, c: Centre<f64>, finite: bool) {
-    let v = match (c, finite) {
-        (Centre::Finite(p), true) | (Centre::AtInfinity(p), false) => [p.x, p.y],
-        _ => [f64::NAN; 2],
-    };
-    dst[2 * k..2 * k + 2].copy_from_slice(&v);
-}
-
-/// Samples between two calls of a sweep's `go_on`, at most.
-pub const CHUNK: usize = 4096;
-
-/// Tracker placements (solves of every joint at one angle) between two calls of `go_on`, at
-/// most: a sample costs one placement, plus the grid points walked to reach it (up to a few
-/// hundred for a jump of many turns), so counting work rather than samples bounds the time
-/// between two checks (about 10 ms here) whatever the spacing of the samples.
-pub const WORK_CHUNK: u64 = 1 << 15;
-
-/// Allocates the outputs of a sweep of `n` samples of `j` joints and `np` link pairs: the total
-/// is checked first (`MemoryError` naming it), then each buffer is reserved without aborting.
-fn allocate(n: usize, j: usize, np: usize, wanted: Wanted) -> PyResult<SweepArrays> {
-    let rates = wanted.velocity || wanted.acceleration;
-    let (nu, ju, pu) = (n as u128, j as u128, np as u128);
-    let on = |b: bool| u128::from(b);
-    // In f64 units: joints, margin, gap, the optional arrays; `valid` and `regular` are one
-    // byte a sample each.
-    let floats = nu * ju * 2 * (1 + on(rates) + on(wanted.acceleration) + on(wanted.curvature))
-        + nu * 2
-        + nu * pu * 4 * on(wanted.instant_centres)
-        + nu * ju * on(wanted.curvature);
-    let what = || format!("sweep of {n} samples");
-    memory::check(&what, memory::bytes_of::<f64>(floats) + 2 * nu)?;
-    // The total fits isize, so every product below fits usize.
-    let rows = |on: bool| -> PyResult<Option<Vec<f64>>> {
-        on.then(|| memory::with_capacity(&what, n * j * 2))
-            .transpose()
-    };
-    let nans = |len: usize, on: bool| -> PyResult<Option<Vec<f64>>> {
-        on.then(|| memory::filled(&what, len, f64::NAN)).transpose()
-    };
-    Ok(SweepArrays {
-        joints: memory::with_capacity(&what, n * j * 2)?,
-        valid: memory::filled(&what, n, false)?,
-        margin: memory::filled(&what, n, f64::NAN)?,
-        regular: memory::filled(&what, n, false)?,
-        gap: memory::filled(&what, n, 0.0)?,
-        velocity: rows(rates)?,
-        acceleration: rows(wanted.acceleration)?,
-        centres: nans(n * np * 2, wanted.instant_centres)?,
-        centre_directions: nans(n * np * 2, wanted.instant_centres)?,
-        curvature_centres: nans(n * j * 2, wanted.curvature)?,
-        curvature: nans(n * j, wanted.curvature)?,
-    })
-}
-
-/// Sweeps `m` over `theta` with the core tracker. Pure Rust, no Python: runs with the GIL
-/// released (the allocation errors it can return are created lazily). Only what `wanted` asks
-/// is computed; instant centres and curvature use rates per unit crank angle (they do not
-/// depend on timing). `go_on` is called every [`CHUNK`] samples or [`WORK_CHUNK`] placements,
-/// whichever comes first; when it returns false the
-/// sweep stops early (the caller raises what stopped it).
-pub fn sweep_arrays<const N: usize>(
-    m: &CoreMechanism<f64, N>,
-    theta: &[f64],
-    omega: Rate<'_>,
-    alpha: Rate<'_>,
-    wanted: Wanted,
-    go_on: &mut dyn FnMut() -> bool,
-) -> PyResult<SweepArrays> {
-    let (n, j) = (theta.len(), m.len());
-    let rates = wanted.velocity || wanted.acceleration;
-    let bodies = Bodies::of(m);
-    let ids: Vec<BodyId> = bodies.ids().collect();
-    let pairs = body_pairs(ids.len());
-    let np = pairs.len();
-    // Positions and rates are appended sample by sample (NaN rows where a sample does not
-    // assemble), so each output byte is written once.
-    let mut out = allocate(n, j, np, wanted)?;
-    let mut tracker = Tracker::new(m).map_err(to_py)?;
-    let zero = [Vec2::zeros(); N];
-    let (mut pos, mut vel, mut acc) = (zero, zero, zero);
-    let (mut uvel, mut uacc) = (zero, zero);
-    let mut motions = Vec::with_capacity(ids.len());
-    let mut next_check = WORK_CHUNK;
-    for (k, &th) in theta.iter().enumerate() {
-        if (k % CHUNK == CHUNK - 1 || tracker.work() >= next_check) && k > 0 {
-            if !go_on() {
-                break;
-            }
-            next_check = tracker.work().saturating_add(WORK_CHUNK);
-        }
-        let motion = rates.then(|| Motion::new(omega.at(k), alpha.at(k)));
-        let buffers = match (wanted.acceleration, rates) {
-            (true, _) => Rates::acceleration(&mut vel[..j], &mut acc[..j]),
-            (false, true) => Rates::velocity(&mut vel[..j]),
-            _ => Rates::none(),
-        };
-        match tracker.step(th, motion, &mut pos[..j], buffers) {
-            Ok(s) => {
-                out.valid[k] = true;
-                out.margin[k] = s.margin;
-                out.regular[k] = s.regular;
-            }
-            Err(
-                e @ (Error::CannotAssemble { .. }
-                | Error::Coincident { .. }
-                | Error::NotFinite { .. }),
-            ) => {
-                out.gap[k] = match e {
-                    Error::CannotAssemble { gap, .. } => gap,
-                    _ => f64::NAN,
-                };
-                for buf in [
-                    Some(&mut out.joints),
-                    out.velocity.as_mut(),
-                    out.acceleration.as_mut(),
-                ]
-                .into_iter()
-                .flatten()
-                {
-                    buf.extend(core::iter::repeat_n(f64::NAN, 2 * j));
-                }
-                continue;
-            }
-            Err(e) => return Err(to_py(e)),
-        }
-        let row = k * j * 2;
-        push_rows(&mut out.joints, &pos[..j]);
-        if let Some(v) = out.velocity.as_mut() {
-            push_rows(v, &vel[..j]);
-        }
-        if let Some(a) = out.acceleration.as_mut() {
-            push_rows(a, &acc[..j]);
-        }
-        if !(wanted.instant_centres || wanted.curvature) {
-            continue;
-        }
-        let unit_acc = wanted.curvature.then_some(&mut uacc[..j]);
-        m.motion(&pos[..j], Motion::unit(), &mut uvel[..j], unit_acc, None)
-            .map_err(to_py)?;
-        if let (Some(c), Some(d)) = (out.centres.as_mut(), out.centre_directions.as_mut()) {
-            motions.clear();
-            motions.extend(ids.iter().map(|&id| {
-                BodyMotion::of(&bodies, id, &pos[..j], &uvel[..j], &zero[..j], &zero[..j])
-                    .conditioned(out.margin[k])
-            }));
-            for (q, &(a, b)) in pairs.iter().enumerate() {
-                let ic = relative_centre(
-                    &bodies,
-                    (ids[a], &motions[a]),
-                    (ids[b], &motions[b]),
-                    &pos[..j],
-                );
-                put(&mut c[k * np * 2..], q, ic, true);
-                put(&mut d[k * np * 2..], q, ic, false);
-            }
-        }
-        if let (Some(c), Some(kap)) = (out.curvature_centres.as_mut(), out.curvature.as_mut()) {
-            for i in 0..j {
-                let (kappa, centre) = path_curvature(pos[i], uvel[i], uacc[i]);
-                kap[k * j + i] = kappa;
-                put(&mut c[row..], i, centre, true);
-            }
-        }
-    }
-    Ok(out)
-}
-
-#[inline]
-fn push_rows(dst: &mut Vec<f64>, src: &[Vec2<f64>]) {
-    dst.extend(src.iter().flat_map(|p| [p.x, p.y]));
-}
-
 /// Reads an optional rate array: absent is `default`, length 1 is a scalar, length `n` per sample.
 fn rate<'a>(
     name: &str,
     arr: &'a Option<PyReadonlyArray1<'_, f64>>,
     n: usize,
     default: f64,
-) -> PyResult<Rate<'a>> {
+) -> PyResult<Rate<'a, f64>> {
     let Some(arr) = arr else {
         return Ok(Rate::Scalar(default));
     };
@@ -275,11 +36,6 @@ fn rate<'a>(
             "{name} must be a scalar or have one value per angle ({n}), got {len}"
         ))),
     }
-}
-
-/// Turns a flat result into an `(n, j, 2)` array.
-fn to_array3<'py>(py: Python<'py>, v: Vec<f64>, n: usize, j: usize) -> PyResult<Bound<'py, PyAny>> {
-    Ok(PyArray1::from_vec(py, v).reshape([n, j, 2])?.into_any())
 }
 
 /// Parses `"left"` / `"right"`.
@@ -487,50 +243,158 @@ impl Mechanism {
             rate("omega", &omega, n, 0.0)?,
             rate("alpha", &alpha, n, 0.0)?,
         );
-        let wanted = Wanted {
-            velocity,
-            acceleration,
-            instant_centres,
-            curvature,
+        // The program on arrays sized to it (the same bits at any capacity), copied under the
+        // lock.
+        let mech = Sweepable::of(&self.lock());
+        let (j, np) = mech.shape();
+        let rates = velocity || acceleration;
+        // The total is checked first (a `MemoryError` naming it), then numpy allocates each
+        // output and the core writes into it: no copy, and pages are touched once.
+        let (nu, ju, pu) = (n as u128, j as u128, np as u128);
+        let on = |b: bool| u128::from(b);
+        let floats = nu * ju * 2 * (1 + on(rates) + on(acceleration) + on(curvature))
+            + nu * 2
+            + nu * pu * 4 * on(instant_centres)
+            + nu * ju * on(curvature);
+        let what = || format!("sweep of {n} samples");
+        memory::check(&what, memory::bytes_of::<f64>(floats) + 2 * nu)?;
+        let points = |on: bool, cols: usize| -> PyResult<Option<Bound<'py, PyArray<f64, Ix3>>>> {
+            on.then(|| memory::zeros(py, &what, &[n, cols, 2]))
+                .transpose()
         };
-        let mech = self.snapshot();
-        // Ctrl-C: the signal handler only sets a flag; check it between chunks of samples.
-        let mut stopped: Option<PyErr> = None;
-        let res = py.detach(|| {
-            let mut go_on = || match Python::attach(|py| py.check_signals()) {
-                Ok(()) => true,
-                Err(e) => {
-                    stopped = Some(e);
-                    false
-                }
+        let joints = points(true, j)?.ok_or_else(|| linkage_error("internal error"))?;
+        let valid = memory::zeros::<bool, Ix1>(py, &what, &[n])?;
+        let margin = memory::zeros::<f64, Ix1>(py, &what, &[n])?;
+        let regular = memory::zeros::<bool, Ix1>(py, &what, &[n])?;
+        let gap = memory::zeros::<f64, Ix1>(py, &what, &[n])?;
+        let vel = points(rates, j)?;
+        let acc = points(acceleration, j)?;
+        let centres = points(instant_centres, np)?;
+        let directions = points(instant_centres, np)?;
+        let curv_centres = points(curvature, j)?;
+        let curv = curvature
+            .then(|| memory::zeros::<f64, Ix2>(py, &what, &[n, j]))
+            .transpose()?;
+        {
+            let mut joints_w = joints.readwrite();
+            let mut valid_w = valid.readwrite();
+            let mut margin_w = margin.readwrite();
+            let mut regular_w = regular.readwrite();
+            let mut gap_w = gap.readwrite();
+            let write =
+                |a: &Option<Bound<'py, PyArray<f64, Ix3>>>| a.as_ref().map(|a| a.readwrite());
+            let (mut vel_w, mut acc_w) = (write(&vel), write(&acc));
+            let (mut centres_w, mut directions_w) = (write(&centres), write(&directions));
+            let mut curv_centres_w = write(&curv_centres);
+            let mut curv_w = curv.as_ref().map(|a| a.readwrite());
+            let out = SweepOutputs {
+                joints: as_points(&mut joints_w)?,
+                valid: as_slice(&mut valid_w)?,
+                margin: as_slice(&mut margin_w)?,
+                regular: as_slice(&mut regular_w)?,
+                gap: as_slice(&mut gap_w)?,
+                velocity: vel_w.as_mut().map(as_points).transpose()?,
+                acceleration: acc_w.as_mut().map(as_points).transpose()?,
+                centres: centres_w.as_mut().map(as_points).transpose()?,
+                centre_directions: directions_w.as_mut().map(as_points).transpose()?,
+                curvature_centres: curv_centres_w.as_mut().map(as_points).transpose()?,
+                curvature: curv_w.as_mut().map(as_slice).transpose()?,
             };
-            sweep_arrays(&mech, th, w, a, wanted, &mut go_on)
-        })?;
-        if let Some(e) = stopped {
-            return Err(e);
-        }
-        let j = mech.len();
-        let np = body_pairs(Bodies::of(&mech).count()).len();
-        let d = PyDict::new(py);
-        d.set_item("joints", to_array3(py, res.joints, n, j)?)?;
-        d.set_item("valid", PyArray1::from_vec(py, res.valid))?;
-        d.set_item("margin", PyArray1::from_vec(py, res.margin))?;
-        d.set_item("regular", PyArray1::from_vec(py, res.regular))?;
-        d.set_item("gap", PyArray1::from_vec(py, res.gap))?;
-        for (key, arr, cols) in [
-            ("velocity", res.velocity, j),
-            ("acceleration", res.acceleration, j),
-            ("instant_centres", res.centres, np),
-            ("instant_centre_directions", res.centre_directions, np),
-            ("curvature_centres", res.curvature_centres, j),
-        ] {
-            if let Some(v) = arr {
-                d.set_item(key, to_array3(py, v, n, cols)?)?;
+            // Ctrl-C: the signal handler only sets a flag; the core calls `go_on` between
+            // chunks of samples, which checks it.
+            let mut stopped: Option<PyErr> = None;
+            py.detach(|| {
+                let mut go_on = || match Python::attach(|py| py.check_signals()) {
+                    Ok(()) => true,
+                    Err(e) => {
+                        stopped = Some(e);
+                        false
+                    }
+                };
+                match &mech {
+                    Sweepable::S8(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
+                    Sweepable::S16(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
+                    Sweepable::S32(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
+                    Sweepable::S64(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
+                }
+            })
+            .map_err(to_py)?;
+            if let Some(e) = stopped {
+                return Err(e);
             }
         }
-        if let Some(k) = res.curvature {
-            d.set_item("curvature", PyArray1::from_vec(py, k).reshape([n, j])?)?;
+        let d = PyDict::new(py);
+        d.set_item(pyo3::intern!(py, "joints"), joints)?;
+        d.set_item(pyo3::intern!(py, "valid"), valid)?;
+        d.set_item(pyo3::intern!(py, "margin"), margin)?;
+        d.set_item(pyo3::intern!(py, "regular"), regular)?;
+        d.set_item(pyo3::intern!(py, "gap"), gap)?;
+        for (key, arr) in [
+            (pyo3::intern!(py, "velocity"), vel),
+            (pyo3::intern!(py, "acceleration"), acc),
+            (pyo3::intern!(py, "instant_centres"), centres),
+            (pyo3::intern!(py, "instant_centre_directions"), directions),
+            (pyo3::intern!(py, "curvature_centres"), curv_centres),
+        ] {
+            if let Some(arr) = arr {
+                d.set_item(key, arr)?;
+            }
+        }
+        if let Some(k) = curv {
+            d.set_item(pyo3::intern!(py, "curvature"), k)?;
         }
         Ok(d)
     }
+}
+
+/// A copy of a program at the least capacity of 8, 16, 32, 64 that holds it: a sweep's arrays
+/// (tracker history, rate scratch) are sized to the linkage, not to [`CAPACITY`]. (On the
+/// stack: boxing the small ones would cost an allocation per call.)
+#[allow(clippy::large_enum_variant)]
+enum Sweepable {
+    S8(CoreMechanism<f64, 8>),
+    S16(CoreMechanism<f64, 16>),
+    S32(CoreMechanism<f64, 32>),
+    S64(Box<CoreMechanism<f64, CAPACITY>>),
+}
+
+impl Sweepable {
+    fn of(m: &CoreMechanism<f64, CAPACITY>) -> Self {
+        // `resized` fails only for a program longer than the capacity asked for.
+        if let Ok(s) = m.resized::<8>() {
+            Sweepable::S8(s)
+        } else if let Ok(s) = m.resized::<16>() {
+            Sweepable::S16(s)
+        } else if let Ok(s) = m.resized::<32>() {
+            Sweepable::S32(s)
+        } else {
+            Sweepable::S64(Box::new(m.clone()))
+        }
+    }
+
+    /// Joints and body pairs.
+    fn shape(&self) -> (usize, usize) {
+        match self {
+            Sweepable::S8(m) => (m.len(), sweep_pairs(m)),
+            Sweepable::S16(m) => (m.len(), sweep_pairs(m)),
+            Sweepable::S32(m) => (m.len(), sweep_pairs(m)),
+            Sweepable::S64(m) => (m.len(), sweep_pairs(m.as_ref())),
+        }
+    }
+}
+
+/// A writeable numpy array's elements as a slice (the arrays here are made C-contiguous).
+fn as_slice<'a, T: numpy::Element, D: numpy::ndarray::Dimension>(
+    a: &'a mut PyReadwriteArray<'_, T, D>,
+) -> PyResult<&'a mut [T]> {
+    a.as_slice_mut()
+        .map_err(|_| linkage_error("internal error: output not contiguous"))
+}
+
+/// A writeable `(…, 2)` float64 array as points.
+fn as_points<'a, D: numpy::ndarray::Dimension>(
+    a: &'a mut PyReadwriteArray<'_, f64, D>,
+) -> PyResult<&'a mut [Vec2<f64>]> {
+    bytemuck::try_cast_slice_mut(as_slice(a)?)
+        .map_err(|e| linkage_error(format!("internal error: output misaligned ({e})")))
 }

@@ -77,3 +77,55 @@ pub fn filled<T: Clone>(what: &dyn Fn() -> String, len: usize, value: T) -> Resu
     v.resize(len, value); // within the capacity: no reallocation
     Ok(v)
 }
+
+/// A new zero-filled numpy array of `shape` and element type `T`, made by numpy itself (so the
+/// result owns numpy memory a sweep writes straight into), or `MemoryError` naming the size.
+///
+/// Call [`check`] on the total first; this then catches what only the allocation itself can
+/// tell (an address-space limit): numpy's `MemoryError` is replaced by one naming `what`.
+/// (`PyArray::zeros` would panic on that failure instead of raising.)
+pub fn zeros<'py, T: numpy::Element, D: numpy::ndarray::Dimension>(
+    py: pyo3::Python<'py>,
+    what: &dyn Fn() -> String,
+    shape: &[usize],
+) -> Result<pyo3::Bound<'py, numpy::PyArray<T, D>>, PyErr> {
+    use numpy::npyffi::{npy_intp, PY_ARRAY_API};
+    use numpy::PyArrayDescrMethods;
+    use pyo3::prelude::*;
+    let len = shape
+        .iter()
+        .fold(1u128, |a, &s| a.saturating_mul(s as u128));
+    let bytes = bytes_of::<T>(len);
+    let mut dims = [0 as npy_intp; 8];
+    if shape.len() != D::NDIM.unwrap_or(shape.len()) || shape.len() > dims.len() {
+        return Err(pyo3::exceptions::PyValueError::new_err(
+            "internal error: array rank",
+        ));
+    }
+    for (d, &s) in dims.iter_mut().zip(shape) {
+        // `check` has bounded the total by isize::MAX, so each extent fits npy_intp.
+        *d = npy_intp::try_from(s).map_err(|_| memory_error(&what(), bytes, ""))?;
+    }
+    #[allow(unsafe_code)]
+    // SAFETY: `dims` holds `shape.len()` extents; PyArray_Zeros steals the reference to the
+    // descriptor `into_dtype_ptr` gives it, and returns a new reference or null with an
+    // exception set. A non-null result is an array of element type `T` and rank `D`.
+    let arr = unsafe {
+        let ptr = PY_ARRAY_API.PyArray_Zeros(
+            py,
+            shape.len() as std::os::raw::c_int,
+            dims.as_mut_ptr(),
+            T::get_dtype(py).into_dtype_ptr(),
+            0,
+        );
+        Bound::from_owned_ptr_or_err(py, ptr)
+            .map(|a| a.cast_into_unchecked::<numpy::PyArray<T, D>>())
+    };
+    arr.map_err(|e| {
+        if e.is_instance_of::<PyMemoryError>(py) {
+            memory_error(&what(), bytes, " (the allocation failed)")
+        } else {
+            e
+        }
+    })
+}

@@ -1,0 +1,546 @@
+//! The sweep engine: a mechanism over many driver angles, every output written into slices the
+//! caller provides (numpy arrays in the binding, static buffers on firmware).
+//!
+//! One call does what a sweep is: for each angle the [`Tracker`] places the joints on their
+//! tracked branches (written straight into the caller's row), then, only for the outputs asked
+//! for, the rates for the given drive, the instant centres of every pair of links and the path
+//! curvature of every joint (both per unit crank angle: they do not depend on timing). Which
+//! failures make an invalid sample (NaN rows, `valid` false) rather than an error is decided
+//! here, once, for every caller.
+
+use nalgebra::RealField;
+
+use crate::bodies::{Bodies, BodyId, GROUND};
+use crate::centres::{path_curvature, relative_centre, BodyMotion, Centre};
+use crate::error::Error;
+use crate::mechanism::{Mechanism, Motion};
+use crate::motion::rate_margin;
+use crate::scalar::{lit, nan, Vec2};
+use crate::tracker::{Rates, Tracker};
+
+/// Samples between two calls of a sweep's `go_on`, at most.
+pub const SWEEP_CHUNK: usize = 4096;
+
+/// Tracker placements (solves of every joint at one angle, [`Tracker::work`]) between two calls
+/// of a sweep's `go_on`, at most: a sample costs one placement plus the grid points walked to
+/// reach it (up to a few hundred for a jump of many turns), so counting work rather than
+/// samples bounds the time between two checks (about 10 ms on a desktop) whatever the spacing
+/// of the samples.
+pub const SWEEP_WORK_CHUNK: u64 = 1 << 15;
+
+/// A driver rate for a sweep: one value for every sample, or one per sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Rate<'a, T> {
+    /// The same value at every sample.
+    Scalar(T),
+    /// One value per sample (as many as angles).
+    PerSample(&'a [T]),
+}
+
+impl<T: Copy> Rate<'_, T> {
+    #[inline]
+    fn at(&self, k: usize) -> T {
+        match *self {
+            Rate::Scalar(x) => x,
+            Rate::PerSample(v) => v[k],
+        }
+    }
+}
+
+/// Where a sweep of `n` samples of a mechanism of `j` joints and `p` link pairs
+/// ([`sweep_pairs`]) writes its results, row-major by sample. The per-sample fields are
+/// always written; an output left `None` is not computed at all.
+///
+/// Every element of every slice given is written (the slices may hold anything before the
+/// call): NaN rows at samples that do not assemble, and NaN entries where a value does not
+/// exist (a centre at infinity in `centres`, a finite one in `centre_directions`).
+#[derive(Debug)]
+pub struct SweepOutputs<'a, T> {
+    /// `n·j` joint positions (NaN where the sample is invalid).
+    pub joints: &'a mut [Vec2<T>],
+    /// `n`: whether each sample assembled.
+    pub valid: &'a mut [bool],
+    /// `n`: the smallest dyad margin (NaN where invalid).
+    pub margin: &'a mut [T],
+    /// `n`: whether a valid sample is clear of the rate margin ([`crate::rate_margin`]), so
+    /// its rates, centres and curvatures are numbers.
+    pub regular: &'a mut [bool],
+    /// `n`: how much the lengths miss closure (0 where valid, NaN where undetermined).
+    pub gap: &'a mut [T],
+    /// `n·j` joint velocities for the drive (needs `omega`).
+    pub velocity: Option<&'a mut [Vec2<T>]>,
+    /// `n·j` joint accelerations for the drive.
+    pub acceleration: Option<&'a mut [Vec2<T>]>,
+    /// `n·p` finite instant centres of every pair of bodies (NaN otherwise).
+    pub centres: Option<&'a mut [Vec2<T>]>,
+    /// `n·p` directions of the instant centres at infinity (NaN otherwise).
+    pub centre_directions: Option<&'a mut [Vec2<T>]>,
+    /// `n·j` finite centres of curvature of every joint's path (NaN otherwise).
+    pub curvature_centres: Option<&'a mut [Vec2<T>]>,
+    /// `n·j` signed path curvatures of every joint.
+    pub curvature: Option<&'a mut [T]>,
+}
+
+/// Number of body pairs `(k, l)`, `k < l` in [`Bodies::ids`] order, a sweep writes instant
+/// centres for: `B(B − 1)/2` for `B` bodies, the ground included.
+pub fn sweep_pairs<T: RealField + Copy, const N: usize>(mech: &Mechanism<T, N>) -> usize {
+    let b = Bodies::of(mech).count();
+    b * b.saturating_sub(1) / 2
+}
+
+/// How a sweep ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Swept {
+    /// Samples written: all of them, or fewer when `go_on` stopped the sweep (the rows after
+    /// them are left as they were).
+    pub samples: usize,
+    /// Tracker placements done ([`Tracker::work`]; 0 when the held pass swept it).
+    pub work: u64,
+    /// Whether the held pass swept it (see [`Plan`]).
+    pub held: bool,
+}
+
+/// How [`sweep_planned`] sweeps. Every plan gives the same results, bit for bit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Plan {
+    /// The held pass when there are at least as many samples as the tracker's grid points
+    /// per turn (so its check costs at most one pose per sample), the tracker otherwise.
+    #[default]
+    Auto,
+    /// The tracker, sample by sample.
+    Tracked,
+    /// The held pass whenever it applies, however few the samples.
+    Held,
+}
+
+/// Checks that `got` has `expected` elements.
+fn check_len(what: &'static str, expected: usize, got: usize) -> Result<(), Error> {
+    if expected == got {
+        Ok(())
+    } else {
+        Err(Error::BufferLength {
+            what,
+            expected,
+            got,
+        })
+    }
+}
+
+/// The motion of each body (the ground's, and `[joint][slot]` for the others).
+struct Motions<T, const N: usize> {
+    ground: BodyMotion<T>,
+    of: [[BodyMotion<T>; 2]; N],
+}
+
+impl<T: RealField + Copy, const N: usize> Motions<T, N> {
+    fn get(&self, id: BodyId) -> &BodyMotion<T> {
+        if id == GROUND {
+            &self.ground
+        } else {
+            &self.of[id.joint][usize::from(id.slot)]
+        }
+    }
+}
+
+/// What one sweep call needs besides its outputs: the mechanism, its bodies, what is asked,
+/// and scratch rows.
+struct Engine<'m, T: RealField + Copy, const N: usize> {
+    mech: &'m Mechanism<T, N>,
+    bodies: Bodies<N>,
+    /// Joints and body pairs.
+    j: usize,
+    np: usize,
+    rates: bool,
+    wants_centres: bool,
+    wants_curvature: bool,
+    /// Velocities for accelerations asked without them.
+    own_vel: [Vec2<T>; N],
+    /// Unit-drive rates of centres and curvature.
+    uvel: [Vec2<T>; N],
+    uacc: [Vec2<T>; N],
+    motions: Motions<T, N>,
+}
+
+impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
+    /// Writes sample `k` as invalid: NaN rows everywhere, `gap` its gap.
+    fn invalid(&self, out: &mut SweepOutputs<'_, T>, k: usize, gap: T) {
+        let nan_t = nan::<T>();
+        let nan2 = Vec2::new(nan_t, nan_t);
+        out.valid[k] = false;
+        out.margin[k] = nan_t;
+        out.regular[k] = false;
+        out.gap[k] = gap;
+        let row = k * self.j..(k + 1) * self.j;
+        for buf in [
+            Some(&mut *out.joints),
+            out.velocity.as_deref_mut(),
+            out.acceleration.as_deref_mut(),
+            out.curvature_centres.as_deref_mut(),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            buf[row.clone()].fill(nan2);
+        }
+        if let Some(c) = out.curvature.as_deref_mut() {
+            c[row].fill(nan_t);
+        }
+        let pairs = k * self.np..(k + 1) * self.np;
+        for buf in [
+            out.centres.as_deref_mut(),
+            out.centre_directions.as_deref_mut(),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            buf[pairs.clone()].fill(nan2);
+        }
+    }
+
+    /// Writes what follows a valid sample `k` whose joints are in place: its flags, and the
+    /// instant centres and curvatures asked for (per unit crank angle).
+    fn valid(
+        &mut self,
+        out: &mut SweepOutputs<'_, T>,
+        k: usize,
+        margin: T,
+        regular: bool,
+    ) -> Result<(), Error> {
+        out.valid[k] = true;
+        out.margin[k] = margin;
+        out.regular[k] = regular;
+        out.gap[k] = T::zero();
+        if !(self.wants_centres || self.wants_curvature) {
+            return Ok(());
+        }
+        let (j, np) = (self.j, self.np);
+        let nan2 = Vec2::new(nan::<T>(), nan::<T>());
+        let zero = [Vec2::zeros(); N];
+        let pos = &out.joints[k * j..(k + 1) * j];
+        let unit_acc = self.wants_curvature.then_some(&mut self.uacc[..j]);
+        self.mech
+            .motion(pos, Motion::unit(), &mut self.uvel[..j], unit_acc, None)?;
+        if self.wants_centres {
+            let bodies = &self.bodies;
+            for id in bodies.ids() {
+                let m = BodyMotion::of(bodies, id, pos, &self.uvel[..j], &zero[..j], &zero[..j])
+                    .conditioned(margin);
+                if id == GROUND {
+                    self.motions.ground = m;
+                } else {
+                    self.motions.of[id.joint][usize::from(id.slot)] = m;
+                }
+            }
+            let mut q = k * np;
+            for (a, ka) in bodies.ids().enumerate() {
+                for kb in bodies.ids().skip(a + 1) {
+                    let ic = relative_centre(
+                        bodies,
+                        (ka, self.motions.get(ka)),
+                        (kb, self.motions.get(kb)),
+                        pos,
+                    );
+                    let (finite, far) = match ic {
+                        Centre::Finite(p) => (p, nan2),
+                        Centre::AtInfinity(d) => (nan2, d),
+                        Centre::Undefined => (nan2, nan2),
+                    };
+                    if let Some(c) = out.centres.as_deref_mut() {
+                        c[q] = finite;
+                    }
+                    if let Some(d) = out.centre_directions.as_deref_mut() {
+                        d[q] = far;
+                    }
+                    q += 1;
+                }
+            }
+        }
+        if self.wants_curvature {
+            for i in 0..j {
+                let (kappa, centre) = path_curvature(pos[i], self.uvel[i], self.uacc[i]);
+                if let Some(c) = out.curvature.as_deref_mut() {
+                    c[k * j + i] = kappa;
+                }
+                if let Some(c) = out.curvature_centres.as_deref_mut() {
+                    c[k * j + i] = centre.finite().unwrap_or(nan2);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The tracker, sample by sample.
+    fn tracked(
+        &mut self,
+        tracker: &mut Tracker<'m, T, N>,
+        theta: &[T],
+        (omega, alpha): (Rate<'_, T>, Rate<'_, T>),
+        out: &mut SweepOutputs<'_, T>,
+        go_on: &mut dyn FnMut() -> bool,
+    ) -> Result<Swept, Error> {
+        let j = self.j;
+        let mut next_check = SWEEP_WORK_CHUNK;
+        for (k, &th) in theta.iter().enumerate() {
+            if k > 0 && (k % SWEEP_CHUNK == 0 || tracker.work() >= next_check) {
+                if !go_on() {
+                    return Ok(Swept {
+                        samples: k,
+                        work: tracker.work(),
+                        held: false,
+                    });
+                }
+                next_check = tracker.work().saturating_add(SWEEP_WORK_CHUNK);
+            }
+            let row = k * j..(k + 1) * j;
+            let motion = self.rates.then(|| Motion::new(omega.at(k), alpha.at(k)));
+            let buffers = match (out.velocity.as_deref_mut(), out.acceleration.as_deref_mut()) {
+                (Some(v), Some(a)) => Rates::acceleration(&mut v[row.clone()], &mut a[row.clone()]),
+                (None, Some(a)) => Rates::acceleration(&mut self.own_vel[..j], &mut a[row.clone()]),
+                (Some(v), None) => Rates::velocity(&mut v[row.clone()]),
+                (None, None) => Rates::none(),
+            };
+            match tracker.step(th, motion, &mut out.joints[row], buffers) {
+                Ok(s) => self.valid(out, k, s.margin, s.regular)?,
+                Err(
+                    e @ (Error::CannotAssemble { .. }
+                    | Error::Coincident { .. }
+                    | Error::NotFinite { .. }),
+                ) => {
+                    let gap = match e {
+                        Error::CannotAssemble { gap, .. } => lit(gap),
+                        _ => nan::<T>(),
+                    };
+                    self.invalid(out, k, gap);
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(Swept {
+            samples: theta.len(),
+            work: tracker.work(),
+            held: false,
+        })
+    }
+
+    /// The held pass: every sample posed on the declared orientations, no walk (valid only
+    /// after [`Tracker::holds_everywhere`]). Returns `None`, having written some rows, at the
+    /// first sample whose own `watched` margins are below the toggle margin or that does not
+    /// assemble:
+    /// the tracker must sweep then.
+    fn held(
+        &mut self,
+        toggle_margin: T,
+        watched: &[bool],
+        theta: &[T],
+        (omega, alpha): (Rate<'_, T>, Rate<'_, T>),
+        out: &mut SweepOutputs<'_, T>,
+        go_on: &mut dyn FnMut() -> bool,
+    ) -> Result<Option<Swept>, Error> {
+        let j = self.j;
+        let m_star = rate_margin::<T>();
+        for (k, &th) in theta.iter().enumerate() {
+            if k > 0 && k % SWEEP_CHUNK == 0 && !go_on() {
+                return Ok(Some(Swept {
+                    samples: k,
+                    work: 0,
+                    held: true,
+                }));
+            }
+            // The tracker's order: the angle, the pose, then the drive.
+            if !th.is_finite() {
+                self.invalid(out, k, nan::<T>());
+                continue;
+            }
+            let row = k * j..(k + 1) * j;
+            let margin = match self
+                .mech
+                .pose_watched(th, &mut out.joints[row.clone()], watched)
+            {
+                Ok((m, w)) if w >= toggle_margin => m,
+                _ => return Ok(None),
+            };
+            let regular = if self.rates {
+                let (w, a) = (omega.at(k), alpha.at(k));
+                if !(w.is_finite() && a.is_finite()) {
+                    self.invalid(out, k, nan::<T>());
+                    continue;
+                }
+                let pos = &out.joints[row.clone()];
+                let vel = match out.velocity.as_deref_mut() {
+                    Some(v) => &mut v[row.clone()],
+                    None => &mut self.own_vel[..j],
+                };
+                let acc = out.acceleration.as_deref_mut().map(|a| &mut a[row.clone()]);
+                self.mech.motion(pos, Motion::new(w, a), vel, acc, None)?
+            } else {
+                margin >= m_star
+            };
+            self.valid(out, k, margin, regular)?;
+        }
+        Ok(Some(Swept {
+            samples: theta.len(),
+            work: 0,
+            held: true,
+        }))
+    }
+}
+
+/// Sweeps `mech` over the driver angles `theta` on tracked branches (see [`Tracker`]),
+/// writing only the outputs `out` asks for; [`sweep_planned`] with [`Plan::Auto`].
+///
+/// `omega`, `alpha`: the crank's angular velocity and acceleration, for velocities and
+/// accelerations (unused otherwise). Instant centres and curvatures use rates per unit crank
+/// angle. A sample that does not assemble (a gap, an undetermined construction, numbers that
+/// overflow, a non-finite angle or drive) is written as NaN rows with `valid` false and its
+/// `gap` (NaN when there is none to give); it does not move the tracked branches.
+///
+/// `go_on` is called every [`SWEEP_CHUNK`] samples or [`SWEEP_WORK_CHUNK`] placements,
+/// whichever comes first; when it returns false the sweep stops there (see [`Swept`]).
+///
+/// ```
+/// use linkage_core::{sweep, sweep_pairs, Assembly, FourBar, Rate, SweepOutputs, Vec2};
+/// let fb = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
+/// let m = fb.mechanism();
+/// let theta = [0.0, 0.5, 1.0];
+/// let (n, j) = (theta.len(), m.len());
+/// let mut joints = [Vec2::zeros(); 15];
+/// let mut vel = [Vec2::zeros(); 15];
+/// let (mut valid, mut regular) = ([false; 3], [false; 3]);
+/// let (mut margin, mut gap) = ([0.0; 3], [0.0; 3]);
+/// let out = SweepOutputs {
+///     joints: &mut joints, valid: &mut valid, margin: &mut margin,
+///     regular: &mut regular, gap: &mut gap, velocity: Some(&mut vel),
+///     acceleration: None, centres: None, centre_directions: None,
+///     curvature_centres: None, curvature: None,
+/// };
+/// let done = sweep(&m, &theta, Rate::Scalar(2.0), Rate::Scalar(0.0), out, &mut || true).unwrap();
+/// assert_eq!(done.samples, n);
+/// assert!(valid.iter().all(|&v| v));
+/// // The crank pin A (joint 2) turns at 2 rad/s on a radius of 10.
+/// assert!((vel[j + 2].norm() - 20.0).abs() < 1e-12);
+/// # let _ = sweep_pairs(&m);
+/// ```
+///
+/// # Errors
+/// [`Error::NoDriver`] for a mechanism without a crank; [`Error::BufferLength`] for an output
+/// slice or per-sample rate of the wrong length. Nothing is written then.
+pub fn sweep<T: RealField + Copy, const N: usize>(
+    mech: &Mechanism<T, N>,
+    theta: &[T],
+    omega: Rate<'_, T>,
+    alpha: Rate<'_, T>,
+    out: SweepOutputs<'_, T>,
+    go_on: &mut dyn FnMut() -> bool,
+) -> Result<Swept, Error> {
+    sweep_planned(mech, theta, omega, alpha, out, go_on, Plan::Auto)
+}
+
+/// [`sweep`], choosing how: the tracker sample by sample, or the held pass.
+///
+/// # The held pass
+/// Tracking costs a walk of the canonical path between samples (see [`Tracker`]): cheap for
+/// samples in order, up to hundreds of placements per sample for angles in arbitrary order.
+/// Most linkages never come near a toggle: when every grid point of the turn places on the
+/// declared orientations with the margin of every dyad that may flip at least the toggle
+/// margin (one pose per grid point; a four-bar-like dyad on a crank pin and a fixed joint with
+/// no flat position never flips), the tracker provably keeps those orientations everywhere,
+/// and each sample whose own such margins clear the toggle margin is simply posed on them — one pose per sample,
+/// whatever the order of the samples, and the same bits as the tracker. A sample that does not
+/// clear it sends the whole sweep back to the tracker (its rows are rewritten).
+///
+/// # Errors
+/// As [`sweep`].
+pub fn sweep_planned<T: RealField + Copy, const N: usize>(
+    mech: &Mechanism<T, N>,
+    theta: &[T],
+    omega: Rate<'_, T>,
+    alpha: Rate<'_, T>,
+    mut out: SweepOutputs<'_, T>,
+    go_on: &mut dyn FnMut() -> bool,
+    plan: Plan,
+) -> Result<Swept, Error> {
+    let (n, j) = (theta.len(), mech.len());
+    let mut tracker = Tracker::new(mech)?;
+    let bodies = Bodies::of(mech);
+    let nb = bodies.count();
+    let np = nb * nb.saturating_sub(1) / 2;
+    let rows = n.saturating_mul(j);
+    check_len("joints", rows, out.joints.len())?;
+    check_len("valid", n, out.valid.len())?;
+    check_len("margin", n, out.margin.len())?;
+    check_len("regular", n, out.regular.len())?;
+    check_len("gap", n, out.gap.len())?;
+    for (what, len, got) in [
+        ("velocity", rows, out.velocity.as_ref().map(|v| v.len())),
+        (
+            "acceleration",
+            rows,
+            out.acceleration.as_ref().map(|v| v.len()),
+        ),
+        (
+            "centres",
+            n.saturating_mul(np),
+            out.centres.as_ref().map(|v| v.len()),
+        ),
+        (
+            "centre_directions",
+            n.saturating_mul(np),
+            out.centre_directions.as_ref().map(|v| v.len()),
+        ),
+        (
+            "curvature_centres",
+            rows,
+            out.curvature_centres.as_ref().map(|v| v.len()),
+        ),
+        ("curvature", rows, out.curvature.as_ref().map(|v| v.len())),
+    ] {
+        if let Some(got) = got {
+            check_len(what, len, got)?;
+        }
+    }
+    for (what, r) in [("omega", omega), ("alpha", alpha)] {
+        if let Rate::PerSample(v) = r {
+            check_len(what, n, v.len())?;
+        }
+    }
+    let zero = [Vec2::zeros(); N];
+    let still = BodyMotion::of(
+        &bodies,
+        GROUND,
+        &zero[..0],
+        &zero[..0],
+        &zero[..0],
+        &zero[..0],
+    );
+    let mut engine = Engine {
+        mech,
+        bodies,
+        j,
+        np,
+        rates: out.velocity.is_some() || out.acceleration.is_some(),
+        wants_centres: out.centres.is_some() || out.centre_directions.is_some(),
+        wants_curvature: out.curvature.is_some() || out.curvature_centres.is_some(),
+        own_vel: zero,
+        uvel: zero,
+        uacc: zero,
+        motions: Motions {
+            ground: still,
+            of: [[still; 2]; N],
+        },
+    };
+    let try_held = match plan {
+        Plan::Tracked => false,
+        Plan::Held => true,
+        Plan::Auto => n >= tracker.grid_points_per_turn(),
+    };
+    let mut scratch = zero;
+    let mut watched = [false; N];
+    if try_held && tracker.holds_everywhere(&mut scratch[..j], &mut watched[..j]) {
+        let tm = tracker.toggle_margin();
+        let watched = &watched[..j];
+        if let Some(done) = engine.held(tm, watched, theta, (omega, alpha), &mut out, go_on)? {
+            return Ok(done);
+        }
+    }
+    engine.tracked(&mut tracker, theta, (omega, alpha), &mut out, go_on)
+}
