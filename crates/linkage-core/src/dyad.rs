@@ -274,7 +274,10 @@ impl<T: RealField + Copy> Dyad<T> {
     ///
     /// Differentiating twice: `(p − pi)·(a − ai) + |v − vi|² = 0` for `i = 1, 2`, the same matrix
     /// as [`Dyad::velocity`]. Returns `None` at a toggle.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the dyad's two base points with their velocities and accelerations, and the joint"
+    )]
     pub fn acceleration(
         p1: Vec2<T>,
         v1: Vec2<T>,

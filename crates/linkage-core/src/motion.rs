@@ -245,7 +245,10 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
 /// `u` turns with `(ω, α, α̇)`; differentiating `(p − a)·(p − a) = r²` up to three times gives one
 /// scalar equation per order for `ṡ`, `s̈`, `s⃛`, each divided by `(p − a)·u` (zero at a toggle,
 /// where `None` is returned).
-#[allow(clippy::type_complexity)]
+#[allow(
+    clippy::type_complexity,
+    reason = "a tuple of the slider's rates, named at the call"
+)]
 fn slider_rates<T: RealField + Copy>(
     p: Vec2<T>,
     u: Vec2<T>,

@@ -108,7 +108,10 @@ impl<T: RealField + Copy> SliderDyad<T> {
     /// `u` turns at `omega_u` (zero for a fixed direction). From `p = q + s u` and
     /// `(p − a)·(ṗ − ȧ) = 0`: `ṡ = (p − a)·(va − vq − s u̇) / ((p − a)·u)`. Returns `(ṡ, ṗ)`, or
     /// `None` at a toggle (link perpendicular to the line).
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the base pin and line with their velocities"
+    )]
     pub fn velocity(
         a: Vec2<T>,
         va: Vec2<T>,
@@ -132,7 +135,10 @@ impl<T: RealField + Copy> SliderDyad<T> {
     /// Acceleration of the joint `p = q + s·u` moving at `v` with `ṡ = sdot`.
     ///
     /// `ü = α_u u⊥ − ω_u² u`; from `(p − a)·(p̈ − ä) + |ṗ − ȧ|² = 0`. Returns `None` at a toggle.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the base pin and line with their velocities and accelerations"
+    )]
     pub fn acceleration(
         a: Vec2<T>,
         va: Vec2<T>,

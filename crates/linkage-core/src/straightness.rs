@@ -1097,7 +1097,7 @@ mod tests {
 
     /// Same run, and the same numbers bit for bit (NaN equal to NaN).
     fn same<T: RealField + Copy>(a: Option<StraightPart<T>>, b: Option<StraightPart<T>>) -> bool {
-        #[allow(clippy::eq_op)]
+        #[allow(clippy::eq_op, reason = "x != x is the NaN test")]
         let eq = |x: T, y: T| x == y || (x != x && y != y);
         match (a, b) {
             (None, None) => true,

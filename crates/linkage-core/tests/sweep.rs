@@ -88,7 +88,7 @@ fn engine_with<const N: usize>(
         curvature: Some(&mut b.curvature),
     };
     let done = sweep_planned(m, theta, omega, alpha, out, &mut || true, plan).unwrap();
-    assert_eq!(done.samples, theta.len());
+    assert_eq!(done.samples, theta.len(), "the sweep stopped early");
     (b, done.held)
 }
 
