@@ -50,7 +50,7 @@ def numpy_batch(
         x = 0.5 * (d + (r1 - r2) * (r1 + r2) / d)
         h = 2.0 * area / d * sign[:, None]
     ex, ey = (x * ux - h * uy) / r1, (x * uy + h * ux) / r1
-    out = np.empty(d.shape + (2,))
+    out = np.empty((*d.shape, 2))
     out[..., 0] = ax + along[:, None] * ex - left[:, None] * ey
     out[..., 1] = ay + along[:, None] * ey + left[:, None] * ex
     return out

@@ -37,7 +37,7 @@ import linkage
 from linkage import catalog
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import batch as batch_bench  # noqa: E402  (bench/batch.py, next to this file)
+import batch as batch_bench
 
 F = NDArray[np.float64]
 

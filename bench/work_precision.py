@@ -202,9 +202,9 @@ def main() -> int:
         record("fast table, 2 threads", n, t, fb.uniform_sweep(theta0, dt, n, "table", threads=2))
         t = median_time(lambda: fb.sweep(theta))
         record("tracked sweep: position", n, t, fb.sweep(theta).point)
-        rates = lambda: fb.sweep(theta, omega=1.0, outputs=("point", "velocity", "acceleration"))  # noqa: E731
+        rates = lambda: fb.sweep(theta, omega=1.0, outputs=("point", "velocity", "acceleration"))
         record("tracked: pos+vel+acc", n, median_time(rates), rates().point)
-        centres = lambda: fb.sweep(theta, outputs=("point", "instant_centres", "curvature"))  # noqa: E731
+        centres = lambda: fb.sweep(theta, outputs=("point", "instant_centres", "curvature"))
         record("tracked: +centres+curvature", n, median_time(centres), centres().point)
         t = median_time(lambda: numpy_sweep(theta))
         record("numpy closed form", n, t, numpy_sweep(theta))
@@ -229,7 +229,7 @@ def main() -> int:
     verr = aerr = 0.0
     for i, th in enumerate(sample):
         for axis in (0, 1):
-            f = lambda t, a=axis: fourbar_reference(G, R, C, K, ALONG, 0.0, t)[2][a]  # noqa: E731
+            f = lambda t, a=axis: fourbar_reference(G, R, C, K, ALONG, 0.0, t)[2][a]
             verr = max(verr, abs(float(mp.diff(f, th, 1)) - s.velocity[i, axis]))
             aerr = max(aerr, abs(float(mp.diff(f, th, 2)) - s.acceleration[i, axis]))
     print(
@@ -335,7 +335,7 @@ def main() -> int:
                 "isa": isa,
                 "rows": rows,
                 "peers": peers,
-                "targets": [c[:2] + (bool(c[2]),) for c in checks],
+                "targets": [(*c[:2], bool(c[2])) for c in checks],
             },
             indent=1,
         )

@@ -163,7 +163,7 @@ def rates_near_toggle(distances):
     from reference import fourbar_reference
 
     fb = linkage.catalog.evans_c()
-    lo, hi = fb.input_limits()
+    _lo, hi = fb.input_limits()
     rows = []
     for dist in distances:
         th = hi - dist
@@ -174,7 +174,7 @@ def rates_near_toggle(distances):
         for axis in (0, 1):
             f = lambda t, a=axis: fourbar_reference(
                 fb.ground, fb.crank, fb.coupler, fb.rocker, fb.point[0], fb.point[1], t
-            )[2][a]  # noqa: E731
+            )[2][a]
             v, a = float(mp.diff(f, mp.mpf(th), 1)), float(mp.diff(f, mp.mpf(th), 2))
             verr = max(verr, abs(v - s.velocity[0, axis]))
             aerr = max(aerr, abs(a - s.acceleration[0, axis]))

@@ -220,7 +220,7 @@ def test_mechanism_shared_between_threads_never_reports_a_borrow() -> None:
         try:
             for _ in range(20):
                 m.sweep(theta, velocity=True, omega=np.ones(1))
-        except BaseException as e:  # noqa: BLE001 - any escape is the failure
+        except BaseException as e:
             errors.append(e)
 
     def builder() -> None:
@@ -232,7 +232,7 @@ def test_mechanism_shared_between_threads_never_reports_a_borrow() -> None:
                     pass  # the mechanism is full: expected
                 len(m)
                 m.describe()
-        except BaseException as e:  # noqa: BLE001
+        except BaseException as e:
             errors.append(e)
 
     threads = [threading.Thread(target=f) for f in (sweeper, builder, sweeper, builder)]

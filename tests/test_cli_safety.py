@@ -494,8 +494,19 @@ def test_sigint_to_a_real_run_exits_130_and_leaves_the_old_report(world, tmp_pat
     scene = scene_file(world, "other", '["trajectory", "animation"]')
     before = snapshot(world)
     child = subprocess.Popen(
-        [sys.executable, "-m", "linkage", "run", str(scene), "--force", "--quiet"]
-        + ["--samples", "2001", "--frames", "300"],
+        [
+            sys.executable,
+            "-m",
+            "linkage",
+            "run",
+            str(scene),
+            "--force",
+            "--quiet",
+            "--samples",
+            "2001",
+            "--frames",
+            "300",
+        ],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,

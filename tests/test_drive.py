@@ -24,7 +24,7 @@ u = np.linspace(0, 1, 200001)
 
 @pytest.mark.parametrize("law", LAWS)
 def test_boundary_values(law):
-    s, v, a, j = motion_law(law, [0.0, 1.0])
+    s, _v, _a, _j = motion_law(law, [0.0, 1.0])
     assert s[0] == pytest.approx(0, abs=1e-15) and s[1] == pytest.approx(1, abs=1e-12)
 
 
@@ -42,7 +42,7 @@ PEAKS = {
 
 @pytest.mark.parametrize("law", LAWS)
 def test_peaks_against_textbook(law):
-    s, v, a, j = motion_law(law, u)
+    _s, v, a, _j = motion_law(law, u)
     pv, pa = PEAKS[law]
     assert np.abs(v).max() == pytest.approx(pv, rel=1e-4)
     assert np.abs(a).max() == pytest.approx(pa, rel=1e-4, abs=1e-12)
@@ -78,7 +78,7 @@ def test_continuity_class_in_a_rise_dwell_return_dwell(law):
 def test_thesis_one_drive_peaks_at_337_5_deg_per_s():
     p = Program(math.radians(91), [Segment(1.0, math.pi, "3-4-5"), Segment(1.0, math.pi, "3-4-5")])
     t = np.linspace(0, 2, 40001)
-    th, w, a = p.angles(t)
+    th, w, _a = p.angles(t)
     assert math.degrees(w.max()) == pytest.approx(337.5, rel=1e-9)
     assert math.degrees(th[-1]) == pytest.approx(451.0)
     assert p.discontinuities() == []
@@ -139,7 +139,7 @@ def test_crank_schedule_holds_the_stance_speed(hoecken):
     assert sched.theta.dtype == np.float32 and sched.omega.dtype == np.float32
     # Independently: sweep the leg under the schedule and measure the stance foot speed.
     t = np.linspace(0, sched.period, 5001)
-    th, w, a = sched.angles(t)
+    th, w, _a = sched.angles(t)
     s = hoecken.sweep(th, omega=w, outputs=("velocity",))
     lo, hi = sched.stance_angles
     stance = (th >= lo) & (th <= hi)

@@ -38,7 +38,7 @@ def quadruped(tmp_path_factory):
 
 
 def test_write_data_writes_every_file_and_the_summary_lists_them(hoecken):
-    res, out, files = hoecken
+    _res, out, files = hoecken
     names = {f.name for f in files}
     assert names == {"mechanism.dxf", "mechanism.svg", "data.npz", "data.csv", "summary.json"}
     summary = json.loads((out / "summary.json").read_text())
@@ -212,7 +212,7 @@ def test_svg_parses_with_named_layers_in_scene_coordinates(hoecken):
 
 def test_pose_is_chosen_checked_and_recorded(tmp_path):
     res = run("hoecken")
-    files, k = export.write_cad(res, tmp_path, pose=45)
+    _files, k = export.write_cad(res, tmp_path, pose=45)
     assert k == 45
     doc = ezdxf.readfile(tmp_path / "mechanism.dxf")
     names = res.sweep.joint_names

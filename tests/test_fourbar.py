@@ -97,7 +97,7 @@ def test_rates_against_mpmath_derivatives():
     for theta in (0.3, 1.9, 3.5, 5.2):
         s = fb.sweep([theta], omega=omega, alpha=alpha, outputs=("velocity", "acceleration"))
         for axis in (0, 1):
-            f = lambda t, a=axis: fourbar_reference(g, r, c, k, al, le, t)[2][a]  # noqa: E731
+            f = lambda t, a=axis: fourbar_reference(g, r, c, k, al, le, t)[2][a]
             d1 = mp.diff(f, theta, 1)
             d2 = mp.diff(f, theta, 2)
             v = float(d1 * omega)
@@ -130,7 +130,7 @@ def test_evans_input_limits_golden():
 
 def test_input_limit_is_toggle():
     fb = linkage.catalog.evans_c()
-    lo, hi = fb.input_limits()
+    _lo, hi = fb.input_limits()
     s = fb.sweep([hi - 1e-9, hi, hi + 1e-7])
     np.testing.assert_array_equal(s.valid, [True, True, False])
     assert s.margin[1] < 1e-7

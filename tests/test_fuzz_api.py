@@ -71,7 +71,7 @@ def call(fn):
 EXTREMES = [0.0, -0.0, 5e-324, -5e-324, 2.2e-308, 1e308, -1e308, 1.7976931348623157e308, 1e-300]
 ANY_FLOAT = st.one_of(
     st.floats(allow_nan=True, allow_infinity=True, allow_subnormal=True),
-    st.sampled_from(EXTREMES + [math.nan, math.inf, -math.inf]),
+    st.sampled_from([*EXTREMES, math.nan, math.inf, -math.inf]),
 )
 HUGE = st.sampled_from([400, 330]).flatmap(
     lambda e: st.sampled_from([10**e, -(10**e), Fraction(10**e, 3)])
@@ -210,7 +210,7 @@ def test_fourbar_constructor(kw, use_c, c):
     if fb is None:
         return
     for p in (fb.ground, fb.crank, fb.coupler, fb.rocker):
-        assert math.isfinite(p) and p > 0 or not math.isfinite(fb.ground)
+        assert (math.isfinite(p) and p > 0) or not math.isfinite(fb.ground)
     assert fb.grashof() in (
         "crank-rocker",
         "double-crank",
@@ -824,7 +824,7 @@ def test_circumcentre_scale_invariance(pts, s):
     c1 = geometry.circumcentre(*scaled)
     if float(np.abs(c0).max()) * s <= largest:  # else the scaled centre is not a float: no claim
         np.testing.assert_allclose(c1 / s, c0, rtol=1e-8, atol=1e-8)
-    centre, kappa = geometry.curvature_centre(scaled[0], scaled[1], scaled[2])
+    centre, _kappa = geometry.curvature_centre(scaled[0], scaled[1], scaled[2])
     c_base, k_base = geometry.curvature_centre(pts[0], pts[1], pts[2])
     if (
         np.isfinite(c_base).all()

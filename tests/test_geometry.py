@@ -26,7 +26,7 @@ def test_instant_centres_of_a_four_bar_match_kennedy_construction(hoecken):
     s = hoecken.sweep(theta, outputs=("instant_centres",))
     assert s.links == ("ground", "crank", "coupler", "rocker")
     assert s.instant_centres.shape == (361, 6, 2)
-    o, c, a, b, p = (s.joints[:, i] for i in range(5))
+    o, c, a, b, _p = (s.joints[:, i] for i in range(5))
     np.testing.assert_allclose(s.instant_centre("ground", "crank"), o, atol=1e-12)
     np.testing.assert_allclose(s.instant_centre("crank", "coupler"), a, atol=1e-12)
     np.testing.assert_allclose(s.instant_centre("coupler", "rocker"), b, atol=1e-12)

@@ -107,7 +107,7 @@ class Browser:
     def close(self) -> None:
         try:
             self.send("Browser.close", browser=True, timeout=5)
-        except Exception:  # noqa: BLE001 - closing is best effort; the process is killed below
+        except Exception:
             pass
         try:
             self.proc.wait(timeout=10)

@@ -98,13 +98,13 @@ def test_named_builder_errors():
     with pytest.raises(TypeError, match="joint name"):
         m.fixed(3, (0, 0))
     m.crank("A", "O", radius=1)
-    with pytest.raises(linkage.LinkageError, match="joint 'A2': .*second crank"):
+    with pytest.raises(linkage.LinkageError, match=r"joint 'A2': .*second crank"):
         m.crank("A2", "O", radius=1)
     with pytest.raises(linkage.LinkageError, match="side must be one of"):
         m.dyad("B", "A", "O", 1, 1, side="up")
     with pytest.raises(linkage.LinkageError, match="exactly one of direction"):
         m.slider("S", "A", 1.0, "O")
-    with pytest.raises(linkage.LinkageError, match="joint 'B': .*coincide"):
+    with pytest.raises(linkage.LinkageError, match=r"joint 'B': .*coincide"):
         m.dyad("B", "A", "A", 1, 1)
     with pytest.raises(linkage.LinkageError, match="on must be a pair"):
         m.point("P", on="A", at=(1, 0))

@@ -94,7 +94,7 @@ def test_three_poses_from_centre_points_invert_exactly():
 def test_four_poses_recover_the_dyads_on_the_burmester_curves():
     fb = crank_rocker()
     theta = np.array([0.2, 0.9, 1.7, 2.6])
-    poses, a, b = coupler_poses(fb, theta)
+    poses, _a, b = coupler_poses(fb, theta)
     rocker_angle = np.arctan2(b[:, 1] - fb.c[1], b[:, 0] - fb.c[0])
     # The free rotation is to one of poses 1-3; try the crank's and rocker's rotations to each.
     beta = [theta[k] - theta[0] for k in (1, 2, 3)] + [
@@ -142,7 +142,7 @@ def test_branch_defect_is_flagged_never_passed():
 def test_order_defect_is_flagged():
     fb = crank_rocker()
     theta = np.array([0.0, 3.0, 1.5, 4.5])
-    poses, a, b = coupler_poses(fb, theta)
+    poses, _a, b = coupler_poses(fb, theta)
     rocker_angle = np.arctan2(b[:, 1] - fb.c[1], b[:, 0] - fb.c[0])
     beta = [theta[k] - theta[0] for k in (1, 2, 3)] + [
         rocker_angle[k] - rocker_angle[0] for k in (1, 2, 3)

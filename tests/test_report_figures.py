@@ -45,7 +45,7 @@ def test_rows_are_four_strings_with_typed_values(results):
     for name, res in results.items():
         for row in res.figures:
             assert isinstance(row, Row) and len(row) == 4, (name, row)
-            figure, text, unit, note = row
+            _figure, _text, _unit, note = row
             assert all(isinstance(c, str) for c in row)
             assert "sampled" not in note, (name, row)
             if isinstance(row.value, float):
@@ -58,7 +58,9 @@ def test_every_quantity_has_its_unit(results, name):
     u = res.scene.units or "length units"
     rows = {r[0]: r for r in res.figures}
     for figure, row in rows.items():
-        if figure in LENGTH_ROWS and row.value is not None or figure.startswith("smallest radius"):
+        if (figure in LENGTH_ROWS and row.value is not None) or figure.startswith(
+            "smallest radius"
+        ):
             assert row[2] == u, (figure, row)
         if figure in SPEED_ROWS:
             assert row[2] == f"{u}/s", (figure, row)

@@ -41,7 +41,7 @@ def test_rates_near_a_toggle_within_the_conditioning():
 
 def test_near_toggle_samples_are_flagged():
     fb = linkage.catalog.evans_c()
-    lo, hi = fb.input_limits()
+    _lo, hi = fb.input_limits()
     s = fb.sweep([0.0, hi - 1e-3, hi - 1e-14, hi], omega=1.0, outputs=("velocity",))
     np.testing.assert_array_equal(s.near_toggle(1e-6), [False, False, True, True])
     assert s.valid.all()

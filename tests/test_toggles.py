@@ -92,7 +92,7 @@ def _samples(flats, turns=2, offsets=(1e-3, 1e-6, 1e-9, 1e-12, 0.0)):
 
 
 def _reference(kind, fb_args, th, b, branch):
-    g, r, c, k = fb_args
+    _g, _r, _c, _k = fb_args
     pos = np.array([[float(v) for v in b(mp.mpf(t), branch)] for t in th])
     vel = np.array(
         [[float(mp.diff(lambda x, a=a: b(x, branch)[a], mp.mpf(t))) for a in (0, 1)] for t in th]
@@ -188,7 +188,7 @@ def test_ball_point_refuses_a_flat_position(offset):
 def test_uniform_sweep_refuses_a_flat_position_on_its_path():
     fb = linkage.FourBar(ground=3, crank=1, coupler=3, rocker=1, point=(1.5, 0.5))
     out = np.full((100, 2), 7.0)
-    with pytest.raises(linkage.LinkageError, match="flattens at crank angle 3.14159"):
+    with pytest.raises(linkage.LinkageError, match=r"flattens at crank angle 3\.14159"):
         fb.uniform_sweep(0.1, 0.05, 100, out=out)
     assert (out == 7.0).all()
     pts = fb.uniform_sweep(0.1, 0.03, 100)  # 0.1 … 3.07: between the flats

@@ -53,7 +53,7 @@ def test_quadruped_moves_diagonal_pairs():
 def test_stability_margin_against_a_hand_computed_polygon():
     # Pads (points) at the corners of a 4 × 2 rectangle: margin at (1, 0.5) is 0.5 (bottom edge).
     pts = np.array([[[0, 0], [4, 0], [4, 2], [0, 2], [np.nan, np.nan]]], dtype=float)
-    margin, hull, count = _core.support_margins(pts, np.array([[1.0, 0.5]]))
+    margin, _hull, count = _core.support_margins(pts, np.array([[1.0, 0.5]]))
     assert margin[0] == pytest.approx(0.5) and count[0] == 4
     margin, _, _ = _core.support_margins(pts, np.array([[5.0, 1.0]]))
     assert margin[0] == pytest.approx(-1.0)

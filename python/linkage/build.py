@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -143,7 +144,6 @@ def build_walker(scene: Scene) -> Walker:
     SceneError
         Located at the key that made the build fail.
     """
-    from dataclasses import replace
 
     w = scene.walker or {}
     sec = ("walker",)

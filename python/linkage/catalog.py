@@ -24,7 +24,7 @@ import math
 import os
 import sys
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -36,6 +36,7 @@ from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage.cam import leg_lift
 from linkage.geometry import straightness
+from linkage.legs import family
 from linkage.walker import Leg, Walker, gait_phases
 
 FOUR_BARS: tuple[str, ...] = tuple(_core.catalog_names()[0])
@@ -113,7 +114,6 @@ def klann() -> Mechanism:
     """A Klann-type leg (Stephenson III six-bar): the reference of :mod:`linkage.legs`'
     ``klann`` family — proportions after Bastien & Birglen (2022), not the patent's (see
     :data:`linkage.legs.KLANN_REF`); the foot is ``F``."""
-    from linkage.legs import family
 
     fam = family("klann")
     m: Mechanism = fam.mechanism(fam.reference)
@@ -247,7 +247,6 @@ def check_count(samples: int) -> int:
 
 
 def _with_errors(fine: list[Figures], coarse: list[Figures]) -> list[Figures]:
-    from dataclasses import replace
 
     out = []
     for f, c in zip(fine, coarse):
@@ -281,7 +280,8 @@ def cache_dir() -> Path:
 def _cache_key(rel_tol: float, samples: int, check: int) -> str:
     """A hash of everything the table depends on: the package version and the compiled core
     (size and modification time), the parameters and the catalogue's names."""
-    from linkage import __version__
+
+    from linkage import __version__  # noqa: PLC0415 (linkage/__init__ imports this module)
 
     try:
         st = os.stat(_core.__file__ or "")

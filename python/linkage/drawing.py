@@ -443,7 +443,7 @@ def _to_body(leg: Any, p2: Array, vector: bool = False) -> Array:
     """Linkage-plane points (N, J, 2) of ``leg`` in the body frame (N, J, 3)."""
     side = -1.0 if leg.mirror else 1.0
     mx, my, mz = (0.0, 0.0, 0.0) if vector else leg.mount
-    out = np.empty(p2.shape[:2] + (3,))
+    out = np.empty((*p2.shape[:2], 3))
     out[..., 0] = mx + p2[..., 0]
     if leg.plane == "sagittal":
         out[..., 1] = my

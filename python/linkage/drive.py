@@ -56,7 +56,7 @@ def motion_law(name: str, u: ArrayLike) -> tuple[Array, Array, Array, Array]:
     """
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, got {type(name).__name__}")
-    uu, scalar = as_angles(u, "u")
+    uu, _scalar = as_angles(u, "u")
     out = _core.motion_law_eval(name, uu)
     cols = tuple(out[:, k] for k in range(4))
     return cols  # type: ignore[return-value]

@@ -175,7 +175,7 @@ def _shapes(d: Drawing, k: int) -> Iterator[tuple[str, str, Array]]:
         yield "GROUND", "closed", tri
         for t in np.linspace(-1.0, 1.0, 5):
             a = np.array([x + t * h, y - 1.5 * h])
-            yield "GROUND", "open", np.array([a, a + [-0.6 * h, -0.6 * h]])
+            yield "GROUND", "open", np.array([a, a + np.array([-0.6 * h, -0.6 * h])])
     for sl in d.sliders:
         c = p[sl.joint]
         u = sl.direction[k]
@@ -226,7 +226,7 @@ def write_dxf(
     LinkageError
         If the run has nothing to draw or ``pose`` is not an assembled sample.
     """
-    from ezdxf.filemanagement import new as new_dxf
+    from ezdxf.filemanagement import new as new_dxf  # noqa: PLC0415 (ezdxf only for the cad output)
 
     d, k = _drawn(res, pose, drawing)
     doc = new_dxf("R2010")

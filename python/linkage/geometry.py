@@ -113,7 +113,7 @@ class StraightPart:
     @property
     def count(self) -> int:
         """Number of samples in the run."""
-        return int(len(self.indices))
+        return len(self.indices)
 
 
 def straightness(

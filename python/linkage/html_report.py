@@ -454,7 +454,7 @@ def _cells(row: Any) -> list[str]:
             for k in ("figure", "value", "unit", "error")
             if hasattr(row, k)
         ]
-    return (cells + ["", "", "", ""])[:4]
+    return ([*cells, "", "", "", ""])[:4]
 
 
 def _figures_table(res: Result) -> str:

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 
 from linkage import _core
 from linkage._core import LinkageError
+from linkage._mechanism import Mechanism
 
 Array = NDArray[np.float64]
 
@@ -106,7 +107,6 @@ class Family:
 
     def mechanism(self, x: Any) -> Any:
         """The candidate ``x`` as a :class:`linkage.Mechanism` whose trace ``F`` is the foot."""
-        from linkage._mechanism import Mechanism
 
         m = Mechanism()
         for j in self.joints(x):
@@ -353,8 +353,8 @@ FAMILIES: dict[str, Family] = {
         ),
         # A Stephenson III six-bar (the Klann topology): lengths within ±15 % of the
         # reference, angles (degrees) within ±15 % or ±1 (tilt, degrees: ±30).
-        lower=_around(KLANN_REF, 0.15)[0][:-1] + (-30.0,),
-        upper=_around(KLANN_REF, 0.15)[1][:-1] + (30.0,),
+        lower=(*_around(KLANN_REF, 0.15)[0][:-1], -30.0),
+        upper=(*_around(KLANN_REF, 0.15)[1][:-1], 30.0),
         reference=KLANN_REF,
         reference_name="Klann-type leg (Bastien & Birglen 2022 proportions, not the patent)",
         doc="Klann-type Stephenson III six-bar leg.",

@@ -29,11 +29,19 @@ import shutil
 import signal
 import sys
 import threading
+import time
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+from matplotlib import font_manager
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import LineCollection, PolyCollection
+from matplotlib.figure import Figure
+from matplotlib.patches import Polygon
+from matplotlib.ticker import MaxNLocator
+from PIL import Image, ImageDraw, ImageFont
 
 from linkage import __version__, export, html_report
 from linkage._core import LinkageError
@@ -400,8 +408,6 @@ def leg_legend(names: Sequence[str], labels: Sequence[str]) -> list[str]:
 
 
 def _new_figure(width: float, height: float) -> Any:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
 
     fig = Figure(figsize=(width, height), dpi=DPI)
     FigureCanvasAgg(fig)
@@ -430,7 +436,6 @@ def _margins(
 
 
 def _tidy(ax: Any, xlabel: str, ylabel: str) -> None:
-    from matplotlib.ticker import MaxNLocator
 
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
@@ -466,7 +471,6 @@ def _panel_height(d: Drawing, width: float, equal: bool) -> float:
 
 def _ground_symbol(ax: Any, d: Drawing, size: float) -> None:
     """The hatched ground symbol under every pivot (static)."""
-    from matplotlib.collections import LineCollection, PolyCollection
 
     if not d.pivots:
         return
@@ -502,8 +506,6 @@ class _Pose:
     — paths, ground, body, pivots — are drawn once by :func:`_static`)."""
 
     def __init__(self, ax: Any, d: Drawing, animated: bool, faint: bool = False) -> None:
-        from matplotlib.collections import LineCollection, PolyCollection
-        from matplotlib.patches import Polygon
 
         self.d = d
         self.size = _size(d)
@@ -636,7 +638,7 @@ def _static(ax: Any, d: Drawing, paths: bool = True, labels: bool = True) -> lis
     handles: list[Any] = []
     size = _size(d)
     if d.ground is not None:
-        x0, x1, y0, _ = d.bounds()
+        _x0, _x1, y0, _ = d.bounds()
         ax.axhspan(y0 - 10 * size, d.ground, fc="none", ec="0.65", hatch="////", lw=0, zorder=0)
         ax.axhline(d.ground, color="#7f5f3f", lw=2, zorder=1, label="ground")
     if d.body is not None:
@@ -717,7 +719,6 @@ def _mechanism_drawing(res: Result, units: str) -> Drawing:
 
 def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
     """Write the report's files into the (new, empty) ``folder``; returns them."""
-    import time
 
     started = time.perf_counter()
     files: list[Path] = []
@@ -917,7 +918,6 @@ def _animation(res: Result, views: list[tuple[Drawing, bool]], path: Path, frame
     """The GIF: static parts drawn once; each frame restores them and draws only the moving
     artists (blitting on the Agg canvas), its caption written with Pillow, and every frame
     quantised to one shared palette."""
-    from PIL import Image, ImageDraw
 
     d0 = views[0][0]
     walker = bool(d0.legs)
@@ -987,8 +987,6 @@ def _animation(res: Result, views: list[tuple[Drawing, bool]], path: Path, frame
 
 def _caption_font(size: int) -> Any:
     """Matplotlib's own sans-serif font for Pillow (Pillow's default if it cannot be read)."""
-    from matplotlib import font_manager
-    from PIL import ImageFont
 
     try:
         return ImageFont.truetype(font_manager.findfont("DejaVu Sans"), size)

@@ -416,7 +416,7 @@ def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene
     if "cam" in outputs and scene.cam is None:
         raise scene.error((), "outputs", "'cam' needs a [cam] section")
     # Build the study once without running it: whatever `run` would reject is rejected here.
-    from linkage import build
+    from linkage import build  # noqa: PLC0415 (build imports this module)
 
     build.validate(scene)
     return scene

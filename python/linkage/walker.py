@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -444,7 +445,7 @@ class Walker:
             raise LinkageError(
                 f"step must divide a full turn into at most 2**53 parts, got {step!r}"
             )
-        g = int(round(turns))
+        g = round(turns)
         if g < 2 or abs(g * step - 2 * math.pi) > 1e-9:
             raise LinkageError("step must divide a full turn (2π/step a whole number ≥ 2)")
         per = max(1, -(-samples // g))
@@ -465,7 +466,7 @@ class Walker:
                 return -math.inf
             return -float(sim.slip_distance.sum())
 
-        start = [int(round(p / step)) % g for p in self.phases]
+        start = [round(p / step) % g for p in self.phases]
         free = len(self.legs) - 1
         exhaustive = g**free <= max_evals
         if not exhaustive and rounds * free * g > max(max_evals, 1):
@@ -576,7 +577,6 @@ class _quiet:
     """Silence numpy's all-NaN slice warnings (swing-only samples are expected)."""
 
     def __enter__(self) -> None:
-        import warnings
 
         self._w = warnings.catch_warnings()
         self._w.__enter__()

@@ -101,10 +101,10 @@ def write_report(
 
 
 def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
-    import matplotlib
+    import matplotlib  # noqa: PLC0415 (the Agg backend is chosen before pyplot is imported)
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # noqa: PLC0415 (after the backend is chosen)
 
     study = result.study
     fam = family(study.family)
@@ -114,8 +114,8 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
     on_front[result.front] = True
     table = np.column_stack([result.x, result.figures, on_front.astype(float)])
     try:
-        import pyarrow as pa  # type: ignore[import-not-found,import-untyped,unused-ignore]
-        import pyarrow.parquet as pq  # type: ignore[import-not-found,import-untyped,unused-ignore]
+        import pyarrow as pa  # type: ignore[import-not-found,import-untyped,unused-ignore]  # noqa: PLC0415 (optional)
+        import pyarrow.parquet as pq  # type: ignore[import-not-found,import-untyped,unused-ignore]  # noqa: PLC0415 (optional)
 
         pq.write_table(
             pa.table({h: table[:, k] for k, h in enumerate(header)}),
@@ -151,7 +151,7 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
     fig, axes = plt.subplots(nrows, ncols, figsize=(4.4 * ncols, 4.0 * nrows), squeeze=False)
     for ax in axes.flat[len(pairs) :]:
         ax.set_visible(False)
-    f_all, g_all = objectives_and_constraints(study, result.figures)
+    _f_all, g_all = objectives_and_constraints(study, result.figures)
     feas = (g_all <= 0).all(axis=1)
 
     def unit(name: str) -> str:
@@ -228,7 +228,7 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
         "seed": study.seed,
         "evaluations": result.evaluations,
         "generations": result.generations,
-        "front_size": int(len(result.front)),
+        "front_size": len(result.front),
         "seconds": result.seconds,
         "reference": {"name": fam.reference_name, **place},
         "chosen": [

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+import re
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -13,6 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage._core import LinkageError
+from linkage._toml_lines import Locator, NotText, decode
 from linkage.design.search import Constraints, Study
 from linkage.legs import FAMILIES, OBJECTIVES, Settings
 
@@ -55,7 +57,6 @@ def load_study(path: str | Path) -> StudyFile:
     seed, workers or scheduler, chunk, samples, stance_tol, foot_bar, choose) with
     ``[design.bounds]`` (``parameter = [lower, upper]``) and ``[design.constraints]``.
     Errors name ``file:line: [section] key``."""
-    from linkage._toml_lines import Locator, NotText, decode
 
     p = Path(path)
     try:
@@ -67,9 +68,9 @@ def load_study(path: str | Path) -> StudyFile:
     except NotText as exc:
         raise LinkageError(f"{p}:{exc.line}: {exc.problem}") from None
     if sys.version_info >= (3, 11):
-        import tomllib
+        import tomllib  # noqa: PLC0415 (tomllib only on Python >= 3.11)
     else:  # pragma: no cover
-        import tomli as tomllib
+        import tomli as tomllib  # noqa: PLC0415 (tomli before 3.11)
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -194,7 +195,6 @@ def load_study(path: str | Path) -> StudyFile:
 
 
 def _line_of(message: str) -> int:
-    import re
 
     m = re.search(r"line (\d+)", message)
     return int(m.group(1)) if m else 1
