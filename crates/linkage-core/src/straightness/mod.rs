@@ -1,0 +1,246 @@
+//! Straight-line quality of a sampled path: the longest run of samples within a tolerance of
+//! its best-fit line.
+
+use nalgebra::RealField;
+
+use crate::scalar::{cross, lit, Vec2};
+
+/// A near-straight run of a sampled path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StraightPart<T> {
+    /// Index of the run's first sample.
+    pub start: usize,
+    /// Number of samples in the run (on a closed path it may wrap past the last sample).
+    pub count: usize,
+    /// A point of the best-fit line: the run's centroid.
+    pub point: Vec2<T>,
+    /// Unit direction of the best-fit line, pointing from the run's first sample to its last.
+    pub direction: Vec2<T>,
+    /// Largest distance of a run sample from the line.
+    pub max_deviation: T,
+    /// Extent of the run along the line.
+    pub length: T,
+}
+
+/// Total-least-squares line through `pts`: centroid, unit direction (first → last), largest
+/// deviation and extent along the line. Coordinates are taken relative to the first point so
+/// that paths far from the origin keep their digits.
+fn fit<T: RealField + Copy>(
+    pts: impl Iterator<Item = Vec2<T>> + Clone,
+) -> (Vec2<T>, Vec2<T>, T, T) {
+    let mut it = pts.clone();
+    let Some(first) = it.next() else {
+        return (
+            Vec2::zeros(),
+            Vec2::new(T::one(), T::zero()),
+            T::zero(),
+            T::zero(),
+        );
+    };
+    let mut last = first;
+    let (mut n, mut sx, mut sy) = (T::zero(), T::zero(), T::zero());
+    for p in pts.clone() {
+        let d = p - first;
+        n += T::one();
+        sx += d.x;
+        sy += d.y;
+        last = p;
+    }
+    let c = Vec2::new(sx / n, sy / n);
+    let (mut sxx, mut sxy, mut syy) = (T::zero(), T::zero(), T::zero());
+    for p in pts.clone() {
+        let d = p - first - c;
+        sxx += d.x * d.x;
+        sxy += d.x * d.y;
+        syy += d.y * d.y;
+    }
+    // Principal axis of the scatter: angle ½·atan2(2 Sxy, Sxx − Syy).
+    let phi = (lit::<T>(2.0) * sxy).atan2(sxx - syy) * lit::<T>(0.5);
+    let (s, co) = phi.sin_cos();
+    let mut dir = Vec2::new(co, s);
+    if dir.dot(&(last - first)) < T::zero() {
+        dir = -dir;
+    }
+    let (mut dev, mut lo, mut hi) = (T::zero(), T::zero(), T::zero());
+    for p in pts {
+        let d = p - first - c;
+        dev = dev.max(cross(dir, d).abs());
+        let t = dir.dot(&d);
+        lo = lo.min(t);
+        hi = hi.max(t);
+    }
+    (first + c, dir, dev, hi - lo)
+}
+
+/// The longest run of consecutive samples of `path` that stays within `tol` of its own
+/// total-least-squares line (at least 3 samples), or `None` if there is none.
+///
+/// On a `closed` path (the last sample followed by the first, without repeating it) runs may
+/// wrap around. Non-finite samples break runs. The least-squares line is not the minimax one,
+/// so the reported deviation can exceed the narrowest strip's half-width by a little; it is the
+/// honest deviation from the reported line, computed from the run's own samples (relative to
+/// its first sample, so paths far from the origin keep their digits).
+///
+/// # The scan
+///
+/// A two-pointer sweep: for each start `i` (a finite sample) the end `j` first shrinks while
+/// the window `i..j` does not fit (dropping the first sample can, rarely, tilt the fit), then
+/// grows while the next sample is finite and the grown window still fits. "Fits" means that
+/// the deviation of the window from its least-squares line, computed as the reported
+/// `max_deviation` is, is at most `tol`. Every check but two per start moves `i` or `j` by
+/// one, so the scan makes at most `4n + 2S` checks, `S` the number of shrinking steps. `S` is
+/// 0 when dropping a window's first sample never breaks its fit, and small in practice: on the
+/// bench's 10⁶-sample foot path, 3.04·10⁶ checks with `S` = 14 548. A least-squares fit is not
+/// monotone in its window, though, so no bound on `S` below `n·w` holds for every path.
+///
+/// # The window check
+///
+/// With the `alloc` feature each check costs `O(log n)` amortised (below), so the scan costs
+/// `O((n + S)·log n)`: `O(n log n)` when `S = O(n)`. A window's line comes from running
+/// moments (Welford updates as the pointers move, recomputed every 128 updates — or when the
+/// updates grow as large as the moments — from the `O(log n)` covering nodes of a segment tree
+/// of moments, by Chan's pairwise merge). Its largest distance from the line is the largest
+/// and smallest `v·q` over the window, `v` the line's normal: support queries on the window's
+/// convex hull, which a queue of two hulls answers (the maximum of a linear function over a
+/// union is the larger of the parts' maxima):
+///
+/// - The window is split at `m` into a front `i..m` and a back `m..j`; while a grown window
+///   `i..j + 1` is tried, its new sample is taken on its own, so a failed try changes nothing.
+/// - Each part is an upper and a lower hull chain, kept as the live slots of the samples'
+///   ranks in `(x, y)` order (a radix sort, once): a 64-ary tree of bit words finds a slot's
+///   live neighbours in `⌈log₆₄ n⌉ ≤ 6` word operations, and links walk the chain. Inserting a
+///   sample removes the vertices it hides and logs them; undoing the insertion restores them.
+/// - The back grows by inserting sample `j` as `j` grows, and undoes it when `j` shrinks. The
+///   front is filled from `m − 1` down to `i`, so that dropping sample `i` undoes the last
+///   insertion. When `i` reaches `m`, or the window leaves the queue, the queue is refilled
+///   with the window: the last eighth in the back, the rest in the front.
+/// - A support query walks up to 8 steps along the chain from its last answer (the line turns
+///   little from one window to the next) and otherwise bisects the slots, `O(log n)` steps.
+///
+/// Why `O(log n)` amortised: a check makes at most 4 support queries (8 if the cheap bound on
+/// the window's radius does not decide it), each `O(log n)`. The front only inserts then
+/// undoes, newest first, so its removals and restorations are at most its insertions; a refill
+/// of `w` samples follows `7w/8` advances of `i` or `w/8` shrinking steps since the last, or a
+/// window that left the queue (then it holds no more samples than `j` passed since), so refills
+/// insert `O(1)` samples per pointer move. The back inserts each sample once per pass of `j`
+/// and undoes it on a shrinking step; an insertion removes each vertex at most once until an
+/// undo restores it. So every check costs `O(log n)` amortised plus `O(log n)` per vertex that
+/// a shrinking step restores, at most the back's size per step (20 906 vertices in all for the
+/// 14 548 shrinking steps on the bench path).
+///
+/// Memory is `O(n)`: for `f64` about 105 bytes per sample (centred and rank-ordered copies,
+/// 32; four chains' links, 32; the tree of moments, 13; ranks and run indices, 12; undo logs,
+/// up to 16), plus 20 during the sort; the segment tree of hulls this replaced took
+/// `O(n log n)`, some 120 bytes per sample at 10⁶. On the closed 10⁶-sample foot path of
+/// `bench/straightness.py` (a run of 193 545 samples, tolerance 0.1 % of the coupler) the scan
+/// takes MEASURED s here, the tree check it replaced MEASURED s in the same process; growth per
+/// decade 10³…10⁶: MEASURED.
+///
+/// The result is the one a direct refit of every window gives (the `O(n·w)` scan used without
+/// `alloc`, for runs of `w` samples): same run, and the line, deviation and length are computed
+/// from the run's samples exactly as there. The fast check carries an error bound on the
+/// difference between its deviation and the direct refit's: `8·ε·(√w + 4)` times the window's
+/// radius, plus `64·ε` times the path's extent from its centre, both enlarged as the window
+/// nears isotropy (where its line is ill-defined). The `√w` is the statistical growth of
+/// rounding in the direct refit's sequential sums; the worst case, `w·ε`, needs adversarial
+/// orderings of rounding errors, and bounding with it made long windows (10⁵ samples) fall
+/// back to refits by the hundred. A window whose deviation is within that bound of `tol` —
+/// including every window at rounding level with `tol = 0`, except windows with one `y`
+/// throughout, which the direct refit puts at deviation 0 exactly — is decided by a direct
+/// refit instead. Those refits are budgeted (`64·n` samples in all): past the budget, which only
+/// data that stays at rounding level from `tol` over very many long windows can exhaust, the
+/// fast deviation decides, which may differ from a direct refit at the level of rounding.
+/// Windows holding samples whose squared spread overflows (|coordinates| beyond about `1e150`
+/// for `f64`, `1e18` for `f32`) are always decided by the direct refit, within the same budget.
+pub fn straight_part<T: RealField + Copy>(
+    path: &[Vec2<T>],
+    tol: T,
+    closed: bool,
+) -> Option<StraightPart<T>> {
+    let n = path.len();
+    if n < 3 || !tol.is_finite() || tol < T::zero() {
+        return None;
+    }
+    #[cfg(feature = "alloc")]
+    let (i, j) = queue::longest_run(path, tol, closed)?;
+    #[cfg(not(feature = "alloc"))]
+    let (i, j) = scan(path, closed, |i, j| fits_directly(path, tol, i, j))?;
+    let (point, direction, max_deviation, length) = fit(window(path, i, j));
+    Some(StraightPart {
+        start: i,
+        count: j - i,
+        point,
+        direction,
+        max_deviation,
+        length,
+    })
+}
+
+/// Samples `i..j` of `path`, wrapping past its end.
+fn window<T: RealField + Copy>(
+    path: &[Vec2<T>],
+    i: usize,
+    j: usize,
+) -> impl Iterator<Item = Vec2<T>> + Clone + '_ {
+    let n = path.len();
+    (i..j).map(move |k| path[k % n])
+}
+
+/// Whether samples `i..j` fit within `tol` of their least-squares line, by refitting them.
+fn fits_directly<T: RealField + Copy>(path: &[Vec2<T>], tol: T, i: usize, j: usize) -> bool {
+    fit(window(path, i, j)).2 <= tol
+}
+
+/// The two-pointer scan of [`straight_part`] with the window check `fits(i, j)` (samples
+/// `i..j`, indices past the end wrapping): the longest run as `(start, end)`. `fits` is only
+/// asked about windows of at least 2 finite samples. `path` must hold at least one sample.
+fn scan<T: RealField + Copy>(
+    path: &[Vec2<T>],
+    closed: bool,
+    mut fits: impl FnMut(usize, usize) -> bool,
+) -> Option<(usize, usize)> {
+    let n = path.len();
+    let ok = |k: usize| {
+        let p = path[k % n];
+        p.x.is_finite() && p.y.is_finite()
+    };
+    let mut best: Option<(usize, usize)> = None;
+    let mut j = 0;
+    for i in 0..n {
+        if !ok(i) {
+            continue;
+        }
+        let limit = if closed { i + n } else { n };
+        j = j.max(i + 1);
+        // Dropping the first sample can (rarely) tilt the fit; shrink until it holds.
+        while j > i + 2 && !fits(i, j) {
+            j -= 1;
+        }
+        while j < limit && ok(j) && fits(i, j + 1) {
+            j += 1;
+        }
+        if j - i >= 3 && best.is_none_or(|(a, b)| j - i > b - a) {
+            best = Some((i, j));
+        }
+        if closed && j - i == n {
+            break;
+        }
+    }
+    best
+}
+
+#[cfg(feature = "alloc")]
+mod hull;
+#[cfg(feature = "alloc")]
+mod moments;
+#[cfg(feature = "alloc")]
+mod queue;
+#[cfg(feature = "alloc")]
+mod samples;
+/// The window check before the queue (a segment tree of hulls, `O(log² n)`), kept for the
+/// timing comparison of `tests::direct_scan_timing`.
+#[cfg(all(test, feature = "alloc"))]
+mod tree_check;
+
+#[cfg(test)]
+mod tests;
