@@ -116,6 +116,8 @@ fn fit<T: RealField + Copy>(
 ///   with the window: the last eighth in the back, the rest in the front.
 /// - A support query walks up to 8 steps along the chain from its last answer (the line turns
 ///   little from one window to the next) and otherwise bisects the slots, `O(log n)` steps.
+/// - Windows of at most 32 samples are scanned directly instead; the queue catches up when a
+///   longer window needs it (at a cost bounded by the pointers' moves since).
 ///
 /// Why `O(log n)` amortised: a check makes at most 4 support queries (8 if the cheap bound on
 /// the window's radius does not decide it), each `O(log n)`. The front only inserts then

@@ -14,6 +14,10 @@ use crate::scalar::{eps, lit, Vec2};
 /// Updates of the running moments after which they are recomputed from the tree.
 const REFRESH: usize = 128;
 
+/// Windows of at most this many samples are scanned for their extremes directly (in `O(1)`),
+/// leaving the queue as it is until a longer window needs it.
+const SHORT: usize = 32;
+
 /// The upper and lower hull chains of one side of the queue, and the log that undoes its
 /// insertions (two records per sample, upper then lower).
 struct Side {
@@ -277,7 +281,9 @@ impl<T: RealField + Copy> Checker<'_, T> {
         }
         if complete {
             self.move_to(i, j);
-            self.sync(i, j);
+            if j - i > SHORT {
+                self.sync(i, j);
+            }
             let st = self.moments;
             let (v, gap) = axis(&st);
             // Σ|q − mean|² bounds every |q − mean|², up to the running moments' drift.
@@ -285,10 +291,10 @@ impl<T: RealField + Copy> Checker<'_, T> {
             let (slope, floor) = self.error(gap);
             // A deviation beyond this is too much whatever the rest of the window holds.
             let hopeless = self.tol + slope * r + floor;
-            let dev = self.spread(v, j, 0, Some(hopeless));
+            let dev = self.spread(v, i, j, 0, Some(hopeless));
             // First with a cheap bound on the window's radius, then with a tight one.
             for tight in [false, true] {
-                let r = if tight { self.radius(dev, v, j) } else { r };
+                let r = if tight { self.radius(dev, v, i, j) } else { r };
                 let err = slope * r + floor;
                 if dev.is_finite() && err.is_finite() {
                     if dev + err < self.tol {
@@ -313,10 +319,10 @@ impl<T: RealField + Copy> Checker<'_, T> {
         fits_directly(self.path, self.tol, i, j)
     }
 
-    /// Largest `|u·(q − mean)|` over window `..j` — the queue and, if it stops short of it,
-    /// the window's last sample — with `kind` 0 for `u` across the line, 1 along it; or, as
-    /// soon as one exceeds `stop`, that one.
-    fn spread(&mut self, u: Vec2<T>, j: usize, kind: usize, stop: Option<T>) -> T {
+    /// Largest `|u·(q − mean)|` over window `i..j` — the queue and, if it stops short of it,
+    /// the window's last sample; the samples themselves for a short window — with `kind` 0
+    /// for `u` across the line, 1 along it; or, as soon as one exceeds `stop`, that one.
+    fn spread(&mut self, u: Vec2<T>, i: usize, j: usize, kind: usize, stop: Option<T>) -> T {
         let c = u.dot(&self.moments.mean);
         let far = |top: T, bottom: T| {
             if top - c > c - bottom {
@@ -326,6 +332,15 @@ impl<T: RealField + Copy> Checker<'_, T> {
             }
         };
         let (mut top, mut bottom) = (c, c);
+        if j - i <= SHORT {
+            let n = self.path.len();
+            for k in i..j {
+                let d = u.dot(&self.s.q[k % n]);
+                top = top.max(d);
+                bottom = bottom.min(d);
+            }
+            return far(top, bottom);
+        }
         if self.b < j {
             let d = u.dot(&self.s.q[(j - 1) % self.path.len()]);
             (top, bottom) = (d, d);
@@ -347,8 +362,8 @@ impl<T: RealField + Copy> Checker<'_, T> {
 
     /// The window's radius about its centroid, up to rounding (which the error bound's terms
     /// in the path's extent cover), from its spreads across and along its line `v`.
-    fn radius(&mut self, dev: T, v: Vec2<T>, j: usize) -> T {
-        let along = self.spread(Vec2::new(v.y, -v.x), j, 1, None);
+    fn radius(&mut self, dev: T, v: Vec2<T>, i: usize, j: usize) -> T {
+        let along = self.spread(Vec2::new(v.y, -v.x), i, j, 1, None);
         (dev * dev + along * along).sqrt() + eps::<T>() * lit(64.0) * self.s.extent
     }
 
