@@ -147,8 +147,6 @@ impl Bits {
 pub(super) struct Chain {
     upper: bool,
     live: Bits,
-    /// Each slot's previous and next live slot (read only for live slots).
-    links: Vec<[u32; 2]>,
     /// The last support vertex found for each kind of query (may since have left the chain).
     finger: [u32; 2],
 }
@@ -159,39 +157,38 @@ impl Chain {
         Chain {
             upper,
             live: Bits::new(n),
-            links: alloc::vec![[0; 2]; n],
             finger: [NONE; 2],
         }
     }
 
     /// Puts slot `s` into the chain between its live neighbours.
-    fn link(&mut self, s: u32) {
+    fn link(&mut self, links: &mut [[u32; 2]], s: u32) {
         let (p, n) = (self.live.before(s), self.live.after(s));
-        self.join(p, s, n);
+        self.join(links, p, s, n);
     }
 
     /// Puts slot `s` into the chain between the live slots `p` and `n` (or the ends).
-    fn join(&mut self, p: u32, s: u32, n: u32) {
+    fn join(&mut self, links: &mut [[u32; 2]], p: u32, s: u32, n: u32) {
         self.live.insert(s);
-        self.links[s as usize][0] = p;
-        self.links[s as usize][1] = n;
+        links[s as usize][0] = p;
+        links[s as usize][1] = n;
         if p != NONE {
-            self.links[p as usize][1] = s;
+            links[p as usize][1] = s;
         }
         if n != NONE {
-            self.links[n as usize][0] = s;
+            links[n as usize][0] = s;
         }
     }
 
     /// Takes slot `s` out of the chain.
-    fn unlink(&mut self, s: u32) {
+    fn unlink(&mut self, links: &mut [[u32; 2]], s: u32) {
         self.live.remove(s);
-        let [p, n] = self.links[s as usize];
+        let [p, n] = links[s as usize];
         if p != NONE {
-            self.links[p as usize][1] = n;
+            links[p as usize][1] = n;
         }
         if n != NONE {
-            self.links[n as usize][0] = p;
+            links[n as usize][0] = p;
         }
     }
 
@@ -211,6 +208,7 @@ impl Chain {
     pub(super) fn insert<T: RealField + Copy>(
         &mut self,
         pts: &[Vec2<T>],
+        links: &mut [[u32; 2]],
         s: u32,
         log: &mut Vec<u32>,
     ) {
@@ -226,50 +224,50 @@ impl Chain {
         }
         let mut removed = 0u32;
         while p != NONE {
-            let pp = self.links[p as usize][0];
+            let pp = links[p as usize][0];
             if pp == NONE || self.convex(pts, pp, p, s) {
                 break;
             }
-            self.unlink(p);
+            self.unlink(links, p);
             log.push(p);
             removed += 1;
             p = pp;
         }
         while n != NONE {
-            let nn = self.links[n as usize][1];
+            let nn = links[n as usize][1];
             if nn == NONE || self.convex(pts, s, n, nn) {
                 break;
             }
-            self.unlink(n);
+            self.unlink(links, n);
             log.push(n);
             removed += 1;
             n = nn;
         }
-        self.join(p, s, n);
+        self.join(links, p, s, n);
         log.extend_from_slice(&[removed, s]);
     }
 
     /// Removes every vertex (`O(1)` word operations each).
-    pub(super) fn clear(&mut self) {
+    pub(super) fn clear(&mut self, links: &[[u32; 2]]) {
         let mut k = self.live.first();
         while k != NONE {
             self.live.remove(k);
-            k = self.links[k as usize][1];
+            k = links[k as usize][1];
         }
     }
 
     /// Undoes the last [`Chain::insert`] recorded in `log`; returns the number of vertices
     /// it restored.
-    pub(super) fn undo(&mut self, log: &mut Vec<u32>) -> u32 {
+    pub(super) fn undo(&mut self, links: &mut [[u32; 2]], log: &mut Vec<u32>) -> u32 {
         let (Some(s), Some(removed)) = (log.pop(), log.pop()) else {
             return 0;
         };
         if s != NONE {
-            self.unlink(s);
+            self.unlink(links, s);
         }
         for _ in 0..removed {
             if let Some(r) = log.pop() {
-                self.link(r);
+                self.link(links, r);
             }
         }
         removed
@@ -287,6 +285,7 @@ impl Chain {
     pub(super) fn support<T: RealField + Copy>(
         &mut self,
         pts: &[Vec2<T>],
+        links: &[[u32; 2]],
         u: Vec2<T>,
         kind: usize,
     ) -> u32 {
@@ -309,7 +308,7 @@ impl Chain {
         }
         if k != NONE {
             for _ in 0..WALK {
-                let [p, n] = self.links[k as usize];
+                let [p, n] = links[k as usize];
                 if n != NONE && rising(k, n) {
                     k = n;
                 } else if p != NONE && !rising(p, k) {
@@ -333,7 +332,7 @@ impl Chain {
             } else {
                 self.live.before(mid)
             };
-            let n = self.links[k as usize][1];
+            let n = links[k as usize][1];
             if n != NONE && rising(k, n) {
                 lo = n;
             } else {

@@ -132,9 +132,10 @@ fn fit<T: RealField + Copy>(
 /// vertex that a shrinking step restores, at most the back's size per step (20 906 vertices in
 /// all for the 14 548 shrinking steps on the bench path).
 ///
-/// Memory is `O(n)`: for `f64` about 105 bytes per sample (centred and rank-ordered copies,
-/// 32; four chains' links, 32; the tree of moments, 13; ranks and run indices, 12; undo logs,
-/// up to 16), plus 20 during the sort; the segment tree of hulls this replaced took
+/// Memory is `O(n)`: for `f64` about 90 bytes per sample (centred and rank-ordered copies,
+/// 32; chain links, shared by front and back, 16; the tree of moments, 13; ranks and run
+/// indices, 12; undo logs, up to 16), plus 20 during the sort; the segment tree of hulls this
+/// replaced took
 /// `O(n log n)`, some 120 bytes per sample at 10⁶.
 ///
 /// Measured (`bench/straightness.py`, a shared 2-core machine at load average 2–3): on the

@@ -35,21 +35,21 @@ impl Side {
         }
     }
 
-    fn insert<T: RealField + Copy>(&mut self, pts: &[Vec2<T>], slot: u32) {
-        self.upper.insert(pts, slot, &mut self.log);
-        self.lower.insert(pts, slot, &mut self.log);
+    fn insert<T: RealField + Copy>(&mut self, pts: &[Vec2<T>], links: &mut Links, slot: u32) {
+        self.upper.insert(pts, &mut links[0], slot, &mut self.log);
+        self.lower.insert(pts, &mut links[1], slot, &mut self.log);
     }
 
     /// Undoes the last insertion; returns the number of hull vertices that restored.
-    fn undo(&mut self) -> usize {
-        let lower = self.lower.undo(&mut self.log);
-        let upper = self.upper.undo(&mut self.log);
+    fn undo(&mut self, links: &mut Links) -> usize {
+        let lower = self.lower.undo(&mut links[1], &mut self.log);
+        let upper = self.upper.undo(&mut links[0], &mut self.log);
         lower as usize + upper as usize
     }
 
-    fn clear(&mut self) {
-        self.upper.clear();
-        self.lower.clear();
+    fn clear(&mut self, links: &Links) {
+        self.upper.clear(&links[0]);
+        self.lower.clear(&links[1]);
         self.log.clear();
     }
 
@@ -58,18 +58,22 @@ impl Side {
     fn support<T: RealField + Copy>(
         &mut self,
         pts: &[Vec2<T>],
+        links: &Links,
         u: Vec2<T>,
         kind: usize,
     ) -> Option<T> {
-        let chain = if u.y < T::zero() {
-            &mut self.lower
+        let s = if u.y < T::zero() {
+            self.lower.support(pts, &links[1], u, kind)
         } else {
-            &mut self.upper
+            self.upper.support(pts, &links[0], u, kind)
         };
-        let s = chain.support(pts, u, kind);
         pts.get(s as usize).map(|p| u.dot(p))
     }
 }
+
+/// The previous and next live slot of each slot in the upper (0) and lower (1) chains, shared
+/// by the front and the back: they never hold the same sample.
+type Links = [Vec<[u32; 2]>; 2];
 
 /// The window check of [`super::straight_part`], with the refit budget.
 struct Checker<'a, T> {
@@ -92,6 +96,7 @@ struct Checker<'a, T> {
     /// last insertion drops sample `a`), `back` holds `m..b` (undoing drops `b − 1`).
     front: Side,
     back: Side,
+    links: Links,
     a: usize,
     m: usize,
     b: usize,
@@ -124,23 +129,23 @@ impl<T: RealField + Copy> Checker<'_, T> {
     fn push_front(&mut self) {
         self.a -= 1;
         let slot = self.slot(self.a);
-        self.front.insert(&self.s.by_rank, slot);
+        self.front.insert(&self.s.by_rank, &mut self.links, slot);
     }
 
     fn pop_front(&mut self) {
-        self.front.undo();
+        self.front.undo(&mut self.links);
         self.a += 1;
     }
 
     fn push_back(&mut self) {
         let slot = self.slot(self.b);
-        self.back.insert(&self.s.by_rank, slot);
+        self.back.insert(&self.s.by_rank, &mut self.links, slot);
         self.b += 1;
     }
 
     fn pop_back(&mut self) {
         self.counts.shrunk += 1;
-        self.counts.restored += self.back.undo();
+        self.counts.restored += self.back.undo(&mut self.links);
         self.b -= 1;
     }
 
@@ -150,8 +155,8 @@ impl<T: RealField + Copy> Checker<'_, T> {
     fn rebuild(&mut self, i: usize, e: usize) {
         self.counts.refills += 1;
         self.counts.refilled += e - i;
-        self.front.clear();
-        self.back.clear();
+        self.front.clear(&self.links);
+        self.back.clear(&self.links);
         let m = e - (e - i) / 8;
         (self.a, self.m, self.b) = (m, m, m);
         while self.a > i {
@@ -163,27 +168,24 @@ impl<T: RealField + Copy> Checker<'_, T> {
     }
 
     /// Moves the queue to hold samples `i..j` or `i..j − 1` (then sample `j − 1` is taken
-    /// separately), `i + 2 ≤ j`.
+    /// separately), `i + 2 ≤ j`. The front drops its samples before `i` first, so that the
+    /// queue never holds more than the window: no sample twice on a closed path, and the
+    /// front and back never share a slot of the chains' links.
     fn sync(&mut self, i: usize, j: usize) {
-        if i < self.a || i >= self.b || j < self.m {
-            // A window left of the last one, past it, or ending inside the front (the
-            // front drops samples at its start only): refill.
+        if i < self.a || i >= self.m || i >= self.b || j < self.m {
+            // A window left of the last one, past its front (used up) or past it, or ending
+            // inside the front (which drops samples at its start only): refill.
             self.rebuild(i, j);
             return;
+        }
+        while self.a < i {
+            self.pop_front();
         }
         while self.b > j {
             self.pop_back();
         }
         while self.b + 1 < j {
             self.push_back();
-        }
-        if i >= self.m {
-            // The front is used up: what is left of the back becomes the front.
-            self.rebuild(i, self.b);
-        } else {
-            while self.a < i {
-                self.pop_front();
-            }
         }
     }
 
@@ -345,12 +347,12 @@ impl<T: RealField + Copy> Checker<'_, T> {
             let d = u.dot(&self.s.q[(j - 1) % self.path.len()]);
             (top, bottom) = (d, d);
         }
-        let pts = &self.s.by_rank;
+        let (pts, links) = (&self.s.by_rank, &self.links);
         for side in [&mut self.back, &mut self.front] {
-            if let Some(d) = side.support(pts, u, kind) {
+            if let Some(d) = side.support(pts, links, u, kind) {
                 top = top.max(d);
             }
-            if let Some(d) = side.support(pts, -u, kind) {
+            if let Some(d) = side.support(pts, links, -u, kind) {
                 bottom = bottom.min(-d);
             }
             if stop.is_some_and(|s| far(top, bottom) > s) {
@@ -448,6 +450,8 @@ pub(super) fn longest_run_counted<T: RealField + Copy>(
         drift: T::zero(),
         front: Side::new(n),
         back: Side::new(n),
+        // Read only for live slots, which are written first.
+        links: [alloc::vec![[0; 2]; n], alloc::vec![[0; 2]; n]],
         a: 0,
         m: 0,
         b: 0,
