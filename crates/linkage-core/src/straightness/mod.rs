@@ -135,15 +135,14 @@ fn fit<T: RealField + Copy>(
 /// Memory is `O(n)`: for `f64` about 90 bytes per sample (centred and rank-ordered copies,
 /// 32; chain links, shared by front and back, 16; the tree of moments, 13; ranks and run
 /// indices, 12; undo logs, up to 16), plus 20 during the sort; the segment tree of hulls this
-/// replaced took
-/// `O(n log n)`, some 120 bytes per sample at 10⁶.
+/// replaced took `O(n log n)`, some 120 bytes per sample at 10⁶.
 ///
-/// Measured (`bench/straightness.py`, a shared 2-core machine at load average 2–3): on the
-/// closed 10⁶-sample Hoecken foot path (a run of 193 545 samples, tolerance 0.1 % of the
-/// coupler; 3.04·10⁶ checks, 36 refills of the queue, 17 direct refits) a call takes
-/// 0.42–0.47 s, the tree check it replaced 0.77–1.01 s in the same process (1.8–2.1 times
-/// slower); CPU time grows 8.0, 10.7 and 12.2 times per decade from 10³ to 10⁶ samples, where
-/// `n log n` grows 13.3, 12.5 and 12.0 times.
+/// Measured (`bench/straightness.py`, a 2-core machine shared with other jobs, load average
+/// 3–4): on the closed 10⁶-sample Hoecken foot path (a run of 193 545 samples, tolerance
+/// 0.1 % of the coupler; 3.04·10⁶ checks, 36 refills of the queue, 17 direct refits) a call
+/// takes 0.40 s (best of 3; 0.45 s of CPU from Python), the tree check it replaced 0.75 s in
+/// the same process; CPU time grows 9.8, 9.9 and 12.5 times per decade from 10³ to 10⁶
+/// samples, where `n log n` grows 13.3, 12.5 and 12.0 times.
 ///
 /// The result is the one a direct refit of every window gives (the `O(n·w)` scan used without
 /// `alloc`, for runs of `w` samples): same run, and the line, deviation and length are computed
