@@ -1,7 +1,9 @@
 """Straight-part detection (``linkage.straightness``) against path size: time per call for
-10^3 … 10^6 samples of a Hoecken foot path (closed, tol = 0.001 × size), the growth per decade,
-and the direct O(n·w) scan (kept in the core as the test reference) against the fast one on the
-4·10^4-sample path, both timed in one process by an ignored core test.
+10^3 … 10^6 samples of a Hoecken foot path (closed, tol = 0.001 × size), the growth per decade
+against n log n, then two comparisons timed in one process by ignored core tests: the direct
+O(n·w) scan (kept in the core as the test reference), the segment tree of hulls it used before
+(O(log² n) per window check, kept test-only) and the queue of two hulls (O(log n)) on the
+4·10^4-sample path, and the last two on the 10^6-sample path.
 
     python bench/straightness.py            # needs the built extension; cargo for the last part
 """
@@ -45,11 +47,11 @@ def best_time(path: np.ndarray, repeats: int) -> tuple[float, float, int]:
     return wall, cpu, count
 
 
-def direct_scan(path: np.ndarray) -> str:
-    """The core's direct scan and fast scan on `path`, timed by the ignored core test."""
+def core_timing(path: np.ndarray, test: str) -> str:
+    """The first ``n = `` line the ignored core test ``test`` prints on ``path``."""
     cargo = shutil.which("cargo")
     if cargo is None:
-        return "cargo not found: direct scan not timed"
+        return "cargo not found: not timed"
     with tempfile.TemporaryDirectory() as tmp:
         f = Path(tmp) / "path.txt"
         rows = "\n".join(f"{x!r} {y!r}" for x, y in path.tolist())
@@ -62,7 +64,7 @@ def direct_scan(path: np.ndarray) -> str:
             "linkage-core",
             "--release",
             "--lib",
-            "straightness::tests::direct_scan_timing",
+            f"straightness::tests::{test}",
             "--",
             "--ignored",
             "--exact",
@@ -72,7 +74,7 @@ def direct_scan(path: np.ndarray) -> str:
         out = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, check=False)
     lines = [ln for ln in out.stdout.splitlines() if ln.startswith("n = ")]
     if out.returncode != 0 or not lines:
-        return f"direct scan run failed:\n{out.stdout}\n{out.stderr}"
+        return f"{test} failed:\n{out.stdout}\n{out.stderr}"
     return lines[0]
 
 
@@ -81,7 +83,7 @@ def main() -> int:
     print(f"Hoecken foot path, closed, tol = {TOL} mm; best of 3 calls (2 at 10^6)")
     print(f"{os.cpu_count()} CPUs, load average {load} (wall times stretch with load)")
     head = f"{'n':>9} {'wall (s)':>10} {'CPU (s)':>10} {'run':>8}"
-    print(f"{head} {'CPU x/decade':>13} {'n log2^2 n x':>13}")
+    print(f"{head} {'CPU x/decade':>13} {'n log2 n x':>11}")
     prev: tuple[int, float] | None = None
     for n in (10**3, 10**4, 4 * 10**4, 10**5, 10**6):
         path = foot_path(n)
@@ -89,13 +91,15 @@ def main() -> int:
         growth = model = ""
         if prev is not None and n == 10 * prev[0]:
             growth = f"{cpu / prev[1]:.1f}"
-            model = f"{n * math.log2(n) ** 2 / (prev[0] * math.log2(prev[0]) ** 2):.1f}"
-        print(f"{n:>9} {wall:>10.4f} {cpu:>10.4f} {count:>8} {growth:>13} {model:>13}")
+            model = f"{n * math.log2(n) / (prev[0] * math.log2(prev[0])):.1f}"
+        print(f"{n:>9} {wall:>10.4f} {cpu:>10.4f} {count:>8} {growth:>13} {model:>11}")
         if n != 4 * 10**4:
             prev = (n, cpu)
     print()
-    print("direct (old) scan vs fast scan, same process, same 4*10^4-sample path:")
-    print(direct_scan(foot_path(4 * 10**4)))
+    print("direct scan, tree check (before) and queue (now), one process, 4*10^4 samples:")
+    print(core_timing(foot_path(4 * 10**4), "direct_scan_timing"))
+    print("tree check (before) and queue (now), one process, 10^6 samples:")
+    print(core_timing(foot_path(10**6), "fast_scan_timing"))
     return 0
 
 
