@@ -42,7 +42,10 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
 // kurbo's: every `allow` says why, every assertion in library code says what failed.
-#![warn(clippy::allow_attributes_without_reason, clippy::missing_assert_message)]
+#![warn(
+    clippy::allow_attributes_without_reason,
+    clippy::missing_assert_message
+)]
 
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("linkage-core needs a math backend: enable the `std` feature or the `libm` feature");

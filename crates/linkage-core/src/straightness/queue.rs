@@ -105,7 +105,10 @@ struct Checker<'a, T> {
 
 /// What a scan did, for the cost argument of [`super::straight_part`] (read by tests).
 #[derive(Clone, Copy, Debug, Default)]
-#[cfg_attr(not(test), allow(dead_code))]
+#[cfg_attr(
+    not(test),
+    allow(dead_code, reason = "the counters are read by tests only")
+)]
 pub(super) struct Counts {
     /// Window checks, those that shrank the window (`S` of `straight_part`), and those
     /// decided by a direct refit.
