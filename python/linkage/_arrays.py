@@ -144,7 +144,7 @@ def memory_limit() -> int:
     except (AttributeError, OSError, ValueError):  # pragma: no cover - not POSIX
         pass
     try:
-        import resource
+        import resource  # noqa: PLC0415 (POSIX only)
 
         soft, _ = resource.getrlimit(resource.RLIMIT_AS)
         if soft != resource.RLIM_INFINITY and 0 < soft < limit:

@@ -19,7 +19,7 @@ import traceback
 from collections.abc import Sequence
 from pathlib import Path
 
-from linkage import catalog
+from linkage import catalog, scene
 from linkage._core import LinkageError
 
 EXIT_ERROR = 2
@@ -69,15 +69,14 @@ class _Progress:
 
 
 def _load(path: str | None):  # type: ignore[no-untyped-def]
-    from linkage import scene
-
     if path is None:
         return scene.parse(scene.DEFAULT_SCENE, None, name="quadruped-hoecken")
     return scene.load(path)
 
 
 def _run(args: argparse.Namespace, state: dict[str, Path]) -> int:
-    from linkage import report, runner
+    # matplotlib (0.3 s) only for `run`, not for check/catalog/--help.
+    from linkage import report, runner  # noqa: PLC0415
 
     sc = _load(args.scene)
     if args.out is not None:
@@ -123,7 +122,7 @@ def _catalog(args: argparse.Namespace, state: dict[str, Path]) -> int:
 
 def _design(args: argparse.Namespace, state: dict[str, Path]) -> int:
     try:
-        from linkage import design
+        from linkage import design  # noqa: PLC0415 (needs the optional extra [design])
     except ImportError as exc:
         raise LinkageError(str(exc)) from None
     return design.main_design(args.study, args.out, args.force, args.checkpoint, args.quiet)
@@ -182,6 +181,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     des.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
     des.set_defaults(func=_design)
+    syn = sub.add_parser("synth", help="four-bars whose coupler curve passes through points")
+    syn.add_argument("curve", help="CSV file of target points x,y (one a line, in order)")
+    syn.add_argument("--top", type=int, default=5, help="candidates shown (default 5)")
+    syn.add_argument("--open", action="store_true", help="the points are part of a curve")
+    syn.add_argument("--units", default="", help="length unit shown in the table, e.g. mm")
+    syn.add_argument("--full-turn", action="store_true", help="only cranks that turn fully")
+    syn.add_argument("--atlas", help="atlas folder (default: built once into the user cache)")
+    syn.add_argument("--quiet", action="store_true", help="no progress bar")
+    syn.set_defaults(func=lambda a, _s: __import__("linkage.synthesis").synthesis.command(a))
     args = parser.parse_args(argv)
     if getattr(args, "samples", None) is not None and args.samples < 8:
         parser.error("--samples must be at least 8")
