@@ -13,7 +13,16 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from linkage import batch, cam, catalog, drive, forces, geometry, walker
+from linkage import (
+    batch,
+    cam,
+    catalog,
+    drive,
+    forces,
+    geometry,
+    synthesis,  # path synthesis (scipy imported on first use)
+    walker,
+)
 from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -43,21 +52,22 @@ __all__ = [
     "Mechanism",
     "Sweep",
     "Walker",
-    "batch",
+    "__version__",
     "ball_point",
+    "batch",
     "cam",
     "catalog",
     "circumcentre",
     "curvature_centre",
     "drive",
     "foot_path",
-    "gait_phases",
     "forces",
+    "gait_phases",
     "geometry",
     "mobility",
     "search_duty_factor",
     "straightness",
+    "synthesis",
     "three_point_centres",
     "walker",
-    "__version__",
 ]

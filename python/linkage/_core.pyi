@@ -7,40 +7,47 @@ from numpy.typing import NDArray
 from typing_extensions import final
 
 __all__ = [
-    "LinkageError",
-    "AssemblyError",
     "CAPACITY",
-    "Mechanism",
+    "AssemblyError",
     "FourBar",
-    "catalog_four_bar",
-    "catalog_linkage",
-    "catalog_names",
-    "curvature_centres",
-    "circumcentres",
-    "straight_run",
-    "motion_law_names",
-    "motion_law_eval",
-    "program_eval",
-    "program_discontinuities",
-    "gear_train_simple",
-    "gear_train_compound",
-    "schedule_eval",
-    "stance_schedule",
-    "cam_geometry",
-    "degrees_of_freedom",
-    "forces",
-    "support_margins",
-    "sweep_simd",
+    "LinkageError",
+    "Mechanism",
     "batch_sweep",
     "burmester_centre_point",
     "burmester_circle_point",
     "burmester_curve",
-    "motion_candidates",
+    "cam_geometry",
+    "catalog_four_bar",
+    "catalog_linkage",
+    "catalog_names",
     "chebyshev_points",
-    "function_generator",
-    "leg_gait",
+    "circumcentres",
+    "curvature_centres",
+    "degrees_of_freedom",
+    "forces",
     "four_bar_gaits",
+    "function_generator",
     "gait_columns",
+    "gear_train_compound",
+    "gear_train_simple",
+    "leg_gait",
+    "motion_candidates",
+    "motion_law_eval",
+    "motion_law_names",
+    "program_discontinuities",
+    "program_eval",
+    "schedule_eval",
+    "stance_schedule",
+    "straight_run",
+    "support_margins",
+    "sweep_simd",
+    "synth_atlas_build",
+    "synth_atlas_nearest",
+    "synth_descriptors",
+    "synth_errors",
+    "synth_frame",
+    "synth_info",
+    "synth_residuals",
 ]
 
 CAPACITY: int
@@ -239,3 +246,39 @@ def four_bar_gaits(
     threads: int = 1,
 ) -> NDArray[np.float64]: ...
 def gait_columns() -> list[str]: ...
+
+# -- path synthesis (crates/linkage-py/src/synthesis.rs) --------------------------------------
+def synth_atlas_build(
+    entries: int, harmonics: int = 8, samples: int = 64, threads: int = 1
+) -> tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.uint64]]: ...
+def synth_atlas_nearest(
+    descriptors: NDArray[np.float32], targets: NDArray[np.float32], k: int, threads: int = 1
+) -> tuple[NDArray[np.int64], NDArray[np.float32], NDArray[np.int64]]: ...
+def synth_descriptors(
+    points: NDArray[np.float64], harmonics: int, closed: bool
+) -> tuple[NDArray[np.float32], NDArray[np.float64]]: ...
+def synth_frame(
+    params: NDArray[np.float64], crossed: bool, harmonics: int, samples: int
+) -> NDArray[np.float64]: ...
+def synth_residuals(
+    params: NDArray[np.float64],
+    crossed: NDArray[np.bool_],
+    targets: NDArray[np.float64],
+    s: NDArray[np.float64],
+) -> NDArray[np.float64]: ...
+def synth_errors(
+    params: NDArray[np.float64],
+    crossed: NDArray[np.bool_],
+    targets: NDArray[np.float64],
+    samples: int = 256,
+    exact: bool = False,
+    closed: bool = True,
+    threads: int = 1,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
+def synth_info(
+    params: NDArray[np.float64],
+    crossed: bool,
+    s_lo: float,
+    s_hi: float,
+    check_samples: int = 2048,
+) -> tuple[str | None, bool, float, float, float, bool]: ...

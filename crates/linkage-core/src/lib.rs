@@ -25,9 +25,10 @@
 //! - `libm`: use `libm` for targets without `std` (e.g. `thumbv7em-none-eabihf`).
 //! - `alloc` (implied by `std`): kinetostatics, which needs a dense linear solve sized by the
 //!   linkage. Firmware builds without it carry none of it.
-//! - `synthesis` (default, implies `alloc`): precision-point synthesis — Burmester motion
-//!   generation ([`BurmesterCurve`], [`centre_point`], [`MotionCandidate`]) and Freudenstein
-//!   function generation ([`FunctionGenerator`]).
+//! - `synthesis` (default, implies `std`): dimensional synthesis — Burmester motion
+//!   generation ([`BurmesterCurve`], [`centre_point`], [`MotionCandidate`]), Freudenstein
+//!   function generation ([`FunctionGenerator`]) and path synthesis ([`Efd`] elliptic Fourier
+//!   descriptors, the [`Atlas`] of four-bars, [`CircuitPath`]).
 //!
 //! # Example
 //! ```
@@ -81,6 +82,20 @@ mod support;
 mod sweep;
 mod tracker;
 mod uniform_sweep;
+
+// Path synthesis (feature `synthesis`, needs `std` for its threads).
+#[cfg(feature = "synthesis")]
+mod atlas;
+#[cfg(feature = "synthesis")]
+mod efd;
+#[cfg(feature = "synthesis")]
+mod path_synthesis;
+#[cfg(feature = "synthesis")]
+pub use atlas::{candidate, nearest, Atlas, AtlasSpec, ENTRY_PARAMS, LENGTH_RANGE};
+#[cfg(feature = "synthesis")]
+pub use efd::{descriptor_len, Efd, Normalisation, MIN_CURVE_POINTS};
+#[cfg(feature = "synthesis")]
+pub use path_synthesis::{CircuitPath, FOOT_STARTS};
 
 /// The repository README's Rust examples, compiled and run as doc tests.
 #[cfg(doctest)]

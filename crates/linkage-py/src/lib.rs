@@ -21,6 +21,7 @@ mod mechanism;
 mod memory;
 mod precision;
 mod support;
+mod synthesis;
 
 /// Maximum joints of a mechanism built from Python.
 pub const CAPACITY: usize = 64;
@@ -63,5 +64,12 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(gait::leg_gait, m)?)?;
     m.add_function(wrap_pyfunction!(gait::four_bar_gaits, m)?)?;
     m.add_function(wrap_pyfunction!(gait::gait_columns, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_atlas_build, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_atlas_nearest, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_descriptors, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_frame, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_residuals, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_errors, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_info, m)?)?;
     Ok(())
 }

@@ -1,0 +1,427 @@
+//! An atlas of normalised four-bars and their coupler curves' shapes, for path synthesis: build
+//! it in parallel, query it for the shapes nearest a target's.
+//!
+//! # Entries
+//! Entry candidates are numbered `0, 1, 2, …`; candidate `i` is a four-bar with the ground
+//! `O = (0, 0)`, `C = (1, 0)` whose crank, coupler and rocker are log-uniform in
+//! [`LENGTH_RANGE`] of the ground, coupler point `(along, left) = coupler·(u, v)` with
+//! `u ∈ [−1, 2]`, `v ∈ [−1.5, 1.5]`, and assembly open for even `i`, crossed for odd `i`
+//! (so mirror images are both present: the mirror of an open linkage in the ground line is the
+//! crossed one with `−left`). The five continuous numbers are the additive recurrence
+//! `frac(½ + i·αⱼ)` with `αⱼ` the powers of the inverse of the plastic-number generalisation for
+//! dimension 5 (Roberts' R-sequence), a low-discrepancy cover of the box that needs nothing but
+//! `i`. Every Grashof class appears.
+//!
+//! A candidate becomes an entry when its whole circuit assembles (a limited crank's as
+//! [`FourBar::circuit`] traces it with the tracker, by the tracker-exact [`FourBarBatch`]; a full
+//! turn on the declared assembly by the [`FourBar::uniform_sweep`] fast path) at every sample, it is not a change point, and its curve
+//! has a shape ([`Efd::normalised`]). An entry keeps its normalised descriptor
+//! ([`Efd::descriptor`], `f32`) and its parameters ([`ENTRY_PARAMS`], `f64`).
+//!
+//! # Determinism
+//! Entries are built in chunks of candidate indices, the chunks shared among threads and put
+//! back in index order: the atlas's bits do not depend on the number of threads.
+
+use alloc::vec::Vec;
+
+use crate::batch::FourBarBatch;
+use crate::efd::{descriptor_len, Efd};
+use crate::error::Error;
+use crate::fourbar::{Assembly, FourBar, GrashofClass, InputRange};
+use crate::scalar::Vec2;
+use crate::uniform_sweep::AngleMode;
+
+/// Link lengths of atlas four-bars relative to the ground: `(least, greatest)`.
+pub const LENGTH_RANGE: (f64, f64) = (0.2, 5.0);
+
+/// Parameters per entry: `crank, coupler, rocker, along, left, assembly` (ground 1; assembly
+/// `0` open, `1` crossed).
+pub const ENTRY_PARAMS: usize = 6;
+
+/// Candidate indices per unit of parallel work.
+const CHUNK: u64 = 2048;
+
+/// How an atlas is made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AtlasSpec {
+    /// Harmonics of the descriptors.
+    pub harmonics: usize,
+    /// Samples of each circuit.
+    pub samples: usize,
+}
+
+impl Default for AtlasSpec {
+    /// 8 harmonics, 64 samples per circuit (ample for 8 harmonics; refinement works on the
+    /// true curve).
+    fn default() -> Self {
+        AtlasSpec {
+            harmonics: 8,
+            samples: 64,
+        }
+    }
+}
+
+/// Atlas entries as flat arrays: `descriptors[i·D .. (i+1)·D]` and
+/// `params[i·ENTRY_PARAMS ..]` of entry `i`, with `D = dim`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Atlas {
+    /// Descriptor length `D` ([`descriptor_len`] of the harmonics).
+    pub dim: usize,
+    /// Normalised descriptors, row-major `(entries, D)`.
+    pub descriptors: Vec<f32>,
+    /// Parameters, row-major `(entries, ENTRY_PARAMS)`.
+    pub params: Vec<f64>,
+    /// Index of the candidate each entry came from.
+    pub candidate: Vec<u64>,
+}
+
+impl Atlas {
+    /// Number of entries.
+    pub fn len(&self) -> usize {
+        self.candidate.len()
+    }
+
+    /// Whether the atlas is empty.
+    pub fn is_empty(&self) -> bool {
+        self.candidate.is_empty()
+    }
+
+    /// Builds an atlas of `entries` entries on `threads` threads (at least one). The result
+    /// does not depend on `threads`.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] for fewer than 1 harmonic or 8 samples.
+    pub fn build(entries: usize, spec: AtlasSpec, threads: usize) -> Result<Atlas, Error> {
+        check_spec(spec)?;
+        let dim = descriptor_len(spec.harmonics);
+        let threads = threads.max(1);
+        let mut atlas = Atlas {
+            dim,
+            ..Atlas::default()
+        };
+        let mut next_chunk = 0u64;
+        while atlas.len() < entries {
+            // A round of chunks, about enough for what is missing (half the candidates or
+            // more become entries), split among the threads and put back in order.
+            let missing = (entries - atlas.len()) as u64;
+            let round = (2 * missing).div_ceil(CHUNK).max(threads as u64);
+            let chunks: Vec<u64> = (next_chunk..next_chunk + round).collect();
+            next_chunk += round;
+            let mut parts: Vec<Atlas> = Vec::with_capacity(chunks.len());
+            std::thread::scope(|scope| {
+                let per = chunks.len().div_ceil(threads);
+                let handles: Vec<_> = chunks
+                    .chunks(per)
+                    .map(|mine| {
+                        scope.spawn(move || {
+                            mine.iter()
+                                .map(|&c| build_chunk(c * CHUNK..(c + 1) * CHUNK, spec))
+                                .collect::<Vec<_>>()
+                        })
+                    })
+                    .collect();
+                for h in handles {
+                    // A worker cannot panic on any input (no indexing past checked lengths);
+                    // should it, its chunks are left out rather than aborting.
+                    if let Ok(v) = h.join() {
+                        parts.extend(v);
+                    }
+                }
+            });
+            for p in parts {
+                atlas.descriptors.extend_from_slice(&p.descriptors);
+                atlas.params.extend_from_slice(&p.params);
+                atlas.candidate.extend_from_slice(&p.candidate);
+            }
+        }
+        atlas.descriptors.truncate(entries * dim);
+        atlas.params.truncate(entries * ENTRY_PARAMS);
+        atlas.candidate.truncate(entries);
+        Ok(atlas)
+    }
+}
+
+fn check_spec(spec: AtlasSpec) -> Result<(), Error> {
+    if spec.harmonics == 0 {
+        return Err(Error::BufferLength {
+            what: "harmonics",
+            expected: 1,
+            got: 0,
+        });
+    }
+    if spec.samples < 8 {
+        return Err(Error::BufferLength {
+            what: "circuit samples",
+            expected: 8,
+            got: spec.samples,
+        });
+    }
+    Ok(())
+}
+
+fn build_chunk(range: core::ops::Range<u64>, spec: AtlasSpec) -> Atlas {
+    let dim = descriptor_len(spec.harmonics);
+    let mut part = Atlas {
+        dim,
+        ..Atlas::default()
+    };
+    let mut desc = alloc::vec![0.0f32; dim];
+    let mut pts = Vec::with_capacity(spec.samples);
+    let mut theta = alloc::vec![0.0; spec.samples];
+    let mut valid = alloc::vec![false; spec.samples];
+    for i in range {
+        let Some(fb) = candidate(i) else { continue };
+        pts.clear();
+        if !circuit_points(&fb, &mut pts, &mut theta, &mut valid) {
+            continue;
+        }
+        let Ok(efd) = Efd::closed(&pts, spec.harmonics) else {
+            continue;
+        };
+        let Ok((norm, _)) = efd.normalised() else {
+            continue;
+        };
+        if norm.descriptor(false, &mut desc).is_err() || desc.iter().any(|v| !v.is_finite()) {
+            continue;
+        }
+        part.descriptors.extend_from_slice(&desc);
+        part.params.extend_from_slice(&[
+            fb.crank,
+            fb.coupler,
+            fb.rocker,
+            fb.along,
+            fb.left,
+            if fb.assembly == Assembly::Open {
+                0.0
+            } else {
+                1.0
+            },
+        ]);
+        part.candidate.push(i);
+    }
+    part
+}
+
+/// The coupler curve of `fb`'s circuit into `pts` (`theta.len()` samples); `false` when a
+/// sample does not assemble.
+///
+/// A full turn is the [`FourBar::uniform_sweep`] fast path on the declared assembly. A limited
+/// crank's circuit is [`FourBar::circuit`]'s (limit to limit on the declared assembly, back on
+/// the other, at [`FourBar::circuit_sample`]'s angles), each half swept by [`FourBarBatch`],
+/// whose rows are by its rule exactly the [`crate::Tracker`]'s at the same angles and ~30×
+/// faster.
+fn circuit_points(
+    fb: &FourBar<f64>,
+    pts: &mut Vec<Vec2<f64>>,
+    theta: &mut [f64],
+    valid: &mut [bool],
+) -> bool {
+    let n = theta.len();
+    pts.resize(n, Vec2::zeros());
+    match fb.input_range() {
+        InputRange::Never => false,
+        InputRange::Full => {
+            let dt = core::f64::consts::TAU / n as f64;
+            fb.uniform_sweep(0.0, dt, 0, AngleMode::Trig, pts).is_ok()
+                && pts.iter().all(|p| p.x.is_finite() && p.y.is_finite())
+        }
+        _ => {
+            let mut split = n;
+            for (k, t) in theta.iter_mut().enumerate() {
+                let Some((angle, second)) = fb.circuit_sample(k, n) else {
+                    return false;
+                };
+                *t = angle;
+                if second && split == n {
+                    split = k;
+                }
+            }
+            let mut other = *fb;
+            other.assembly = match fb.assembly {
+                Assembly::Open => Assembly::Crossed,
+                Assembly::Crossed => Assembly::Open,
+            };
+            for (f, range) in [(fb, 0..split), (&other, split..n)] {
+                let batch = FourBarBatch {
+                    o: core::slice::from_ref(&f.o),
+                    c: core::slice::from_ref(&f.c),
+                    crank: core::slice::from_ref(&f.crank),
+                    coupler: core::slice::from_ref(&f.coupler),
+                    rocker: core::slice::from_ref(&f.rocker),
+                    along: core::slice::from_ref(&f.along),
+                    left: core::slice::from_ref(&f.left),
+                    assembly: core::slice::from_ref(&f.assembly),
+                };
+                let r = range.clone();
+                if batch
+                    .sweep(&theta[r.clone()], &mut pts[r.clone()], &mut valid[r])
+                    .is_err()
+                {
+                    return false;
+                }
+            }
+            valid.iter().all(|&v| v)
+        }
+    }
+}
+
+/// Candidate `i` of the atlas's sequence (see the module); `None` for a change point or a
+/// linkage that never assembles.
+pub fn candidate(i: u64) -> Option<FourBar<f64>> {
+    // Roberts' R₅: φ the root of x⁶ = x + 1, αⱼ = φ^−j.
+    const PHI: f64 = 1.167_303_978_261_418_7;
+    let mut u = [0.0f64; 5];
+    let mut a = 1.0;
+    for v in u.iter_mut() {
+        a /= PHI;
+        let x = 0.5 + (i as f64) * a;
+        *v = x - x.floor();
+    }
+    let (lo, hi) = (LENGTH_RANGE.0.ln(), LENGTH_RANGE.1.ln());
+    let len = |t: f64| (lo + (hi - lo) * t).exp();
+    let (crank, coupler, rocker) = (len(u[0]), len(u[1]), len(u[2]));
+    let along = coupler * (-1.0 + 3.0 * u[3]);
+    let left = coupler * (-1.5 + 3.0 * u[4]);
+    let assembly = if i.is_multiple_of(2) {
+        Assembly::Open
+    } else {
+        Assembly::Crossed
+    };
+    let fb = FourBar::new(1.0, crank, coupler, rocker, (along, left), assembly).ok()?;
+    if fb.grashof() == GrashofClass::ChangePoint || fb.input_range() == InputRange::Never {
+        return None;
+    }
+    Some(fb)
+}
+
+/// The `k` entries nearest (squared Euclidean distance of descriptors) any of `targets`
+/// (`K` rows of `dim`), by brute force over `descriptors` (`N` rows of `dim`) on `threads`
+/// threads: `(entry, squared distance, which target)`, nearest first, ties by entry index.
+///
+/// # Errors
+/// [`Error::BufferLength`] when `dim` is zero or does not divide the arrays' lengths.
+pub fn nearest(
+    descriptors: &[f32],
+    dim: usize,
+    targets: &[f32],
+    k: usize,
+    threads: usize,
+) -> Result<Vec<(usize, f32, usize)>, Error> {
+    if dim == 0 || !descriptors.len().is_multiple_of(dim) || !targets.len().is_multiple_of(dim) {
+        return Err(Error::BufferLength {
+            what: "descriptor rows",
+            expected: dim,
+            got: descriptors.len() % dim.max(1) + targets.len() % dim.max(1),
+        });
+    }
+    let n = descriptors.len() / dim;
+    if k == 0 || n == 0 || targets.is_empty() {
+        return Ok(Vec::new());
+    }
+    let threads = threads.clamp(1, n.div_ceil(4096).max(1));
+    let per = n.div_ceil(threads);
+    let mut best: Vec<(usize, f32, usize)> = Vec::new();
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
+                let rows = t * per..((t + 1) * per).min(n);
+                let part = &descriptors[rows.start * dim..rows.end * dim];
+                scope.spawn(move || scan(part, dim, targets, k, rows.start))
+            })
+            .collect();
+        for h in handles {
+            if let Ok(v) = h.join() {
+                best.extend(v);
+            }
+        }
+    });
+    best.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+    best.truncate(k);
+    Ok(best)
+}
+
+/// One thread's share of [`nearest`]: a sorted short list of the best `k`.
+fn scan(
+    part: &[f32],
+    dim: usize,
+    targets: &[f32],
+    k: usize,
+    offset: usize,
+) -> Vec<(usize, f32, usize)> {
+    let mut best: Vec<(usize, f32, usize)> = Vec::with_capacity(k + 1);
+    let mut worst = f32::INFINITY;
+    for (r, row) in part.chunks_exact(dim).enumerate() {
+        for (t, target) in targets.chunks_exact(dim).enumerate() {
+            let d = squared_distance(row, target);
+            if best.len() < k || d < worst {
+                let at = best.partition_point(|x| x.1 <= d);
+                best.insert(at, (offset + r, d, t));
+                best.truncate(k);
+                if best.len() == k {
+                    worst = best[k - 1].1;
+                }
+            }
+        }
+    }
+    best
+}
+
+/// `Σ (a − b)²` in eight independent lanes (so the compiler can vectorise the sum; the
+/// lanes are added in a fixed order, so the result does not depend on the machine).
+#[inline(always)]
+fn squared_distance(a: &[f32], b: &[f32]) -> f32 {
+    let mut lanes = [0.0f32; 8];
+    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..8 {
+            let e = x[k] - y[k];
+            lanes[k] += e * e;
+        }
+    }
+    let mut tail = 0.0f32;
+    for (x, y) in ra.iter().zip(rb) {
+        let e = x - y;
+        tail += e * e;
+    }
+    ((lanes[0] + lanes[4]) + (lanes[1] + lanes[5]))
+        + ((lanes[2] + lanes[6]) + (lanes[3] + lanes[7]))
+        + tail
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn build_is_the_same_on_any_number_of_threads() {
+        let spec = AtlasSpec {
+            harmonics: 5,
+            samples: 64,
+        };
+        let one = Atlas::build(3000, spec, 1).unwrap();
+        let three = Atlas::build(3000, spec, 3).unwrap();
+        assert_eq!(one.len(), 3000);
+        assert_eq!(one, three);
+        // Every Grashof class but the change point is present.
+        let mut seen = std::collections::HashSet::new();
+        for &i in &one.candidate {
+            seen.insert(candidate(i).unwrap().grashof());
+        }
+        assert_eq!(seen.len(), 5, "{seen:?}");
+    }
+
+    #[test]
+    fn an_entry_is_its_own_nearest() {
+        let spec = AtlasSpec::default();
+        let atlas = Atlas::build(2000, spec, 2).unwrap();
+        let d = atlas.dim;
+        for e in [0, 17, 1999] {
+            let q = &atlas.descriptors[e * d..(e + 1) * d];
+            let hits = nearest(&atlas.descriptors, d, q, 3, 2).unwrap();
+            assert_eq!(hits[0].0, e);
+            assert_eq!(hits[0].1, 0.0);
+            assert!(hits[1].1 >= hits[0].1);
+        }
+    }
+}

@@ -1,0 +1,106 @@
+//! Path synthesis building blocks: circuits are one tracked branch, descriptors are similarity
+//! invariant, the atlas finds a placed entry's own shape.
+
+#![cfg(all(not(target_os = "none"), feature = "synthesis"))]
+
+mod common;
+
+use linkage_core::{
+    candidate, nearest, Assembly, Atlas, AtlasSpec, CircuitPath, Efd, FourBar, GrashofClass,
+    InputRange, Vec2,
+};
+use proptest::prelude::*;
+
+fn fourbar() -> impl Strategy<Value = FourBar<f64>> {
+    (
+        0.2f64..5.0,
+        0.2f64..5.0,
+        0.2f64..5.0,
+        -2.0f64..2.0,
+        -2.0f64..2.0,
+        any::<bool>(),
+    )
+        .prop_filter_map("assembles, not a change point", |(r, b, c, u, v, open)| {
+            let asm = if open {
+                Assembly::Open
+            } else {
+                Assembly::Crossed
+            };
+            let fb = FourBar::new(1.0, r, b, c, (u * b, v * b), asm).ok()?;
+            (fb.input_range() != InputRange::Never && fb.grashof() != GrashofClass::ChangePoint)
+                .then_some(fb)
+        })
+}
+
+proptest! {
+    #![proptest_config(common::config("proptest-regressions/synthesis.txt"))]
+
+    /// The circuit of any assembling four-bar, swept by the tracker, is its closed form on the
+    /// declared assembly from limit to limit and the other assembly back: no branch switch,
+    /// no unassembled sample. And it is the curve `FourBar::circuit` traces.
+    #[test]
+    fn circuits_are_one_tracked_branch(fb in fourbar()) {
+        let path = CircuitPath::new(fb).unwrap();
+        prop_assert!(path.check(512).is_ok(), "{:?}", path.check(512));
+        let n = 301;
+        let mut theta = vec![0.0; n];
+        let mut joints = vec![Vec2::zeros(); 5 * n];
+        prop_assert_eq!(fb.circuit(&mut theta, &mut joints, None).unwrap(), n);
+        let poly = path.polyline(2048);
+        let size = path.size();
+        for k in (0..n).step_by(7) {
+            let p = joints[5 * k + 4];
+            let (d, _) = path.foot(p, &poly).unwrap();
+            // √ε of the size at a crank limit, far below any branch jump.
+            prop_assert!(d <= 1e-6 * size, "sample {k}: {d}");
+        }
+    }
+
+    /// Normalised descriptors do not change under a similarity and a start shift (up to the
+    /// even-harmonic sign), and the atlas finds a placed entry as its own nearest shape.
+    #[test]
+    fn placed_entry_is_found(idx in 0u64..4000, angle in -3.0f64..3.0, scale in 0.01f64..100.0,
+                             shift in 0usize..128) {
+        let Some(fb) = candidate(idx) else { return Ok(()) };
+        let path = CircuitPath::new(fb).unwrap();
+        let (s, c) = angle.sin_cos();
+        let mut pts: Vec<_> = path
+            .polyline(128)
+            .into_iter()
+            .map(|p| Vec2::new(c * p.x - s * p.y + 7.0, s * p.x + c * p.y - 3.0) * scale)
+            .collect();
+        pts.rotate_left(shift);
+        let spec = AtlasSpec::default();
+        let Ok(efd) = Efd::closed(&pts, spec.harmonics) else { return Ok(()) };
+        let Ok((norm, _)) = efd.normalised() else { return Ok(()) };
+        let dim = linkage_core::descriptor_len(spec.harmonics);
+        let mut q = vec![0.0f32; 2 * dim];
+        norm.descriptor(false, &mut q[..dim]).unwrap();
+        norm.descriptor(true, &mut q[dim..]).unwrap();
+        let direct = Efd::closed(&path.polyline(128), spec.harmonics).unwrap().normalised().unwrap().0;
+        let mut d0 = vec![0.0f32; dim];
+        direct.descriptor(false, &mut d0).unwrap();
+        let best = (0..2)
+            .map(|j| q[j * dim..(j + 1) * dim].iter().zip(&d0).map(|(a, b)| (a - b).powi(2)).sum::<f32>())
+            .fold(f32::INFINITY, f32::min);
+        prop_assert!(best < 1e-8, "{best}");
+    }
+}
+
+#[test]
+fn atlas_query_finds_each_entry() {
+    let atlas = Atlas::build(5000, AtlasSpec::default(), 2).unwrap();
+    let d = atlas.dim;
+    for e in (0..atlas.len()).step_by(997) {
+        let hits = nearest(
+            &atlas.descriptors,
+            d,
+            &atlas.descriptors[e * d..(e + 1) * d],
+            1,
+            2,
+        )
+        .unwrap();
+        assert_eq!(hits[0].0, e);
+    }
+    assert!(nearest(&atlas.descriptors, 0, &[], 1, 1).is_err());
+}

@@ -1,0 +1,834 @@
+"""Dimensional synthesis of four-bars for path generation: the linkage whose coupler curve
+passes through given points.
+
+``path(points)`` normalises the target's elliptic Fourier descriptors, looks up the nearest
+shapes in an :class:`Atlas` of normalised four-bars, places each in the target's frame, refines
+the best by a least-squares fit of the true point-to-curve distance and, where the atlas does
+not cover the target (an open curve, or no close match), searches globally by differential
+evolution over the batch evaluator. Every candidate's circuit is swept by the tracker
+(``check``) so none switches branch or passes an unassemblable sample; see ``docs/synthesis.md``.
+
+Precision-point synthesis lives here too: :func:`motion` (Burmester, 3 or 4 poses) and
+:func:`function` (Freudenstein), with their curves and types (``docs/precision-points.md``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import json
+import math
+import os
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage import _core
+from linkage._arrays import as_count, as_finite, as_flag, as_point, as_real_array
+from linkage._core import LinkageError
+from linkage._fourbar import FourBar
+from linkage._precision import (
+    Dyad,
+    FunctionGenerator,
+    MotionCandidate,
+    centre_point_curve,
+    chebyshev_points,
+    circle_point_curve,
+    function,
+    motion,
+)
+from linkage.catalog import cache_dir
+
+__all__ = [
+    "MIN_POINTS",
+    "Atlas",
+    "Candidate",
+    "Dyad",
+    "FunctionGenerator",
+    "MotionCandidate",
+    "centre_point_curve",
+    "chebyshev_points",
+    "circle_point_curve",
+    "default_atlas",
+    "function",
+    "motion",
+    "path",
+    "read_points",
+]
+
+MIN_POINTS = 5
+"""Fewest target points: a four-bar's coupler curve has five shape parameters beyond placement."""
+
+DEFAULT_ENTRIES = 200_000
+"""Entries of the default atlas (built once into the cache folder)."""
+
+ATLAS_FORMAT = 2
+"""Bumped whenever the stored atlas's content or meaning changes."""
+
+Float2D = NDArray[np.float64]
+
+
+# -- the atlas ------------------------------------------------------------------------------
+
+
+@dataclass
+class Atlas:
+    """Normalised four-bars (ground ``O = (0, 0)``, ``C = (1, 0)``) and the normalised elliptic
+    Fourier descriptors of their circuits' coupler curves.
+
+    ``descriptors`` is ``(N, D)`` float32 (``D = 1 + 4(harmonics − 1)``), ``params`` ``(N, 6)``
+    float64 ``crank, coupler, rocker, along, left, crossed``. Stored as a folder of ``.npy``
+    files (memory-mapped on load) and a ``meta.json``.
+    """
+
+    descriptors: NDArray[np.float32]
+    params: NDArray[np.float64]
+    harmonics: int
+    samples: int
+
+    def __len__(self) -> int:
+        return int(self.descriptors.shape[0])
+
+    @classmethod
+    def build(
+        cls, entries: int, harmonics: int = 8, samples: int = 64, threads: int | None = None
+    ) -> Atlas:
+        """Build an atlas of ``entries`` entries on ``threads`` threads (default: every core);
+        the result does not depend on ``threads``."""
+        n = as_count(entries, "entries")
+        h = as_count(harmonics, "harmonics")
+        m = as_count(samples, "samples", 8)
+        desc, params, _ = _core.synth_atlas_build(n, h, m, _threads(threads))
+        return cls(desc, params, h, m)
+
+    def save(self, folder: str | os.PathLike[str]) -> Path:
+        """Write the atlas to ``folder`` (created; files written there only)."""
+        out = Path(folder)
+        out.mkdir(parents=True, exist_ok=True)
+        np.save(out / "descriptors.npy", np.ascontiguousarray(self.descriptors))
+        np.save(out / "params.npy", np.ascontiguousarray(self.params))
+        meta = {
+            "format": ATLAS_FORMAT,
+            "harmonics": self.harmonics,
+            "samples": self.samples,
+            "entries": len(self),
+        }
+        (out / "meta.json").write_text(json.dumps(meta))
+        return out
+
+    @classmethod
+    def load(cls, folder: str | os.PathLike[str]) -> Atlas:
+        """An atlas written by :meth:`save`, memory-mapped."""
+        src = Path(folder)
+        try:
+            meta = json.loads((src / "meta.json").read_text())
+            desc = np.load(src / "descriptors.npy", mmap_mode="r")
+            params = np.load(src / "params.npy", mmap_mode="r")
+        except (OSError, ValueError) as e:
+            raise LinkageError(f"{src} is not a readable atlas: {e}") from None
+        if (
+            meta.get("format") != ATLAS_FORMAT
+            or desc.dtype != np.float32
+            or desc.ndim != 2
+            or params.shape != (desc.shape[0], 6)
+            or desc.shape[1] != 1 + 4 * (int(meta["harmonics"]) - 1)
+        ):
+            raise LinkageError(f"{src} is not an atlas of format {ATLAS_FORMAT}")
+        return cls(desc, params, int(meta["harmonics"]), int(meta["samples"]))
+
+    def nearest(
+        self, targets: NDArray[np.float32], k: int, threads: int | None = None
+    ) -> tuple[NDArray[np.int64], NDArray[np.float32], NDArray[np.int64]]:
+        """The ``k`` entries nearest any row of ``targets``: ``(entry, squared distance,
+        target row)``, nearest first."""
+        q = np.asarray(targets)
+        if q.dtype.kind not in "iuf":
+            raise TypeError(f"targets must be a numeric array, got dtype {q.dtype}")
+        q = np.ascontiguousarray(np.atleast_2d(q), dtype=np.float32)
+        if q.ndim != 2 or q.shape[1] != self.descriptors.shape[1]:
+            raise LinkageError(
+                f"targets must have shape (m, {self.descriptors.shape[1]}), got {q.shape}"
+            )
+        return _core.synth_atlas_nearest(self.descriptors, q, as_count(k, "k"), _threads(threads))
+
+
+def _threads(threads: int | None) -> int:
+    if threads is None:
+        return max(1, min(os.cpu_count() or 1, 64))
+    return min(as_count(threads, "threads"), 256)
+
+
+def default_atlas(entries: int = DEFAULT_ENTRIES, harmonics: int = 8) -> Atlas:
+    """The default atlas, built on first use into the cache folder (``$LINKAGE_CACHE_DIR``,
+    else the user's cache folder) and memory-mapped from there afterwards."""
+    core = getattr(_core, "__file__", "") or ""
+    key = hashlib.sha256(
+        json.dumps(
+            [ATLAS_FORMAT, entries, harmonics, os.path.getsize(core) if core else 0]
+        ).encode()
+    ).hexdigest()[:16]
+    folder = cache_dir() / f"atlas-{key}"
+    if (folder / "meta.json").exists():
+        try:
+            return Atlas.load(folder)
+        except LinkageError:
+            pass  # a corrupt cache is rebuilt
+    atlas = Atlas.build(entries, harmonics)
+    try:
+        tmp = folder.with_name(folder.name + f".tmp{os.getpid()}")
+        atlas.save(tmp)
+        os.replace(tmp, folder) if not folder.exists() else None
+    except OSError:
+        pass  # a cache that cannot be written is no error: the atlas is in memory
+    return atlas
+
+
+# -- candidates -----------------------------------------------------------------------------
+
+
+@dataclass
+class Candidate:
+    """One linkage found by :func:`path`, placed in the target's frame.
+
+    ``error`` and ``rms`` are the largest and root-mean-square distance from the target points
+    to the candidate's coupler curve (its circuit, traced whole), in the target's units;
+    ``back`` the largest distance from the curve back to the target polyline (closed targets:
+    the two together bound the Hausdorff distance). ``crank_range`` is the crank interval
+    (radians, absolute) that traces the matched part; ``through_limit`` whether tracing it takes
+    the crank through one of its limits (it must reverse there; never for a full-turn crank).
+    """
+
+    linkage: FourBar
+    error: float
+    rms: float
+    back: float
+    crank_range: tuple[float, float]
+    full_turn: bool
+    grashof: str
+    min_transmission: float
+    through_limit: bool
+    source: str
+    params: NDArray[np.float64] = field(repr=False)
+
+    @property
+    def min_transmission_deg(self) -> float:
+        """:attr:`min_transmission` in degrees."""
+        return math.degrees(self.min_transmission)
+
+
+# -- input ----------------------------------------------------------------------------------
+
+
+def read_points(points: str | os.PathLike[str] | Any) -> Float2D:
+    """Target points as an ``(n, 2)`` float64 array, from an array-like or a CSV file (two
+    numeric columns, an optional header line).
+
+    Raises
+    ------
+    TypeError
+        For a non-numeric array.
+    LinkageError
+        For a wrong shape, too few points, a non-finite value or an unreadable file.
+    """
+    if isinstance(points, (str, os.PathLike)):
+        p = Path(points)
+        try:
+            text = p.read_text()
+        except OSError as e:
+            raise LinkageError(f"cannot read {p}: {e.strerror or e}") from None
+        rows = []
+        for k, line in enumerate(text.splitlines(), 1):
+            cells = [c.strip() for c in line.replace(";", ",").split(",") if c.strip()]
+            if not cells or cells[0].startswith("#"):
+                continue
+            try:
+                rows.append([float(c) for c in cells])
+            except ValueError:
+                if not rows and k == 1:
+                    continue  # a header line
+                raise LinkageError(f"{p}:{k}: not two numbers: {line.strip()!r}") from None
+        arr = np.array(rows, dtype=np.float64) if rows else np.zeros((0, 2))
+        if arr.ndim != 2 or arr.shape[1] != 2:
+            raise LinkageError(f"{p}: every row must hold two numbers (x, y)")
+    else:
+        arr = np.asarray(as_real_array(points, "points"), dtype=np.float64)
+        if arr.ndim != 2 or arr.shape[1] != 2:
+            raise LinkageError(f"points must have shape (n, 2), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        k = int(np.argwhere(~np.isfinite(arr))[0][0])
+        raise LinkageError(f"points must be finite: point {k} is {arr[k].tolist()}")
+    return np.ascontiguousarray(arr)
+
+
+def _clean(points: Float2D, closed: bool) -> Float2D:
+    """Drop repeated consecutive points (and a closing repeat of the first); check there are
+    enough and that a closed target encloses something."""
+    keep = np.ones(len(points), dtype=bool)
+    keep[1:] = np.any(points[1:] != points[:-1], axis=1)
+    pts = points[keep]
+    if closed and len(pts) > 1 and np.array_equal(pts[0], pts[-1]):
+        pts = pts[:-1]
+    if len(pts) < MIN_POINTS:
+        raise LinkageError(
+            f"path synthesis needs at least {MIN_POINTS} distinct points, got {len(pts)}"
+        )
+    centred = pts - pts.mean(axis=0)
+    sv = np.linalg.svd(centred, compute_uv=False)
+    if sv[0] == 0 or (closed and sv[1] <= 1e-12 * sv[0]):
+        raise LinkageError(
+            "the target points are all collinear: a closed curve through them encloses nothing"
+            if closed
+            else "the target points all coincide"
+        )
+    return np.ascontiguousarray(pts)
+
+
+# -- the search -----------------------------------------------------------------------------
+
+
+def _placed(
+    entry: NDArray[np.float64],
+    frame_t: NDArray[np.float64],
+    frame_c: NDArray[np.float64],
+    flip: bool,
+) -> NDArray[np.float64]:
+    """An atlas entry's linkage moved by the similarity that takes its curve's normalisation
+    frame onto the target's (``flip``: the other end of the major axis)."""
+    k = frame_t[2] / frame_c[2]
+    phi = frame_t[3] - frame_c[3] + (math.pi if flip else 0.0)
+    rot = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+
+    def move(p: Sequence[float]) -> NDArray[np.float64]:
+        out: NDArray[np.float64] = frame_t[:2] + k * rot @ (np.asarray(p) - frame_c[:2])
+        return out
+
+    o, c = move((0.0, 0.0)), move((1.0, 0.0))
+    r, b, rk, along, left = (float(x) for x in entry[:5])
+    return np.array([o[0], o[1], c[0], c[1], k * r, k * b, k * rk, k * along, k * left])
+
+
+def _errors(
+    params: Float2D,
+    crossed: NDArray[np.bool_],
+    target: Float2D,
+    closed: bool,
+    *,
+    samples: int = 256,
+    exact: bool = False,
+    threads: int = 1,
+) -> tuple[Float2D, Float2D]:
+    return _core.synth_errors(
+        np.ascontiguousarray(params, dtype=np.float64),
+        np.ascontiguousarray(crossed, dtype=bool),
+        target,
+        samples=samples,
+        exact=exact,
+        closed=closed,
+        threads=threads,
+    )
+
+
+def _refine(
+    x0: NDArray[np.float64],
+    crossed: bool,
+    target: Float2D,
+    s0: NDArray[np.float64],
+    size: float,
+    bounds: tuple[NDArray[np.float64], NDArray[np.float64]],
+    max_nfev: int,
+) -> NDArray[np.float64]:
+    """Least-squares fit of the true point-to-curve distance: unknowns the nine parameters and
+    each target point's circuit parameter, residuals ``P(s_i) − t_i`` evaluated in Rust."""
+    # scipy.optimize costs ~0.3 s to import: only when a fit runs.
+    from scipy.optimize import least_squares  # type: ignore[import-untyped]  # noqa: PLC0415
+
+    n = len(target)
+    penalty = 10.0 * size
+    steps = np.concatenate([np.full(9, 1e-6 * size), [1e-6]])
+
+    def batch(rows: NDArray[np.float64]) -> NDArray[np.float64]:
+        m = len(rows)
+        r = _core.synth_residuals(
+            np.ascontiguousarray(rows[:, :9]),
+            np.full(m, crossed),
+            target,
+            np.ascontiguousarray(rows[:, 9:]),
+        ).reshape(m, -1)
+        out: NDArray[np.float64] = np.where(np.isfinite(r), r, penalty)
+        return out
+
+    def fun(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        out: NDArray[np.float64] = batch(x[None, :])[0]
+        return out
+
+    def jac(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        # Central differences of all ten directions (nine parameters, then every s at once:
+        # s_i moves residual i only) in one batched call.
+        d = np.zeros((10, 9 + n))
+        d[np.arange(9), np.arange(9)] = steps[:9]
+        d[9, 9:] = steps[9]
+        r = batch(np.concatenate([x + d, x - d]))
+        g = (r[:10] - r[10:]) / (2 * steps[:, None])
+        j = np.zeros((2 * n, 9 + n))
+        j[:, :9] = g[:9].T
+        rows = np.arange(n)
+        j[2 * rows, 9 + rows] = g[9, 0::2]
+        j[2 * rows + 1, 9 + rows] = g[9, 1::2]
+        return j
+
+    lo = np.concatenate([bounds[0], np.full(n, -np.inf)])
+    hi = np.concatenate([bounds[1], np.full(n, np.inf)])
+    x = np.concatenate([np.clip(x0, bounds[0] + 1e-12 * size, bounds[1] - 1e-12 * size), s0])
+    # MINPACK's Levenberg-Marquardt when only the lengths' positivity bounds the fit (a
+    # non-positive length gives the penalty residual); the bounded trust region with an
+    # iterative solver otherwise. Neither calls a multithreaded LAPACK factorisation, which
+    # oversubscribed a shared machine's cores by 50x in a measured run.
+    if np.all(np.isinf(lo[:4])) and np.all(np.isinf(hi[:9])) and np.all(lo[4:7] < 1e-6 * size):
+        res = least_squares(
+            fun,
+            x,
+            jac=jac,
+            method="lm",
+            x_scale="jac",
+            ftol=1e-15,
+            xtol=1e-15,
+            gtol=1e-15,
+            max_nfev=max_nfev,
+        )
+    else:
+        res = least_squares(
+            fun,
+            x,
+            jac=jac,
+            bounds=(lo, hi),
+            method="trf",
+            x_scale="jac",
+            tr_solver="lsmr",
+            ftol=1e-15,
+            xtol=1e-15,
+            gtol=1e-15,
+            max_nfev=max_nfev,
+        )
+    out: NDArray[np.float64] = res.x[:9]
+    return out
+
+
+def _arc(feet: NDArray[np.float64], closed: bool) -> tuple[float, float]:
+    """The circuit-parameter arc that holds every foot: the whole circuit for a closed target,
+    else the complement of the largest gap between feet."""
+    if closed:
+        return (0.0, 2 * math.pi)
+    s = np.sort(np.mod(feet, 2 * math.pi))
+    gaps = np.diff(np.concatenate([s, [s[0] + 2 * math.pi]]))
+    g = int(np.argmax(gaps))
+    start = s[(g + 1) % len(s)]
+    end = s[g]
+    if end < start:
+        end += 2 * math.pi
+    return (float(start), float(end))
+
+
+def _de(
+    target: Float2D,
+    closed: bool,
+    size: float,
+    centre: NDArray[np.float64],
+    seed: int,
+    maxiter: int,
+    threads: int,
+    bar: Any,
+    keep: int = 4,
+) -> list[tuple[NDArray[np.float64], bool]]:
+    """Differential evolution over placed linkages (both assemblies), the population evaluated
+    in one batch call per generation."""
+    from scipy.optimize import differential_evolution  # noqa: PLC0415 (as above)
+
+    span = 3.0 * size
+    box = [
+        (centre[0] - span, centre[0] + span),
+        (centre[1] - span, centre[1] + span),
+        (centre[0] - span, centre[0] + span),
+        (centre[1] - span, centre[1] + span),
+        (0.05 * size, 4 * size),
+        (0.05 * size, 6 * size),
+        (0.05 * size, 6 * size),
+        (-span, span),
+        (-span, span),
+    ]
+    found = []
+    for crossed in (False, True):
+
+        def cost(pop: NDArray[np.float64], crossed: bool = crossed) -> NDArray[np.float64]:
+            params = np.ascontiguousarray(pop.T)
+            e, _ = _errors(
+                params, np.full(len(params), crossed), target, closed, samples=128, threads=threads
+            )
+            f = np.maximum(e[:, 0], e[:, 2]) if closed else e[:, 0]
+            return np.where(np.isfinite(f), f, 100.0 * size)
+
+        def step(*_: Any, **__: Any) -> bool:
+            if bar is not None:
+                bar.update(1)
+            return False
+
+        r = differential_evolution(
+            cost,
+            box,
+            popsize=15,
+            maxiter=maxiter,
+            tol=1e-12,
+            seed=seed + int(crossed),
+            vectorized=True,
+            updating="deferred",
+            polish=False,
+            callback=step,
+        )
+        # The best few distinct members of the last generation, for least squares to finish.
+        order = np.argsort(r.population_energies, kind="stable")
+        for i in order[:keep]:
+            found.append((np.asarray(r.population[i], dtype=np.float64), crossed))
+    return found
+
+
+def path(
+    points: str | os.PathLike[str] | Any,
+    closed: bool = True,
+    top: int = 5,
+    *,
+    atlas: Atlas | str | os.PathLike[str] | None = None,
+    refine: int = 8,
+    global_search: bool | None = None,
+    full_turn: bool = False,
+    min_transmission: float = 0.0,
+    lengths: tuple[float, float] | None = None,
+    pivots: tuple[tuple[float, float], tuple[float, float]] | None = None,
+    tol: float = 1e-3,
+    maxiter: int = 150,
+    seed: int = 0,
+    threads: int | None = None,
+    progress: bool = False,
+) -> list[Candidate]:
+    """Four-bars whose coupler curve passes through ``points``, best (smallest ``error``) first.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like or path of a CSV file
+        Target points in order along the curve, any position, orientation and scale.
+    closed : bool
+        Whether the points go round a closed curve (else: a part of one, matched anywhere on a
+        candidate's circuit).
+    top : int
+        Most candidates returned.
+    atlas : Atlas, folder or None
+        The atlas (default: :func:`default_atlas`). Open targets do not use it.
+    refine : int
+        Atlas matches refined by least squares.
+    global_search : bool or None
+        Run differential evolution; ``None``: when the target is open or the best atlas
+        candidate's error exceeds ``tol`` of the target's size.
+    full_turn, min_transmission, lengths, pivots
+        Constraints: a crank that turns fully, a transmission angle at least this far from a
+        toggle (radians) over the matched part, every link length within ``lengths``, both
+        ground pivots inside the box ``pivots = ((xmin, ymin), (xmax, ymax))``.
+
+    Raises
+    ------
+    TypeError
+        For non-numeric points.
+    LinkageError
+        For a wrong shape, fewer than :data:`MIN_POINTS` distinct points, non-finite values, or
+        a closed target whose points are all collinear.
+    """
+    closed = as_flag(closed, "closed")
+    top = as_count(top, "top")
+    refine = as_count(refine, "refine", 0)
+    maxiter = as_count(maxiter, "maxiter")
+    seed = as_count(seed, "seed", 0)
+    tol = as_finite(tol, "tol")
+    min_transmission = as_finite(min_transmission, "min_transmission")
+    full_turn = as_flag(full_turn, "full_turn")
+    progress = as_flag(progress, "progress")
+    if global_search is not None:
+        global_search = as_flag(global_search, "global_search")
+    if lengths is not None:
+        lengths = _pair(lengths, "lengths")
+    if pivots is not None:
+        if isinstance(pivots, (str, bytes)) or np.ndim(pivots) == 0 or len(pivots) != 2:
+            raise TypeError("pivots must be ((xmin, ymin), (xmax, ymax))")
+        pivots = (as_point(pivots[0], "pivots[0]"), as_point(pivots[1], "pivots[1]"))
+    target = _clean(read_points(points), closed)
+    nthreads = _threads(threads)
+    centre = target.mean(axis=0)
+    size = float(np.sqrt(np.mean(np.sum((target - centre) ** 2, axis=1))))
+    bounds = _bounds(lengths, pivots, size)
+    bar = _bar(progress)
+    pool: list[tuple[NDArray[np.float64], bool, str]] = []
+    if closed:
+        at = (
+            atlas
+            if isinstance(atlas, Atlas)
+            else (Atlas.load(atlas) if atlas is not None else default_atlas())
+        )
+        variants, frame_t = _core.synth_descriptors(target, at.harmonics, True)
+        k = min(max(4 * top, 4 * refine, 16), len(at))
+        idx, _, _ = at.nearest(variants, k, nthreads)
+        placed, crossed = [], []
+        for i in idx:
+            entry = np.asarray(at.params[int(i)], dtype=np.float64)
+            base = np.array([0.0, 0.0, 1.0, 0.0, *entry[:5]])
+            try:
+                frame_c = _core.synth_frame(base, bool(entry[5]), at.harmonics, at.samples)
+            except LinkageError:
+                continue
+            for flip in (False, True):
+                placed.append(_placed(entry, frame_t, frame_c, flip))
+                crossed.append(bool(entry[5]))
+        if placed:
+            p = np.array(placed)
+            cr = np.array(crossed)
+            e, _ = _errors(p, cr, target, True, threads=nthreads)
+            score = np.where(np.isfinite(e[:, 0]), np.maximum(e[:, 0], e[:, 2]), np.inf)
+            order = np.argsort(score, kind="stable")
+            pool += [
+                (p[j], bool(cr[j]), "atlas")
+                for j in order[: max(refine, top)]
+                if np.isfinite(score[j])
+            ]
+    found = _finish(pool, target, closed, size, bounds, refine, nthreads, bar, top)
+    run_global = (
+        global_search
+        if global_search is not None
+        else (not closed or not found or min(c.error for c in found) > tol * size)
+    )
+    if run_global:
+        de = _de(target, closed, size, centre, seed, maxiter, nthreads, bar)
+        found += _finish(
+            [(x, c, "global") for x, c in de], target, closed, size, bounds, len(de), nthreads, bar
+        )
+    if bar is not None:
+        bar.close()
+    ok = [c for c in found if _meets(c, full_turn, min_transmission, lengths, pivots)]
+    ok.sort(key=lambda c: (c.error, c.rms))
+    unique: list[Candidate] = []
+    for c in ok:
+        if all(np.max(np.abs(c.params - u.params)) > 1e-6 * size for u in unique):
+            unique.append(c)
+    return unique[:top]
+
+
+def _pair(value: Any, name: str) -> tuple[float, float]:
+    a, b = as_point(value, name)
+    return a, b
+
+
+def _bounds(
+    lengths: tuple[float, float] | None,
+    pivots: tuple[tuple[float, float], tuple[float, float]] | None,
+    size: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    lo = np.array([-np.inf] * 4 + [1e-9 * size] * 3 + [-np.inf] * 2)
+    hi = np.full(9, np.inf)
+    if lengths is not None:
+        a, b = float(lengths[0]), float(lengths[1])
+        if not (0 < a < b):
+            raise LinkageError(
+                f"lengths must be (least, greatest) with 0 < least < greatest, got {lengths}"
+            )
+        lo[4:7], hi[4:7] = a, b
+    if pivots is not None:
+        (x0, y0), (x1, y1) = pivots
+        if not (x0 < x1 and y0 < y1):
+            raise LinkageError(f"pivots must be ((xmin, ymin), (xmax, ymax)), got {pivots}")
+        lo[[0, 2]], hi[[0, 2]] = x0, x1
+        lo[[1, 3]], hi[[1, 3]] = y0, y1
+    return lo, hi
+
+
+def _bar(progress: bool) -> Any:
+    if not progress:
+        return None
+    try:
+        tqdm = importlib.import_module("tqdm").tqdm
+    except ImportError:
+        return None
+    return tqdm(desc="synthesis", unit="step", leave=False)
+
+
+def _finish(
+    pool: list[tuple[NDArray[np.float64], bool, str]],
+    target: Float2D,
+    closed: bool,
+    size: float,
+    bounds: tuple[NDArray[np.float64], NDArray[np.float64]],
+    refine: int,
+    threads: int,
+    bar: Any,
+    enough: int | None = None,
+) -> list[Candidate]:
+    """Refine the first ``refine`` of ``pool``, then measure and check every one; stop early
+    once ``enough`` distinct candidates draw the target exactly (to 1e-10 of its size)."""
+    out: list[Candidate] = []
+    exact: list[NDArray[np.float64]] = []
+    for k, (x, crossed, source) in enumerate(pool):
+        if enough is not None and len(exact) >= enough:
+            break
+        if k < refine:
+            # Rounds of least squares, each from every target point's true nearest curve point:
+            # where the curve crosses itself a first guess may put a point on the wrong pass.
+            for _ in range(3):
+                e, feet = _errors(
+                    x[None, :], np.array([crossed]), target, closed, samples=512, exact=True
+                )
+                if not np.all(np.isfinite(feet)) or e[0, 0] <= 1e-10 * size:
+                    break
+                try:
+                    x = _refine(x, crossed, target, feet[0], size, bounds, 60)
+                except (ValueError, LinkageError):
+                    break
+            if bar is not None:
+                bar.update(1)
+        cand = _measure(x, crossed, target, closed, source, threads)
+        if cand is not None:
+            out.append(cand)
+            if cand.error <= 1e-10 * size and all(
+                np.max(np.abs(cand.params - e)) > 1e-6 * size for e in exact
+            ):
+                exact.append(cand.params)
+    return out
+
+
+def _measure(
+    x: NDArray[np.float64], crossed: bool, target: Float2D, closed: bool, source: str, threads: int
+) -> Candidate | None:
+    """A checked candidate (``None`` when its circuit does not assemble throughout or the
+    tracker leaves it)."""
+    e, feet = _errors(x[None, :], np.array([crossed]), target, closed, samples=2048, exact=True)
+    if not np.all(np.isfinite(e)):
+        return None
+    lo_s, hi_s = _arc(feet[0], closed)
+    try:
+        problem, full, th_lo, th_hi, mu, through = _core.synth_info(x, crossed, lo_s, hi_s)
+        fb = FourBar(
+            crank=x[4],
+            coupler=x[5],
+            rocker=x[6],
+            point=(x[7], x[8]),
+            assembly="crossed" if crossed else "open",
+            o=(x[0], x[1]),
+            c=(x[2], x[3]),
+        )
+    except LinkageError:
+        return None
+    if problem is not None:
+        return None
+    return Candidate(
+        linkage=fb,
+        error=float(e[0, 0]),
+        rms=float(e[0, 1]),
+        back=float(e[0, 2]),
+        crank_range=(th_lo, th_hi),
+        full_turn=full,
+        grashof=fb.grashof(),
+        min_transmission=mu,
+        through_limit=through,
+        source=source,
+        params=x.copy(),
+    )
+
+
+def _meets(
+    c: Candidate,
+    full_turn: bool,
+    min_transmission: float,
+    lengths: tuple[float, float] | None,
+    pivots: tuple[tuple[float, float], tuple[float, float]] | None,
+) -> bool:
+    if full_turn and not c.full_turn:
+        return False
+    if c.min_transmission < min_transmission:
+        return False
+    if lengths is not None:
+        links = (c.linkage.ground, c.linkage.crank, c.linkage.coupler, c.linkage.rocker)
+        if any(not (lengths[0] <= v <= lengths[1]) for v in links):
+            return False
+    if pivots is not None:
+        (x0, y0), (x1, y1) = pivots
+        for px, py in (c.linkage.o, c.linkage.c):
+            if not (x0 <= px <= x1 and y0 <= py <= y1):
+                return False
+    return True
+
+
+def command(args: Any) -> int:
+    """``linkage synth curve.csv``: print the candidates as a table with units."""
+    if int(args.top) < 1:
+        raise LinkageError(f"--top must be at least 1, got {args.top}")
+    t0 = time.perf_counter()
+    found = path(
+        args.curve,
+        closed=not args.open,
+        top=int(args.top),
+        full_turn=bool(args.full_turn),
+        progress=not args.quiet,
+    )
+    took = time.perf_counter() - t0
+    u = f" {args.units}" if args.units else ""
+    if not found:
+        print(f"no valid four-bar found for {args.curve} ({took:.1f} s)")
+        return 1
+    print(
+        f"{len(found)} four-bar(s) for {args.curve}, best first ({took:.1f} s; errors are the "
+        f"largest / RMS distance of the target points to the coupler curve{u and ', in' + u}):"
+    )
+    head = (
+        "#",
+        f"error{u}",
+        f"rms{u}",
+        "class",
+        "crank range (deg)",
+        "min μ (deg)",
+        "O",
+        "C",
+        "crank",
+        "coupler",
+        "rocker",
+        "point (along, left)",
+        "assembly",
+    )
+    rows = [head]
+    for k, c in enumerate(found, 1):
+        fb = c.linkage
+        lo, hi = (math.degrees(v) for v in c.crank_range)
+        rows.append(
+            (
+                str(k),
+                f"{c.error:.3g}",
+                f"{c.rms:.3g}",
+                c.grashof,
+                f"{lo:.1f} … {hi:.1f}",
+                f"{c.min_transmission_deg:.1f}",
+                f"({fb.o[0]:.4g}, {fb.o[1]:.4g})",
+                f"({fb.c[0]:.4g}, {fb.c[1]:.4g})",
+                f"{fb.crank:.4g}",
+                f"{fb.coupler:.4g}",
+                f"{fb.rocker:.4g}",
+                f"({fb.point[0]:.4g}, {fb.point[1]:.4g})",
+                fb.assembly,
+            )
+        )
+    widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
+    for r in rows:
+        print("  ".join(cell.rjust(w) for cell, w in zip(r, widths)))
+    return 0
+
+
+def timed(fn: Any, *args: Any, **kw: Any) -> tuple[Any, float]:
+    """``fn(*args, **kw)`` and its wall time in seconds (for the benchmark and CLI)."""
+    t0 = time.perf_counter()
+    out = fn(*args, **kw)
+    return out, time.perf_counter() - t0

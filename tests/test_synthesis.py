@@ -1,0 +1,259 @@
+"""Path synthesis (``linkage.synthesis``): exact recovery of four-bar curves under any
+placement, open arcs, validity of every candidate, bad input."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import linkage
+from linkage import synthesis
+from linkage.synthesis import Atlas
+
+
+@pytest.fixture(scope="module")
+def atlas() -> Atlas:
+    # Small: the default (200,000 entries) is for users; 40,000 covers the test linkages.
+    return Atlas.build(40_000, threads=2)
+
+
+def placed(
+    points: np.ndarray, rng: np.random.Generator, roll: bool = True
+) -> tuple[np.ndarray, float]:
+    """``points`` under a random rotation, scale, translation and (``roll``) starting point."""
+    ang = rng.uniform(-math.pi, math.pi)
+    k = 10 ** rng.uniform(-2, 2)
+    rot = np.array([[math.cos(ang), -math.sin(ang)], [math.sin(ang), math.cos(ang)]])
+    out = k * points @ rot.T + rng.uniform(-100, 100, 2)
+    return (np.roll(out, int(rng.integers(len(out))), axis=0) if roll else out), k
+
+
+def size_of(points: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(np.sum((points - points.mean(0)) ** 2, 1))))
+
+
+def tracked_distance(fb: linkage.FourBar, target: np.ndarray, n: int = 20001) -> float:
+    """Largest target-to-curve distance against the tracker's own circuit sweep (a densely
+    sampled polyline): an independent measure of a candidate's error."""
+    curve = fb.circuit(n).point
+    assert np.all(np.isfinite(curve)), "the tracker's circuit has unassembled samples"
+    a, b = curve[:-1], curve[1:]
+    ab = b - a
+    worst = 0.0
+    for p in target:
+        u = np.clip(np.sum((p - a) * ab, 1) / np.maximum(np.sum(ab * ab, 1), 1e-300), 0, 1)
+        worst = max(worst, float(np.min(np.hypot(*(a + ab * u[:, None] - p).T))))
+    return worst
+
+
+CATALOGUE = ["hoecken", "chebyshev", "watt", "roberts", "evans_a"]
+
+
+@pytest.mark.parametrize("name", CATALOGUE)
+def test_catalogue_curve_is_recovered_exactly(atlas: Atlas, name: str) -> None:
+    fb = linkage.catalog.get(name)
+    assert isinstance(fb, linkage.FourBar)
+    curve = fb.circuit(241).point[:-1][::3]  # 80 points, closed (the last repeats the first)
+    rng = np.random.default_rng(CATALOGUE.index(name))
+    target, _ = placed(curve, rng)
+    found = synthesis.path(target, atlas=atlas, top=3, global_search=False)
+    assert found, "no candidate"
+    best = found[0]
+    size = size_of(target)
+    assert best.error <= 1e-6 * size, (name, best.error / size)
+    # The error is what the tracker's own sweep of the returned linkage gives (to its chord).
+    assert tracked_distance(best.linkage, target) <= 1e-6 * size + 1e-4 * size
+    assert best.rms <= best.error
+
+
+def random_fourbar(rng: np.random.Generator) -> linkage.FourBar:
+    while True:
+        g, r, b, c = 1.0, *np.exp(rng.uniform(math.log(0.3), math.log(3), 3))
+        fb = linkage.FourBar(
+            ground=g,
+            crank=r,
+            coupler=b,
+            rocker=c,
+            point=(b * rng.uniform(-0.5, 1.5), b * rng.uniform(-1, 1)),
+            assembly=str(rng.choice(["open", "crossed"])),
+        )
+        if fb.input_ranges() and fb.grashof() != "change-point":
+            return fb
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_random_fourbar_curve_is_recovered_exactly(atlas: Atlas, seed: int) -> None:
+    rng = np.random.default_rng(100 + seed)
+    fb = random_fourbar(rng)
+    target, _ = placed(fb.circuit(181).point[:-1][::2], rng)
+    found = synthesis.path(target, atlas=atlas, top=1, maxiter=100, seed=seed)
+    assert found
+    assert found[0].error <= 1e-6 * size_of(target), (fb, found[0].error / size_of(target))
+
+
+def test_open_arc_is_matched(atlas: Atlas) -> None:
+    """Most of Hoecken's curve as an open arc, placed anywhere: global search then least
+    squares find a linkage through it, traced on one circuit. Exact recovery (1e-6) of open
+    arcs is NOT reached yet: measured 3.4e-4 to 5.0e-3 of the size with this budget (see
+    docs/synthesis.md), so the bound here is what is reached, with margin."""
+    fb = linkage.catalog.get("hoecken")
+    assert isinstance(fb, linkage.FourBar)
+    arc = fb.sweep(np.linspace(1.0, 4.0, 40)).point
+    target, _ = placed(arc, np.random.default_rng(7), roll=False)
+    found = synthesis.path(target, closed=False, top=1, atlas=atlas, seed=1, maxiter=60)
+    assert found
+    best = found[0]
+    size = size_of(target)
+    assert best.error <= 1e-2 * size, best.error / size
+    assert_one_circuit(best)
+    assert tracked_distance(best.linkage, target) <= best.error + 1e-4 * size
+    lo, hi = best.crank_range
+    assert hi > lo
+
+
+@settings(
+    max_examples=6, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    coeffs=st.lists(st.floats(-0.4, 0.4), min_size=6, max_size=6),
+    aspect=st.floats(0.2, 1.0),
+)
+def test_no_candidate_switches_branch(atlas: Atlas, coeffs: list[float], aspect: float) -> None:
+    """Random smooth closed targets: every candidate's curve, swept by the tracker over its
+    circuit, assembles everywhere, moves continuously, and is the curve its error was measured
+    on."""
+    t = np.linspace(0, 2 * math.pi, 60, endpoint=False)
+    a1, b1, a2, b2, a3, b3 = coeffs
+    x = np.cos(t) + a1 * np.cos(2 * t) + b1 * np.sin(2 * t) + a3 * np.cos(3 * t)
+    y = aspect * np.sin(t) + a2 * np.cos(2 * t) + b2 * np.sin(2 * t) + b3 * np.sin(3 * t)
+    target = np.c_[x, y]
+    found = synthesis.path(target, atlas=atlas, top=5, global_search=False, refine=3)
+    for cand in found:
+        assert_one_circuit(cand)
+        span = float(np.ptp(cand.linkage.circuit(101).point, axis=0).max())
+        d = tracked_distance(cand.linkage, target, 4001)
+        assert abs(d - cand.error) <= 1e-3 * span + 1e-9
+
+
+def assert_one_circuit(cand: synthesis.Candidate, n: int = 1001) -> None:
+    """The tracker's circuit sweep of the candidate (``FourBar.circuit``: driven, branch
+    tracked) is, sample for sample, the declared assembly's closed form from limit to limit and
+    the other assembly's back (full turn: the declared assembly throughout): it never switched
+    branch and every sample assembled."""
+    fb = cand.linkage
+    sweep = fb.circuit(n)
+    assert np.all(np.isfinite(sweep.point)), "an unassembled sample"
+    if cand.full_turn:
+        s = 2 * math.pi * np.arange(n) / (n - 1)
+    else:
+        half = (n + 1) // 2
+        k = np.arange(n)
+        s = np.where(
+            k < half, math.pi * k / (half - 1), math.pi + math.pi * (k - half) / (n - half - 1)
+        )
+    closed_form = linkage._core.synth_residuals(
+        cand.params[None, :], np.array([fb.assembly == "crossed"]), np.zeros((n, 2)), s[None, :]
+    )[0]
+    size = float(np.ptp(sweep.point, axis=0).max())
+    # A switch is a jump of the order of the size. At a crank limit (a toggle) the position
+    # keeps only √ε of its digits, amplified where the coupler point is far from the coupler
+    # (measured up to 2.3e-6 of the size), so the bound is 1e-4 of the size.
+    gap = np.hypot(*(sweep.point - closed_form).T)
+    assert np.max(gap) <= 1e-4 * size
+    assert np.median(gap) <= 1e-9 * size
+
+
+def test_constraints_are_met(atlas: Atlas) -> None:
+    fb = linkage.catalog.get("hoecken")
+    assert isinstance(fb, linkage.FourBar)
+    target = fb.circuit(121).point[:-1][::2]
+    found = synthesis.path(
+        target,
+        atlas=atlas,
+        top=5,
+        global_search=False,
+        full_turn=True,
+        min_transmission=math.radians(10),
+    )
+    assert found
+    for c in found:
+        assert c.full_turn and c.min_transmission >= math.radians(10)
+        assert c.crank_range[1] - c.crank_range[0] == pytest.approx(2 * math.pi)
+        assert not c.through_limit
+        assert_one_circuit(c)
+
+
+def test_csv_input(tmp_path, atlas: Atlas) -> None:  # type: ignore[no-untyped-def]
+    fb = linkage.catalog.get("chebyshev")
+    assert isinstance(fb, linkage.FourBar)
+    pts = fb.circuit(121).point[:-1][::2]
+    f = tmp_path / "curve.csv"
+    f.write_text("x,y\n" + "\n".join(f"{float(x)!r},{float(y)!r}" for x, y in pts))
+    found = synthesis.path(f, atlas=atlas, top=1, global_search=False)
+    assert found[0].error <= 1e-6 * size_of(pts)
+
+
+def test_atlas_round_trips_through_files(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    a = Atlas.build(3000, harmonics=6, threads=1)
+    b = Atlas.build(3000, harmonics=6, threads=2)
+    assert np.array_equal(a.descriptors, b.descriptors) and np.array_equal(a.params, b.params)
+    a.save(tmp_path / "atlas")
+    c = Atlas.load(tmp_path / "atlas")
+    assert isinstance(c.descriptors, np.memmap)
+    assert np.array_equal(a.descriptors, c.descriptors) and c.harmonics == 6
+    idx, dist, _ = c.nearest(np.asarray(a.descriptors[5:6]), 2)
+    assert idx[0] == 5 and dist[0] == 0
+    with pytest.raises(linkage.LinkageError, match="not a readable atlas"):
+        Atlas.load(tmp_path / "nothing")
+
+
+@pytest.mark.parametrize(
+    ("points", "error", "match"),
+    [
+        (np.zeros((3, 2)), linkage.LinkageError, "at least 5 distinct points"),
+        (
+            np.array([[0, 0], [1, 0], [np.nan, 1], [2, 2], [3, 1], [0, 3]]),
+            linkage.LinkageError,
+            "finite",
+        ),
+        (np.c_[np.arange(8.0), 2 * np.arange(8.0)], linkage.LinkageError, "collinear"),
+        (np.zeros((8, 3)), linkage.LinkageError, r"shape \(n, 2\)"),
+        (np.array([["a", "b"]] * 6), TypeError, "numeric"),
+    ],
+)
+def test_bad_input(points: np.ndarray, error: type, match: str) -> None:
+    with pytest.raises(error, match=match):
+        synthesis.path(points, atlas=Atlas.build(100, threads=1))
+
+
+def test_bad_csv(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    f = tmp_path / "bad.csv"
+    f.write_text("1,2\n3,x\n")
+    with pytest.raises(linkage.LinkageError, match=r"bad\.csv:2"):
+        synthesis.read_points(f)
+    with pytest.raises(linkage.LinkageError, match="cannot read"):
+        synthesis.read_points(tmp_path / "missing.csv")
+
+
+def test_cli_synth(tmp_path, capsys, atlas: Atlas) -> None:  # type: ignore[no-untyped-def]
+    from linkage import cli
+
+    fb = linkage.catalog.get("hoecken")
+    assert isinstance(fb, linkage.FourBar)
+    pts = fb.circuit(121).point[:-1][::2]
+    f = tmp_path / "foot.csv"
+    np.savetxt(f, pts, delimiter=",", header="x,y", comments="")
+    folder = atlas.save(tmp_path / "atlas")
+    code = cli.main(
+        ["synth", str(f), "--top", "2", "--units", "mm", "--quiet", "--atlas", str(folder)]
+    )
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "error mm" in out and "crank-rocker" in out
+    code = cli.main(["synth", str(tmp_path / "missing.csv"), "--quiet", "--atlas", str(folder)])
+    assert code != 0
+    assert "cannot read" in capsys.readouterr().err
