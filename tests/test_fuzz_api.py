@@ -729,13 +729,83 @@ def test_catalogue_figures(rel_tol, samples):
         assert len(rows) == len(catalog.names())
 
 
+# -- synthesis --------------------------------------------------------------------------------
+SMALL_ATLAS = linkage.synthesis.Atlas.build(600, threads=1)
+TARGET = np.c_[np.cos(np.linspace(0, 6, 12)), 0.5 * np.sin(np.linspace(0, 6, 12))]
+
+
+@SLOW
+@given(
+    points=st.one_of(st.just(TARGET), POINTS),
+    closed=maybe(True, HOSTILE),
+    top=maybe(2, COUNT),
+    refine=maybe(1, st.integers(-2, 3)),
+    lengths=st.one_of(st.none(), PAIR),
+    pivots=st.one_of(st.none(), st.tuples(PAIR, PAIR), HOSTILE),
+    tol=maybe(1e-3, HOSTILE),
+    threads=st.one_of(st.none(), st.integers(-2, 3), ODD),
+)
+def test_synthesis_path(points, closed, top, refine, lengths, pivots, tol, threads):
+    found = call(
+        lambda: linkage.synthesis.path(
+            points,
+            closed=closed,
+            top=top,
+            atlas=SMALL_ATLAS,
+            refine=refine,
+            global_search=False,
+            lengths=lengths,
+            pivots=pivots,
+            tol=tol,
+            threads=threads,
+        )
+    )
+    for c in found or []:
+        assert math.isfinite(c.error) and c.error >= 0 and c.rms <= c.error
+        assert np.all(np.isfinite(c.linkage.circuit(64).point))
+
+
+@FAST
+@given(entries=COUNT, harmonics=COUNT, samples=COUNT, threads=st.one_of(st.none(), COUNT))
+def test_synthesis_atlas_build(entries, harmonics, samples, threads):
+    small = (
+        isinstance(entries, int)
+        and isinstance(harmonics, int)
+        and isinstance(samples, int)
+        and entries * max(harmonics, 1) * max(samples, 1) <= 10**6
+    )
+    assume(small or not all(isinstance(v, int) and v > 0 for v in (entries, harmonics, samples)))
+    at = call(lambda: linkage.synthesis.Atlas.build(entries, harmonics, samples, threads))
+    if at is not None:
+        assert len(at) == entries and np.all(np.isfinite(at.descriptors))
+        hits = call(lambda: at.nearest(at.descriptors[:1], 1))
+        assert hits is None or int(hits[0][0]) == 0
+
+
+@FAST
+@given(poses=st.one_of(POINTS, HOSTILE), n=COUNT, beta=st.one_of(st.none(), HOSTILE))
+def test_synthesis_motion(poses, n, beta):
+    for c in call(lambda: linkage.synthesis.motion(poses, n=n, beta=beta)) or []:
+        assert isinstance(c.reaches, bool)
+    call(lambda: linkage.synthesis.centre_point_curve(poses, n))
+
+
+@FAST
+@given(x_range=PAIR, phi_range=PAIR, psi_range=PAIR, points=st.one_of(COUNT, HOSTILE), spacing=NAME)
+def test_synthesis_function(x_range, phi_range, psi_range, points, spacing):
+    r = call(lambda: linkage.synthesis.function(math.sqrt, x_range, phi_range, psi_range, points))
+    if r is not None:
+        assert isinstance(r.linkage, linkage.FourBar)
+    call(lambda: linkage.synthesis.chebyshev_points(x_range, phi_range, points))
+
+
 def test_every_public_name_is_exercised():
     """The lists above cover the public API: a new public name must be added to this suite."""
     covered = {
         "OUTPUTS", "AssemblyError", "FourBar", "batch", "Leg", "LinkageError", "Mechanism", "Sweep",
         "Walker", "ball_point", "cam", "catalog", "circumcentre", "curvature_centre", "drive",
         "foot_path", "gait_phases", "forces", "geometry", "mobility", "search_duty_factor",
-        "straightness", "three_point_centres", "walker", "__version__",
+        "straightness", "synthesis", "three_point_centres", "walker", "__version__",
     }  # fmt: skip
     assert set(linkage.__all__) <= covered, set(linkage.__all__) - covered
 

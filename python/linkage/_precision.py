@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_count, as_finite
+from linkage._arrays import as_count, as_finite, as_real_array
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 
@@ -120,10 +120,7 @@ class FunctionGenerator:
 
 
 def _poses(poses: Any, counts: Sequence[int]) -> list[tuple[float, float, float]]:
-    try:
-        arr = np.asarray(poses, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"poses must be an array_like of (x, y, angle) rows: {exc}") from None
+    arr = np.asarray(as_real_array(poses, "poses"), dtype=np.float64)
     if arr.ndim != 2 or arr.shape[1] != 3:
         raise LinkageError(f"poses must have shape (k, 3) of (x, y, angle), got {arr.shape}")
     k = arr.shape[0]
@@ -139,10 +136,7 @@ def _poses(poses: Any, counts: Sequence[int]) -> list[tuple[float, float, float]
 
 
 def _points(value: Any, name: str) -> NDArray[np.float64]:
-    try:
-        arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be an array_like of (x, y) points: {exc}") from None
+    arr = np.asarray(as_real_array(value, name), dtype=np.float64)
     if arr.ndim == 1 and arr.shape == (2,):
         arr = arr.reshape(1, 2)
     if arr.ndim != 2 or arr.shape[1] != 2:
@@ -216,7 +210,7 @@ def _dyads_four(p: list[tuple[float, float, float]], beta: Any, n: Any) -> list[
             raise LinkageError(f"n must be ≥ 1, got {count}")
         b = 2.0 * np.pi * np.arange(count, dtype=np.float64) / count
     else:
-        b = np.ascontiguousarray(np.atleast_1d(np.asarray(beta, dtype=np.float64)))
+        b = np.ascontiguousarray(np.atleast_1d(as_real_array(beta, "beta")), dtype=np.float64)
         if b.ndim != 1 or not np.all(np.isfinite(b)):
             raise LinkageError("beta must be finite angles, a scalar or 1-D")
     _, centres, circles, _ = _core.burmester_curve(p, b)
@@ -355,7 +349,10 @@ def _pair(value: Any, name: str) -> tuple[float, float]:
 
 
 def _call(f: Callable[[float], Any], x: float) -> float:
-    y = f(x)
+    try:
+        y = f(x)
+    except (ValueError, ArithmeticError) as exc:  # e.g. math.sqrt outside its domain
+        raise LinkageError(f"f({x}) failed: {type(exc).__name__}: {exc}") from exc
     try:
         v = float(y)
     except (TypeError, ValueError):
@@ -420,7 +417,7 @@ def function(
         else:
             raise LinkageError(f"spacing must be 'chebyshev' or 'uniform', got {spacing!r}")
     else:
-        xs = np.asarray(points, dtype=np.float64).reshape(-1)
+        xs = np.asarray(as_real_array(points, "points"), dtype=np.float64).reshape(-1)
         if xs.size < 3:
             raise LinkageError(f"needs at least 3 precision points, got {xs.size}")
         if not np.all(np.isfinite(xs)):
