@@ -222,7 +222,7 @@ def test_atlas_round_trips_through_files(tmp_path) -> None:  # type: ignore[no-u
         ),
         (np.c_[np.arange(8.0), 2 * np.arange(8.0)], linkage.LinkageError, "collinear"),
         (np.zeros((8, 3)), linkage.LinkageError, r"shape \(n, 2\)"),
-        (np.array([["a", "b"]] * 6), TypeError, "numeric"),
+        (np.array([["a", "b"]] * 6), TypeError, "real numbers"),
     ],
 )
 def test_bad_input(points: np.ndarray, error: type, match: str) -> None:

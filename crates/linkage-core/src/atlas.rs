@@ -107,26 +107,9 @@ impl Atlas {
             let round = (2 * missing).div_ceil(CHUNK).max(threads as u64);
             let chunks: Vec<u64> = (next_chunk..next_chunk + round).collect();
             next_chunk += round;
-            let mut parts: Vec<Atlas> = Vec::with_capacity(chunks.len());
-            std::thread::scope(|scope| {
-                let per = chunks.len().div_ceil(threads);
-                let handles: Vec<_> = chunks
-                    .chunks(per)
-                    .map(|mine| {
-                        scope.spawn(move || {
-                            mine.iter()
-                                .map(|&c| build_chunk(c * CHUNK..(c + 1) * CHUNK, spec))
-                                .collect::<Vec<_>>()
-                        })
-                    })
-                    .collect();
-                for h in handles {
-                    // A worker cannot panic on any input (no indexing past checked lengths);
-                    // should it, its chunks are left out rather than aborting.
-                    if let Ok(v) = h.join() {
-                        parts.extend(v);
-                    }
-                }
+            let parts = crate::parallel::map_parts(chunks.len(), threads, |j| {
+                let c = chunks[j];
+                build_chunk(c * CHUNK..(c + 1) * CHUNK, spec)
             });
             for p in parts {
                 atlas.descriptors.extend_from_slice(&p.descriptors);
@@ -320,21 +303,19 @@ pub fn nearest(
     }
     let threads = threads.clamp(1, n.div_ceil(4096).max(1));
     let per = n.div_ceil(threads);
-    let mut best: Vec<(usize, f32, usize)> = Vec::new();
-    std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..threads)
-            .map(|t| {
-                let rows = t * per..((t + 1) * per).min(n);
-                let part = &descriptors[rows.start * dim..rows.end * dim];
-                scope.spawn(move || scan(part, dim, targets, k, rows.start))
-            })
-            .collect();
-        for h in handles {
-            if let Ok(v) = h.join() {
-                best.extend(v);
-            }
-        }
-    });
+    let mut best: Vec<(usize, f32, usize)> = crate::parallel::map_parts(threads, threads, |t| {
+        let rows = (t * per).min(n)..((t + 1) * per).min(n);
+        scan(
+            &descriptors[rows.start * dim..rows.end * dim],
+            dim,
+            targets,
+            k,
+            rows.start,
+        )
+    })
+    .into_iter()
+    .flatten()
+    .collect();
     best.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
     best.truncate(k);
     Ok(best)

@@ -296,6 +296,50 @@ impl<T: RealField + Copy> Efd<T> {
     }
 }
 
+/// Query vectors of one target curve written by [`query_descriptors`].
+pub const QUERY_VARIANTS: usize = 4;
+
+/// The normalised descriptor vectors under which an atlas may hold the shape of the curve
+/// through `points` ([`Efd::closed`] or, for a part of a curve, [`Efd::open`]), written into
+/// `out` (`QUERY_VARIANTS · descriptor_len(harmonics)` long) in the order: as given; started at
+/// the other end of the major axis; traversed the other way; both. The two ambiguities the
+/// normalisation leaves (see the module) are covered. Returns the target's normalisation (of
+/// the points as given), which places a matched shape back in the target's frame.
+///
+/// # Errors
+/// As [`Efd::closed`] and [`Efd::normalised`]; [`Error::BufferLength`] (`"query
+/// descriptors"`) for an `out` of the wrong length.
+pub fn query_descriptors<T: RealField + Copy>(
+    points: &[Vec2<T>],
+    harmonics: usize,
+    closed: bool,
+    out: &mut [f32],
+) -> Result<Normalisation<T>, Error> {
+    let dim = descriptor_len(harmonics);
+    if out.len() != QUERY_VARIANTS * dim {
+        return Err(Error::BufferLength {
+            what: "query descriptors",
+            expected: QUERY_VARIANTS * dim,
+            got: out.len(),
+        });
+    }
+    let of = |p: &[Vec2<T>]| {
+        if closed {
+            Efd::closed(p, harmonics)
+        } else {
+            Efd::open(p, harmonics)
+        }
+    };
+    let (fwd, frame) = of(points)?.normalised()?;
+    let reversed: Vec<Vec2<T>> = points.iter().rev().copied().collect();
+    let (rev, _) = of(&reversed)?.normalised()?;
+    let forms = [(&fwd, false), (&fwd, true), (&rev, false), (&rev, true)];
+    for ((e, flip), part) in forms.into_iter().zip(out.chunks_exact_mut(dim)) {
+        e.descriptor(flip, part)?;
+    }
+    Ok(frame)
+}
+
 /// Length of [`Efd::descriptor`]'s vector for `harmonics` harmonics (`1 + 4(H − 1)`, 0 for none).
 pub fn descriptor_len(harmonics: usize) -> usize {
     if harmonics == 0 {

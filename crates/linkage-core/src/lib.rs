@@ -74,6 +74,8 @@ mod kinetostatics;
 mod mechanism;
 mod motion;
 mod motion_law;
+#[cfg(feature = "std")]
+mod parallel;
 mod scalar;
 mod schedule;
 mod slider;
@@ -93,9 +95,14 @@ mod path_synthesis;
 #[cfg(feature = "synthesis")]
 pub use atlas::{candidate, nearest, Atlas, AtlasSpec, ENTRY_PARAMS, LENGTH_RANGE};
 #[cfg(feature = "synthesis")]
-pub use efd::{descriptor_len, Efd, Normalisation, MIN_CURVE_POINTS};
+pub use efd::{
+    descriptor_len, query_descriptors, Efd, Normalisation, MIN_CURVE_POINTS, QUERY_VARIANTS,
+};
 #[cfg(feature = "synthesis")]
-pub use path_synthesis::{CircuitPath, FOOT_STARTS};
+pub use path_synthesis::{
+    path_errors, path_residuals, ArcFigures, CircuitPath, FootSearch, PathError, FOOT_STARTS,
+    PLACED_PARAMS,
+};
 
 /// The repository README's Rust examples, compiled and run as doc tests.
 #[cfg(doctest)]

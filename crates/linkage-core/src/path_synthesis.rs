@@ -11,10 +11,16 @@
 //! collinear and the two assemblies meet, and since `θ_lim − θ ∝ s²` there while the coupler
 //! point moves as `√(θ_lim − θ)`, the point is a smooth function of `s` through the limits: a
 //! least-squares fit may move target points across them.
+//!
+//! # Placed linkages
+//! A synthesis candidate is a four-bar in the target's frame, [`PLACED_PARAMS`] numbers
+//! `[ox, oy, cx, cy, crank, coupler, rocker, along, left]` plus its assembly
+//! ([`CircuitPath::placed`]); [`path_errors`] and [`path_residuals`] measure many at once.
 
 use alloc::vec::Vec;
 use nalgebra::RealField;
 
+use crate::efd::{Efd, Normalisation};
 use crate::error::Error;
 use crate::fourbar::{Assembly, FourBar, InputRange};
 use crate::scalar::{lit, to_f64, Vec2};
@@ -22,6 +28,60 @@ use crate::tracker::{Rates, Tracker};
 
 /// Local minima of the polyline distance refined by [`CircuitPath::foot`].
 pub const FOOT_STARTS: usize = 4;
+
+/// Numbers of a placed four-bar: `[ox, oy, cx, cy, crank, coupler, rocker, along, left]`.
+pub const PLACED_PARAMS: usize = 9;
+
+/// How far target points are from a candidate's coupler curve (its whole circuit), in the
+/// target's units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathError<T> {
+    /// Largest distance from a target point to the curve.
+    pub max: T,
+    /// Root-mean-square distance from the target points to the curve.
+    pub rms: T,
+    /// Largest distance from the curve (its polyline's vertices) back to the target polygon
+    /// (closed targets) or polyline (open ones). For a closed target `max(max, back)` bounds
+    /// the Hausdorff distance up to the polyline's chord error.
+    pub back: T,
+}
+
+impl<T: RealField + Copy> PathError<T> {
+    /// All three NaN: the circuit does not assemble throughout.
+    pub fn nan() -> Self {
+        let n = crate::scalar::nan::<T>();
+        PathError {
+            max: n,
+            rms: n,
+            back: n,
+        }
+    }
+}
+
+/// How [`CircuitPath::errors`] finds each target point's nearest curve point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FootSearch {
+    /// The nearest segment of the circuit's polyline (fast; a chord error of the order of the
+    /// squared sample spacing).
+    Polyline,
+    /// The true nearest point ([`CircuitPath::foot`]: local minima of the polyline, refined
+    /// by golden-section search on the curve).
+    Exact,
+}
+
+/// Figures of a circuit over an arc `s_lo ≤ s ≤ s_hi` of its parameter
+/// ([`CircuitPath::arc`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArcFigures<T> {
+    /// Least and greatest crank angle over the arc (radians, absolute).
+    pub theta: (T, T),
+    /// Least distance of the transmission angle from a toggle, `min(μ, π − μ)`, over the arc
+    /// (radians); `+∞` if no sample assembles.
+    pub min_transmission: T,
+    /// Whether the arc passes a crank limit (the crank must reverse there); never for a full
+    /// turn.
+    pub through_limit: bool,
+}
 
 /// A four-bar's circuit, parametrised as in the module.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,6 +123,53 @@ impl<T: RealField + Copy> CircuitPath<T> {
             limits,
             base: d.y.atan2(d.x),
         })
+    }
+
+    /// The circuit of the placed four-bar `p = [ox, oy, cx, cy, crank, coupler, rocker, along,
+    /// left]` on the given assembly.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] unless `p` holds [`PLACED_PARAMS`] numbers; the errors of
+    /// [`FourBar::with_pivots`] and [`CircuitPath::new`].
+    ///
+    /// # Example
+    /// ```
+    /// use linkage_core::{CircuitPath, FootSearch, Vec2};
+    /// // Hoecken's straight-line linkage, ground from (0, 0) to (20, 0), foot 50 along the coupler.
+    /// let path = CircuitPath::placed(&[0.0, 0.0, 20.0, 0.0, 10.0, 25.0, 25.0, 50.0, 0.0], false)?;
+    /// assert!(path.full_turn());
+    /// // Two points on the curve are at distance 0 from it, and their feet are themselves.
+    /// let on = [path.point(1.0).unwrap(), path.point(4.0).unwrap()];
+    /// let mut feet = [0.0; 2];
+    /// let e = path.errors(&on, 512, FootSearch::Exact, false, &mut feet).unwrap();
+    /// assert!(e.max < 1e-9 && (path.point(feet[1]).unwrap() - on[1]).norm() < 1e-9);
+    /// // Fewer than two targets measure nothing.
+    /// assert!(path.errors(&on[..1], 512, FootSearch::Exact, false, &mut feet[..1]).is_none());
+    /// # Ok::<(), linkage_core::Error>(())
+    /// ```
+    pub fn placed(p: &[T], crossed: bool) -> Result<Self, Error> {
+        if p.len() != PLACED_PARAMS {
+            return Err(Error::BufferLength {
+                what: "placed four-bar parameters",
+                expected: PLACED_PARAMS,
+                got: p.len(),
+            });
+        }
+        let assembly = if crossed {
+            Assembly::Crossed
+        } else {
+            Assembly::Open
+        };
+        let fb = FourBar::with_pivots(
+            Vec2::new(p[0], p[1]),
+            Vec2::new(p[2], p[3]),
+            p[4],
+            p[5],
+            p[6],
+            (p[7], p[8]),
+            assembly,
+        )?;
+        CircuitPath::new(fb)
     }
 
     /// Whether the crank turns fully.
@@ -167,6 +274,21 @@ impl<T: RealField + Copy> CircuitPath<T> {
             .collect()
     }
 
+    /// The normalisation frame ([`Efd::normalised`]) of the circuit's curve sampled at
+    /// `samples` points (at least 8) with `harmonics` harmonics: the similarity an atlas
+    /// entry's shape is matched in.
+    ///
+    /// # Errors
+    /// As [`Efd::closed`] and [`Efd::normalised`] (an unassembled sample is not finite).
+    pub fn normalisation(
+        &self,
+        samples: usize,
+        harmonics: usize,
+    ) -> Result<Normalisation<T>, Error> {
+        let poly = self.polyline(samples.max(8));
+        Ok(Efd::closed(&poly, harmonics)?.normalised()?.1)
+    }
+
     /// True distance from `target` to the circuit's curve and the circuit parameter of the
     /// nearest point: the vertices of `poly` (from [`CircuitPath::polyline`]) nearest `target`
     /// by vertex or segment distance are found among the local minima along the polyline, and
@@ -186,14 +308,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
             if !finite(q) {
                 return (p - target).norm();
             }
-            let ab = q - p;
-            let l2 = ab.norm_squared();
-            let u = if l2 > T::zero() {
-                ((target - p).dot(&ab) / l2).max(T::zero()).min(T::one())
-            } else {
-                T::zero()
-            };
-            (p + ab * u - target).norm()
+            segment_distance(target, *p, *q)
         };
         let d: Vec<T> = (0..m).map(seg).collect();
         let mut starts: [(usize, T); FOOT_STARTS] = [(usize::MAX, big); FOOT_STARTS];
@@ -256,6 +371,244 @@ impl<T: RealField + Copy> CircuitPath<T> {
             (f2, x2)
         }
     }
+
+    /// Residuals `P(sᵢ) − targetᵢ` of target points at circuit parameters `s` (NaN where a
+    /// sample does not assemble): the least-squares fit's residuals. At a fit's optimum each
+    /// `|P(sᵢ) − targetᵢ|` is the true point-to-curve distance.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] unless `s` and `out` have one entry per target.
+    pub fn residuals(
+        &self,
+        targets: &[Vec2<T>],
+        s: &[T],
+        out: &mut [Vec2<T>],
+    ) -> Result<(), Error> {
+        for (what, got) in [("circuit parameters", s.len()), ("residuals", out.len())] {
+            if got != targets.len() {
+                return Err(Error::BufferLength {
+                    what,
+                    expected: targets.len(),
+                    got,
+                });
+            }
+        }
+        let nan = crate::scalar::nan::<T>();
+        for ((r, &t), &si) in out.iter_mut().zip(targets).zip(s) {
+            *r = self.point(si).map_or(Vec2::new(nan, nan), |q| q - t);
+        }
+        Ok(())
+    }
+
+    /// Distances between target points and the circuit's curve, sampled by a `samples`-point
+    /// polyline: [`PathError`], and in `feet` each target's circuit parameter of its nearest
+    /// curve point. `closed` says whether the targets go round a closed curve (for
+    /// [`PathError::back`]).
+    ///
+    /// `None` when the circuit has an unassembled sample, `samples < 8`, fewer than two
+    /// targets, or `feet` is not one per target.
+    pub fn errors(
+        &self,
+        targets: &[Vec2<T>],
+        samples: usize,
+        search: FootSearch,
+        closed: bool,
+        feet: &mut [T],
+    ) -> Option<PathError<T>> {
+        if samples < 8 || targets.len() < 2 || feet.len() != targets.len() {
+            return None;
+        }
+        let poly = self.polyline(samples);
+        if poly.iter().any(|q| !(q.x.is_finite() && q.y.is_finite())) {
+            return None;
+        }
+        let m = poly.len();
+        let step = T::two_pi() / lit::<T>(m as f64);
+        let (mut worst, mut sum) = (T::zero(), T::zero());
+        for (&q, foot) in targets.iter().zip(feet.iter_mut()) {
+            let d = match search {
+                FootSearch::Exact => {
+                    let (d, s) = self.foot(q, &poly)?;
+                    *foot = s;
+                    d
+                }
+                FootSearch::Polyline => {
+                    let mut best = (T::max_value().unwrap_or(T::one()), 0usize);
+                    for k in 0..m {
+                        let d = segment_distance(q, poly[k], poly[(k + 1) % m]);
+                        if d < best.0 {
+                            best = (d, k);
+                        }
+                    }
+                    *foot = step * lit::<T>(best.1 as f64);
+                    best.0
+                }
+            };
+            worst = worst.max(d);
+            sum += d * d;
+        }
+        let n = targets.len();
+        let segs = if closed { n } else { n - 1 };
+        let mut back = T::zero();
+        for &q in &poly {
+            let mut best = T::max_value().unwrap_or(T::one());
+            for k in 0..segs {
+                best = best.min(segment_distance(q, targets[k], targets[(k + 1) % n]));
+            }
+            back = back.max(best);
+        }
+        Some(PathError {
+            max: worst,
+            rms: (sum / lit::<T>(n as f64)).sqrt(),
+            back,
+        })
+    }
+
+    /// Crank interval, least transmission angle and whether a limit is passed, over the arc
+    /// `s_lo ≤ s ≤ s_hi` sampled at `samples + 1` evenly spaced parameters (at least 2).
+    pub fn arc(&self, s_lo: T, s_hi: T, samples: usize) -> ArcFigures<T> {
+        let k = samples.max(1);
+        let big = T::max_value().unwrap_or(T::one());
+        let (mut lo, mut hi, mut mu) = (big, -big, big);
+        for i in 0..=k {
+            let s = s_lo + (s_hi - s_lo) * lit::<T>(i as f64) / lit::<T>(k as f64);
+            let (theta, _) = self.theta(s);
+            lo = lo.min(theta);
+            hi = hi.max(theta);
+            if let Some(m) = self.transmission(s) {
+                mu = mu.min(m);
+            }
+        }
+        // A limited circuit's crank limits are at s = 0 and π (mod 2π).
+        let through_limit = !self.full_turn() && {
+            let first = (s_lo / T::pi()).floor() + T::one();
+            first * T::pi() < s_hi
+        };
+        ArcFigures {
+            theta: (lo, hi),
+            min_transmission: mu,
+            through_limit,
+        }
+    }
+}
+
+/// Distance from `p` to the segment `a b`.
+fn segment_distance<T: RealField + Copy>(p: Vec2<T>, a: Vec2<T>, b: Vec2<T>) -> T {
+    let ab = b - a;
+    let l2 = ab.norm_squared();
+    let u = if l2 > T::zero() {
+        ((p - a).dot(&ab) / l2).max(T::zero()).min(T::one())
+    } else {
+        T::zero()
+    };
+    (a + ab * u - p).norm()
+}
+
+/// Checks `M` placed four-bars: `params` rows of [`PLACED_PARAMS`], one `crossed` flag each.
+fn placed_rows(params: &[f64], crossed: &[bool]) -> Result<usize, Error> {
+    let m = crossed.len();
+    if params.len() != m * PLACED_PARAMS {
+        return Err(Error::BufferLength {
+            what: "placed four-bar parameters",
+            expected: m * PLACED_PARAMS,
+            got: params.len(),
+        });
+    }
+    Ok(m)
+}
+
+/// [`CircuitPath::errors`] of `M` placed four-bars (`params` rows of [`PLACED_PARAMS`], one
+/// `crossed` flag each) against the same targets, on `threads` threads (the same bits for any
+/// count): `errors[i]` (NaN for a linkage that cannot be built or whose circuit does not
+/// assemble throughout) and `feet[i·n .. (i+1)·n]`.
+///
+/// # Errors
+/// [`Error::BufferLength`] for buffers of the wrong length, fewer than two targets or fewer
+/// than 8 samples.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the batch's inputs, its two outputs and the search settings"
+)]
+pub fn path_errors(
+    params: &[f64],
+    crossed: &[bool],
+    targets: &[Vec2<f64>],
+    samples: usize,
+    search: FootSearch,
+    closed: bool,
+    threads: usize,
+    errors: &mut [PathError<f64>],
+    feet: &mut [f64],
+) -> Result<(), Error> {
+    let m = placed_rows(params, crossed)?;
+    let n = targets.len();
+    for (what, expected, got, short) in [
+        ("targets (at least)", 2, n, n < 2),
+        ("samples (at least)", 8, samples, samples < 8),
+        ("errors", m, errors.len(), errors.len() != m),
+        ("feet", m * n, feet.len(), feet.len() != m * n),
+    ] {
+        if short {
+            return Err(Error::BufferLength {
+                what,
+                expected,
+                got,
+            });
+        }
+    }
+    let rows = crate::parallel::map_parts(m, threads, |i| {
+        let mut f = alloc::vec![f64::NAN; n];
+        let e = CircuitPath::placed(
+            &params[PLACED_PARAMS * i..PLACED_PARAMS * (i + 1)],
+            crossed[i],
+        )
+        .ok()
+        .and_then(|path| path.errors(targets, samples, search, closed, &mut f))
+        .unwrap_or_else(PathError::nan);
+        (e, f)
+    });
+    for (i, (e, f)) in rows.into_iter().enumerate() {
+        errors[i] = e;
+        feet[i * n..(i + 1) * n].copy_from_slice(&f);
+    }
+    Ok(())
+}
+
+/// [`CircuitPath::residuals`] of `M` placed four-bars (as [`path_errors`]) at circuit
+/// parameters `s[i·n .. (i+1)·n]`: `out[i·n + j] = P_i(s_ij) − target_j`, NaN where a linkage
+/// or a sample does not assemble.
+///
+/// # Errors
+/// [`Error::BufferLength`] for buffers of the wrong length.
+pub fn path_residuals(
+    params: &[f64],
+    crossed: &[bool],
+    targets: &[Vec2<f64>],
+    s: &[f64],
+    out: &mut [Vec2<f64>],
+) -> Result<(), Error> {
+    let m = placed_rows(params, crossed)?;
+    let n = targets.len();
+    for (what, got) in [("circuit parameters", s.len()), ("residuals", out.len())] {
+        if got != m * n {
+            return Err(Error::BufferLength {
+                what,
+                expected: m * n,
+                got,
+            });
+        }
+    }
+    for i in 0..m {
+        let rows = i * n..(i + 1) * n;
+        match CircuitPath::placed(
+            &params[PLACED_PARAMS * i..PLACED_PARAMS * (i + 1)],
+            crossed[i],
+        ) {
+            Ok(path) => path.residuals(targets, &s[rows.clone()], &mut out[rows])?,
+            Err(_) => out[rows].fill(Vec2::new(f64::NAN, f64::NAN)),
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -285,8 +638,10 @@ mod tests {
     fn a_change_point_through_its_flat_position_is_refused() {
         // Parallelogram: flat positions at θ = 0 and π, where the tracker switches branch.
         let fb = FourBar::new(3.0, 1.0, 3.0, 1.0, (1.0, 1.0), Assembly::Open).unwrap();
-        if let Ok(c) = CircuitPath::new(fb) {
-            assert!(c.check(256).is_err());
-        }
+        let c = CircuitPath::new(fb).unwrap();
+        assert!(
+            c.check(256).is_err(),
+            "the tracker crossed a flat position unnoticed"
+        );
     }
 }

@@ -6,8 +6,8 @@
 mod common;
 
 use linkage_core::{
-    candidate, nearest, Assembly, Atlas, AtlasSpec, CircuitPath, Efd, FourBar, GrashofClass,
-    InputRange, Vec2,
+    candidate, nearest, path_errors, path_residuals, Assembly, Atlas, AtlasSpec, CircuitPath, Efd,
+    FootSearch, FourBar, GrashofClass, InputRange, PathError, Vec2,
 };
 use proptest::prelude::*;
 
@@ -61,7 +61,9 @@ proptest! {
     #[test]
     fn placed_entry_is_found(idx in 0u64..4000, angle in -3.0f64..3.0, scale in 0.01f64..100.0,
                              shift in 0usize..128) {
-        let Some(fb) = candidate(idx) else { return Ok(()) };
+        let fb = candidate(idx);
+        prop_assume!(fb.is_some(), "not an atlas entry");
+        let fb = fb.unwrap();
         let path = CircuitPath::new(fb).unwrap();
         let (s, c) = angle.sin_cos();
         let mut pts: Vec<_> = path
@@ -71,8 +73,7 @@ proptest! {
             .collect();
         pts.rotate_left(shift);
         let spec = AtlasSpec::default();
-        let Ok(efd) = Efd::closed(&pts, spec.harmonics) else { return Ok(()) };
-        let Ok((norm, _)) = efd.normalised() else { return Ok(()) };
+        let (norm, _) = Efd::closed(&pts, spec.harmonics).and_then(|e| e.normalised()).unwrap();
         let dim = linkage_core::descriptor_len(spec.harmonics);
         let mut q = vec![0.0f32; 2 * dim];
         norm.descriptor(false, &mut q[..dim]).unwrap();
@@ -84,6 +85,30 @@ proptest! {
             .map(|j| q[j * dim..(j + 1) * dim].iter().zip(&d0).map(|(a, b)| (a - b).powi(2)).sum::<f32>())
             .fold(f32::INFINITY, f32::min);
         prop_assert!(best < 1e-8, "{best}");
+    }
+
+    /// Batched errors and residuals are the per-linkage ones, and a point on the curve is at
+    /// distance 0 with its foot on it.
+    #[test]
+    fn batched_errors_are_the_single_ones(fb in fourbar(), s in 0.0f64..6.0) {
+        let path = CircuitPath::new(fb).unwrap();
+        let on = [path.point(s).unwrap(), path.point(s + 1.0).unwrap(), Vec2::new(9.0, -4.0)];
+        let p = [fb.o.x, fb.o.y, fb.c.x, fb.c.y, fb.crank, fb.coupler, fb.rocker, fb.along, fb.left];
+        let crossed = fb.assembly == Assembly::Crossed;
+        let mut feet = [0.0; 3];
+        let one = path.errors(&on, 256, FootSearch::Exact, true, &mut feet).unwrap();
+        let mut errs = [PathError::nan(); 2];
+        let mut feet2 = [0.0; 6];
+        let params: Vec<f64> = p.iter().chain(p.iter()).copied().collect();
+        path_errors(&params, &[crossed, crossed], &on, 256, FootSearch::Exact, true, 2, &mut errs, &mut feet2).unwrap();
+        prop_assert_eq!(errs[0], one);
+        prop_assert_eq!(errs[1], one);
+        prop_assert_eq!(&feet2[3..], &feet[..]);
+        let mut res = [Vec2::zeros(); 3];
+        path_residuals(&p, &[crossed], &on, &feet, &mut res).unwrap();
+        let size = path.size();
+        prop_assert!(res[0].norm() <= 1e-9 * size && res[1].norm() <= 1e-9 * size, "{res:?}");
+        prop_assert!((res[2].norm() - one.max).abs() <= 1e-9 * size);
     }
 }
 

@@ -384,7 +384,7 @@ impl Sweepable {
 }
 
 /// A writeable numpy array's elements as a slice (the arrays here are made C-contiguous).
-fn as_slice<'a, T: numpy::Element, D: numpy::ndarray::Dimension>(
+pub(crate) fn as_slice<'a, T: numpy::Element, D: numpy::ndarray::Dimension>(
     a: &'a mut PyReadwriteArray<'_, T, D>,
 ) -> PyResult<&'a mut [T]> {
     a.as_slice_mut()
@@ -392,7 +392,7 @@ fn as_slice<'a, T: numpy::Element, D: numpy::ndarray::Dimension>(
 }
 
 /// A writeable `(…, 2)` float64 array as points.
-fn as_points<'a, D: numpy::ndarray::Dimension>(
+pub(crate) fn as_points<'a, D: numpy::ndarray::Dimension>(
     a: &'a mut PyReadwriteArray<'_, f64, D>,
 ) -> PyResult<&'a mut [Vec2<f64>]> {
     bytemuck::try_cast_slice_mut(as_slice(a)?)

@@ -1,17 +1,21 @@
 //! Mirrors `linkage_core::{efd, atlas, path_synthesis}`: the Rust half of
-//! `linkage.synthesis` (descriptors, the atlas, circuit distances and residuals).
+//! `linkage.synthesis` (descriptors, the atlas, circuit errors and residuals). Converts arrays,
+//! allocates outputs with numpy, releases the GIL and calls the core.
 
 use linkage_core::{
-    descriptor_len, nearest, Assembly, Atlas, AtlasSpec, CircuitPath, Efd, FourBar, Vec2,
-    ENTRY_PARAMS,
+    descriptor_len, nearest, path_errors, path_residuals, query_descriptors, Atlas, AtlasSpec,
+    CircuitPath, FootSearch, PathError, Vec2, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS,
 };
+use numpy::ndarray::{Ix2, Ix3};
 use numpy::{
-    IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray1, PyReadonlyArray2,
+    IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
     PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 
 use crate::error::{linkage_error, to_py};
+use crate::mechanism::{as_points, as_slice};
+use crate::memory;
 
 type Arr1<'py, T> = Bound<'py, PyArray1<T>>;
 type Arr2<'py, T> = Bound<'py, PyArray2<T>>;
@@ -35,33 +39,22 @@ fn rows<'a, T: numpy::Element>(
         .map_err(|_| linkage_error(format!("{what} must be a C-contiguous array")))
 }
 
-fn points(what: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<Vec2<f64>>> {
-    let flat = rows(what, a, 2)?;
-    Ok(flat
-        .chunks_exact(2)
-        .map(|p| Vec2::new(p[0], p[1]))
-        .collect())
+fn points<'a>(what: &str, a: &'a PyReadonlyArray2<'_, f64>) -> PyResult<&'a [Vec2<f64>]> {
+    bytemuck::try_cast_slice(rows(what, a, 2)?)
+        .map_err(|e| linkage_error(format!("{what} must be an aligned float64 array ({e})")))
 }
 
-/// A placed four-bar from `[ox, oy, cx, cy, crank, coupler, rocker, along, left]`.
-fn linkage(p: &[f64], crossed: bool) -> Result<FourBar<f64>, linkage_core::Error> {
-    FourBar::with_pivots(
-        Vec2::new(p[0], p[1]),
-        Vec2::new(p[2], p[3]),
-        p[4],
-        p[5],
-        p[6],
-        (p[7], p[8]),
-        if crossed {
-            Assembly::Crossed
-        } else {
-            Assembly::Open
-        },
-    )
+fn flags<'a>(what: &str, a: &'a PyReadonlyArray1<'_, bool>) -> PyResult<&'a [bool]> {
+    a.as_slice()
+        .map_err(|_| linkage_error(format!("{what} must be a contiguous bool array")))
 }
 
 fn threads_of(threads: usize) -> usize {
     threads.clamp(1, MAX_THREADS)
+}
+
+fn frame_array<'py>(py: Python<'py>, f: &linkage_core::Normalisation<f64>) -> Arr1<'py, f64> {
+    vec![f.centre.x, f.centre.y, f.scale, f.rotation].into_pyarray(py)
 }
 
 /// Builds an atlas: `(descriptors (N, D) float32, params (N, 6) float64, candidate (N,) uint64)`.
@@ -74,9 +67,11 @@ pub fn synth_atlas_build<'py>(
     samples: usize,
     threads: usize,
 ) -> PyResult<(Arr2<'py, f32>, Arr2<'py, f64>, Arr1<'py, u64>)> {
-    crate::memory::check(
+    // The atlas is built in Rust vectors (entries arrive in rounds), then moved into numpy.
+    let per_entry = 4 * descriptor_len(harmonics) as u128 + 8 * ENTRY_PARAMS as u128 + 8;
+    memory::check(
         &|| format!("atlas of {entries} entries"),
-        (entries as u128).saturating_mul((4 * descriptor_len(harmonics) + 56) as u128),
+        (entries as u128).saturating_mul(2 * per_entry),
     )?;
     let spec = AtlasSpec { harmonics, samples };
     let atlas = py
@@ -121,8 +116,8 @@ pub fn synth_atlas_nearest<'py>(
     ))
 }
 
-/// Normalised descriptors of a target curve and its reversal, each also started at the other
-/// end of the major axis: `(descriptors (4, D) float32, frame [cx, cy, scale, rotation])`.
+/// The query descriptors of a target curve (`linkage_core::query_descriptors`):
+/// `(descriptors (4, D) float32, frame [cx, cy, scale, rotation])`.
 #[pyfunction]
 #[pyo3(signature = (points, harmonics, closed))]
 pub fn synth_descriptors<'py>(
@@ -132,34 +127,23 @@ pub fn synth_descriptors<'py>(
     closed: bool,
 ) -> PyResult<(Arr2<'py, f32>, Arr1<'py, f64>)> {
     let pts = self::points("points", &points)?;
-    let of = |p: &[Vec2<f64>]| {
-        if closed {
-            Efd::closed(p, harmonics)
-        } else {
-            Efd::open(p, harmonics)
-        }
-    };
     let dim = descriptor_len(harmonics);
-    let mut out = vec![0.0f32; 4 * dim];
-    let (fwd, frame) = of(&pts).and_then(|e| e.normalised()).map_err(to_py)?;
-    let rev_pts: Vec<_> = pts.iter().rev().copied().collect();
-    let (rev, _) = of(&rev_pts).and_then(|e| e.normalised()).map_err(to_py)?;
-    for (j, (e, flip)) in [(&fwd, false), (&fwd, true), (&rev, false), (&rev, true)]
-        .into_iter()
-        .enumerate()
-    {
-        e.descriptor(flip, &mut out[j * dim..(j + 1) * dim])
-            .map_err(to_py)?;
-    }
-    let arr = numpy::ndarray::Array2::from_shape_vec((4, dim), out)
-        .map_err(|e| linkage_error(format!("internal error: {e}")))?;
-    Ok((
-        arr.into_pyarray(py),
-        vec![frame.centre.x, frame.centre.y, frame.scale, frame.rotation].into_pyarray(py),
-    ))
+    let what = || format!("descriptors of {harmonics} harmonics");
+    memory::check(
+        &what,
+        memory::bytes_of::<f32>((QUERY_VARIANTS * dim) as u128),
+    )?;
+    let out = memory::zeros::<f32, Ix2>(py, &what, &[QUERY_VARIANTS, dim])?;
+    let frame = {
+        let mut w = out.readwrite();
+        let o = as_slice(&mut w)?;
+        py.detach(|| query_descriptors(pts, harmonics, closed, o))
+            .map_err(to_py)?
+    };
+    Ok((out, frame_array(py, &frame)))
 }
 
-/// The normalisation frame `[cx, cy, scale, rotation]` of a linkage's circuit curve
+/// The normalisation frame `[cx, cy, scale, rotation]` of a placed linkage's circuit curve
 /// (`samples` points).
 #[pyfunction]
 #[pyo3(signature = (params, crossed, harmonics, samples))]
@@ -173,21 +157,14 @@ pub fn synth_frame<'py>(
     let p = params
         .as_slice()
         .map_err(|_| linkage_error("params must be contiguous"))?;
-    if p.len() != 9 {
-        return Err(linkage_error("params must hold 9 numbers"));
-    }
-    let path = linkage(p, crossed)
-        .and_then(CircuitPath::new)
+    let frame = py
+        .detach(|| CircuitPath::placed(p, crossed)?.normalisation(samples, harmonics))
         .map_err(to_py)?;
-    let poly = path.polyline(samples.max(8));
-    let (_, f) = Efd::closed(&poly, harmonics)
-        .and_then(|e| e.normalised())
-        .map_err(to_py)?;
-    Ok(vec![f.centre.x, f.centre.y, f.scale, f.rotation].into_pyarray(py))
+    Ok(frame_array(py, &frame))
 }
 
-/// Residuals `P(s_i) − target_i` of `M` linkages (`params (M, 9)`, `crossed (M,)`) at circuit
-/// parameters `s (M, n)`: `(M, n, 2)`, NaN where a linkage or sample does not assemble.
+/// Residuals `P(s_i) − target_i` of `M` placed linkages (`params (M, 9)`, `crossed (M,)`) at
+/// circuit parameters `s (M, n)`: `(M, n, 2)`, NaN where a linkage or sample does not assemble.
 #[pyfunction]
 #[pyo3(signature = (params, crossed, targets, s))]
 pub fn synth_residuals<'py>(
@@ -197,117 +174,36 @@ pub fn synth_residuals<'py>(
     targets: PyReadonlyArray2<'py, f64>,
     s: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
-    let p = rows("params", &params, 9)?;
-    let m = p.len() / 9;
-    let cr = crossed
-        .as_slice()
-        .map_err(|_| linkage_error("crossed must be contiguous"))?;
+    let p = rows("params", &params, PLACED_PARAMS)?;
+    let cr = flags("crossed", &crossed)?;
     let t = points("targets", &targets)?;
-    let n = t.len();
-    let sv = rows("s", &s, n)?;
-    if cr.len() != m || sv.len() != m * n {
-        return Err(linkage_error(format!(
-            "params ({m} rows), crossed ({}) and s ({} values) disagree for {n} targets",
-            cr.len(),
-            sv.len()
-        )));
+    let sv = rows("s", &s, t.len())?;
+    let (m, n) = (cr.len(), t.len());
+    let what = || format!("residuals of {m} linkages × {n} points");
+    memory::check(
+        &what,
+        memory::bytes_of::<f64>((m as u128) * (n as u128) * 2),
+    )?;
+    let out = memory::zeros::<f64, Ix3>(py, &what, &[m, n, 2])?;
+    {
+        let mut w = out.readwrite();
+        let o = as_points(&mut w)?;
+        py.detach(|| path_residuals(p, cr, t, sv, o))
+            .map_err(to_py)?;
     }
-    let out = py.detach(|| {
-        let mut out = vec![f64::NAN; m * n * 2];
-        for i in 0..m {
-            let Ok(path) = linkage(&p[9 * i..9 * i + 9], cr[i]).and_then(CircuitPath::new) else {
-                continue;
-            };
-            for j in 0..n {
-                if let Some(q) = path.point(sv[i * n + j]) {
-                    let r = q - t[j];
-                    out[2 * (i * n + j)] = r.x;
-                    out[2 * (i * n + j) + 1] = r.y;
-                }
-            }
-        }
-        out
-    });
-    let arr = numpy::ndarray::Array3::from_shape_vec((m, n, 2), out)
-        .map_err(|e| linkage_error(format!("internal error: {e}")))?;
-    Ok(arr.into_pyarray(py))
+    Ok(out)
 }
 
-/// Distance of a point to segment `a b`.
-fn segment_distance(p: Vec2<f64>, a: Vec2<f64>, b: Vec2<f64>) -> f64 {
-    let ab = b - a;
-    let l2 = ab.norm_squared();
-    let u = if l2 > 0.0 {
-        ((p - a).dot(&ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + ab * u - p).norm()
-}
-
-/// Errors of one linkage against `t`: `[max, rms, back]` and each target's foot parameter.
-fn errors_of(
-    p: &[f64],
-    crossed: bool,
-    t: &[Vec2<f64>],
-    samples: usize,
-    exact: bool,
-    closed: bool,
-    feet: &mut [f64],
-) -> [f64; 3] {
-    let bad = [f64::NAN; 3];
-    let Ok(path) = linkage(p, crossed).and_then(CircuitPath::new) else {
-        return bad;
-    };
-    let poly = path.polyline(samples);
-    if poly.iter().any(|q| !(q.x.is_finite() && q.y.is_finite())) {
-        return bad;
-    }
-    let m = poly.len();
-    let (mut worst, mut sum) = (0.0f64, 0.0f64);
-    for (j, &q) in t.iter().enumerate() {
-        let d = if exact {
-            match path.foot(q, &poly) {
-                Some((d, s)) => {
-                    feet[j] = s;
-                    d
-                }
-                None => return bad,
-            }
-        } else {
-            let mut best = (f64::INFINITY, 0usize);
-            for k in 0..m {
-                let d = segment_distance(q, poly[k], poly[(k + 1) % m]);
-                if d < best.0 {
-                    best = (d, k);
-                }
-            }
-            feet[j] = std::f64::consts::TAU * best.1 as f64 / m as f64;
-            best.0
-        };
-        worst = worst.max(d);
-        sum += d * d;
-    }
-    // The curve's distance back to the target polygon (closed targets) or polyline (open).
-    let mut back = 0.0f64;
-    let segs = if closed { t.len() } else { t.len() - 1 };
-    for &q in &poly {
-        let mut best = f64::INFINITY;
-        for k in 0..segs {
-            best = best.min(segment_distance(q, t[k], t[(k + 1) % t.len()]));
-        }
-        back = back.max(best);
-    }
-    [worst, (sum / t.len() as f64).sqrt(), back]
-}
-
-/// Errors of `M` linkages against target points: `(errors (M, 3) [max, rms, curve→target max],
-/// feet (M, n))`; `exact` finds each target's true nearest curve point (golden section),
-/// otherwise the nearest segment of a `samples`-point polyline. NaN for a linkage whose circuit
-/// does not assemble throughout.
+/// Errors of `M` placed linkages against target points: `(errors (M, 3) [max, rms, back],
+/// feet (M, n))` (`linkage_core::path_errors`); `exact` finds each target's true nearest curve
+/// point, otherwise the nearest segment of a `samples`-point polyline. NaN rows for a linkage
+/// whose circuit does not assemble throughout.
 #[pyfunction]
 #[pyo3(signature = (params, crossed, targets, samples=256, exact=false, closed=true, threads=1))]
-#[allow(clippy::too_many_arguments)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "mirrors the Python call's keywords"
+)]
 pub fn synth_errors<'py>(
     py: Python<'py>,
     params: PyReadonlyArray2<'py, f64>,
@@ -318,48 +214,33 @@ pub fn synth_errors<'py>(
     closed: bool,
     threads: usize,
 ) -> PyResult<(Arr2<'py, f64>, Arr2<'py, f64>)> {
-    let p = rows("params", &params, 9)?;
-    let m = p.len() / 9;
-    let cr = crossed
-        .as_slice()
-        .map_err(|_| linkage_error("crossed must be contiguous"))?;
+    let p = rows("params", &params, PLACED_PARAMS)?;
+    let cr = flags("crossed", &crossed)?;
     let t = points("targets", &targets)?;
-    let n = t.len();
-    if cr.len() != m || n < 2 || samples < 8 {
-        return Err(linkage_error(format!(
-            "params ({m} rows) and crossed ({}) disagree, or fewer than 2 targets ({n}) or 8 samples ({samples})",
-            cr.len()
-        )));
+    let (m, n) = (cr.len(), t.len());
+    let what = || format!("errors of {m} linkages × {n} points");
+    memory::check(
+        &what,
+        memory::bytes_of::<f64>((m as u128) * (n as u128 + 6)),
+    )?;
+    let feet = memory::zeros::<f64, Ix2>(py, &what, &[m, n])?;
+    let mut errs = memory::filled(&what, m, PathError::nan())?;
+    let search = if exact {
+        FootSearch::Exact
+    } else {
+        FootSearch::Polyline
+    };
+    {
+        let mut w = feet.readwrite();
+        let f = as_slice(&mut w)?;
+        let threads = threads_of(threads);
+        py.detach(|| path_errors(p, cr, t, samples, search, closed, threads, &mut errs, f))
+            .map_err(to_py)?;
     }
-    let (errs, feet) = py.detach(|| {
-        let mut errs = vec![f64::NAN; m * 3];
-        let mut feet = vec![f64::NAN; m * n];
-        let threads = threads_of(threads).min(m.max(1));
-        let per = m.div_ceil(threads).max(1);
-        std::thread::scope(|scope| {
-            for (c, (e, f)) in errs
-                .chunks_mut(3 * per)
-                .zip(feet.chunks_mut(n * per))
-                .enumerate()
-            {
-                let t = &t;
-                scope.spawn(move || {
-                    for (i, (ei, fi)) in e.chunks_mut(3).zip(f.chunks_mut(n)).enumerate() {
-                        let k = c * per + i;
-                        let r =
-                            errors_of(&p[9 * k..9 * k + 9], cr[k], t, samples, exact, closed, fi);
-                        ei.copy_from_slice(&r);
-                    }
-                });
-            }
-        });
-        (errs, feet)
-    });
-    let e = numpy::ndarray::Array2::from_shape_vec((m, 3), errs)
+    let flat: Vec<f64> = errs.iter().flat_map(|e| [e.max, e.rms, e.back]).collect();
+    let e = numpy::ndarray::Array2::from_shape_vec((m, 3), flat)
         .map_err(|e| linkage_error(format!("internal error: {e}")))?;
-    let f = numpy::ndarray::Array2::from_shape_vec((m, n), feet)
-        .map_err(|e| linkage_error(format!("internal error: {e}")))?;
-    Ok((e.into_pyarray(py), f.into_pyarray(py)))
+    Ok((e.into_pyarray(py), feet))
 }
 
 /// Validity of a placed linkage's circuit and its figures over the arc `s_lo … s_hi`:
@@ -377,32 +258,17 @@ pub fn synth_info(
     let p = params
         .as_slice()
         .map_err(|_| linkage_error("params must be contiguous"))?;
-    if p.len() != 9 {
-        return Err(linkage_error("params must hold 9 numbers"));
-    }
-    let path = linkage(p, crossed)
-        .and_then(CircuitPath::new)
-        .map_err(to_py)?;
-    let problem = py
-        .detach(|| path.check(check_samples))
-        .err()
-        .map(|e| e.to_string());
-    let k = 512;
-    let (mut lo, mut hi, mut mu) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
-    for i in 0..=k {
-        let s = s_lo + (s_hi - s_lo) * i as f64 / k as f64;
-        let (theta, _) = path.theta(s);
-        lo = lo.min(theta);
-        hi = hi.max(theta);
-        if let Some(m) = path.transmission(s) {
-            mu = mu.min(m);
-        }
-    }
-    // A limited circuit's crank limits are at s = 0 and π (mod 2π).
-    let through = !path.full_turn() && {
-        let pi = std::f64::consts::PI;
-        let first = (s_lo / pi).floor() + 1.0;
-        first * pi < s_hi
-    };
-    Ok((problem, path.full_turn(), lo, hi, mu, through))
+    let path = CircuitPath::placed(p, crossed).map_err(to_py)?;
+    let (problem, arc) = py.detach(|| {
+        let problem = path.check(check_samples).err().map(|e| e.to_string());
+        (problem, path.arc(s_lo, s_hi, 512))
+    });
+    Ok((
+        problem,
+        path.full_turn(),
+        arc.theta.0,
+        arc.theta.1,
+        arc.min_transmission,
+        arc.through_limit,
+    ))
 }
