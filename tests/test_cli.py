@@ -32,9 +32,15 @@ PLOTS = {
 }
 
 
-def expected_files(outputs):
+def expected_files(outputs, summary=None):
     # Every report: the page and the data; the CAD drawing when asked for.
     files = {"index.html", "data.csv", "data.npz", "summary.json"}
+    if "synthesis" in outputs:
+        # A synthesis report: the plot, the candidates' table and each one as a scene.
+        assert summary is not None
+        scenes = {c["scene"] for c in summary["synthesis"]["candidates"]}
+        files = {"index.html", "synthesis.png", "candidates.csv", "data.npz", "summary.json"}
+        files |= scenes
     if "cad" in outputs:
         files |= {"mechanism.dxf", "mechanism.svg"}
     for o in outputs:
@@ -89,10 +95,14 @@ def test_every_example_scene(scene, tmp_path):
     code, out = run(tmp_path, str(scene))
     assert code == 0
     summary = json.loads((out / "summary.json").read_text())
-    assert report_files(out) == expected_files(summary["outputs"])
+    assert report_files(out) == expected_files(summary["outputs"], summary)
     check_images(out)
     data = np.load(out / "data.npz")
-    assert len(data["time"]) == 61
+    if "synthesis" in summary["outputs"]:
+        # --samples sets the samples of each candidate's coupler curve.
+        assert data["curves"].shape[1:] == (61, 2)
+    else:
+        assert len(data["time"]) == 61
 
 
 def test_trajectory_only_runs_no_other_stage(tmp_path):

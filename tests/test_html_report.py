@@ -405,6 +405,38 @@ def test_page_in_chromium(browser: Browser, tmp_path: Path, name: str | None, ki
     assert browser.problems() == []
 
 
+def test_synthesis_page_in_chromium(browser: Browser, tmp_path: Path) -> None:
+    """A [synthesis] scene's page: no motion and no script, the figures table, the candidates
+    and the plot; no console error, nothing requested but the page."""
+    res = runner.run(scene.load(EXAMPLES / "synthesis_foot.toml"))
+    assert res.synthesis is not None
+    path = write_index(res, tmp_path, [_plot(tmp_path / "synthesis.png", (30, 120, 200))])
+    browser.events.clear()
+    browser.open(path.as_uri())
+    assert browser.problems() == []
+    assert [u for u in browser.requests() if not u.startswith("data:")] == [path.as_uri()]
+    assert browser.js("document.querySelectorAll('script, #views, #scrub').length") == 0
+    figures_rows = "document.querySelectorAll('table.figures:not(#candidates) tbody tr').length"
+    assert browser.js(figures_rows) == len(res.figures)
+    cells = browser.js(
+        "Array.from(document.querySelectorAll('#candidates tbody tr'))"
+        ".map(r => Array.from(r.children).map(c => c.textContent))"
+    )
+    assert len(cells) == len(res.synthesis.candidates)
+    assert [row[0] for row in cells] == [str(k + 1) for k in range(len(cells))]
+    assert cells[0][-1] == "candidate-1.toml" and cells[0][3] == "crank-rocker"
+    imgs = browser.js(
+        "Array.from(document.querySelectorAll('.plots img')).map(i => i.naturalWidth)"
+    )
+    assert imgs == [120]
+    assert _ink(browser.screenshot()) > 0.01
+    shots = os.environ.get("LINKAGE_SCREENSHOTS")
+    if shots:
+        Path(shots).mkdir(parents=True, exist_ok=True)
+        full = browser.send("Page.captureScreenshot", format="png", captureBeyondViewport=True)
+        Path(shots, f"{res.scene.name}.png").write_bytes(base64.b64decode(full["data"]))
+
+
 def test_missing_browser_skips_only_outside_ci(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(shutil, "which", lambda _name: None)
     monkeypatch.delenv("CI", raising=False)

@@ -33,7 +33,8 @@ SPEED_ROWS = {"peak trace speed", "mean body speed", "largest stance-speed sprea
 
 
 def load(path):
-    return scene.parse(path.read_text())
+    # With its path: a synthesis example's points file is relative to the scene's folder.
+    return scene.parse(path.read_text(), path)
 
 
 @pytest.fixture(scope="module")

@@ -235,6 +235,9 @@ def test_bad_csv(tmp_path) -> None:  # type: ignore[no-untyped-def]
     f.write_text("1,2\n3,x\n")
     with pytest.raises(linkage.LinkageError, match=r"bad\.csv:2"):
         synthesis.read_points(f)
+    f.write_text("1,2\n3,4,5\n")
+    with pytest.raises(linkage.LinkageError, match=r"bad\.csv:2: 3 numbers"):
+        synthesis.read_points(f)
     with pytest.raises(linkage.LinkageError, match="cannot read"):
         synthesis.read_points(tmp_path / "missing.csv")
 
@@ -257,3 +260,7 @@ def test_cli_synth(tmp_path, capsys, atlas: Atlas) -> None:  # type: ignore[no-u
     code = cli.main(["synth", str(tmp_path / "missing.csv"), "--quiet", "--atlas", str(folder)])
     assert code != 0
     assert "cannot read" in capsys.readouterr().err
+    # --atlas is the atlas used: a folder that is not one is refused, not replaced.
+    code = cli.main(["synth", str(f), "--quiet", "--atlas", str(tmp_path)])
+    assert code == 2
+    assert "not a readable atlas" in capsys.readouterr().err

@@ -1,11 +1,13 @@
-"""Building a scene's objects — mechanism, walker, drive, cam, masses — and validating a scene
-without running it.
+"""Building a scene's objects — mechanism, walker, drive, cam, masses, a synthesis target —
+and validating a scene without running it.
 
 The builders (:func:`build_mechanism`, :func:`build_walker`, :func:`build_drive`,
-:func:`build_cam`, :func:`build_masses`) turn any error into a :class:`SceneError` located at
-the key that caused it, and :func:`validate` — called by :func:`linkage.scene.parse` — runs them
-once without computing anything, checks the memory estimate and finds a first assembled sample,
-so ``linkage check`` refuses whatever ``linkage run`` would.
+:func:`build_cam`, :func:`build_masses`, :func:`synthesis_target`, :func:`synthesis_atlas`)
+turn any error into a :class:`SceneError` located at the key that caused it, and
+:func:`validate` — called by :func:`linkage.scene.parse` — runs them once without computing
+anything, checks the memory estimate and finds a first assembled sample (a synthesis scene: reads
+its target points and atlas, without searching), so ``linkage check`` refuses whatever
+``linkage run`` would.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage import catalog
+from linkage import catalog, synthesis
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -38,12 +40,14 @@ from linkage.forces import LinkMass, PointLoad, forces
 from linkage.scene import (
     CYCLES_MAX,
     MEMORY_CAP,
+    POINTS_MAX,
     SAMPLES_MAX,
     SPEED_RANGE,
     TIME_RANGE,
     Scene,
     SceneError,
     _did_you_mean,
+    base_folder,
 )
 from linkage.walker import Leg, Walker, gait_phases
 
@@ -394,6 +398,12 @@ def validate(scene: Scene, samples: int | None = None) -> None:
     SceneError
         For the first problem found.
     """
+    if scene.synthesis is not None:
+        # The search itself is the run's work: here only its inputs.
+        check_synthesis_memory(scene, sample_count(scene, samples))
+        synthesis_target(scene)
+        synthesis_atlas(scene)
+        return
     study, leg = build_study(scene)
     n = sample_count(scene, samples)
     check_memory_estimate(scene, study, n, given=samples is not None)
@@ -628,3 +638,149 @@ def affordable_checks(scene: Scene, study: FourBar | Mechanism | Walker, n: int)
     if estimate_memory(scene, study, n + half) <= MEMORY_CAP:
         return (half,)
     return ()
+
+
+# -- synthesis scenes -------------------------------------------------------------------------
+
+POINTS_FILE_MAX = 4 << 20
+"""Largest target points file (4 MiB: :data:`~linkage.scene.POINTS_MAX` lines of two numbers
+take about 0.4 MiB)."""
+
+
+CURVE_BYTES = 2 * 8 * (5 * 2 + 2 + 2 + 1)
+"""Bytes per sample of a candidate's circuit as a synthesis run keeps it (joints, velocity,
+point, angle) and their temporaries (× 2)."""
+
+
+def check_synthesis_memory(scene: Scene, samples: int) -> None:
+    """Refuse a ``[synthesis]`` run whose curves (``top`` candidates' circuits in ``samples``
+    samples: only ``--samples`` sets it) would need more than
+    :data:`~linkage.scene.MEMORY_CAP`.
+
+    Raises
+    ------
+    SceneError
+        Naming ``samples`` and the largest count that fits.
+    """
+    top = int((scene.synthesis or {}).get("top", 5))
+    need = top * samples * CURVE_BYTES + (64 << 20)
+    if need <= MEMORY_CAP:
+        return
+    most = (MEMORY_CAP - (64 << 20)) // (top * CURVE_BYTES)
+    raise SceneError(
+        f"samples: {samples} samples of {top} coupler curves would need about "
+        f"{need / 2**30:.3g} GiB (estimated), more than the {MEMORY_CAP / 2**30:g} GiB limit; "
+        f"at most {most} samples"
+    )
+
+
+def synthesis_target(scene: Scene) -> Array:
+    """The target points of a ``[synthesis]`` scene, ``(n, 2)``: read from its CSV file
+    (relative to the scene's folder) or given inline, and checked as
+    :func:`linkage.synthesis.path` will check them — at least
+    :data:`~linkage.synthesis.MIN_POINTS` distinct points, not all on one line for a closed
+    target — so that ``check`` refuses a target the search would.
+
+    Raises
+    ------
+    SceneError
+        Located at ``[synthesis] points``, naming the file as the scene gives it.
+    """
+    s = scene.synthesis or {}
+    sec = ("synthesis",)
+    raw = s["points"]
+    if isinstance(raw, str):
+        where = base_folder(scene) / raw
+        try:
+            info = where.stat()
+        except OSError as exc:
+            raise scene.error(
+                sec,
+                "points",
+                f"cannot read {raw!r} (relative to the scene's folder): {exc.strerror or exc}",
+            ) from None
+        if where.is_dir():
+            raise scene.error(sec, "points", f"{raw!r} is a folder, not a CSV file of x, y")
+        if not where.is_file():  # a device or a pipe: it may never end
+            raise scene.error(
+                sec, "points", f"{raw!r} is not a regular file, not a CSV file of x, y"
+            )
+        if info.st_size > POINTS_FILE_MAX:
+            raise scene.error(
+                sec,
+                "points",
+                f"{raw!r} is larger than {POINTS_FILE_MAX >> 20} MiB: not a file of points",
+            )
+        try:
+            points = synthesis.read_points(where)
+        except UnicodeDecodeError as exc:
+            raise scene.error(
+                sec, "points", f"{raw}: not UTF-8 text (byte 0x{exc.object[exc.start]:02x})"
+            ) from None
+        except LinkageError as exc:
+            raise scene.error(sec, "points", str(exc).replace(str(where), raw)) from None
+        except (ValueError, TypeError):  # rows of different lengths
+            raise scene.error(
+                sec, "points", f"{raw}: every row must hold two numbers (x, y)"
+            ) from None
+        name = raw
+    else:
+        with _blame(scene, sec, "points"):
+            points = synthesis.read_points(np.array(raw, dtype=np.float64).reshape(-1, 2))
+        name = "the points"
+    closed = bool(s.get("closed", True))
+    if len(points) > POINTS_MAX:
+        raise scene.error(sec, "points", f"{name}: at most {POINTS_MAX} points, got {len(points)}")
+    # As linkage.synthesis.path cleans them: repeated neighbours (and a closed target's
+    # repeated first point) count once.
+    keep = np.ones(len(points), dtype=bool)
+    keep[1:] = np.any(points[1:] != points[:-1], axis=1)
+    distinct = points[keep]
+    if closed and len(distinct) > 1 and np.array_equal(distinct[0], distinct[-1]):
+        distinct = distinct[:-1]
+    if len(distinct) < synthesis.MIN_POINTS:
+        raise scene.error(
+            sec,
+            "points",
+            f"{name}: path synthesis needs at least {synthesis.MIN_POINTS} distinct points, "
+            f"got {len(distinct)}",
+        )
+    centred = distinct - distinct.mean(axis=0)
+    sv = np.linalg.svd(centred, compute_uv=False)
+    if sv[0] == 0:
+        raise scene.error(sec, "points", f"{name}: the points all coincide")
+    if closed and sv[1] <= 1e-12 * sv[0]:
+        raise scene.error(
+            sec,
+            "points",
+            f"{name}: the points all lie on one line: a closed curve through them encloses "
+            "nothing (closed = false for an open path)",
+        )
+    return points
+
+
+def synthesis_atlas(scene: Scene) -> synthesis.Atlas | None:
+    """The atlas a ``[synthesis]`` scene names (relative to its folder), memory-mapped; None
+    for the default one (built on first use into the cache folder by the search).
+
+    Raises
+    ------
+    SceneError
+        Located at ``[synthesis] atlas`` when the folder is not an atlas.
+    """
+    s = scene.synthesis or {}
+    if "atlas" not in s:
+        return None
+    raw = s["atlas"]
+    folder = base_folder(scene) / raw
+    if not (folder / "meta.json").is_file():
+        raise scene.error(
+            ("synthesis",),
+            "atlas",
+            f"no atlas in {raw!r} (relative to the scene's folder): a folder written by "
+            "linkage.synthesis.Atlas.save holds meta.json, descriptors.npy and params.npy",
+        )
+    try:
+        return synthesis.Atlas.load(folder)
+    except LinkageError as exc:
+        raise scene.error(("synthesis",), "atlas", str(exc).replace(str(folder), raw)) from None

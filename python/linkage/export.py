@@ -7,6 +7,12 @@ drawn from :mod:`linkage.drawing`, the model the plots and the HTML page draw to
 ``write_data(res, folder)`` writes them all into ``folder`` (the report's folder, last, so that
 the summary lists every file of the report).
 
+A ``[synthesis]`` scene's report has no samples over time: instead ``candidates.csv`` (one row
+per candidate, units in the headers), ``candidate-<k>.toml`` (each candidate as a ready-to-run
+``[mechanism]`` scene in the target's frame, see :func:`candidate_scene`), ``data.npz`` (the
+target and every candidate's coupler curve) and ``summary.json`` (with a ``synthesis`` object);
+``cad`` draws the best candidate with its coupler curve and the target (layer ``PATH_target``).
+
 DXF/SVG layers (a path's or leg's name is kept, with characters a DXF layer name cannot hold
 replaced by ``_``):
 
@@ -23,10 +29,13 @@ replaced by ``_``):
 
 from __future__ import annotations
 
+import csv
 import json
 import math
 import re
+import textwrap
 from collections.abc import Iterator, Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 from xml.sax.saxutils import quoteattr
@@ -36,8 +45,10 @@ from numpy.typing import NDArray
 
 from linkage import __version__
 from linkage._core import LinkageError
+from linkage._mechanism import Mechanism
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.figures import Result, Row, length_unit, torque_unit
+from linkage.synthesis import Candidate
 
 Array = NDArray[np.float64]
 
@@ -83,6 +94,8 @@ def drawing_of(res: Result) -> Drawing | None:
     plane (from the side, or from above when most legs work in the horizontal plane); ``None``
     when the run has neither (it always has one after :func:`linkage.runner.run`)."""
     units = res.scene.units
+    if res.synthesis is not None:
+        return synthesis_drawing(res)
     if res.simulation is not None and res.walker is not None:
         leg_theta = None
         if res.scene.drive.get("kind") == "schedule" and res.drive is not None:
@@ -478,13 +491,20 @@ def summary(res: Result, files: Sequence[str], columns: Sequence[str], pose: int
 
     scene = res.scene
     pose_info = None
-    if pose is not None:
+    run = res.synthesis
+    if pose is not None and run is not None:
+        pose_info = {
+            "sample": pose,
+            "time_s": None,
+            "theta_rad": _json_number(run.best.theta[pose]),
+        }
+    elif pose is not None:
         pose_info = {
             "sample": pose,
             "time_s": _json_number(res.time[pose]),
             "theta_rad": _json_number(res.theta[pose]),
         }
-    return {
+    out = {
         "schema": SCHEMA,
         "tool": "linkage",
         "version": str(__version__),
@@ -501,6 +521,10 @@ def summary(res: Result, files: Sequence[str], columns: Sequence[str], pose: int
         "csv_columns": list(columns),
         "files": sorted(files),
     }
+    if run is not None:
+        out["samples"] = len(run.best.theta)
+        out["synthesis"] = _synthesis_json(res)
+    return out
 
 
 # -- all together -----------------------------------------------------------------------------
@@ -519,6 +543,347 @@ def write_cad(res: Result, folder: Path, pose: int | None = None) -> tuple[list[
     return [dxf, svg], k
 
 
+# -- synthesis scenes ------------------------------------------------------------------------
+
+
+def synthesis_drawing(res: Result) -> Drawing:
+    """The best candidate of a ``[synthesis]`` run over its circuit, with its coupler curve
+    (``trace P``) and the target (``target``, closed when the target is) as paths."""
+    run = res.synthesis
+    if run is None:
+        raise LinkageError("not a synthesis run")
+    d = mechanism_drawing(run.candidates[0].linkage, run.best, res.scene.units)
+    target = np.asarray(run.target, dtype=float)
+    if run.closed and len(target):
+        target = np.vstack([target, target[:1]])
+    return replace(d, paths={**d.paths, "target": target})
+
+
+def synthesis_pose(d: Drawing) -> int:
+    """The sample a synthesis report draws the best candidate at: a sixth of its circuit in (a
+    crank along the ground line at the start hides it), or the first assembled one."""
+    ok = np.asarray(np.isfinite(d.positions).all(axis=(1, 2)), dtype=bool)
+    k = ok.shape[0] // 6
+    return k if bool(ok[k]) else default_pose(d)
+
+
+def _digits(size: float) -> int:
+    """Decimals that keep a length to 1e-10 of ``size`` (the search's own precision is 1e-10
+    of the size at best): the exported numbers stay readable (20.0, not 19.99999999999998)."""
+    return 10 - math.floor(math.log10(size)) if math.isfinite(size) and size > 0 else 12
+
+
+def _num_toml(x: float, decimals: int) -> str:
+    return repr(round(float(x), decimals) + 0.0)
+
+
+def _mechanism_of(c: Candidate, side: str, phase: float) -> Mechanism:
+    """The candidate as the joints of its exported scene: the crank at ``theta + phase``."""
+    fb = c.linkage
+    m = Mechanism()
+    m.fixed("O", fb.o)
+    m.fixed("C", fb.c)
+    m.crank("A", "O", fb.crank, phase)
+    m.dyad("B", "A", "C", fb.coupler, fb.rocker, side)
+    m.point("P", ("A", "B"), fb.point)
+    m.trace = "P"
+    return m
+
+
+def _distance_to(points: Array, path: Array) -> float:
+    """Largest distance from ``points`` (n, 2) to the polyline ``path`` (its finite points)."""
+    path = path[np.isfinite(path).all(axis=1)]
+    if len(path) < 2:
+        return math.inf
+    a, ab = path[:-1], np.diff(path, axis=0)
+    rel = points[:, None, :] - a[None]
+    u = np.clip(np.sum(rel * ab, 2) / np.maximum(np.sum(ab * ab, 1), 1e-300), 0.0, 1.0)
+    gap = rel - u[..., None] * ab[None]
+    return float(np.max(np.min(np.hypot(gap[..., 0], gap[..., 1]), axis=1)))
+
+
+CANDIDATE_RPM = 60.0
+"""Motor speed of an exported candidate scene: one crank turn per second."""
+
+
+def candidate_drive(c: Candidate) -> tuple[float, float]:
+    """The exported scene's crank phase and run time: the crank starts at the beginning of the
+    candidate's crank range (``phase`` in radians, the scene's ``phase_deg``) and turns at
+    :data:`CANDIDATE_RPM` over that range: one turn, or from one limit to the other."""
+    lo, hi = c.crank_range
+    omega = CANDIDATE_RPM * 2 * math.pi / 60
+    span = 2 * math.pi if c.full_turn else hi - lo
+    return lo, span / omega
+
+
+def candidate_side(c: Candidate, target: Array) -> str:
+    """The side of the exported scene's dyad (``B`` relative to ``A → C``): the candidate's
+    assembly (``open`` is ``left``), except for a crank that rocks within its limits over a
+    part of the curve traced on the other assembly, where the other side draws the target."""
+    side = "left" if c.linkage.assembly == "open" else "right"
+    if c.full_turn or c.through_limit:
+        return side
+    phase, duration = candidate_drive(c)
+    theta = np.linspace(0.0, duration * CANDIDATE_RPM * 2 * math.pi / 60, 721)
+    gaps = {}
+    for sd in ("left", "right"):
+        s = _mechanism_of(c, sd, phase).sweep(theta, outputs=("point",))
+        gaps[sd] = _distance_to(np.asarray(target, dtype=float), s.point)
+    return min(("left", "right"), key=lambda sd: (gaps[sd], sd != side))
+
+
+def candidate_scene(res: Result, k: int) -> str:
+    """Candidate ``k`` (1 = best) of a ``[synthesis]`` run as the text of a ``[mechanism]``
+    scene: the four-bar as joints in the target's frame (ground pivots ``O``, ``C``, crank end
+    ``A``, coupler–rocker joint ``B``, coupler point ``P`` traced), a constant drive over the
+    crank range (one turn, or from limit to limit), its numbers kept to 1e-10 of the target's
+    size, and comments with the candidate's figures. ``linkage check`` accepts it."""
+    run = res.synthesis
+    if run is None or not 1 <= k <= len(run.candidates):
+        raise LinkageError(f"no candidate {k} in this run")
+    c = run.candidates[k - 1]
+    fb = c.linkage
+    scene = res.scene
+    u = length_unit(scene)
+    nd = _digits(run.size)
+
+    def num(x: float) -> str:
+        return _num_toml(x, nd)
+
+    suffix = f"-candidate-{k}"
+    name = scene.name[: 64 - len(suffix)] + suffix
+    phase, duration = candidate_drive(c)
+    side = candidate_side(c, run.target)
+    lo, hi = (math.degrees(v) for v in c.crank_range)
+    if c.full_turn:
+        motion = "the crank turns fully: the scene drives one turn from the start of its range"
+    else:
+        motion = (
+            f"the crank rocks between {lo:.3f}° and {hi:.3f}°: the scene drives it once from "
+            "one limit to the other"
+        )
+        if c.through_limit:
+            motion += (
+                f" on the {fb.assembly} assembly; the rest of the curve is traced back on the "
+                "other assembly, after the linkage passes the toggle at the limit"
+            )
+    dyad = "left" if fb.assembly == "open" else "right"
+    header = [
+        f"Candidate {k} of the synthesis scene {scene.name!r} (linkage {__version__}).",
+        f"Coupler point P passes within {c.error:.3g} {u} of the target's {len(run.target)} "
+        f"points (RMS {c.rms:.3g} {u}).",
+        f"{c.grashof}, {fb.assembly} assembly; least transmission angle "
+        f"{c.min_transmission_deg:.1f}° from a toggle.",
+        f"Four-bar: ground {fb.ground:.6g}, crank {fb.crank:.6g}, coupler {fb.coupler:.6g}, "
+        f"rocker {fb.rocker:.6g} {u}; P at ({fb.point[0]:.6g}, {fb.point[1]:.6g}) along and "
+        "left of A → B.",
+        f"Placed in the target's frame: O ({fb.o[0]:.6g}, {fb.o[1]:.6g}), "
+        f"C ({fb.c[0]:.6g}, {fb.c[1]:.6g}).",
+        motion[0].upper() + motion[1:] + ".",
+    ]
+    if side != dyad:
+        header.append(
+            f"The target is drawn by the other assembly over this range: B is on the {side}."
+        )
+    header.append(f"Run it: linkage run candidate-{k}.toml")
+    lines = [f"# {line}" for h in header for line in textwrap.wrap(h, 94)]
+    description = (
+        f"Candidate {k} of {scene.name}: max error {c.error:.3g} {u}, RMS {c.rms:.3g} {u}, "
+        f"{c.grashof}"
+    )
+    lines += [
+        f"name = {json.dumps(name)}",
+        f"description = {json.dumps(description, ensure_ascii=False)}",
+        f"units = {json.dumps(scene.units, ensure_ascii=False)}",
+        'outputs = ["trajectory", "velocity", "acceleration", "animation", "cad"]',
+        "",
+        "[mechanism]",
+        'trace = "P"',
+        "joints = [",
+        f'  {{ name = "O", kind = "fixed", at = [{num(fb.o[0])}, {num(fb.o[1])}] }},',
+        f'  {{ name = "C", kind = "fixed", at = [{num(fb.c[0])}, {num(fb.c[1])}] }},',
+        f'  {{ name = "A", kind = "crank", centre = "O", radius = {num(fb.crank)}, '
+        f"phase_deg = {_num_toml(math.degrees(phase), 12)} }},",
+        f'  {{ name = "B", kind = "dyad", p1 = "A", p2 = "C", r1 = {num(fb.coupler)}, '
+        f'r2 = {num(fb.rocker)}, side = "{side}" }},',
+        f'  {{ name = "P", kind = "point", on = ["A", "B"], along = {num(fb.point[0])}, '
+        f"left = {num(fb.point[1])} }},",
+        "]",
+        "",
+        "[drive]",
+        'kind = "constant"',
+        f"rpm = {CANDIDATE_RPM!r}",
+        "cycles = 1" if c.full_turn else f"duration = {_num_toml(duration, 12)}",
+        "samples = 721",
+        "",
+    ]
+    return "\n".join(lines)
+
+
+CANDIDATE_COLUMNS = (
+    ("rank", ""),
+    ("error", "L"),
+    ("rms", "L"),
+    ("back", "L"),
+    ("grashof", ""),
+    ("full_turn", ""),
+    ("through_limit", ""),
+    ("crank_from", "deg"),
+    ("crank_to", "deg"),
+    ("min_transmission", "deg"),
+    ("pivot_O_x", "L"),
+    ("pivot_O_y", "L"),
+    ("pivot_C_x", "L"),
+    ("pivot_C_y", "L"),
+    ("ground", "L"),
+    ("crank", "L"),
+    ("coupler", "L"),
+    ("rocker", "L"),
+    ("point_along", "L"),
+    ("point_left", "L"),
+    ("assembly", ""),
+    ("source", ""),
+    ("scene", ""),
+)
+"""The columns of ``candidates.csv`` and their units (``L``: the scene's length unit)."""
+
+
+def candidate_rows(res: Result) -> tuple[list[str], list[list[Any]]]:
+    """The header (``name [unit]``) and one row per candidate of ``candidates.csv``."""
+    run = res.synthesis
+    assert run is not None
+    u = length_unit(res.scene)
+    head = [
+        f"{name} [{u if unit == 'L' else unit}]" if unit else name
+        for name, unit in CANDIDATE_COLUMNS
+    ]
+    rows = []
+    for k, c in enumerate(run.candidates, 1):
+        fb = c.linkage
+        lo, hi = (math.degrees(v) for v in c.crank_range)
+        rows.append(
+            [
+                k,
+                c.error,
+                c.rms,
+                c.back,
+                c.grashof,
+                str(c.full_turn).lower(),
+                str(c.through_limit).lower(),
+                lo,
+                hi,
+                c.min_transmission_deg,
+                *fb.o,
+                *fb.c,
+                fb.ground,
+                fb.crank,
+                fb.coupler,
+                fb.rocker,
+                *fb.point,
+                fb.assembly,
+                c.source,
+                f"candidate-{k}.toml",
+            ]
+        )
+    return head, rows
+
+
+def write_candidates_csv(res: Result, path: Path) -> list[str]:
+    """Write ``candidates.csv`` (full precision, units in the headers); returns the headers."""
+    head, rows = candidate_rows(res)
+    with open(path, "w", encoding="utf-8", newline="") as fh:
+        out = csv.writer(fh, lineterminator="\n")
+        out.writerow(head)
+        for row in rows:
+            out.writerow([repr(float(v)) if isinstance(v, float) else v for v in row])
+    return head
+
+
+def _synthesis_json(res: Result) -> dict[str, Any]:
+    run = res.synthesis
+    assert run is not None
+    s = res.scene.synthesis or {}
+    points = s.get("points")
+    cands = []
+    for k, c in enumerate(run.candidates, 1):
+        fb = c.linkage
+        cands.append(
+            {
+                "rank": k,
+                "error": _json_number(c.error),
+                "rms": _json_number(c.rms),
+                "back": _json_number(c.back),
+                "grashof": c.grashof,
+                "full_turn": bool(c.full_turn),
+                "through_limit": bool(c.through_limit),
+                "crank_range_deg": [_json_number(math.degrees(v)) for v in c.crank_range],
+                "min_transmission_deg": _json_number(c.min_transmission_deg),
+                "o": [_json_number(v) for v in fb.o],
+                "c": [_json_number(v) for v in fb.c],
+                "ground": _json_number(fb.ground),
+                "crank": _json_number(fb.crank),
+                "coupler": _json_number(fb.coupler),
+                "rocker": _json_number(fb.rocker),
+                "point": [_json_number(v) for v in fb.point],
+                "assembly": fb.assembly,
+                "source": c.source,
+                "scene": f"candidate-{k}.toml",
+            }
+        )
+    return {
+        "target": {
+            "points": len(run.target),
+            "closed": run.closed,
+            "size": _json_number(run.size),
+            "file": points if isinstance(points, str) else None,
+        },
+        "constraints": {
+            "full_turn": bool(s.get("full_turn", False)),
+            "min_transmission_deg": _json_number(s.get("min_transmission_deg", 0.0)),
+            "lengths": [_json_number(v) for v in s["lengths"]] if "lengths" in s else None,
+            "pivots": (
+                [[_json_number(v) for v in corner] for corner in s["pivots"]]
+                if "pivots" in s
+                else None
+            ),
+        },
+        "candidates": cands,
+    }
+
+
+def write_synthesis(res: Result, folder: Path, cad: bool = True) -> list[Path]:
+    """Write a ``[synthesis]`` run's files into ``folder``: ``candidate-<k>.toml`` for every
+    candidate, ``candidates.csv``, ``mechanism.dxf`` and ``mechanism.svg`` of the best (with
+    ``cad``), ``data.npz`` and, last, ``summary.json``; returns the files written."""
+    folder = Path(folder)
+    run = res.synthesis
+    if run is None:
+        raise LinkageError("not a synthesis run")
+    written: list[Path] = []
+    for k in range(1, len(run.candidates) + 1):
+        path = folder / f"candidate-{k}.toml"
+        path.write_text(candidate_scene(res, k), encoding="utf-8")
+        written.append(path)
+    table = folder / "candidates.csv"
+    columns = write_candidates_csv(res, table)
+    written.append(table)
+    drawn = None
+    if cad:
+        d = synthesis_drawing(res)
+        files, drawn = write_cad(res, folder, synthesis_pose(d))
+        written += files
+    npz, js = folder / "data.npz", folder / "summary.json"
+    write_npz(res, npz)
+    written.append(npz)
+    names = {p.name for p in folder.iterdir() if not p.name.startswith(".")} | {js.name}
+    js.write_text(
+        json.dumps(summary(res, sorted(names), columns, drawn), indent=2, allow_nan=False) + "\n",
+        encoding="utf-8",
+    )
+    written.append(js)
+    return written
+
+
 def write_data(res: Result, folder: Path, pose: int | None = None, cad: bool = True) -> list[Path]:
     """Write the run's data into ``folder``: ``mechanism.dxf`` and ``mechanism.svg`` (with
     ``cad``), ``data.npz``, ``data.csv`` and, last, ``summary.json`` listing every file in the
@@ -529,6 +894,8 @@ def write_data(res: Result, folder: Path, pose: int | None = None, cad: bool = T
     LinkageError
         If ``pose`` is not an assembled sample of the run.
     """
+    if res.synthesis is not None:
+        return write_synthesis(res, folder, cad)
     folder = Path(folder)
     written: list[Path] = []
     drawn = None

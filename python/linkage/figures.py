@@ -21,6 +21,7 @@ from linkage.geometry import StraightPart
 from linkage.scene import (
     Scene,
 )
+from linkage.synthesis import Candidate
 from linkage.walker import Simulation, Walker
 
 Array = NDArray[np.float64]
@@ -80,6 +81,23 @@ class Row(tuple[str, str, str, str]):
 
 
 @dataclass
+class SynthesisRun:
+    """What the search of a ``[synthesis]`` scene found: the target and the candidates."""
+
+    target: Array
+    """The target points, ``(n, 2)``, as read."""
+    closed: bool
+    candidates: list[Candidate]
+    """Best (smallest largest error) first; each placed in the target's frame."""
+    curves: list[Array]
+    """Each candidate's coupler curve over its whole circuit, ``(samples, 2)``."""
+    size: float
+    """The target's size: the RMS distance of its points from their centroid."""
+    best: Sweep
+    """The best candidate's circuit (``FourBar.circuit``): its joints for the drawings."""
+
+
+@dataclass
 class Result:
     """Everything a run computed."""
 
@@ -102,6 +120,9 @@ class Result:
     walker: Walker | None = None
     drive: Any = None
     """The drive the run used (its crank angles over time)."""
+    synthesis: SynthesisRun | None = None
+    """A ``[synthesis]`` scene's search (then there is no mechanism, walker or sweep, and
+    ``time`` and ``theta`` are empty)."""
     arrays: dict[str, Array] = field(default_factory=dict)
     check_samples: tuple[int, ...] = ()
     """Sample counts of the runs at other resolutions that give the sampled figures their

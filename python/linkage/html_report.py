@@ -11,6 +11,9 @@ the trace path, the ground line, stance feet, the support polygon and the centre
 and the positions of their points at each frame, in page units (the view's larger side is
 1000 units, y down) rounded to 0.1 unit, which is below a screen's pixel. At most
 :data:`MAX_FRAMES` frames are embedded, taken evenly from the run's samples.
+
+A ``[synthesis]`` scene's page has no motion: the figures table, the candidates (lengths,
+pivots, errors, the scene file of each) and the plot; no script.
 """
 
 from __future__ import annotations
@@ -30,7 +33,7 @@ from linkage._core import LinkageError
 from linkage.build import build_drive
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.drive import CrankSchedule
-from linkage.figures import Result, length_unit
+from linkage.figures import Result, format_number, length_unit
 
 Array = NDArray[np.float64]
 
@@ -79,6 +82,8 @@ def page(
 ) -> str:
     """The text of the report's ``index.html`` (see :func:`write_index`)."""
     scene = res.scene
+    if res.synthesis is not None:
+        return _synthesis_page(res, images)
     data = {
         "name": scene.name,
         "units": length_unit(scene),
@@ -103,6 +108,66 @@ def page(
         data=_json_script(data),
         figures=_figures_table(res),
         plots=_plots(images),
+    )
+
+
+def _synthesis_page(res: Result, images: Sequence[Path]) -> str:
+    """The page of a ``[synthesis]`` run: figures, candidates, plots."""
+    scene = res.scene
+    title = html.escape(scene.name or "linkage report")
+    description = getattr(scene, "description", "") or ""
+    units = (
+        f"Lengths in {html.escape(scene.units)}"
+        if scene.units
+        else "Lengths in the scene's units (the scene does not name them)"
+    )
+    return _SYNTHESIS_TEMPLATE.format(
+        title=title,
+        description=f"<p class=desc>{html.escape(description)}</p>" if description else "",
+        units=units,
+        css=_CSS,
+        figures=_figures_table(res),
+        candidates=_candidates_table(res),
+        plots=_plots(images),
+    )
+
+
+def _candidates_table(res: Result) -> str:
+    """The candidates as a table: rank, errors, class, crank range, transmission, pivots,
+    lengths, coupler point, assembly and the scene file that runs it."""
+    run = res.synthesis
+    assert run is not None
+    u = html.escape(length_unit(res.scene))
+
+    def n(x: float, digits: int | None = None) -> str:
+        # Lengths to six digits without trailing zeros; errors to ``digits``.
+        return html.escape(format_number(float(x), 0 if digits is None else None, digits))
+
+    head = (
+        f"<tr><th>#</th><th>max error ({u})</th><th>RMS ({u})</th><th>class</th>"
+        "<th>crank range (°)</th><th>min transmission (°)</th><th>pivots O, C</th>"
+        f"<th>ground, crank, coupler, rocker ({u})</th><th>coupler point</th>"
+        "<th>assembly</th><th>scene</th></tr>"
+    )
+    rows = []
+    for k, c in enumerate(run.candidates, 1):
+        fb = c.linkage
+        lo, hi = (math.degrees(v) for v in c.crank_range)
+        turn = " (full turn)" if c.full_turn else ""
+        rows.append(
+            f"<tr><td>{k}</td><td class=num>{n(c.error, 3)}</td><td class=num>{n(c.rms, 3)}</td>"
+            f"<td>{html.escape(c.grashof)}</td>"
+            f"<td class=num>{lo + 0.0:.1f} … {hi + 0.0:.1f}{turn}</td>"
+            f"<td class=num>{c.min_transmission_deg:.1f}</td>"
+            f"<td class=num>({n(fb.o[0])}, {n(fb.o[1])}), ({n(fb.c[0])}, {n(fb.c[1])})</td>"
+            f"<td class=num>{n(fb.ground)}, {n(fb.crank)}, {n(fb.coupler)}, {n(fb.rocker)}</td>"
+            f"<td class=num>({n(fb.point[0])}, {n(fb.point[1])})</td>"
+            f"<td>{html.escape(fb.assembly)}</td><td><code>candidate-{k}.toml</code></td></tr>"
+        )
+    return (
+        f"<table class=figures id=candidates><thead>{head}</thead><tbody>"
+        + "".join(rows)
+        + "</tbody></table>"
     )
 
 
@@ -593,6 +658,38 @@ style-src 'unsafe-inline'; script-src 'unsafe-inline'">
 </main>
 <script type="application/json" id=linkage-data>{data}</script>
 <script>{js}</script>
+</body></html>
+"""
+
+
+_SYNTHESIS_TEMPLATE = """<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<meta name="viewport" content="width=device-width,initial-scale=1">
+<meta http-equiv="Content-Security-Policy" content="default-src 'none'; img-src data:; \
+style-src 'unsafe-inline'">
+<link rel="icon" href="data:,">
+<title>{title} — linkage report</title>
+<style>{css}
+.wide{{overflow-x:auto}}
+#candidates{{font-size:.88em}}
+#candidates td{{white-space:nowrap}}</style></head>
+<body>
+<header><h1>{title}</h1>{description}
+<p class=meta>{units}; angles in degrees. Path synthesis: four-bars whose coupler point passes \
+through the target points, best first.</p></header>
+<main>
+<h2>Figures</h2>
+{figures}
+<h2>Candidates</h2>
+<p class=meta>Each candidate is in the target's frame; its scene file in this folder runs it \
+(<code>linkage run candidate-1.toml</code>). Pivots and lengths to 6 digits here; \
+<code>candidates.csv</code> has them in full.</p>
+<div class=wide>{candidates}</div>
+<h2>Plots</h2>
+<div class=plots>{plots}</div>
+<footer>Written by linkage. This page is self-contained: it loads nothing from the network.\
+</footer>
+</main>
 </body></html>
 """
 

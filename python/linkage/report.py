@@ -1,5 +1,7 @@
 """The report folder of a run: plots (PNG), an animation (GIF), the data (CSV, NPZ) and a JSON
-summary — only the files the scene's outputs call for.
+summary — only the files the scene's outputs call for. A ``[synthesis]`` scene's report holds
+``synthesis.png`` (the target and every candidate's coupler curve, the best drawn at one pose),
+``candidates.csv``, each candidate as a scene to run and the summary.
 
 The folder is the user's disk, so this module removes only what it wrote:
 
@@ -31,6 +33,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -56,7 +59,7 @@ from linkage.drawing import (
     walker_drawing,
 )
 from linkage.drive import CrankSchedule
-from linkage.figures import Result, torque_unit, unit_label
+from linkage.figures import Result, format_number, torque_unit, unit_label
 
 MARKER = ".linkage-report"
 """Name of the marker file that makes a folder a report linkage wrote (and may replace)."""
@@ -731,6 +734,13 @@ def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
         fig.savefig(path, dpi=DPI, pil_kwargs={"compress_level": 2})
         files.append(path)
 
+    if res.synthesis is not None:
+        save(_synthesis(res), "synthesis.png")
+        files.append(html_report.write_index(res, folder, files))
+        res.stages["report"] = time.perf_counter() - started
+        files.extend(export.write_data(res, folder, cad=scene.wants("cad")))
+        return files
+
     t = res.time
     sim = res.simulation
     walker_views = _walker_views(res, units) if sim is not None else []
@@ -866,6 +876,93 @@ def _trajectory(res: Result, d: Drawing) -> Any:
     ax.set_title(f"{res.scene.name}: path of {s.trace}, pose at θ = {theta:.0f}°", fontsize=10)
     # Below the plot, where it cannot hide the path or the linkage.
     fig.legend(loc="lower center", ncol=3, fontsize=7, frameon=False)
+    return fig
+
+
+SYNTHESIS_SHOWN = 8
+"""Most candidates ``synthesis.png`` draws (the best first); the rest are in the CSV."""
+
+
+def _synthesis(res: Result) -> Any:
+    """``synthesis.png``: the target points and every candidate's coupler curve (each named in
+    the legend with its largest error), the best candidate drawn at one pose with its ground
+    pivots; to scale, limits from the target and the best candidate's links and curve (the
+    other curves may leave the view: they are compared where the target is)."""
+    run = res.synthesis
+    assert run is not None
+    units = res.scene.units
+    u = unit_label(units)
+    d = export.synthesis_drawing(res)
+    # The best candidate's links and curve, and the target, set the view (not the target
+    # path the drawing carries: it is drawn as markers below).
+    view = replace(d, paths={k: v for k, v in d.paths.items() if k != "target"})
+    x0, x1, y0, y1 = view.bounds(0.0)
+    lo = np.minimum([x0, y0], run.target.min(axis=0))
+    hi = np.maximum([x1, y1], run.target.max(axis=0))
+    g = 0.06 * float(max(hi - lo))
+    box = (float(lo[0] - g), float(hi[0] + g), float(lo[1] - g), float(hi[1] + g))
+    width = 6.4
+    height = float(min(max((width - 1.05) * (box[3] - box[2]) / (box[1] - box[0]), 2.2), 6.0))
+    shown = run.candidates[:SYNTHESIS_SHOWN]
+    rows = len(shown) + 1 if len(shown) <= 2 else math.ceil((len(shown) + 1) / 2)
+    fig = _new_figure(width, height + 0.4 + 0.55 + 0.2 * rows)
+    ax = fig.subplots()
+    _margins(fig, top=0.4, bottom=0.55 + 0.2 * rows)
+    size = _size(view)
+    _ground_symbol(ax, view, size)
+    pose = export.synthesis_pose(d)
+    _Pose(ax, view, animated=False, faint=True).update(pose)
+    for k in reversed(range(len(shown))):
+        colour, ls = line_style(k)
+        c = shown[k]
+        err = format_number(c.error, digits=3)
+        ax.plot(
+            run.curves[k][:, 0],
+            run.curves[k][:, 1],
+            ls=ls,
+            color=colour,
+            lw=2.2 if k == 0 else 1.3,
+            zorder=3.5 if k == 0 else 3 - 0.01 * k,
+            label=f"#{k + 1}: max error {err} {u}, {c.grashof}",
+        )
+    t = run.target
+    ax.plot(
+        t[:, 0],
+        t[:, 1],
+        "o",
+        ms=5,
+        mfc="white",
+        mec="k",
+        mew=1.2,
+        zorder=7,
+        label=f"target ({len(t)} points, {'closed' if run.closed else 'open'})",
+    )
+    ax.set_xlim(box[0], box[1])
+    ax.set_ylim(box[2], box[3])
+    ax.set_aspect("equal", adjustable="datalim")
+    _tidy(ax, f"x ({u})", f"y ({u})")
+    more = len(run.candidates) - len(shown)
+    extra = f" (+{more} in candidates.csv)" if more > 0 else ""
+    theta = math.degrees(float(run.best.theta[pose])) % 360
+    ax.set_title(
+        f"{res.scene.name}: target and {len(run.candidates)} candidate coupler curves{extra}; "
+        f"#1 drawn at θ = {theta:.0f}°",
+        fontsize=10,
+    )
+    handles, labels = ax.get_legend_handles_labels()
+    # Target first, then the candidates best first, read along the rows (matplotlib fills
+    # the columns first).
+    order = [len(labels) - 1, *reversed(range(len(labels) - 1))]
+    ncol = 1 if len(order) <= 3 else 2
+    order = [i for c in range(ncol) for i in order[c::ncol]]
+    fig.legend(
+        [handles[i] for i in order],
+        [labels[i] for i in order],
+        loc="lower center",
+        ncol=ncol,
+        fontsize=7,
+        frameon=False,
+    )
     return fig
 
 

@@ -1,6 +1,6 @@
 """Running a scene: build the study (:mod:`linkage.build`), run only the stages its outputs
 need, and collect figures (:mod:`linkage.figures`) with their error estimates and the time of
-each stage.
+each stage. A ``[synthesis]`` scene runs one stage, the search (:func:`linkage.synthesis.path`).
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage import synthesis
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -27,9 +28,12 @@ from linkage.build import (
     build_study,
     check_legs,
     check_memory_estimate,
+    check_synthesis_memory,
     no_assembly,
     run_duration,
     sample_count,
+    synthesis_atlas,
+    synthesis_target,
 )
 from linkage.drive import (
     CrankSchedule,
@@ -38,6 +42,7 @@ from linkage.drive import (
 from linkage.figures import (
     Result,
     Row,
+    SynthesisRun,
     check_counts,
     exact,
     format_error,
@@ -88,6 +93,11 @@ def run(
         stages[name] = stages.get(name, 0.0) + time.perf_counter() - t0
         return out
 
+    if scene.synthesis is not None:
+        res = _synthesis(scene, n, stage)
+        took = stages.get("synthesis", 0.0)
+        res.figures.append(Row("search time", f"{took:.2f}", "s", "wall clock", value=took))
+        return _finish(res, stages)
     study, leg = stage("build", lambda: build_study(scene))
     check_memory_estimate(scene, study, n, given=samples is not None)
     walker = study if isinstance(study, Walker) else None
@@ -176,6 +186,148 @@ def run(
 def _finish(res: Result, stages: dict[str, float]) -> Result:
     res.stages = stages
     return res
+
+
+# -- synthesis scenes ------------------------------------------------------------------------
+
+CONSTRAINTS = ("full_turn", "min_transmission_deg", "lengths", "pivots")
+"""The keys of ``[synthesis]`` that restrict the candidates (blamed when none is left)."""
+
+
+def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], Any]) -> Result:
+    """The search of a ``[synthesis]`` scene: its candidates, each one's coupler curve over its
+    circuit in ``n`` samples, and the figures (errors with three significant digits: they are
+    distances measured to ~1e-3 of themselves, not sampled quantities)."""
+    s = scene.synthesis or {}
+    check_synthesis_memory(scene, n)
+    closed = bool(s.get("closed", True))
+    target, atlas = stage("build", lambda: (synthesis_target(scene), synthesis_atlas(scene)))
+    lengths = s.get("lengths")
+    pivots = s.get("pivots")
+
+    def search() -> list[synthesis.Candidate]:
+        return synthesis.path(
+            target,
+            closed=closed,
+            top=int(s.get("top", 5)),
+            atlas=atlas,
+            full_turn=bool(s.get("full_turn", False)),
+            min_transmission=math.radians(float(s.get("min_transmission_deg", 0.0))),
+            lengths=(float(lengths[0]), float(lengths[1])) if lengths else None,
+            pivots=(
+                (
+                    (float(pivots[0][0]), float(pivots[0][1])),
+                    (float(pivots[1][0]), float(pivots[1][1])),
+                )
+                if pivots
+                else None
+            ),
+            tol=float(s.get("tol", 1e-3)),
+            seed=int(s.get("seed", 0)),
+        )
+
+    found = stage("synthesis", search)
+    if not found:
+        given = [k for k in CONSTRAINTS if s.get(k)]
+        if given:
+            raise scene.error(
+                ("synthesis",),
+                given[0],
+                f"no four-bar found that meets the constraints ({', '.join(given)}): "
+                "loosen them, or give more candidates room (top)",
+            )
+        raise scene.error(
+            ("synthesis",),
+            "points",
+            "no valid four-bar found for these points (every linkage tried failed to "
+            "assemble over its circuit or switched branch)",
+        )
+    circuits = [c.linkage.circuit(n) for c in found]
+    curves = [np.asarray(c.point, dtype=np.float64) for c in circuits]
+    centred = target - target.mean(axis=0)
+    size = float(np.sqrt(np.mean(np.sum(centred**2, axis=1))))
+    empty = np.zeros(0)
+    res = Result(scene=scene, time=empty, theta=empty)
+    res.synthesis = SynthesisRun(target, closed, found, curves, size, circuits[0])
+    res.arrays.update(target=target, curves=np.stack(curves))
+    _synthesis_figures(res)
+    return res
+
+
+def _synthesis_figures(res: Result) -> None:
+    run = res.synthesis
+    assert run is not None
+    u = length_unit(res.scene)
+    rows = res.figures
+    shape = "closed curve" if run.closed else "open path"
+    rows.append(Row("target", f"{len(run.target)} points, {shape}", "", value=len(run.target)))
+    rows.append(
+        Row(
+            "target size",
+            format_number(run.size, digits=3),
+            u,
+            "RMS distance of the points from their centroid",
+            value=run.size,
+        )
+    )
+    top = int((res.scene.synthesis or {}).get("top", 5))
+    rows.append(
+        Row(
+            "candidates found",
+            str(len(run.candidates)),
+            "",
+            f"best first (at most top = {top})",
+            value=len(run.candidates),
+            exact=True,
+        )
+    )
+    for k, c in enumerate(run.candidates, 1):
+        name = f"candidate {k}"
+        rows.append(
+            Row(
+                f"{name}: max error",
+                format_number(c.error, digits=3),
+                u,
+                "largest distance of a target point from the coupler curve",
+                value=c.error,
+            )
+        )
+        rows.append(
+            Row(
+                f"{name}: RMS error",
+                format_number(c.rms, digits=3),
+                u,
+                "root mean square of those distances",
+                value=c.rms,
+            )
+        )
+        rows.append(
+            Row(
+                f"{name}: Grashof class",
+                c.grashof,
+                "",
+                f"{c.linkage.assembly} assembly, from the {c.source} search",
+            )
+        )
+        lo, hi = (round(math.degrees(v), 1) + 0.0 for v in c.crank_range)
+        how = (
+            "full turn"
+            if c.full_turn
+            else "rocks between its limits, through one (the assembly changes there)"
+            if c.through_limit
+            else "rocks within its limits"
+        )
+        rows.append(Row(f"{name}: crank range", f"{lo:.1f} … {hi:.1f}", "deg", how, value=(lo, hi)))
+        mu = round(c.min_transmission_deg, 1) + 0.0
+        rows.append(
+            Row(
+                f"{name}: min transmission angle",
+                f"{mu:.1f}",
+                "deg",
+                "least distance from a toggle over the matched part",
+                value=mu,
+            )
+        )
 
 
 def _drive_label(scene: Scene, drive: Any) -> str:

@@ -3,7 +3,9 @@ line and the key.
 
 A scene names a mechanism (a catalogue entry, an explicit four-bar, or joint constructions) or a
 walker, its drive, optional masses and loads, an optional cam, and the outputs wanted. Only the
-stages those outputs need are run (see :mod:`linkage.runner`). Example (``examples/*.toml``)::
+stages those outputs need are run (see :mod:`linkage.runner`). A ``[synthesis]`` scene instead
+gives target points and searches for four-bars whose coupler curve passes through them (no
+drive; see :func:`linkage.synthesis.path`). Example (``examples/*.toml``)::
 
     name = "hoecken-leg"
     outputs = ["trajectory", "velocity", "curvature", "straightness"]
@@ -61,10 +63,12 @@ OUTPUTS = (
     "slip",
     "animation",
     "cad",
+    "synthesis",
 )
 
 """What a scene can ask for. ``cad`` writes the mechanism at its first pose and every traced
-path as ``mechanism.dxf`` and ``mechanism.svg``."""
+path as ``mechanism.dxf`` and ``mechanism.svg`` (of a ``[synthesis]`` scene: the best
+candidate); ``synthesis`` is the search of a ``[synthesis]`` scene and its report."""
 
 # `linkage run` with no scene: thesis 1's quadruped under its drive (also
 # examples/quadruped_hoecken.toml, kept equal by a test).
@@ -94,6 +98,10 @@ MECHANISM_OUTPUTS = {
     "straightness",
     "torque",
 }
+SYNTHESIS_OUTPUTS = ("synthesis", "cad")
+"""The outputs of a ``[synthesis]`` scene (``synthesis`` is its default and required)."""
+STUDIES = ("mechanism", "walker", "synthesis")
+"""The sections of which a scene has exactly one: what it studies."""
 
 
 # Ranges of the numbers a scene may hold. Outside them a study means nothing (a length of
@@ -124,6 +132,12 @@ MEMORY_CAP = 2 * 1024**3
 :func:`linkage.build.estimate_memory`."""
 FILE_MAX = 1 << 20
 """Largest scene file, in bytes (1 MiB; a scene is a few hundred bytes)."""
+SYNTHESIS_TOP_MAX = 50
+"""Most candidates a ``[synthesis]`` scene may ask for (``top``)."""
+SEED_MAX = 2**32 - 1
+"""Largest random seed of the global search."""
+POINTS_MAX = 10_000
+"""Most target points of a ``[synthesis]`` scene (each costs a distance per candidate)."""
 NAME = re.compile(r"[a-z0-9][a-z0-9_-]{0,63}")
 """A scene name: a slug, the report folder's name (no '.', '/', spaces or capitals)."""
 
@@ -146,6 +160,8 @@ class Scene:
     gravity: tuple[float, float] = (0.0, -9.81)
     loads: list[dict[str, Any]] = field(default_factory=list)
     cam: dict[str, Any] | None = None
+    synthesis: dict[str, Any] | None = None
+    """The ``[synthesis]`` section as given (points, constraints), or None."""
     description: str = ""
     units: str = ""
     """Length unit label for the report (e.g. "mm"); lengths are used as given."""
@@ -182,6 +198,7 @@ NUMBERS: dict[str, tuple[float, float, str]] = {
     "fraction": (0.0, 1.0, "open"),
     "cycles": (1e-6, CYCLES_MAX, "positive"),
     "pressure": (0.0, 90.0, "open"),
+    "transmission": (0.0, 90.0, "nonneg"),
 }
 TOP = {
     "name": "str",
@@ -195,6 +212,7 @@ TOP = {
     "gravity": "pair",
     "loads": "tables",
     "cam": "table",
+    "synthesis": "table",
 }
 MECHANISM = {
     "catalog": "str",
@@ -283,6 +301,22 @@ CAM = {
     "segments": "tables",
 }
 CAM_SEGMENT = {"duration_deg": "angle_span", "rise": "coord", "law": "str"}
+SYNTHESIS = {
+    "points": "points",
+    "closed": "bool",
+    "top": "int",
+    "full_turn": "bool",
+    "min_transmission_deg": "transmission",
+    "lengths": "list",
+    "pivots": "list",
+    "tol": "fraction",
+    "seed": "int",
+    "atlas": "str",
+}
+"""Keys of ``[synthesis]``: the target (a CSV file relative to the scene's folder, or inline
+``[[x, y], …]``), whether it is closed, how many candidates, the constraints, the global
+search's tolerance (of the target's size) and seed, and an atlas folder (relative to the
+scene's folder; default: the one built once into the cache folder)."""
 DRIVE_KINDS = {
     "constant": {"rpm", "omega", "gears"},
     "program": {"start_deg", "segments", "gears"},
@@ -314,7 +348,8 @@ def load(path: str | Path) -> Scene:
 
 
 def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene:
-    """Validate scene ``text`` (``path`` only names it in messages; ``name`` is the name when
+    """Validate scene ``text`` (``path`` names it in messages, and a ``[synthesis]`` section's
+    files are relative to its folder — else to the working directory; ``name`` is the name when
     the text gives none).
 
     Raises
@@ -348,10 +383,15 @@ def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene
         ) from None
     scene = Scene(name="scene", path=path, outputs=(), locator=where)
     _keys(data, TOP, scene, ())
-    scene.outputs = _outputs(data, scene)
-    has_mech, has_walker = "mechanism" in data, "walker" in data
-    if has_mech == has_walker:
-        raise scene.error((), "mechanism", "give exactly one of [mechanism] or [walker]")
+    studies = [k for k in STUDIES if k in data]
+    if len(studies) != 1:
+        raise scene.error(
+            (),
+            studies[0] if studies else "mechanism",
+            "give exactly one of [mechanism], [walker] or [synthesis]",
+        )
+    scene.outputs = _outputs(data, scene, "synthesis" in data)
+    has_mech = "mechanism" in data
     scene.name = _name(data, scene, name, path)
     scene.description = str(data.get("description", ""))
     scene.units = str(data.get("units", ""))
@@ -362,6 +402,14 @@ def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene
     if len(scene.description) > 4000:
         raise scene.error((), "description", "must be at most 4000 characters")
     outputs = scene.outputs
+    if "synthesis" in data:
+        return _synthesis_scene(data, scene)
+    if "synthesis" in outputs:
+        raise scene.error(
+            (),
+            "outputs",
+            "'synthesis' needs a [synthesis] section (the target points to find a four-bar for)",
+        )
     if has_mech:
         scene.mechanism = _mechanism(data["mechanism"], scene)
         bad = sorted(set(outputs) & WALKER_OUTPUTS)
@@ -425,8 +473,10 @@ def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene
 # -- sections --------------------------------------------------------------------------------
 
 
-def _outputs(data: Mapping[str, Any], scene: Scene) -> tuple[str, ...]:
+def _outputs(data: Mapping[str, Any], scene: Scene, synthesis: bool) -> tuple[str, ...]:
     outputs = data.get("outputs")
+    if outputs is None and synthesis:
+        return ("synthesis",)
     if outputs is None:
         raise scene.error(
             (), "outputs", 'missing: list what to compute, e.g. outputs = ["trajectory"]'
@@ -759,6 +809,109 @@ def _cam(c: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
     return dict(c)
 
 
+def _synthesis_scene(data: Mapping[str, Any], scene: Scene) -> Scene:
+    """The rest of a ``[synthesis]`` scene: its outputs, no drive or loads, the section; then
+    the target points (and atlas) are read by :func:`linkage.build.validate`."""
+    bad = [o for o in scene.outputs if o not in SYNTHESIS_OUTPUTS]
+    if bad:
+        raise scene.error(
+            (),
+            "outputs",
+            f"{bad} need a [mechanism] or a [walker]; a [synthesis] scene reports "
+            "'synthesis' and 'cad' (each candidate is exported as a scene to run)",
+        )
+    if "synthesis" not in scene.outputs:
+        raise scene.error(
+            (), "outputs", "a [synthesis] scene must list 'synthesis' (the search and its report)"
+        )
+    for key in ("drive", "masses", "loads", "cam", "gravity"):
+        if key in data:
+            raise scene.error(
+                (),
+                key,
+                "does not apply to a [synthesis] scene: it searches for a linkage and drives "
+                "none (run a candidate's exported scene for that)",
+            )
+    scene.synthesis = _synthesis(data["synthesis"], scene)
+    from linkage import build  # noqa: PLC0415 (build imports this module)
+
+    build.validate(scene)
+    return scene
+
+
+def _synthesis(s: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
+    sec = ("synthesis",)
+    _keys(s, SYNTHESIS, scene, sec)
+    if "points" not in s:
+        raise scene.error(
+            sec,
+            "points",
+            "missing: a CSV file of x, y (relative to the scene's folder) or [[x, y], ...]",
+        )
+    points = s["points"]
+    if isinstance(points, str):
+        if not points.strip() or len(points) > 4096 or not points.isprintable():
+            raise scene.error(sec, "points", f"must name a CSV file of x, y, got {_show(points)}")
+    else:
+        if len(points) > POINTS_MAX:
+            raise scene.error(sec, "points", f"at most {POINTS_MAX} points, got {len(points)}")
+        for k, p in enumerate(points):
+            ok = (
+                isinstance(p, list)
+                and len(p) == 2
+                and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in p)
+            )
+            if not ok:
+                raise scene.error(
+                    sec, "points", f"point {k + 1} must be a pair of numbers [x, y], got {_show(p)}"
+                )
+            for v in p:
+                _number(v, "coord", scene, sec, "points")
+    top = s.get("top", 5)
+    if not 1 <= top <= SYNTHESIS_TOP_MAX:
+        raise scene.error(
+            sec, "top", f"must be between 1 and {SYNTHESIS_TOP_MAX}, got {_show(top)}"
+        )
+    seed = s.get("seed", 0)
+    if not 0 <= seed <= SEED_MAX:
+        raise scene.error(sec, "seed", f"must be between 0 and {SEED_MAX}, got {_show(seed)}")
+    if "lengths" in s:
+        lengths = s["lengths"]
+        if len(lengths) != 2:
+            raise scene.error(
+                sec, "lengths", f"must be [least, greatest] link lengths, got {_show(lengths)}"
+            )
+        lo, hi = (_number(v, "length", scene, sec, "lengths") for v in lengths)
+        if not lo < hi:
+            raise scene.error(sec, "lengths", f"least must be below greatest, got [{lo:g}, {hi:g}]")
+    if "pivots" in s:
+        box = s["pivots"]
+        if len(box) != 2 or not all(isinstance(c, list) for c in box):
+            raise scene.error(
+                sec,
+                "pivots",
+                f"must be a box [[xmin, ymin], [xmax, ymax]] for both ground pivots, "
+                f"got {_show(box)}",
+            )
+        (x0, y0), (x1, y1) = (_pair(c, scene, sec, "pivots") for c in box)
+        if not (x0 < x1 and y0 < y1):
+            raise scene.error(
+                sec,
+                "pivots",
+                f"must be [[xmin, ymin], [xmax, ymax]] with xmin < xmax and ymin < ymax, "
+                f"got [[{x0:g}, {y0:g}], [{x1:g}, {y1:g}]]",
+            )
+    if "atlas" in s and (not s["atlas"].strip() or not s["atlas"].isprintable()):
+        raise scene.error(sec, "atlas", f"must name an atlas folder, got {_show(s['atlas'])}")
+    return dict(s)
+
+
+def base_folder(scene: Scene) -> Path:
+    """The folder a scene's relative file names are relative to: the scene file's, or the
+    working directory for a scene given as text."""
+    return scene.path.parent if scene.path is not None else Path(".")
+
+
 # -- checks ----------------------------------------------------------------------------------
 
 
@@ -787,6 +940,8 @@ def _type(value: Any, kind: str, scene: Scene, path: tuple[Any, ...], key: str) 
         _pair(value, scene, path, key)
     elif kind == "list" and not isinstance(value, list):
         raise bad("a list")
+    elif kind == "points" and not isinstance(value, (str, list)):
+        raise bad("a CSV file name or a list of [x, y] pairs")
     elif kind == "table" and not isinstance(value, Mapping):
         raise bad("a table")
     elif kind == "tables" and not (

@@ -247,11 +247,14 @@ def read_points(points: str | os.PathLike[str] | Any) -> Float2D:
             if not cells or cells[0].startswith("#"):
                 continue
             try:
-                rows.append([float(c) for c in cells])
+                row = [float(c) for c in cells]
             except ValueError:
                 if not rows and k == 1:
                     continue  # a header line
                 raise LinkageError(f"{p}:{k}: not two numbers: {line.strip()!r}") from None
+            if len(row) != 2:
+                raise LinkageError(f"{p}:{k}: {len(row)} numbers, not two (x, y)")
+            rows.append(row)
         arr = np.array(rows, dtype=np.float64) if rows else np.zeros((0, 2))
         if arr.ndim != 2 or arr.shape[1] != 2:
             raise LinkageError(f"{p}: every row must hold two numbers (x, y)")
@@ -755,6 +758,7 @@ def command(args: Any) -> int:
         closed=not args.open,
         top=int(args.top),
         full_turn=bool(args.full_turn),
+        atlas=args.atlas,
         progress=not args.quiet,
     )
     took = time.perf_counter() - t0

@@ -1,0 +1,314 @@
+"""``[synthesis]`` scenes: ``linkage run`` searches four-bars for target points and writes
+``synthesis.png``, ``candidates.csv``, every candidate as a scene that ``linkage check`` accepts
+and that traces the candidate's curve, ``summary.json`` and ``index.html``; a search that finds
+nothing is one located line and writes nothing; ``check`` reads the points but never searches.
+
+The example uses the default atlas (built once into the cache folder, about 3 s); the other
+scenes here use a small atlas of their own.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import linkage
+from linkage import runner, scene, synthesis
+from linkage.cli import main
+from linkage.export import _distance_to
+from linkage.report import MARKER
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "examples" / "synthesis_foot.toml"
+SCHEMA = ROOT / "docs" / "summary-schema.md"
+
+
+@pytest.fixture(scope="module")
+def atlas_folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    # Small: the linkages here are the Hoecken foot path's (see test_synthesis.py).
+    return synthesis.Atlas.build(40_000, threads=2).save(tmp_path_factory.mktemp("atlas") / "a")
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("example") / "report"
+    assert main(["run", str(EXAMPLE), "--out", str(out), "--quiet"]) == 0
+    return out
+
+
+def summary_of(folder: Path) -> dict:
+    return json.loads((folder / "summary.json").read_text(encoding="utf-8"))
+
+
+def test_the_example_writes_the_synthesis_report(report: Path) -> None:
+    s = summary_of(report)
+    cands = s["synthesis"]["candidates"]
+    scenes = {f"candidate-{k}.toml" for k in range(1, len(cands) + 1)}
+    files = {"synthesis.png", "candidates.csv", "index.html", "summary.json", "data.npz"}
+    files |= {"mechanism.dxf", "mechanism.svg"} | scenes  # the example asks for cad
+    assert set(s["files"]) == files
+    marker = json.loads((report / MARKER).read_text())
+    assert set(marker["files"]) == files == {p.name for p in report.iterdir()} - {MARKER}
+    assert s["outputs"] == ["synthesis", "cad"] and s["length_unit"] == "mm"
+    # The target is the Hoecken foot path 100 mm down: the best candidate is that linkage,
+    # to the file's rounding (1e-6 mm).
+    best = cands[0]
+    assert best["error"] < 1e-5 and best["rms"] <= best["error"]
+    assert best["grashof"] == "crank-rocker" and best["full_turn"] is True
+    np.testing.assert_allclose(best["o"], [0.0, -100.0], atol=1e-5)
+    np.testing.assert_allclose(best["c"], [20.0, -100.0], atol=1e-5)
+    lengths = [best[k] for k in ("ground", "crank", "coupler", "rocker")]
+    np.testing.assert_allclose(lengths, [20.0, 10.0, 25.0, 25.0], atol=1e-5)
+    np.testing.assert_allclose(best["point"], [50.0, 0.0], atol=1e-5)
+    # Every candidate meets the example's constraints, best first.
+    assert len(cands) >= 2
+    for c in cands:
+        assert c["full_turn"] is True and c["min_transmission_deg"] >= 15.0
+        assert c["crank_range_deg"][1] - c["crank_range_deg"][0] == pytest.approx(360.0)
+    assert [c["error"] for c in cands] == sorted(c["error"] for c in cands)
+    target = s["synthesis"]["target"]
+    assert target == {
+        "points": 36,
+        "closed": True,
+        "size": pytest.approx(16.4, abs=0.05),
+        "file": "foot_path.csv",
+    }
+    assert s["synthesis"]["constraints"]["min_transmission_deg"] == 15.0
+
+
+def test_the_figures_are_typed_with_units_and_three_digits(report: Path) -> None:
+    s = summary_of(report)
+    rows = {f["figure"]: f for f in s["figures"]}
+    n = len(s["synthesis"]["candidates"])
+    assert rows["candidates found"]["value"] == n and rows["candidates found"]["exact"]
+    assert rows["target"]["value"] == 36
+    for k in range(1, n + 1):
+        err = rows[f"candidate {k}: max error"]
+        assert err["unit"] == "mm" and isinstance(err["value"], float)
+        assert err["value"] == s["synthesis"]["candidates"][k - 1]["error"]
+        digits = err["text"].split("e")[0].replace(".", "").lstrip("0")
+        assert len(digits) <= 3, err["text"]
+        assert rows[f"candidate {k}: RMS error"]["unit"] == "mm"
+        assert rows[f"candidate {k}: Grashof class"]["value"] == "crank-rocker"
+        lo, hi = rows[f"candidate {k}: crank range"]["value"]
+        assert rows[f"candidate {k}: crank range"]["unit"] == "deg" and hi - lo == pytest.approx(
+            360.0, abs=0.2
+        )
+        mu = rows[f"candidate {k}: min transmission angle"]
+        assert mu["unit"] == "deg" and mu["value"] >= 15.0
+    time = rows["search time"]
+    assert time["unit"] == "s" and time["value"] > 0
+    assert set(s["stages_s"]) == {"build", "synthesis", "report"}
+    # The figures come in the order of the terminal's table: count, candidates, time.
+    names = [f["figure"] for f in s["figures"]]
+    assert names.index("candidates found") < names.index("candidate 1: max error")
+    assert names[-1] == "search time"
+
+
+def test_the_plot_shows_the_target_and_the_curves(report: Path) -> None:
+    with Image.open(report / "synthesis.png") as im:
+        assert im.width >= 600 and im.height >= 400
+        rgb = np.asarray(im.convert("RGB"), dtype=int)
+    assert rgb.std() > 5
+    # The best candidate's curve in the first line colour (tab:blue) and the second's (orange).
+    for colour in ((0x1F, 0x77, 0xB4), (0xFF, 0x7F, 0x0E)):
+        near = np.abs(rgb - np.array(colour)).sum(axis=2) < 40
+        assert near.sum() > 60, colour  # the second runs mostly under the best
+
+
+def test_candidates_csv_has_units_and_every_candidate(report: Path) -> None:
+    with open(report / "candidates.csv", encoding="utf-8", newline="") as fh:
+        rows = list(csv.reader(fh))
+    head, body = rows[0], rows[1:]
+    for column in (
+        "rank",
+        "error [mm]",
+        "rms [mm]",
+        "grashof",
+        "crank_from [deg]",
+        "crank_to [deg]",
+        "min_transmission [deg]",
+        "pivot_O_x [mm]",
+        "pivot_C_y [mm]",
+        "ground [mm]",
+        "crank [mm]",
+        "coupler [mm]",
+        "rocker [mm]",
+        "point_along [mm]",
+        "point_left [mm]",
+        "assembly",
+        "scene",
+    ):
+        assert column in head, column
+    cands = summary_of(report)["synthesis"]["candidates"]
+    assert len(body) == len(cands)
+    for row, c in zip(body, cands):
+        got = dict(zip(head, row))
+        assert int(got["rank"]) == c["rank"]
+        assert float(got["error [mm]"]) == c["error"]  # full precision
+        assert float(got["crank [mm]"]) == c["crank"]
+        assert got["scene"] == c["scene"] and got["assembly"] == c["assembly"]
+
+
+def test_every_exported_candidate_passes_check_and_draws_its_curve(report: Path, capsys) -> None:
+    data = np.load(report / "data.npz")
+    target, curves = data["target"], data["curves"]
+    cands = summary_of(report)["synthesis"]["candidates"]
+    for k, c in enumerate(cands, 1):
+        path = report / f"candidate-{k}.toml"
+        assert main(["check", str(path)]) == 0
+        assert capsys.readouterr().out.startswith(f"ok: synthesis-foot-candidate-{k}:")
+        sc = scene.load(path)
+        assert sc.mechanism is not None and sc.drive["kind"] == "constant"
+        res = runner.run(sc)
+        assert res.sweep is not None and res.sweep.valid.all()
+        trace = res.sweep.point
+        # One crank turn draws the candidate's coupler curve, in the target's frame.
+        assert _distance_to(trace, curves[k - 1]) < 1e-6
+        assert _distance_to(target, trace) == pytest.approx(c["error"], abs=1e-3)
+    # The best one is the linkage the foot path came from.
+    assert _distance_to(target, runner.run(scene.load(report / "candidate-1.toml")).sweep.point) < (
+        1e-5
+    )
+
+
+def test_the_page_shows_the_figures_the_candidates_and_the_plot(report: Path) -> None:
+    text = (report / "index.html").read_text(encoding="utf-8")
+    s = summary_of(report)
+    tables = re.findall(r"<table class=figures(.*?)</table>", text, re.S)
+    assert len(tables) == 2
+    assert tables[0].count("<tr>") == len(s["figures"]) + 1  # and the header
+    assert tables[1].startswith(" id=candidates")
+    assert tables[1].count("<tr>") == len(s["synthesis"]["candidates"]) + 1
+    assert "candidate-1.toml" in tables[1]
+    assert 'alt="synthesis.png" src="data:image/png;base64,' in text
+    assert "<script" not in text
+    refs = re.findall(r"""(?:src|href|url)\s*[=(]\s*["']?([^"')\s>]*)""", text)
+    assert refs and all(r.startswith("data:") for r in refs), refs
+
+
+def free_scene(tmp_path: Path, atlas: Path, extra: str = "", outputs: str = "") -> Path:
+    """The example's target, with ``extra`` settings, the given atlas and no outputs line."""
+    (tmp_path / "foot.csv").write_text((ROOT / "examples" / "foot_path.csv").read_text())
+    path = tmp_path / "free.toml"
+    path.write_text(
+        f'name = "free"\nunits = "mm"\n{outputs}\n[synthesis]\npoints = "foot.csv"\n'
+        f"atlas = {json.dumps(str(atlas))}\n{extra}"
+    )
+    return path
+
+
+def test_cranks_that_rock_are_exported_driven_between_their_limits(
+    tmp_path: Path, atlas_folder: Path, capsys
+) -> None:
+    path = free_scene(tmp_path, atlas_folder)
+    sc = scene.load(path)
+    assert sc.outputs == ("synthesis",)  # the default
+    out = tmp_path / "report"
+    assert main(["run", str(path), "--out", str(out), "--quiet"]) == 0
+    s = summary_of(out)
+    assert "mechanism.dxf" not in s["files"]  # cad not asked for
+    cands = s["synthesis"]["candidates"]
+    rocking = [k for k, c in enumerate(cands, 1) if not c["full_turn"]]
+    assert rocking, "the unconstrained search should find linkages whose crank rocks"
+    curves = np.load(out / "data.npz")["curves"]
+    for k in rocking:
+        path = out / f"candidate-{k}.toml"
+        assert main(["check", str(path)]) == 0
+        text = path.read_text()
+        assert "rocks between" in text and "duration = " in text
+        res = runner.run(scene.load(path))
+        assert res.sweep is not None and res.sweep.valid.any()
+        lo, hi = cands[k - 1]["crank_range_deg"]
+        theta = np.degrees(res.theta[-1] - res.theta[0])
+        assert theta == pytest.approx(hi - lo, rel=1e-9)
+        # From limit to limit on one assembly: half the circuit, on the candidate's curve.
+        ok = res.sweep.valid
+        assert (
+            _distance_to(res.sweep.point[ok], curves[k - 1])
+            < 1e-3 * s["synthesis"]["target"]["size"]
+        )
+    capsys.readouterr()
+
+
+def test_a_search_that_finds_nothing_is_one_located_line_and_writes_nothing(
+    tmp_path: Path, atlas_folder: Path, capsys
+) -> None:
+    # No full-turn crank keeps its transmission angle within 1° of 90° all the way round.
+    path = free_scene(tmp_path, atlas_folder, "full_turn = true\nmin_transmission_deg = 89.0\n")
+    assert main(["check", str(path)]) == 0
+    capsys.readouterr()
+    out = tmp_path / "report"
+    assert main(["run", str(path), "--out", str(out)]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err.splitlines() == [
+        f"linkage: error: {path}:7: [synthesis] full_turn: no four-bar found that meets the "
+        "constraints (full_turn, min_transmission_deg): loosen them, or give more candidates "
+        "room (top)"
+    ]
+    assert not out.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["foot.csv", "free.toml"]
+
+
+def test_check_reads_the_points_but_never_searches(monkeypatch, capsys) -> None:
+    def refuse(*_a: object, **_k: object) -> None:
+        raise AssertionError("check must not search")
+
+    monkeypatch.setattr(synthesis, "path", refuse)
+    assert main(["check", str(EXAMPLE)]) == 0
+    assert capsys.readouterr().out == "ok: synthesis-foot: outputs synthesis, cad\n"
+
+
+def test_points_are_relative_to_the_scene_or_the_working_directory(
+    tmp_path: Path, monkeypatch, atlas_folder: Path
+) -> None:
+    text = EXAMPLE.read_text()
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(scene.SceneError) as info:
+        scene.parse(text)  # no path: relative to the working directory, which has no such file
+    assert str(info.value) == (
+        "<scene>:12: [synthesis] points: cannot read 'foot_path.csv' (relative to the scene's "
+        "folder): No such file or directory"
+    )
+    assert scene.parse(text, EXAMPLE).synthesis is not None
+    monkeypatch.chdir(EXAMPLE.parent)
+    assert scene.parse(text).synthesis is not None
+    # Inline points, any order of keys.
+    fb = linkage.catalog.hoecken()
+    pts = fb.circuit(121).point[:-1][::4]
+    inline = ", ".join(f"[{float(x)!r}, {float(y)!r}]" for x, y in pts)
+    sc = scene.parse(
+        f'name = "inline"\n[synthesis]\ntop = 1\natlas = {json.dumps(str(atlas_folder))}\n'
+        f"points = [{inline}]\n"
+    )
+    res = runner.run(sc, samples=101)
+    assert res.synthesis is not None and len(res.synthesis.candidates) == 1
+    assert res.synthesis.candidates[0].error < 1e-9 * 20
+    assert res.synthesis.curves[0].shape == (101, 2)
+    assert math.isclose(res.synthesis.candidates[0].linkage.ground, 20.0, rel_tol=1e-9)
+
+
+def test_the_summary_schema_documents_the_synthesis_fields(report: Path) -> None:
+    doc = SCHEMA.read_text(encoding="utf-8")
+    s = summary_of(report)["synthesis"]
+    for key in [*s, *s["target"], *s["constraints"], *s["candidates"][0]]:
+        assert f"`{key}`" in doc, key
+    for name in ("synthesis.png", "candidates.csv", "candidate-<k>.toml"):
+        assert name in doc, name
+
+
+def test_samples_beyond_the_memory_cap_are_refused_before_searching(tmp_path: Path, capsys) -> None:
+    out = tmp_path / "report"
+    assert main(["run", str(EXAMPLE), "--out", str(out), "--samples", "100000000"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("linkage: error: samples: 100000000 samples of 5 coupler curves")
+    assert "GiB limit; at most" in err and len(err.splitlines()) == 1
+    assert list(tmp_path.iterdir()) == []
