@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from linkage import export, report, runner
+from linkage import export, report, report_folder, runner
 from linkage._core import LinkageError
 from linkage.cli import main
 from linkage.report import MARKER
@@ -322,7 +322,7 @@ def test_replacing_removes_only_the_listed_files_of_the_old_report(world, capsys
         if ".old-" in str(dst):
             (Path(dst) / "late.txt").write_text("mine")
 
-    monkeypatch.setattr(report.os, "rename", rename)
+    monkeypatch.setattr(report_folder.os, "rename", rename)
     assert main(["run", str(scene_file(world, "other")), *FAST, "--force"]) == 0
     line = one_error_line(capsys.readouterr().err)
     assert "warning" in line and ".old-" in line, line
@@ -426,7 +426,7 @@ def test_a_failing_final_rename_puts_the_old_report_back(world, capsys, monkeypa
             raise OSError(errno.EXDEV, os.strerror(errno.EXDEV), str(src), str(dst))
         real(src, dst)
 
-    monkeypatch.setattr(report.os, "rename", rename)
+    monkeypatch.setattr(report_folder.os, "rename", rename)
     assert main(["run", str(scene_file(world, "other")), *FAST, "--force"]) == 2
     assert "cannot write the report" in one_error_line(capsys.readouterr().err)
     assert snapshot(world) == before

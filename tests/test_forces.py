@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import linkage
-from linkage.forces import LinkMass, PointLoad, forces
+from linkage.forces import LinkMass, PointLoad, joint_forces
 
 MASSES = {
     "crank": LinkMass(0.0036, (0.005, 0), 0.122432e-6),
@@ -30,7 +30,7 @@ def test_thesis_two_leg_torque():
     """docs/domain.md: 20 rpm clockwise, 0.5·9.81 N at the foot (along x, as the source's listing
     applies it), no gravity in the source's model."""
     theta = np.radians(np.arange(0, 360, 1.0))
-    f = forces(
+    f = joint_forces(
         leg(),
         theta,
         omega=-20 * 2 * math.pi / 60,
@@ -62,7 +62,7 @@ def test_static_case_by_hand():
     par = linkage.FourBar(ground=3, crank=1, coupler=3, rocker=1, point=(1.5, 0))
     theta = np.array([0.3, 1.0, 2.2])
     massless = {k: LinkMass(0.0) for k in ("crank", "coupler", "rocker")}
-    f = forces(
+    f = joint_forces(
         par,
         theta,
         omega=0.0,
@@ -73,7 +73,7 @@ def test_static_case_by_hand():
     np.testing.assert_allclose(f.torque, 7.0 * np.cos(theta), atol=1e-12)
     # Hanging weight instead of a load: a 2 kg coupler under gravity needs T = m g r cos θ.
     heavy = dict(massless, coupler=LinkMass(2.0, (1.5, 0.0), 0.1))
-    f = forces(par, theta, omega=0.0, masses=heavy, gravity=(0, -9.81))
+    f = joint_forces(par, theta, omega=0.0, masses=heavy, gravity=(0, -9.81))
     np.testing.assert_allclose(f.torque, 2.0 * 9.81 * np.cos(theta), atol=1e-12)
 
 
@@ -86,7 +86,7 @@ def test_work_equals_energy_change_minus_external_work():
     drive = Program(0.3, [Segment(1.0, math.pi, "3-4-5")])
     t = np.linspace(0.0, 0.75, 30001)
     load = (0.5 * 9.81, -2.0)
-    f = forces(
+    f = joint_forces(
         fb,
         time=t,
         drive=drive,
@@ -123,22 +123,24 @@ def test_work_equals_energy_change_minus_external_work():
 
 def test_missing_masses_are_an_error_not_zeros():
     with pytest.raises(linkage.LinkageError, match=r"masses missing for links \['rocker'\]"):
-        forces(leg(), [0.1], omega=1.0, masses={k: MASSES[k] for k in ("crank", "coupler")})
+        joint_forces(leg(), [0.1], omega=1.0, masses={k: MASSES[k] for k in ("crank", "coupler")})
     with pytest.raises(linkage.LinkageError, match="unknown links"):
-        forces(leg(), [0.1], omega=1.0, masses=dict(MASSES, wheel=LinkMass(1.0)))
+        joint_forces(leg(), [0.1], omega=1.0, masses=dict(MASSES, wheel=LinkMass(1.0)))
     with pytest.raises(linkage.LinkageError, match="mass must be non-negative"):
         LinkMass(-1.0)
     with pytest.raises(linkage.LinkageError, match="need crank angles and speeds"):
-        forces(leg(), [0.1], masses=MASSES)
+        joint_forces(leg(), [0.1], masses=MASSES)
     with pytest.raises(linkage.LinkageError, match="unknown joint"):
-        forces(leg(), [0.1], omega=1.0, masses=MASSES, loads=[PointLoad("coupler", "Q", (1, 0))])
+        joint_forces(
+            leg(), [0.1], omega=1.0, masses=MASSES, loads=[PointLoad("coupler", "Q", (1, 0))]
+        )
 
 
 def test_multi_loop_forces_power_method_agrees():
     m = linkage.catalog.peaucellier()
     masses = {name: LinkMass(0.01, (5.0, 0.0), 1.0) for name in m.links[1:]}
     theta = np.linspace(-1.2, 1.2, 50)
-    f = forces(
+    f = joint_forces(
         m,
         theta,
         omega=2.0,
@@ -149,3 +151,14 @@ def test_multi_loop_forces_power_method_agrees():
     )
     assert f.valid.all()
     np.testing.assert_allclose(f.torque, f.power_torque, rtol=1e-9, atol=1e-9)
+
+
+def test_forces_forces_is_the_deprecated_name_of_joint_forces():
+    theta = np.linspace(0, 2 * math.pi, 7)
+    with pytest.warns(DeprecationWarning, match="joint_forces") as record:
+        old = linkage.forces.forces(leg(), theta, omega=1.0, masses=MASSES)
+    assert record[0].filename == __file__  # the caller's line, not the alias's
+    new = joint_forces(leg(), theta, omega=1.0, masses=MASSES)
+    np.testing.assert_array_equal(old.torque, new.torque)
+    np.testing.assert_array_equal(old.reactions, new.reactions)
+    assert old.reaction_links == new.reaction_links

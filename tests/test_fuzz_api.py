@@ -37,7 +37,7 @@ from linkage.drive import (
     crank_schedule,
     motion_law,
 )
-from linkage.forces import LinkMass, PointLoad, forces
+from linkage.forces import LinkMass, PointLoad, joint_forces
 from linkage.walker import Leg, Walker, gait_phases, search_duty_factor
 
 EXAMPLES = int(os.environ.get("LINKAGE_FUZZ_EXAMPLES", "100"))
@@ -371,10 +371,14 @@ def test_geometry_functions(p, v, a, step, tol, closed):
 @FAST
 @given(fb=st.one_of(sound_fourbar(), HOSTILE), theta=HOSTILE)
 @example(fb=linkage.FourBar(ground=1.0, crank=5e-324, coupler=1.0, rocker=1.0), theta=0.0)
-def test_ball_point(fb, theta):
-    inf = call(lambda: geometry.ball_point(fb, theta))
+def test_inflection_circle(fb, theta):
+    inf = call(lambda: geometry.inflection_circle(fb, theta))
     if inf is not None:
         assert math.isfinite(inf.radius) and inf.radius >= 0
+    # The deprecated name: a DeprecationWarning, then the same result or the same error.
+    with pytest.warns(DeprecationWarning, match="inflection_circle"):
+        old = call(lambda: linkage.ball_point(fb, theta))
+    assert repr(old) == repr(inf)
 
 
 @FAST
@@ -596,9 +600,20 @@ def test_forces(
     if masses is not None:
         ms = masses
     loads = [PointLoad(link, joint, force, torque)]
-    f = call(lambda: forces(HOECKEN, theta, omega, alpha, masses=ms, gravity=gravity, loads=loads))
+    f = call(
+        lambda: joint_forces(HOECKEN, theta, omega, alpha, masses=ms, gravity=gravity, loads=loads)
+    )
+    # The deprecated name: a DeprecationWarning, then the same result or the same error.
+    with pytest.warns(DeprecationWarning, match="joint_forces"):
+        old = call(
+            lambda: linkage.forces.forces(
+                HOECKEN, theta, omega, alpha, masses=ms, gravity=gravity, loads=loads
+            )
+        )
+    assert (old is None) == (f is None)
     if f is None:
         return
+    np.testing.assert_array_equal(old.torque, f.torque)
     assert f.torque.shape == f.valid.shape
     assert np.isnan(f.torque[~f.valid]).all() and np.isfinite(f.torque[f.valid]).all()
     m = f.mean_abs_torque
@@ -610,9 +625,9 @@ def test_forces(
 def test_forces_reaction_columns_are_structural():
     """Awaits A (D9): the reaction columns depend on the mechanism, not on which samples are
     valid."""
-    ok = forces(HOECKEN, [0.0, 1.0], 1.0, masses=MASSES)
-    bad = forces(HOECKEN, [0.0, 1.0], 1e308, masses=MASSES)
-    empty = forces(HOECKEN, [], 1.0, masses=MASSES)
+    ok = joint_forces(HOECKEN, [0.0, 1.0], 1.0, masses=MASSES)
+    bad = joint_forces(HOECKEN, [0.0, 1.0], 1e308, masses=MASSES)
+    empty = joint_forces(HOECKEN, [], 1.0, masses=MASSES)
     assert bad.reaction_links == ok.reaction_links == empty.reaction_links
     assert np.isnan(bad.reaction("B")).all() and bad.reaction("B").shape == (2, 2)
 
@@ -676,14 +691,24 @@ def test_walker_methods(walker, phases, samples, gait, names):
 
 @SLOW
 @given(
+    walker=maybe(QUAD, HOSTILE),
     objective=maybe("margin", NAME),
     step=maybe(math.pi / 2, HOSTILE),
     samples=maybe(16, COUNT.filter(lambda v: not (isinstance(v, int) and 64 < v < 2**62))),
     rounds=maybe(1, COUNT.filter(lambda v: not (isinstance(v, int) and 3 < v < 2**62))),
     max_evals=maybe(10, COUNT.filter(lambda v: not (isinstance(v, int) and 100 < v < 2**62))),
 )
-def test_search_phases(objective, step, samples, rounds, max_evals):
+def test_search_phases(walker, objective, step, samples, rounds, max_evals):
     res = call(lambda: QUAD.search_phases(objective, step, samples, rounds, max_evals))
+    if res is not None:
+        phases, value = res
+        assert np.isfinite(phases).all() and not math.isnan(value)
+    # The function in linkage.gait_search, which the method calls, with any walker.
+    res = call(
+        lambda: linkage.gait_search.search_phases(
+            walker, objective, step, samples, rounds, max_evals
+        )
+    )
     if res is not None:
         phases, value = res
         assert np.isfinite(phases).all() and not math.isnan(value)
@@ -804,7 +829,8 @@ def test_every_public_name_is_exercised():
     covered = {
         "OUTPUTS", "AssemblyError", "FourBar", "batch", "Leg", "LinkageError", "Mechanism", "Sweep",
         "Walker", "ball_point", "cam", "catalog", "circumcentre", "curvature_centre", "drive",
-        "foot_path", "gait_phases", "forces", "geometry", "mobility", "search_duty_factor",
+        "foot_path", "gait_phases", "gait_search", "forces", "geometry", "inflection_circle",
+        "mobility", "search_duty_factor",
         "straightness", "synthesis", "three_point_centres", "walker", "__version__",
     }  # fmt: skip
     assert set(linkage.__all__) <= covered, set(linkage.__all__) - covered

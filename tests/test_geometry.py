@@ -161,9 +161,9 @@ def test_curvature_sign_and_inflection_nan():
     assert np.isnan(k) and np.isnan(c).all()
 
 
-def test_ball_point_has_stationary_zero_curvature(hoecken):
+def test_inflection_circle_ball_point_has_stationary_zero_curvature(hoecken):
     for theta0 in (0.5, 2.0, 4.5):
-        inf = g.ball_point(hoecken, theta0)
+        inf = g.inflection_circle(hoecken, theta0)
         assert math.dist(inf.ball_point, inf.centre) == pytest.approx(inf.radius, rel=1e-9)
         assert math.dist(inf.pole, inf.centre) == pytest.approx(inf.radius, rel=1e-9)
         fb = linkage.FourBar(
@@ -265,13 +265,22 @@ def test_straightness_errors_and_none():
         g.circumcentre(np.zeros((3, 2)), np.zeros((4, 2)), np.zeros((3, 2)))
 
 
-def test_ball_point_errors():
+def test_ball_point_is_the_deprecated_name_of_inflection_circle(hoecken):
+    with pytest.warns(DeprecationWarning, match="inflection_circle") as record:
+        old = linkage.ball_point(hoecken, 1.0)
+    assert record[0].filename == __file__  # the caller's line, not the alias's
+    assert old == g.inflection_circle(hoecken, 1.0)
+    with pytest.warns(DeprecationWarning), pytest.raises(linkage.AssemblyError):
+        g.ball_point(linkage.catalog.evans_b(), math.pi)
+
+
+def test_inflection_circle_errors():
     fb = linkage.catalog.evans_b()
     with pytest.raises(linkage.AssemblyError):
-        g.ball_point(fb, math.pi)
+        g.inflection_circle(fb, math.pi)
     par = linkage.FourBar(ground=3, crank=1, coupler=3, rocker=1, point=(1, 0))
     with pytest.raises(linkage.LinkageError, match="translating"):
-        g.ball_point(par, 1.0)
+        g.inflection_circle(par, 1.0)
 
 
 def test_outputs_not_asked_are_not_there(hoecken):

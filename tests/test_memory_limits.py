@@ -196,8 +196,8 @@ def test_forces_beyond_the_limit_is_memory_error():
     every joint reaction, ~5 GB."""
     expect_memory_error(
         """
-        from linkage.forces import LinkMass, forces
+        from linkage.forces import LinkMass, joint_forces
         masses = {k: LinkMass(1.0) for k in ("crank", "coupler", "rocker")}
-        forces(catalog.hoecken(), np.linspace(0, 2 * np.pi, 50_000_000), 1.0, masses=masses)
+        joint_forces(catalog.hoecken(), np.linspace(0, 2 * np.pi, 50_000_000), 1.0, masses=masses)
         """
     )

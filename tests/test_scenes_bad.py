@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from linkage import OUTPUTS as SWEEP_OUTPUTS
 from linkage import build, runner, scene
 from linkage.cli import main
 
@@ -154,3 +155,9 @@ def test_a_walker_with_feet_off_the_ground_reports_no_support_not_minus_infinity
     value = rows["minimum stability margin"][1]
     assert value.startswith("none: no foot down at ")
     assert all("inf" not in cell for row in res.figures for cell in row)
+
+
+def test_scene_outputs_is_the_deprecated_name_of_report_outputs():
+    assert scene.OUTPUTS is scene.REPORT_OUTPUTS
+    # Not the outputs of a sweep (linkage.OUTPUTS), whose name it shared.
+    assert "cad" in scene.REPORT_OUTPUTS and "cad" not in SWEEP_OUTPUTS

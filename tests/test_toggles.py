@@ -179,10 +179,10 @@ def test_parallelogram_linspace_has_exact_positions_and_flagged_rates():
 
 
 @pytest.mark.parametrize("offset", [0.0, 1e-12, 1e-9])
-def test_ball_point_refuses_a_flat_position(offset):
+def test_inflection_circle_refuses_a_flat_position(offset):
     fb = linkage.FourBar(ground=3, crank=1, coupler=3, rocker=1, point=(1.5, 0.5))
     with pytest.raises(linkage.LinkageError):
-        linkage.ball_point(fb, offset)
+        linkage.inflection_circle(fb, offset)
 
 
 def test_uniform_sweep_refuses_a_flat_position_on_its_path():

@@ -176,3 +176,19 @@ def test_stance_and_figures_come_from_the_core_leg_figures():
     # A negative tolerance is an error, not an empty stance.
     with pytest.raises(linkage.LinkageError, match="stance tolerance"):
         Walker(q.legs, ground_tol=-1.0).simulate(THETA)
+
+
+def test_the_searches_live_in_gait_search_and_keep_their_old_names():
+    from linkage import gait_search
+
+    assert search_duty_factor is gait_search.search_duty_factor is linkage.search_duty_factor
+    assert linkage.walker.search_phases is gait_search.search_phases
+    q = linkage.catalog.quadruped_hoecken()
+    by_method = q.search_phases("slip", step=math.pi / 2, samples=64)
+    by_function = gait_search.search_phases(q, "slip", step=math.pi / 2, samples=64)
+    np.testing.assert_array_equal(by_method[0], by_function[0])
+    assert by_method[1] == by_function[1]
+    with pytest.raises(TypeError, match="walker must be a Walker"):
+        gait_search.search_phases(q.legs[0])
+    with pytest.raises(AttributeError, match="no attribute 'search_gait'"):
+        _ = linkage.walker.search_gait

@@ -19,6 +19,7 @@ from linkage import (
     catalog,
     drive,
     forces,
+    gait_search,
     geometry,
     synthesis,  # path synthesis (scipy imported on first use)
     walker,
@@ -27,16 +28,18 @@ from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._sweep import OUTPUTS, Sweep
+from linkage.gait_search import search_duty_factor
 from linkage.geometry import (
-    ball_point,
+    ball_point,  # deprecated (0.2.0): inflection_circle
     circumcentre,
     curvature_centre,
     foot_path,
+    inflection_circle,
     mobility,
     straightness,
     three_point_centres,
 )
-from linkage.walker import Leg, Walker, gait_phases, search_duty_factor
+from linkage.walker import Leg, Walker, gait_phases
 
 try:
     __version__ = version("linkage-kinematics")
@@ -63,7 +66,9 @@ __all__ = [
     "foot_path",
     "forces",
     "gait_phases",
+    "gait_search",
     "geometry",
+    "inflection_circle",
     "mobility",
     "search_duty_factor",
     "straightness",

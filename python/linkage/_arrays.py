@@ -32,7 +32,7 @@ def as_angles(value: Any, name: str = "theta") -> tuple[Float1D, bool]:
 
 
 def as_rate(value: Any, name: str, n: int) -> Float1D | None:
-    """A per-sample rate (omega, alpha): None, a scalar (length-1 array) or one value per angle."""
+    """Return a per-sample rate (omega, alpha): None, a scalar (length-1 array) or one per angle."""
     if value is None:
         return None
     arr = _as_real_array(value, name)
@@ -46,7 +46,7 @@ def as_rate(value: Any, name: str, n: int) -> Float1D | None:
 
 
 def as_length(value: Any, name: str) -> float:
-    """A positive finite length, as float."""
+    """Return a positive finite length as float."""
     x = as_real(value, name)
     if not (np.isfinite(x) and x > 0.0):
         raise LinkageError(f"{name} must be a positive finite length, got {x!r}")
@@ -54,7 +54,7 @@ def as_length(value: Any, name: str) -> float:
 
 
 def as_real(value: Any, name: str) -> float:
-    """A real scalar (int or float, not bool), as float; finiteness is checked by the caller.
+    """Return a real scalar (int or float, not bool) as float; the caller checks finiteness.
 
     An integer (or fraction) too large for a float raises ``LinkageError``, not
     ``OverflowError``.
@@ -74,7 +74,7 @@ def as_real(value: Any, name: str) -> float:
 
 
 def as_finite(value: Any, name: str) -> float:
-    """A finite real scalar, as float."""
+    """Return a finite real scalar as float."""
     x = as_real(value, name)
     if not np.isfinite(x):
         raise LinkageError(f"{name} must be finite, got {x!r}")
@@ -82,7 +82,7 @@ def as_finite(value: Any, name: str) -> float:
 
 
 def as_point(value: Any, name: str) -> tuple[float, float]:
-    """A finite 2-D point given as a pair."""
+    """Return a finite 2-D point given as a pair."""
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be a pair (x, y), got {type(value).__name__}")
     try:
@@ -95,8 +95,10 @@ def as_point(value: Any, name: str) -> tuple[float, float]:
 
 
 def as_points(value: Any, name: str) -> NDArray[np.float64]:
-    """Points shaped ``(..., 2)`` as a float64 array (not necessarily contiguous); non-finite
-    values are kept (they give NaN results)."""
+    """Return points shaped ``(..., 2)`` as a float64 array (not necessarily contiguous).
+
+    Non-finite values are kept (they give NaN results).
+    """
     arr = _as_real_array(value, name)
     if arr.ndim == 0 or arr.shape[-1] != 2:
         raise LinkageError(f"{name} must have shape (..., 2), got {arr.shape}")
@@ -104,8 +106,10 @@ def as_points(value: Any, name: str) -> NDArray[np.float64]:
 
 
 def as_count(value: Any, name: str, minimum: int = 1) -> int:
-    """A count (an int, not bool) of at least ``minimum``, and at most what an index can hold
-    (``sys.maxsize``); beyond that ``LinkageError`` — it cannot be represented."""
+    """Return a count: an int (not bool) of at least ``minimum``.
+
+    A count beyond what an index can hold (``sys.maxsize``) cannot be represented: ``LinkageError``.
+    """
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
         raise TypeError(f"{name} must be an int, got {type(value).__name__}")
     v = int(value)
@@ -117,7 +121,7 @@ def as_count(value: Any, name: str, minimum: int = 1) -> int:
 
 
 def as_flag(value: Any, name: str) -> bool:
-    """A yes/no argument: bool, numpy bool, or the ints 0 and 1."""
+    """Return a yes/no argument (bool, numpy bool, or the ints 0 and 1) as bool."""
     if isinstance(value, (bool, np.bool_)):
         return bool(value)
     if isinstance(value, (int, np.integer)) and int(value) in (0, 1):
@@ -126,8 +130,10 @@ def as_flag(value: Any, name: str) -> bool:
 
 
 def as_choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:
-    """One of the names ``allowed``: a str that is not one of them is a ``LinkageError``,
-    anything else a ``TypeError``."""
+    """Return ``value`` if it is one of the names ``allowed``.
+
+    A str that is not one of them is a ``LinkageError``, anything else a ``TypeError``.
+    """
     if not isinstance(value, str):
         raise TypeError(f"{name} must be one of {allowed}, got {type(value).__name__}")
     if value not in allowed:
@@ -136,8 +142,10 @@ def as_choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:
 
 
 def memory_limit() -> int:
-    """Bytes this process can hold at most: physical memory, or the address-space limit
-    (``RLIMIT_AS``) when one is set lower."""
+    """Return the bytes this process can hold at most.
+
+    That is physical memory, or the address-space limit (``RLIMIT_AS``) when one is set lower.
+    """
     limit = 1 << 62
     try:
         limit = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
@@ -155,8 +163,10 @@ def memory_limit() -> int:
 
 
 def check_memory(nbytes: int, what: str) -> None:
-    """Raise ``MemoryError`` naming the size when ``nbytes`` (an exact int: no overflow) is
-    more than this process can hold (:func:`memory_limit`)."""
+    """Raise ``MemoryError`` naming the size when ``nbytes`` is more than this process can hold.
+
+    ``nbytes`` is an exact int (no overflow); the limit is :func:`memory_limit`.
+    """
     limit = memory_limit()
     if nbytes > limit:
         raise MemoryError(

@@ -27,12 +27,43 @@ class Mobility:
 def mobility(links: int, lower_pairs: int, higher_pairs: int = 0) -> Mobility:
     """Mobility of a planar linkage by Kutzbach–Gruebler, higher pairs included.
 
+    ``F = 3(n − 1) − 2·j1 − j2``. The count knows nothing of the geometry: an overconstrained
+    linkage that moves (a parallelogram with a third parallel link) counts as a structure.
+
+    Parameters
+    ----------
+    links : int
+        ``n``, the ground included (at least 1).
+    lower_pairs : int
+        ``j1``, revolute and prismatic pairs.
+    higher_pairs : int, default 0
+        ``j2``, pairs with two freedoms (a cam contact that rolls and slides).
+
+    Returns
+    -------
+    Mobility
+        The counts and ``degrees_of_freedom`` (``F``; 0 for a structure, negative for an
+        overconstrained one).
+
+    Raises
+    ------
+    LinkageError
+        For a negative count or no link at all.
+    TypeError
+        For a count that is not an int.
+
+    Examples
+    --------
     >>> mobility(4, 4).degrees_of_freedom        # four-bar (thesis 2: F = 3(4 − 1) − 2·4)
     1
     >>> mobility(3, 2, 1).degrees_of_freedom     # cam, follower, frame: 2 pins + the contact
     1
     >>> mobility(5, 6).degrees_of_freedom        # a five-bar truss with a pinned diagonal
     0
+    >>> mobility(4, -1)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: lower_pairs must be non-negative, got -1
     """
     for name, v in (("links", links), ("lower_pairs", lower_pairs), ("higher_pairs", higher_pairs)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)):

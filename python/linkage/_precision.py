@@ -20,10 +20,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, SupportsFloat
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import as_count, as_finite, as_real_array
@@ -46,8 +46,10 @@ _DEFECTS = ("branch", "toggle", "order", "flat-position", "input-limit")
 
 @dataclass(frozen=True)
 class Dyad:
-    """A revolute dyad of Burmester theory: ``centre`` the fixed pivot, ``circle`` the moving
-    pivot where it lies at the first pose."""
+    """A revolute dyad of Burmester theory: its fixed pivot and its moving pivot.
+
+    ``centre`` is the fixed pivot, ``circle`` the moving pivot where it lies at the first pose.
+    """
 
     centre: tuple[float, float]
     circle: tuple[float, float]
@@ -156,8 +158,8 @@ def _curve(poses: Any, n: Any) -> tuple[int, NDArray[np.float64], NDArray[np.flo
     return int(free), centres, circles
 
 
-def centre_point_curve(poses: Any, n: int = 360) -> NDArray[np.float64]:
-    """The centre-point (Burmester) curve of four poses, sampled: ``(2n, 2)``.
+def centre_point_curve(poses: ArrayLike, n: int = 360) -> NDArray[np.float64]:
+    """Sample the centre-point (Burmester) curve of four poses: ``(2n, 2)``.
 
     The curve is parametrised by the crank's rotation ``β`` from pose 0 to a pose ``k`` (the
     one that conditions the compatibility equation best), sampled at ``β = 2πi/n``; rows
@@ -175,9 +177,11 @@ def centre_point_curve(poses: Any, n: int = 360) -> NDArray[np.float64]:
     return np.concatenate([centres[:, 0], centres[:, 1]])
 
 
-def circle_point_curve(poses: Any, n: int = 360) -> NDArray[np.float64]:
-    """The circle-point curve of four poses (moving pivots where they lie at pose 0), sampled
-    as :func:`centre_point_curve` (row ``i`` pairs with row ``i`` of that curve)."""
+def circle_point_curve(poses: ArrayLike, n: int = 360) -> NDArray[np.float64]:
+    """Sample the circle-point curve of four poses (the moving pivots where they lie at pose 0).
+
+    Sampled as :func:`centre_point_curve`: row ``i`` pairs with row ``i`` of that curve.
+    """
     _, _, circles = _curve(poses, n)
     return np.concatenate([circles[:, 0], circles[:, 1]])
 
@@ -222,11 +226,11 @@ def _dyads_four(p: list[tuple[float, float, float]], beta: Any, n: Any) -> list[
 
 
 def motion(
-    poses: Any,
+    poses: ArrayLike,
     *,
-    circle_points: Any = None,
-    centre_points: Any = None,
-    beta: Any = None,
+    circle_points: ArrayLike | None = None,
+    centre_points: ArrayLike | None = None,
+    beta: ArrayLike | None = None,
     n: int = 36,
     top: int | None = None,
 ) -> list[MotionCandidate]:
@@ -326,7 +330,8 @@ def motion(
 
 
 def chebyshev_points(x0: float, x1: float, n: int) -> NDArray[np.float64]:
-    """``n`` Chebyshev precision points on ``[x0, x1]``, increasing:
+    """Return ``n`` Chebyshev precision points on ``[x0, x1]``, increasing.
+
     ``(x0 + x1)/2 − (x1 − x0)/2 · cos((2j + 1)π / 2n)``.
 
     >>> chebyshev_points(0.0, 1.0, 3).round(6)
@@ -363,7 +368,7 @@ def _call(f: Callable[[float], Any], x: float) -> float:
 
 
 def function(
-    f: Callable[[float], Any],
+    f: Callable[[float], SupportsFloat],
     x_range: Sequence[float],
     phi_range: Sequence[float],
     psi_range: Sequence[float],
@@ -374,7 +379,7 @@ def function(
     y_range: Sequence[float] | None = None,
     n_check: int = 1001,
 ) -> FunctionGenerator:
-    """A four-bar function generator for ``y = f(x)`` by Freudenstein's equation.
+    """Design a four-bar function generator for ``y = f(x)`` by Freudenstein's equation.
 
     ``x`` over ``x_range`` maps linearly to the input angle over ``phi_range`` and ``y`` over
     ``y_range`` (default ``(f(x0), f(x1))``) to the output angle over ``psi_range`` (radians,

@@ -24,7 +24,7 @@ class NotText(Exception):
 
 
 def decode(data: bytes) -> str:
-    """The text of ``data`` (a leading BOM dropped).
+    """Decode ``data`` as UTF-8 text, a leading BOM dropped.
 
     Raises
     ------
@@ -44,8 +44,10 @@ def decode(data: bytes) -> str:
 
 
 def nesting(text: str, limit: int = MAX_NESTING) -> int | None:
-    """The 1-based line where ``[``/``{`` nesting first exceeds ``limit`` (outside strings and
-    comments), or None."""
+    """Return the 1-based line where ``[``/``{`` nesting first exceeds ``limit``, or None.
+
+    Brackets inside strings and comments do not count.
+    """
     depth, line, i, n = 0, 1, 0, len(text)
     while i < n:
         ch = text[i]
@@ -92,8 +94,10 @@ class Locator:
         return re.compile(r"^\s*\[\[?\s*" + re.escape(".".join(names)) + r"\s*\]\]?\s*(#.*)?$")
 
     def line(self, path: Sequence[Any], key: str) -> int:
-        """Line of ``key`` under ``path`` (section names and array indices); for a key that is
-        not written, its section's header, or line 1."""
+        """Return the line of ``key`` under ``path`` (section names and array indices).
+
+        For a key that is not written: its section's header, or line 1.
+        """
         names = [p for p in path if isinstance(p, str)]
         index = next((p for p in path if isinstance(p, int)), None)
         pattern = re.compile(r"(^|[\s{,])" + re.escape(str(key)) + r"\s*=")

@@ -103,6 +103,13 @@ def sweep_fourbars(
     >>> p, ok = sweep_fourbars([20, 20], [10, 10], [25, 4], [25, 4], (0, 0), 0.0)
     >>> ok.tolist(), bool(np.isnan(p[1, 0]).all())
     ([[True], [False]], True)
+
+    while a length that no linkage can have is an error naming the linkage:
+
+    >>> sweep_fourbars(20, [10, -1], 25, 25, (0, 0), 0.0)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: crank[1] must be a positive finite length, got -1.0
     """
     if crank is None or coupler is None or rocker is None:
         raise TypeError("sweep_fourbars() needs crank, coupler and rocker lengths")

@@ -1,5 +1,6 @@
-"""Building a scene's objects — mechanism, walker, drive, cam, masses, a synthesis target —
-and validating a scene without running it.
+"""Build a scene's objects and validate a scene without running it.
+
+The objects are the mechanism, walker, drive, cam, masses and a synthesis target.
 
 The builders (:func:`build_mechanism`, :func:`build_walker`, :func:`build_drive`,
 :func:`build_cam`, :func:`build_masses`, :func:`synthesis_target`, :func:`synthesis_atlas`)
@@ -29,6 +30,7 @@ from linkage.cam import DiscCam
 from linkage.drive import (
     ConstantSpeed,
     CrankSchedule,
+    Drive,
     Geared,
     GearTrain,
     Program,
@@ -36,7 +38,7 @@ from linkage.drive import (
     crank_schedule,
 )
 from linkage.figures import check_counts
-from linkage.forces import LinkMass, PointLoad, forces
+from linkage.forces import LinkMass, PointLoad, joint_forces
 from linkage.scene import (
     CYCLES_MAX,
     MEMORY_CAP,
@@ -74,7 +76,7 @@ def _blame(scene: Scene, path: tuple[Any, ...], key: str) -> Iterator[None]:
 
 
 def build_mechanism(scene: Scene) -> FourBar | Mechanism:
-    """The scene's mechanism.
+    """Build the scene's mechanism.
 
     Raises
     ------
@@ -133,7 +135,7 @@ def _scaled(fb: FourBar, k: float) -> FourBar:
 
 
 def _turn_program(segments: Any) -> Program:
-    """A program over one turn from ``duration_deg``/``rise``/``law`` segments (a cam, a lift)."""
+    """Build a one-turn program (a cam, a lift) from ``duration_deg``/``rise``/``law`` segments."""
     segs = [
         Segment(math.radians(s["duration_deg"]), s.get("rise", 0.0), s.get("law")) for s in segments
     ]
@@ -141,14 +143,13 @@ def _turn_program(segments: Any) -> Program:
 
 
 def build_walker(scene: Scene) -> Walker:
-    """The scene's walker: a catalogue model, or legs built from catalogue four-bars.
+    """Build the scene's walker: a catalogue model, or legs built from catalogue four-bars.
 
     Raises
     ------
     SceneError
         Located at the key that made the build fail.
     """
-
     w = scene.walker or {}
     sec = ("walker",)
     if "model" in w:
@@ -219,8 +220,10 @@ def build_walker(scene: Scene) -> Walker:
     return walker
 
 
-def build_drive(scene: Scene, leg: FourBar | Mechanism) -> tuple[Any, float]:
-    """The scene's drive and its natural duration (one crank cycle or program period).
+def build_drive(scene: Scene, leg: FourBar | Mechanism) -> tuple[Drive, float]:
+    """Build the scene's drive and return it with its natural duration.
+
+    The natural duration is one crank cycle or one program period.
 
     Raises
     ------
@@ -237,7 +240,7 @@ def build_drive(scene: Scene, leg: FourBar | Mechanism) -> tuple[Any, float]:
     if kind == "constant":
         key = "rpm" if "rpm" in d else "omega"
         motor = d["rpm"] * 2 * math.pi / 60 if "rpm" in d else d["omega"]
-        drive: Any = ConstantSpeed(motor)
+        drive: Drive = ConstantSpeed(motor)
         crank = motor * (train.ratio * train.sign if train else 1.0)
         lo, hi = SPEED_RANGE
         if not lo <= abs(crank) <= hi:
@@ -273,7 +276,7 @@ def build_drive(scene: Scene, leg: FourBar | Mechanism) -> tuple[Any, float]:
 
 
 def run_duration(scene: Scene, period: float) -> float:
-    """The run's length in seconds: ``duration``, or ``cycles`` (default 1) times ``period``.
+    """Return the run's length in seconds: ``duration``, or ``cycles`` (default 1) times ``period``.
 
     Raises
     ------
@@ -299,15 +302,14 @@ def run_duration(scene: Scene, period: float) -> float:
     return duration
 
 
-def build_cam(scene: Scene) -> Any:
-    """The scene's disc cam (None without a [cam] section).
+def build_cam(scene: Scene) -> DiscCam | None:
+    """Build the scene's disc cam (None without a [cam] section).
 
     Raises
     ------
     SceneError
         Located at the key that made the build fail.
     """
-
     if scene.cam is None:
         return None
     c = scene.cam
@@ -327,8 +329,9 @@ def build_cam(scene: Scene) -> Any:
 def build_masses(
     scene: Scene, mech: FourBar | Mechanism
 ) -> tuple[dict[str, LinkMass], list[PointLoad]]:
-    """The scene's link masses and point loads, checked against the mechanism's links and
-    joints.
+    """Build the scene's link masses and point loads, checked against the mechanism.
+
+    Masses must name the mechanism's links, loads its links and joints.
 
     Raises
     ------
@@ -387,9 +390,10 @@ def build_masses(
 
 
 def validate(scene: Scene, samples: int | None = None) -> None:
-    """Build the scene's study without running it, so that whatever :func:`run` would reject
-    is rejected first, located at the key that causes it: the linkage or walker, the drive and
-    the run's length, the masses and loads, the cam, the memory estimate (at most
+    """Build the scene's study without running it, to reject first what :func:`run` would.
+
+    Every refusal is located at the key that causes it: the linkage or walker, the drive and the
+    run's length, the masses and loads, the cam, the memory estimate (at most
     :data:`~linkage.scene.MEMORY_CAP`), and — walking the run's crank angles in blocks — a first
     assembled sample (a walker's legs must assemble at every one).
 
@@ -419,7 +423,7 @@ def validate(scene: Scene, samples: int | None = None) -> None:
         masses, loads = build_masses(scene, study)
         if scene.wants("torque"):
             with _blame(scene, (), "masses"):
-                forces(
+                joint_forces(
                     study,
                     theta=np.zeros(2),
                     omega=1.0,
@@ -436,6 +440,10 @@ def validate(scene: Scene, samples: int | None = None) -> None:
 
 
 def build_study(scene: Scene) -> tuple[FourBar | Mechanism | Walker, FourBar | Mechanism]:
+    """Build the scene's study and the linkage it is made of.
+
+    Returns the walker and its first leg's linkage, or the mechanism twice.
+    """
     if scene.walker is not None:
         walker = build_walker(scene)
         return walker, walker.legs[0].linkage
@@ -444,6 +452,13 @@ def build_study(scene: Scene) -> tuple[FourBar | Mechanism | Walker, FourBar | M
 
 
 def sample_count(scene: Scene, samples: int | None) -> int:
+    """Return the run's sample count: ``samples`` if given, else the scene's (default 721).
+
+    Raises
+    ------
+    SceneError
+        When it is not a whole number from 8 to :data:`SAMPLES_MAX`.
+    """
     n = samples if samples is not None else scene.drive.get("samples", 721)
     if isinstance(n, bool) or not isinstance(n, int) or not 8 <= n <= SAMPLES_MAX:
         raise SceneError(f"samples must be a whole number from 8 to {SAMPLES_MAX}, got {n!r}")
@@ -451,7 +466,7 @@ def sample_count(scene: Scene, samples: int | None) -> int:
 
 
 def _blocks(n: int, duration: float) -> Iterator[Array]:
-    """The run's sample times ``np.linspace(0, duration, n)``, in blocks of :data:`CHUNK`."""
+    """Yield the run's sample times ``np.linspace(0, duration, n)`` in blocks of :data:`CHUNK`."""
     step = duration / (n - 1)
     for a in range(0, n, CHUNK):
         b = min(n, a + CHUNK)
@@ -461,12 +476,11 @@ def _blocks(n: int, duration: float) -> Iterator[Array]:
         yield t
 
 
-def check_legs(scene: Scene, walker: Walker, drive: Any, duration: float, n: int) -> None:
+def check_legs(scene: Scene, walker: Walker, drive: Drive, duration: float, n: int) -> None:
     """Every leg must assemble at every crank angle of the run (else `simulate` refuses)."""
-    per_leg = isinstance(drive, CrankSchedule)
     for idx, leg in enumerate(walker.legs):
         for t in _blocks(n, duration):
-            if per_leg:
+            if isinstance(drive, CrankSchedule):  # one motor per leg, shifted in time
                 theta = drive.angles(t + leg.phase / (2 * math.pi) * drive.period)[0]
             else:
                 theta = drive.angles(t)[0] + leg.phase
@@ -486,9 +500,9 @@ def check_legs(scene: Scene, walker: Walker, drive: Any, duration: float, n: int
 
 
 def no_assembly(
-    scene: Scene, mech: FourBar | Mechanism, drive: Any, duration: float, n: int
+    scene: Scene, mech: FourBar | Mechanism, drive: Drive, duration: float, n: int
 ) -> SceneError:
-    """The error for a run in which no sample assembles, with the reason."""
+    """Return the error for a run in which no sample assembles, with the reason."""
     m = scene.mechanism or {}
     t0 = np.zeros(1)
     theta0 = float(drive.angles(t0)[0][0])
@@ -556,8 +570,11 @@ def _add_joint(mech: Mechanism, j: dict[str, Any]) -> None:
 def _first_unplaced(
     joints: list[dict[str, Any]], theta: float
 ) -> tuple[int, dict[str, Any], dict[str, Any]] | None:
-    """The first joint of a joint program that cannot be placed at crank angle ``theta``, and
-    the positions of the joints before it (found by solving ever longer prefixes)."""
+    """Find the first joint of a joint program that cannot be placed at crank angle ``theta``.
+
+    Returns its index, the joint and the positions of the joints before it (found by solving ever
+    longer prefixes), or None when every joint is placed.
+    """
     crank = next(k for k, j in enumerate(joints) if j["kind"] == "crank")
     placed: dict[str, Any] = {}
     for k in range(crank + 1, len(joints) + 1):
@@ -572,9 +589,11 @@ def _first_unplaced(
 
 
 def estimate_memory(scene: Scene, study: FourBar | Mechanism | Walker, samples: int) -> int:
-    """Bytes a run of ``samples`` samples is estimated to need: 8 bytes × the numbers it keeps
-    per sample × 2 (the arrays and the temporaries of the stage that makes them, or their copy
-    in the report's table), plus 64 MiB for the interpreter and the plots.
+    """Estimate the bytes a run of ``samples`` samples needs.
+
+    That is 8 bytes × the numbers it keeps per sample × 2 (the arrays and the temporaries of the
+    stage that makes them, or their copy in the report's table), plus 64 MiB for the interpreter and
+    the plots.
 
     Numbers per sample: time, angle, speed, acceleration (4); a mechanism's trajectory (2 per
     joint + 4), rates (6 per joint + 6), instant centres (5 per link pair) and curvature (4),
@@ -630,8 +649,10 @@ def check_memory_estimate(
 
 
 def affordable_checks(scene: Scene, study: FourBar | Mechanism | Walker, n: int) -> tuple[int, ...]:
-    """:func:`check_counts` within the memory limit, with every run alive at once: both when
-    they fit, else the half only, else none (the figures then carry no error estimate)."""
+    """Return the sample counts of :func:`check_counts` that fit in memory with every run alive.
+
+    Both when they fit, else the half only, else none (the figures then carry no error estimate).
+    """
     half, double = check_counts(n)
     if estimate_memory(scene, study, n + half + double) <= MEMORY_CAP:
         return (half, double)
@@ -653,9 +674,10 @@ point, angle) and their temporaries (× 2)."""
 
 
 def check_synthesis_memory(scene: Scene, samples: int) -> None:
-    """Refuse a ``[synthesis]`` run whose curves (``top`` candidates' circuits in ``samples``
-    samples: only ``--samples`` sets it) would need more than
-    :data:`~linkage.scene.MEMORY_CAP`.
+    """Refuse a ``[synthesis]`` run whose curves would need more than the memory cap.
+
+    The curves are ``top`` candidates' circuits in ``samples`` samples (only ``--samples`` sets it);
+    the cap is :data:`~linkage.scene.MEMORY_CAP`.
 
     Raises
     ------
@@ -675,11 +697,12 @@ def check_synthesis_memory(scene: Scene, samples: int) -> None:
 
 
 def synthesis_target(scene: Scene) -> Array:
-    """The target points of a ``[synthesis]`` scene, ``(n, 2)``: read from its CSV file
-    (relative to the scene's folder) or given inline, and checked as
-    :func:`linkage.synthesis.path` will check them — at least
-    :data:`~linkage.synthesis.MIN_POINTS` distinct points, not all on one line for a closed
-    target — so that ``check`` refuses a target the search would.
+    """Read and check the target points of a ``[synthesis]`` scene, ``(n, 2)``.
+
+    They are read from its CSV file (relative to the scene's folder) or given inline, and checked as
+    :func:`linkage.synthesis.path` will check them — at least :data:`~linkage.synthesis.MIN_POINTS`
+    distinct points, not all on one line for a closed target — so that ``check`` refuses a target
+    the search would.
 
     Raises
     ------
@@ -760,8 +783,9 @@ def synthesis_target(scene: Scene) -> Array:
 
 
 def synthesis_atlas(scene: Scene) -> synthesis.Atlas | None:
-    """The atlas a ``[synthesis]`` scene names (relative to its folder), memory-mapped; None
-    for the default one (built on first use into the cache folder by the search).
+    """Open the atlas a ``[synthesis]`` scene names (relative to its folder), memory-mapped.
+
+    None for the default one (built on first use into the cache folder by the search).
 
     Raises
     ------

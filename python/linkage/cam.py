@@ -1,5 +1,7 @@
-"""Disc cams with translating roller or flat-faced followers: pitch curve, profile, pressure
-angle, radius of curvature, with undercut and pressure-angle checks.
+"""Disc cams with translating roller or flat-faced followers.
+
+Each gives its pitch curve, profile, pressure angle and radius of curvature, with undercut and
+pressure-angle checks.
 
 The follower's motion is a :class:`linkage.drive.Program` in cam angle (radians → length) that
 spans exactly one turn. The cam turns counter-clockwise; coordinates are in the cam's frame.
@@ -60,7 +62,32 @@ class CamProfile:
         return float(np.max(np.abs(self.pressure_angle)))
 
     def check(self) -> CamProfile:
-        """Return self, or raise LinkageError listing the problems."""
+        """Return the profile itself if it is sound, else raise listing its problems.
+
+        Returns
+        -------
+        CamProfile
+            ``self``, when :attr:`problems` is empty.
+
+        Raises
+        ------
+        LinkageError
+            Naming every problem (undercut, pressure angle over the limit).
+
+        Examples
+        --------
+        A 10 mm cycloidal rise over a quarter turn on a 5 mm base circle is too steep:
+
+        >>> from linkage.drive import Program, Segment
+        >>> rise = Program(0.0, [Segment(math.pi / 2, 10.0, "cycloidal"), Segment(math.pi),
+        ...                      Segment(math.pi / 2, -10.0, "cycloidal")])
+        >>> DiscCam(rise, 5.0, roller_radius=2.0).profile().check()
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: pressure angle 48.9° exceeds the limit 30.0° at cam angle 323.0°; ...
+        >>> DiscCam(rise, 40.0, roller_radius=2.0).profile().check().problems
+        []
+        """
         if self.problems:
             raise LinkageError("; ".join(self.problems))
         return self
@@ -117,7 +144,33 @@ class DiscCam:
         self.pressure_limit = as_finite(pressure_limit, "pressure_limit")
 
     def profile(self, n: int = 721) -> CamProfile:
-        """Sample the cam at ``n`` angles over one turn and check it."""
+        """Sample the cam at ``n`` angles over one turn and check it.
+
+        Parameters
+        ----------
+        n : int, default 721
+            Cam angles over the turn, both ends included (at least 8).
+
+        Returns
+        -------
+        CamProfile
+            Displacement, pitch curve, profile, pressure angle and radii of curvature, with the
+            problems found (undercut, pressure angle over :attr:`pressure_limit`) in
+            :attr:`CamProfile.problems` — listed, not raised (see :meth:`CamProfile.check`).
+
+        Raises
+        ------
+        LinkageError
+            For ``n`` below 8.
+        MemoryError
+            When ``n`` samples would not fit in memory.
+
+        Examples
+        --------
+        >>> p = leg_lift_cam().profile(361)
+        >>> p.profile.shape, round(math.degrees(p.max_pressure_angle), 3), p.problems
+        ((361, 2), 8.677, [])
+        """
         n = as_count(n, "n", 8)
         # Angles, displacement and its rates, the geometry's outputs and temporaries.
         check_memory(n * 8 * 24, f"a cam profile of {n} samples")
@@ -170,15 +223,37 @@ class DiscCam:
 
 
 def leg_lift(height: float = 1.4) -> Program:
-    """Thesis 2's leg lift, the one model of it that the hexapod walker and its cam share: the
-    foot up by ``height`` at crank angle 0 (the middle of the Hoecken leg's swing), down to the
-    ground over a quarter turn with a simple-harmonic law, on the ground for the half turn of the
-    stance, and up again over the last quarter turn. Thesis 2 gives the height (1.4 mm) and the
+    """Thesis 2's leg lift, the one model of it that the hexapod walker and its cam share.
+
+    The foot is up by ``height`` at crank angle 0 (the middle of the Hoecken leg's swing), down to
+    the ground over a quarter turn with a simple-harmonic law, on the ground for the half turn of
+    the stance, and up again over the last quarter turn. Thesis 2 gives the height (1.4 mm) and the
     harmonic law; the quarter-turn ramps keep the foot down over the whole straight part.
 
+    Parameters
+    ----------
+    height : float, default 1.4
+        The lift, in the walker's length unit (thesis 2: 1.4 mm).
+
+    Returns
+    -------
+    Program
+        Foot height against the leg's crank angle (rad), one turn.
+
+    Raises
+    ------
+    LinkageError
+        For a non-finite ``height``.
+
+    Examples
+    --------
     >>> p = leg_lift()
     >>> [round(float(x), 6) for x in p.eval([0.0, math.pi / 2, math.pi, 2 * math.pi])[0]]
     [1.4, 0.0, 0.0, 1.4]
+    >>> leg_lift(float("nan"))
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: rise must be finite, got nan
     """
     h = float(height)
     return Program(
@@ -192,7 +267,35 @@ def leg_lift(height: float = 1.4) -> Program:
 
 
 def leg_lift_cam(roller_radius: float = 2.0, base_radius: float = 6.5) -> DiscCam:
-    """Thesis 2's leg-lift cam (mm): :func:`leg_lift` as a disc cam. The source's drawing gives
-    13 mm across the cam; read here as the base-circle diameter, with a 2 mm roller — both
-    assumptions, as the source does not say."""
+    """Thesis 2's leg-lift cam (mm): :func:`leg_lift` as a disc cam.
+
+    The source's drawing gives 13 mm across the cam; read here as the base-circle diameter, with
+    a 2 mm roller — both assumptions, as the source does not say.
+
+    Parameters
+    ----------
+    roller_radius : float, default 2.0
+        Radius of the roller follower (mm).
+    base_radius : float, default 6.5
+        Radius of the base circle (mm).
+
+    Returns
+    -------
+    DiscCam
+        The cam, lifting 1.4 mm.
+
+    Raises
+    ------
+    LinkageError
+        For a radius that is not a positive finite length.
+
+    Examples
+    --------
+    >>> leg_lift_cam().profile().undercut
+    False
+    >>> leg_lift_cam(roller_radius=0.0)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: roller_radius must be a positive finite length, got 0.0
+    """
     return DiscCam(leg_lift(1.4), base_radius, roller_radius=roller_radius)

@@ -1,8 +1,8 @@
-"""The straight-line linkages of the source documents (DOMAIN.md), ready to sweep.
+"""The straight-line linkages of the source documents (``docs/domain.md``), ready to sweep.
 
-Four-bars are placed with the crank pivot ``O`` at the origin and the rocker pivot ``C`` on the
-+x axis (lengths in mm, thesis 1 chapter 1 after Norton); multi-loop linkages are
-:class:`~linkage.Mechanism`\\ s whose ``trace`` is the straight-line point.
+Four-bars are placed with the crank pivot ``O`` at the origin and the rocker pivot ``C`` on the +x
+axis (lengths in mm, thesis 1 chapter 1 after Norton); multi-loop linkages are
+:class:`~linkage.Mechanism` objects whose ``trace`` is the straight-line point.
 
 >>> import linkage
 >>> linkage.catalog.hoecken().grashof()
@@ -53,80 +53,234 @@ def _linkage(name: str, scale: float = 2.0) -> Mechanism:
 
 
 def watt() -> FourBar:
-    """Watt: ground 40, rockers 20, coupler 10, midpoint trace (triple rocker)."""
+    """Watt: ground 40, rockers 20, coupler 10, midpoint trace (triple rocker).
+
+    Returns
+    -------
+    FourBar
+        A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+
+    Examples
+    --------
+    The crank rocks between its toggles; beyond them a sample is NaN:
+
+    >>> fb = watt()
+    >>> fb.grashof(), [round(float(x), 4) for x in fb.input_limits()]
+    ('triple-rocker', [-0.8128, 0.8128])
+    >>> s = fb.sweep([0.0, 1.0])
+    >>> s.valid, s.point[1]
+    (array([ True, False]), array([nan, nan]))
+    """
     return _four_bar("watt")
 
 
 def roberts() -> FourBar:
-    """Roberts: ground 40, rockers 40, coupler 20, apex of the isosceles triangle AP = BP = 40."""
+    """Roberts: ground 40, rockers 40, coupler 20, apex of the isosceles triangle AP = BP = 40.
+
+    Returns
+    -------
+    FourBar
+        A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+    """
     return _four_bar("roberts")
 
 
 def chebyshev() -> FourBar:
-    """Chebyshev: ground 20, crossed rockers 25, coupler 10, midpoint trace (double rocker)."""
+    """Chebyshev: ground 20, crossed rockers 25, coupler 10, midpoint trace (double rocker).
+
+    Returns
+    -------
+    FourBar
+        A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+    """
     return _four_bar("chebyshev")
 
 
 def hoecken() -> FourBar:
-    """Hoecken: ground 20, crank 10, coupler = rocker = 25, foot 50 along the coupler line."""
+    """Hoecken: ground 20, crank 10, coupler = rocker = 25, foot 50 along the coupler line.
+
+    Returns
+    -------
+    FourBar
+        A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+
+    Examples
+    --------
+    >>> fb = hoecken()
+    >>> fb.grashof(), fb.input_limits(), round(float(fb.sweep([0.0]).point[0, 1]), 6)
+    ('crank-rocker', None, 48.989795)
+    """
     return _four_bar("hoecken")
 
 
 def evans_a() -> FourBar:
-    """Evans A: 12 / 10 / 16 / 10.39, trace 26.9 along the coupler (input ≈ 27°…333°)."""
+    """Evans A: 12 / 10 / 16 / 10.39, trace 26.9 along the coupler (input ≈ 27°…333°).
+
+    Returns
+    -------
+    FourBar
+        A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+    """
     return _four_bar("evans_a")
 
 
 def evans_b() -> FourBar:
-    """Evans B: 23.05 / 10 / 12 / 11.67, trace 15 along the coupler (input ≈ ±81°)."""
+    """Evans B: 23.05 / 10 / 12 / 11.67, trace 15 along the coupler (input ≈ ±81°).
+
+    Returns
+    -------
+    FourBar
+        A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+    """
     return _four_bar("evans_b")
 
 
 def evans_c() -> FourBar:
-    """Evans C: 20 / 10 / 10 / 10, trace 10 beyond B on the coupler line (input ≈ ±75°)."""
+    """Evans C: 20 / 10 / 10 / 10, trace 10 beyond B on the coupler line (input ≈ ±75°).
+
+    Returns
+    -------
+    FourBar
+        A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+    """
     return _four_bar("evans_c")
 
 
 def peaucellier() -> Mechanism:
-    """Peaucellier–Lipkin inversor: D at the origin, crank pivot O at (15, 0), crank 15, arms
-    DB = DC = 40, rhombus 20; P runs on the exact line x = 40."""
+    """Peaucellier–Lipkin inversor, whose point P runs on the exact line x = 40.
+
+    D at the origin, crank pivot O at (15, 0), crank 15, arms DB = DC = 40, rhombus 20.
+
+    Returns
+    -------
+    Mechanism
+        A new linkage (mm) whose ``trace`` is the straight-line point.
+
+    Examples
+    --------
+    >>> peaucellier().sweep(np.linspace(-1, 1, 5)).point[:, 0]
+    array([40., 40., 40., 40., 40.])
+    """
     return _linkage("peaucellier")
 
 
 def hart() -> Mechanism:
-    """Hart's inversor (six links, seven revolutes); P runs on the exact line x = 7.5."""
+    """Hart's inversor (six links, seven revolutes); P runs on the exact line x = 7.5.
+
+    Returns
+    -------
+    Mechanism
+        A new linkage (mm) whose ``trace`` is the straight-line point.
+    """
     return _linkage("hart")
 
 
 def hoecken_pantograph(scale: float = 2.0) -> Mechanism:
-    """The Hoecken linkage driving a pantograph that scales its foot path ``T`` by ``scale``
-    (> 1) about the pivot Q = (20, 80); the output is ``P = Q + scale·(T − Q)``."""
+    """Hoecken linkage driving a pantograph that scales its foot path ``T`` by ``scale`` (> 1).
+
+    The pantograph's pivot is Q = (20, 80); the output is ``P = Q + scale·(T − Q)``.
+
+    Parameters
+    ----------
+    scale : float, default 2.0
+        The pantograph's magnification (more than 1).
+
+    Returns
+    -------
+    Mechanism
+        A new linkage (mm) whose ``trace`` is ``P``.
+
+    Raises
+    ------
+    LinkageError
+        For a scale that is not finite or not more than 1.
+
+    Examples
+    --------
+    >>> hoecken_pantograph(2.0).sweep([0.0]).point
+    array([[20.        , 17.97958971]])
+    >>> hoecken_pantograph(1.0)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: pantograph scale (must exceed 1, with 30·scale finite) must be ...
+    """
     return _linkage("hoecken_pantograph", scale)
 
 
 def jansen() -> Mechanism:
-    """Theo Jansen's Strandbeest leg ("holy numbers"): crank 15 about the origin, frame pivot at
-    (−38, −7.8), five dyads in sequence; the foot F traces a flat-bottomed path."""
+    """Theo Jansen's Strandbeest leg ("holy numbers"), whose foot F traces a flat-bottomed path.
+
+    Crank 15 about the origin, frame pivot at (−38, −7.8), five dyads in sequence.
+
+    Returns
+    -------
+    Mechanism
+        A new linkage whose ``trace`` is the foot ``F``.
+    """
     return _linkage("jansen")
 
 
 def klann() -> Mechanism:
-    """A Klann-type leg (Stephenson III six-bar): the reference of :mod:`linkage.legs`'
-    ``klann`` family — proportions after Bastien & Birglen (2022), not the patent's (see
-    :data:`linkage.legs.KLANN_REF`); the foot is ``F``."""
+    """Klann-type leg (Stephenson III six-bar), the reference of the ``klann`` leg family.
 
+    The family is :mod:`linkage.legs`' ``klann``. Proportions after Bastien & Birglen (2022), not
+    the patent's (see :data:`linkage.legs.KLANN_REF`); the foot is ``F``.
+
+    Returns
+    -------
+    Mechanism
+        A new linkage whose ``trace`` is the foot ``F``.
+    """
     fam = family("klann")
     m: Mechanism = fam.mechanism(fam.reference)
     return m
 
 
 def names() -> tuple[str, ...]:
-    """Every catalogue name."""
+    """Return every catalogue name: the four-bars, then the multi-loop linkages.
+
+    Returns
+    -------
+    tuple of str
+        The names :func:`get` takes.
+
+    Examples
+    --------
+    >>> names()[:4], names()[-2:]
+    (('watt', 'roberts', 'chebyshev', 'hoecken'), ('hoecken_pantograph', 'jansen'))
+    """
     return FOUR_BARS + MULTI_LOOP
 
 
 def get(name: str) -> FourBar | Mechanism:
-    """A catalogue linkage by name."""
+    """Build a catalogue linkage by name.
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`names` (the pantograph at its default scale).
+
+    Returns
+    -------
+    FourBar or Mechanism
+        A new linkage.
+
+    Raises
+    ------
+    LinkageError
+        For an unknown name (the message lists the names).
+    TypeError
+        If ``name`` is not a str.
+
+    Examples
+    --------
+    >>> get("evans_b").input_limits() == evans_b().input_limits()
+    True
+    >>> get(3)
+    Traceback (most recent call last):
+    ...
+    TypeError: name must be a str, got int
+    """
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, got {type(name).__name__}")
     if name in FOUR_BARS:
@@ -169,12 +323,43 @@ class Figures:
 
 
 def figures(rel_tol: float = 1e-3, samples: int = 20001) -> list[Figures]:
-    """For each catalogue linkage: Grashof class, input range, and the straight part of its
-    trace within ``rel_tol`` of the linkage size (0.1 % by default) — its length, deviation and
-    speed variation at constant crank speed.
+    """Compute each catalogue linkage's Grashof class, input range and straight part.
+
+    The straight part of its trace is found within ``rel_tol`` of the linkage size (0.1 % by
+    default): its length, deviation and speed variation at constant crank speed.
 
     Four-bars are traced over their whole circuit (:meth:`FourBar.circuit`); multi-loop
     linkages over one crank turn sampled ``samples`` times, where they assemble.
+
+    Parameters
+    ----------
+    rel_tol : float, default 1e-3
+        The straightness tolerance as a share of each linkage's longest link (positive).
+    samples : int, default 20001
+        Samples per circuit or crank turn (at least 3).
+
+    Returns
+    -------
+    list of Figures
+        One row per catalogue linkage, in :func:`names` order, without error estimates (see
+        :func:`table`).
+
+    Raises
+    ------
+    LinkageError
+        For a ``rel_tol`` that is not positive and finite, or ``samples`` below 3.
+    MemoryError
+        When the samples would not fit in memory.
+
+    Examples
+    --------
+    >>> hoecken_row = figures(samples=2001)[3]
+    >>> hoecken_row.name, round(hoecken_row.straight_length, 2), hoecken_row.tolerance
+    ('hoecken', 16.14, 0.025)
+    >>> figures(rel_tol=0)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: rel_tol must be positive, got 0.0
     """
     rel_tol = as_finite(rel_tol, "rel_tol")
     if rel_tol <= 0:
@@ -234,11 +419,24 @@ CACHE_FORMAT = 2
 
 
 def check_count(samples: int) -> int:
-    """About half of ``samples``, on a grid sharing only its ends with theirs (``k − 1``
-    coprime to ``samples − 1``): the second resolution of the error estimates.
+    """Return about half of ``samples``: the second resolution of the error estimates.
 
-    >>> check_count(4001)
-    2000
+    The grid shares only its ends with theirs (``k − 1`` coprime to ``samples − 1``).
+
+    Parameters
+    ----------
+    samples : int
+        The first resolution.
+
+    Returns
+    -------
+    int
+        ``k``, at least 3.
+
+    Examples
+    --------
+    >>> check_count(4001), check_count(721), check_count(3)
+    (2000, 360, 3)
     """
     k = max(3, (samples - 1) // 2 + 1)
     while k > 3 and math.gcd(k - 1, samples - 1) != 1:
@@ -263,9 +461,17 @@ def _with_errors(fine: list[Figures], coarse: list[Figures]) -> list[Figures]:
 
 
 def cache_dir() -> Path:
-    """The folder the catalogue table is cached in: ``$LINKAGE_CACHE_DIR``, else the user's
-    cache folder (``$XDG_CACHE_HOME/linkage``, ``~/.cache/linkage``; ``~/Library/Caches/linkage``
-    on macOS, ``%LOCALAPPDATA%\\linkage\\Cache`` on Windows)."""
+    r"""Return the folder the catalogue table is cached in.
+
+    ``$LINKAGE_CACHE_DIR``, else the user's cache folder (``$XDG_CACHE_HOME/linkage``,
+    ``~/.cache/linkage``; ``~/Library/Caches/linkage`` on macOS, ``%LOCALAPPDATA%\linkage\Cache`` on
+    Windows).
+
+    Returns
+    -------
+    Path
+        The folder (not created here).
+    """
     env = os.environ.get("LINKAGE_CACHE_DIR")
     if env:
         return Path(env)
@@ -278,9 +484,11 @@ def cache_dir() -> Path:
 
 
 def _cache_key(rel_tol: float, samples: int, check: int) -> str:
-    """A hash of everything the table depends on: the package version and the compiled core
-    (size and modification time), the parameters and the catalogue's names."""
+    """Hash everything the table depends on.
 
+    That is the package version and the compiled core (size and modification time), the parameters
+    and the catalogue's names.
+    """
     from linkage import __version__  # noqa: PLC0415 (linkage/__init__ imports this module)
 
     try:
@@ -298,8 +506,10 @@ _FIELDS = {f.name: f.type for f in fields(Figures)}
 
 
 def _read_cache(path: Path) -> list[Figures] | None:
-    """The cached table at ``path``; None when absent, unreadable or not a table (a corrupt
-    cache is ignored and then rewritten)."""
+    """Read the cached table at ``path``; None when absent, unreadable or not a table.
+
+    A corrupt cache is ignored (and then rewritten).
+    """
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
         rows = []
@@ -335,8 +545,10 @@ def _opt(x: object) -> float | None:
 
 
 def _write_cache(path: Path, rows: list[Figures]) -> None:
-    """Write the table to ``path`` inside the cache folder (atomically: a temporary file in
-    the same folder renamed over it); any failure leaves the cache as it was."""
+    """Write the table to ``path`` inside the cache folder, atomically.
+
+    A temporary file in the same folder is renamed over it; any failure leaves the cache as it was.
+    """
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -348,10 +560,31 @@ def _write_cache(path: Path, rows: list[Figures]) -> None:
 
 
 def table(rel_tol: float = 1e-3, samples: int = TABLE_SAMPLES, cache: bool = True) -> list[Figures]:
-    """:func:`figures` with error estimates — each figure's difference from the same figure at
-    :func:`check_count` samples — as ``linkage catalog`` shows them; with ``cache``, kept in
-    :func:`cache_dir` under a hash of the version, the compiled core and the parameters (only
-    that file is written; an unreadable or corrupt one is recomputed and rewritten).
+    """Compute :func:`figures` with error estimates, as ``linkage catalog`` shows them.
+
+    Each figure's error is its difference from the same figure at :func:`check_count` samples. With
+    ``cache``, the table is kept in :func:`cache_dir` under a hash of the version, the compiled core
+    and the parameters (only that file is written; an unreadable or corrupt one is recomputed and
+    rewritten).
+
+    Parameters
+    ----------
+    rel_tol : float, default 1e-3
+        As :func:`figures`.
+    samples : int, default :data:`TABLE_SAMPLES`
+        As :func:`figures`; the errors compare :func:`check_count` samples.
+    cache : bool, default True
+        Read and write the cached table.
+
+    Returns
+    -------
+    list of Figures
+        :func:`figures` with the ``*_error`` fields set.
+
+    Raises
+    ------
+    LinkageError
+        As :func:`figures`.
     """
     rel_tol = as_finite(rel_tol, "rel_tol")
     samples = as_count(samples, "samples", 3)
@@ -372,7 +605,27 @@ def _err(x: float | None, fmt: str) -> str:
 
 
 def format_table(rows: list[Figures], rel_tol: float) -> list[str]:
-    """The lines ``linkage catalog`` prints for ``rows`` (:func:`table`)."""
+    """Return the lines ``linkage catalog`` prints for ``rows`` (:func:`table`).
+
+    Parameters
+    ----------
+    rows : list of Figures
+        The table's rows.
+    rel_tol : float
+        The tolerance they were computed with (for the heading).
+
+    Returns
+    -------
+    list of str
+        A heading, the column titles, one line per row and the walker models.
+
+    Examples
+    --------
+    >>> for line in format_table(figures(samples=2001)[3:4], 1e-3)[1:3]:
+    ...     print(line)
+    linkage  class         input (deg)  size  straight  max dev   speed var
+    hoecken  crank-rocker  full turn    25    16.140    2.50e-02  4.1%
+    """
     body = []
     for f in rows:
         if f.input_range is None:
@@ -414,7 +667,7 @@ def format_table(rows: list[Figures], rel_tol: float) -> list[str]:
 
 
 def _run_around(theta: np.ndarray, ok: np.ndarray, k: int) -> tuple[float, float]:
-    """The contiguous interval of assembling samples that contains sample ``k``."""
+    """Return the contiguous interval of assembling samples that contains sample ``k``."""
     lo = hi = k
     while lo > 0 and ok[lo - 1]:
         lo -= 1
@@ -437,11 +690,24 @@ def _longest_link(m: Mechanism, joints: np.ndarray) -> float:
 
 
 def quadruped_hoecken() -> Walker:
-    """Thesis 1's quadruped: four Hoecken legs (mm) in vertical planes, each foot on a vertical
-    bar 100 mm below the coupler point (the prototype's guided legs), legs A (left front),
-    B (right front), C (left hind), D (right hind) at x = ±70, y = ±50 mm, diagonal pairs A & D
-    and B & C in antiphase, 20 mm square pads (the widened feet), centre of gravity at the
-    centre. Body dimensions are this model's assumption; the source gives the legs."""
+    """Thesis 1's quadruped: four Hoecken legs (mm) in vertical planes.
+
+    Each foot is on a vertical bar 100 mm below the coupler point (the prototype's guided legs),
+    legs A (left front), B (right front), C (left hind), D (right hind) at x = ±70, y = ±50 mm,
+    diagonal pairs A & D and B & C in antiphase, 20 mm square pads (the widened feet), centre of
+    gravity at the centre. Body dimensions are this model's assumption; the source gives the legs.
+
+    Returns
+    -------
+    Walker
+        A new walker (mm) in the diagonal gait.
+
+    Examples
+    --------
+    >>> q = quadruped_hoecken()
+    >>> [leg.name for leg in q.legs], q.leg_labels()
+    (['A', 'B', 'C', 'D'], ('L1', 'R1', 'L2', 'R2'))
+    """
     legs = []
     phases = gait_phases("diagonal", ["A", "B", "C", "D"])
     for (name, x, y), phase in zip(
@@ -461,11 +727,27 @@ def quadruped_hoecken() -> Walker:
 
 
 def hexapod_tripod() -> Walker:
-    """Thesis 2's hexapod (m): six legs, each the Hoecken four-bar (0.020 / 0.010 / 0.025 /
-    0.025, foot 0.050 along the coupler) in the horizontal plane, the foot lifted 1.4 mm by a
-    simple-harmonic cam during the half turn off the straight part; tripod gait {L1, R2, L3}
-    against {R1, L2, R3}. Legs at x = 0.06, 0, −0.06 m and 0.02 m either side of the midline,
-    5 mm pads, centre of gravity at the centre (the body layout is this model's assumption)."""
+    """Thesis 2's hexapod (m): six Hoecken legs in the horizontal plane, in a tripod gait.
+
+    Each leg is the Hoecken four-bar (0.020 / 0.010 / 0.025 / 0.025, foot 0.050 along the coupler),
+    the foot lifted 1.4 mm by a simple-harmonic cam during the half turn off the straight part;
+    tripod gait {L1, R2, L3} against {R1, L2, R3}. Legs at x = 0.06, 0, −0.06 m and 0.02 m either
+    side of the midline, 5 mm pads, centre of gravity at the centre (the body layout is this model's
+    assumption).
+
+    Returns
+    -------
+    Walker
+        A new walker (m) in the tripod gait.
+
+    Examples
+    --------
+    >>> h = hexapod_tripod()
+    >>> h.leg_labels()
+    ('L1', 'L2', 'L3', 'R1', 'R2', 'R3')
+    >>> [round(abs(float(p)), 6) for p in h.phases]     # {L1, R2, L3} against {R1, L2, R3}
+    [0.0, 3.141593, 0.0, 3.141593, 0.0, 3.141593]
+    """
     lift = leg_lift(0.0014)  # the cam's lift (linkage.cam.leg_lift), in m
     names = ["L1", "L2", "L3", "R1", "R2", "R3"]
     phases = gait_phases("tripod", names)

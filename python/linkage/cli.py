@@ -84,7 +84,7 @@ def _run(args: argparse.Namespace, state: dict[str, Path]) -> int:
     else:
         out = report.default_folder(sc.name)
     # Refuse before computing anything: nothing the user has is touched, and --force replaces
-    # only a folder linkage wrote (see linkage.report).
+    # only a folder linkage wrote (see linkage.report_folder).
     report.prepare(out, args.force)
     progress = _Progress(not args.quiet, 8)
     t0 = time.perf_counter()

@@ -1,5 +1,7 @@
-"""What to draw of a linkage or a walker, from its structure: a model independent of any plotting
-library, shared by the PNG/GIF report (:mod:`linkage.report`), the HTML report and the CAD export.
+"""What to draw of a linkage or a walker, from its structure.
+
+The drawing is a model independent of any plotting library, shared by the PNG/GIF report
+(:mod:`linkage.report`), the HTML report and the CAD export.
 
 API
 ---
@@ -72,6 +74,7 @@ from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._sweep import Sweep
+from linkage.drive import Drive
 from linkage.walker import Simulation, Walker
 
 Array = NDArray[np.float64]
@@ -137,6 +140,7 @@ class Drawing:
     cg: tuple[float, float] | None = None
 
     def __len__(self) -> int:
+        """Return the number of samples drawn."""
         return int(self.positions.shape[0])
 
     def frame(self, i: int) -> Array:
@@ -145,8 +149,11 @@ class Drawing:
         return f
 
     def bounds(self, margin: float = 0.06) -> Bounds:
-        """``(xmin, xmax, ymin, ymax)`` of everything drawn, grown by ``margin`` of the larger
-        extent on each side (never from centres of curvature or instant centres)."""
+        """Return ``(xmin, xmax, ymin, ymax)`` of everything drawn, grown by ``margin`` a side.
+
+        ``margin`` is a fraction of the larger extent; centres of curvature and instant centres do
+        not count.
+        """
         lo, hi = self._box
         return _grow(lo, hi, margin)
 
@@ -178,8 +185,11 @@ def _grow(lo: Array, hi: Array, margin: float) -> Bounds:
 
 
 def path_window(path: Array, grow: float = 0.5) -> Bounds:
-    """The bounding box of a path's finite points, grown on each side by ``grow`` times its
-    larger extent: the region a plot of the path (with its evolute) should show."""
+    """Return the bounding box of a path's finite points, grown on each side by ``grow``.
+
+    ``grow`` is a fraction of its larger extent: the box is the region a plot of the path (with its
+    evolute) should show.
+    """
     p = np.asarray(path, dtype=float).reshape(-1, 2)
     p = p[np.isfinite(p).all(axis=1)]
     if not len(p):
@@ -217,8 +227,11 @@ _SLIDER = re.compile(
 
 
 def _structure(mech: FourBar | Mechanism, reference: Array) -> _Structure:
-    """Links, pivots and sliders of ``mech``; ``reference`` (J, 2) is one assembled pose, used to
-    order a link's joints along a line or around a polygon."""
+    """Find the links, pivots and sliders of ``mech``.
+
+    ``reference`` (J, 2) is one assembled pose, used to order a link's joints along a line or around
+    a polygon.
+    """
     m = mech.mechanism() if isinstance(mech, FourBar) else mech
     names = m.joint_names
     link_names = m.links
@@ -254,8 +267,11 @@ def _structure(mech: FourBar | Mechanism, reference: Array) -> _Structure:
 
 
 def _shape(idx: tuple[int, ...], ref: Array) -> tuple[LinkKind, tuple[int, ...]]:
-    """A link's kind and joint order: along the line for collinear joints (a bar), around the
-    centroid otherwise (a plate)."""
+    """Return a link's kind and joint order.
+
+    Joints are ordered along the line for collinear joints (a bar), around the centroid otherwise (a
+    plate).
+    """
     if len(idx) == 2:
         return "bar", idx
     p = ref[list(idx)]
@@ -297,8 +313,10 @@ def _slider_directions(how: tuple[Any, ...], positions: Array) -> Array:
 
 
 def mechanism_drawing(mech: FourBar | Mechanism, sweep: Sweep, units: str = "") -> Drawing:
-    """The drawing of ``mech`` at every sample of ``sweep`` (``mech.sweep(theta)``): its links
-    from the program's structure, ground pivots, sliders, and the trace point with its path.
+    """Draw ``mech`` at every sample of ``sweep`` (``mech.sweep(theta)``).
+
+    The drawing holds its links from the program's structure, ground pivots, sliders, and the trace
+    point with its path.
 
     Raises
     ------
@@ -335,16 +353,17 @@ def mechanism_drawing(mech: FourBar | Mechanism, sweep: Sweep, units: str = "") 
 
 
 def walker_drawing(
-    walker: Any,
-    sim: Any,
+    walker: Walker,
+    sim: Simulation,
     view: str = "side",
     leg_theta: Array | None = None,
     units: str = "",
 ) -> Drawing:
-    """The walker ``walker`` over the simulation ``sim`` (``walker.simulate(...)``), in the body
-    frame: every leg's linkage at its mount, the foot bar (a foot offset or a lift) to the foot,
-    the body outline, the feet with their stance flags and paths, and in the ``"side"`` view
-    (x, z) the ground line, in the ``"top"`` view (x, y) the support polygons and the centre of
+    """Draw the walker ``walker`` over the simulation ``sim`` (``walker.simulate(...)``).
+
+    In the body frame: every leg's linkage at its mount, the foot bar (a foot offset or a lift) to
+    the foot, the body outline, the feet with their stance flags and paths, and in the ``"side"``
+    view (x, z) the ground line, in the ``"top"`` view (x, y) the support polygons and the centre of
     gravity's projection.
 
     ``leg_theta`` (N, legs) overrides each leg's crank angle (default: ``sim.theta`` plus the
@@ -356,7 +375,6 @@ def walker_drawing(
         For an unknown ``view``, a ``leg_theta`` of the wrong shape, or a leg that does not
         assemble at a sample.
     """
-
     if not isinstance(walker, Walker):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
     if not isinstance(sim, Simulation):
@@ -455,8 +473,10 @@ def _to_body(leg: Any, p2: Array, vector: bool = False) -> Array:
 
 
 def _body_outline(fixed: Array, walker: Any, axes: tuple[int, int]) -> Array:
-    """A rectangle over the legs' fixed joints (the frame they are mounted on), as a closed
-    outline in the view's axes."""
+    """Return a rectangle over the legs' fixed joints as a closed outline in the view's axes.
+
+    The fixed joints are the frame the legs are mounted on.
+    """
     lo, hi = fixed.min(axis=0), fixed.max(axis=0)
     span = float(max(hi[0] - lo[0], 1e-300))
     if axes == (0, 2):
@@ -474,16 +494,27 @@ def _body_outline(fixed: Array, walker: Any, axes: tuple[int, int]) -> Array:
     return out
 
 
-def leg_angles(walker: Any, sim: Any, drive: Any, per_leg_time: bool) -> Array:
-    """Each leg's crank angle per sample, (N, legs): the drive's angle plus the leg's phase, or
-    with ``per_leg_time`` the drive run shifted by the phase's share of its period (as
-    :meth:`linkage.Walker.simulate` does)."""
+def leg_angles(walker: Walker, sim: Simulation, drive: Drive | None, per_leg_time: bool) -> Array:
+    """Return each leg's crank angle per sample, (N, legs).
+
+    The drive's angle plus the leg's phase, or with ``per_leg_time`` the drive (a periodic one,
+    with a ``period``) run shifted by the phase's share of its period (as
+    :meth:`linkage.Walker.simulate` does).
+
+    Raises
+    ------
+    LinkageError
+        With ``per_leg_time`` and a drive that has no period.
+    """
     if not per_leg_time:
         out: Array = sim.theta[:, None] + walker.phases[None, :]
         return out
+    if drive is None or not hasattr(drive, "period"):
+        raise LinkageError("per_leg_time needs a periodic drive (with a period)")
+    period = float(drive.period)
     cols = []
     for leg in walker.legs:
-        shift = leg.phase / (2 * math.pi) * float(drive.period)
+        shift = leg.phase / (2 * math.pi) * period
         th, _, _ = drive.angles(sim.time + shift)
         cols.append(np.asarray(th, dtype=float))
     return np.stack(cols, axis=1)

@@ -44,15 +44,47 @@ LAWS: tuple[str, ...] = tuple(_core.motion_law_names())
 
 
 def motion_law(name: str, u: ArrayLike) -> tuple[Array, Array, Array, Array]:
-    """A dimensionless rise law on ``u ∈ [0, 1]``: ``(s, s', s'', s''')``, derivatives in ``u``.
+    """Evaluate a dimensionless rise law on ``u ∈ [0, 1]``: ``(s, s', s'', s''')``.
 
-    Laws: constant-velocity, constant-acceleration, simple-harmonic, cycloidal, 3-4-5, 4-5-6-7,
-    modified-trapezoid. A rise ``L`` over ``β`` scales them as ``L·s``, ``L·s'/β``,
+    The derivatives are in ``u``. A rise ``L`` over ``β`` scales them as ``L·s``, ``L·s'/β``,
     ``L·s''/β²``, ``L·s'''/β³``.
 
+    Parameters
+    ----------
+    name : str
+        One of :data:`LAWS`: constant-velocity, constant-acceleration, simple-harmonic,
+        cycloidal, 3-4-5, 4-5-6-7, modified-trapezoid.
+    u : array_like
+        Positions within the rise, scalar or 1-D; outside ``[0, 1]`` the law holds its end
+        value (a dwell).
+
+    Returns
+    -------
+    s, ds, d2s, d3s : ndarray, shape (n,)
+        The law and its first three derivatives at ``u``.
+
+    Raises
+    ------
+    LinkageError
+        For an unknown law or a non-finite ``u``.
+    TypeError
+        If ``name`` is not a str.
+
+    Examples
+    --------
     >>> s, v, a, j = motion_law("cycloidal", [0.25])
     >>> round(float(a[0]), 12) == round(2 * np.pi, 12)   # peak 2π·L/β²
     True
+
+    Beyond the rise the output dwells at its end:
+
+    >>> s, v, a, j = motion_law("cycloidal", [0.0, 0.5, 1.0, 1.5])
+    >>> s, v
+    (array([0. , 0.5, 1. , 1. ]), array([0., 2., 0., 0.]))
+    >>> motion_law("cycloidal", [np.nan])
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: u must be finite: u[0] is nan
     """
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, got {type(name).__name__}")
@@ -64,14 +96,17 @@ def motion_law(name: str, u: ArrayLike) -> tuple[Array, Array, Array, Array]:
 
 @dataclass(frozen=True)
 class Segment:
-    """Over ``duration`` the output moves by ``rise`` following ``law`` (a dwell when ``law``
-    is None or ``rise`` is 0)."""
+    """One segment of a motion program: over ``duration`` the output moves by ``rise``.
+
+    The motion follows ``law``; a segment is a dwell when ``law`` is None or ``rise`` is 0.
+    """
 
     duration: float
     rise: float = 0.0
     law: str | None = None
 
     def __post_init__(self) -> None:
+        """Check the duration (positive), the rise (finite) and the law (a name of :data:`LAWS`)."""
         as_length(self.duration, "duration")
         as_finite(self.rise, "rise")
         if self.law is not None and not isinstance(self.law, str):
@@ -86,13 +121,14 @@ class Drive(Protocol):
     """Anything that gives crank angle, speed and acceleration against time."""
 
     def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
-        """``(θ, ω, α)`` at times ``t``."""
+        """Return ``(θ, ω, α)``, crank angle, speed and acceleration, at times ``t``."""
         ...
 
 
 class Program:
-    """A piecewise motion program: ``start`` then ``segments`` in sequence, repeating (the
-    output advancing by the sum of the rises each period). As a drive its output is the crank
+    """A piecewise motion program: ``start`` then ``segments`` in sequence, repeating.
+
+    The output advances by the sum of the rises each period. As a drive its output is the crank
     angle in radians against time in seconds.
 
     >>> rdr = Program(0.0, [Segment(1.0, 2.0, "simple-harmonic"), Segment(0.5),
@@ -131,20 +167,47 @@ class Program:
         return _sum(float(s.duration) for s in self.segments)
 
     def eval(self, t: ArrayLike) -> tuple[Array, Array, Array, Array]:
-        """Value and first three derivatives at ``t``."""
+        """Evaluate the program's value and first three derivatives at ``t``.
+
+        Parameters
+        ----------
+        t : array_like
+            Times (or cam angles), scalar or 1-D; the program repeats with :attr:`period`.
+
+        Returns
+        -------
+        value, rate, second, third : ndarray, shape (n,)
+            The output and its first three derivatives.
+
+        Raises
+        ------
+        LinkageError
+            For a non-finite ``t``, or where an output is not representable in float64.
+
+        Examples
+        --------
+        A rise of 2 over 1 s, then a dwell of 0.5 s; the next period starts 2 higher:
+
+        >>> p = Program(0.0, [Segment(1.0, 2.0, "simple-harmonic"), Segment(0.5)])
+        >>> value, rate, _, _ = p.eval([0.0, 0.5, 1.25, 1.5])
+        >>> value, rate.round(6)
+        (array([0., 1., 2., 2.]), array([0.      , 3.141593, 0.      , 0.      ]))
+        """
         tt, _ = as_angles(t, "t")
         out = _core.program_eval(*self._args(), tt)
         _check_rows(out, tt, ("value", "rate", "second derivative", "third derivative"))
         return out[:, 0], out[:, 1], out[:, 2], out[:, 3]
 
     def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
-        """``(θ, ω, α)`` at times ``t``."""
+        """Return ``(θ, ω, α)`` at times ``t``: :meth:`eval` without the third derivative."""
         y, v, a, _ = self.eval(t)
         return y, v, a
 
     def discontinuities(self, tol: float = 1e-9) -> list[tuple[int, int, float]]:
-        """Jumps at the joins (the last to the first included): ``(after segment, order,
-        jump)`` with order 1 velocity, 2 acceleration, 3 jerk."""
+        """Return the jumps at the joins (the last to the first included).
+
+        Each is ``(after segment, order, jump)`` with order 1 velocity, 2 acceleration, 3 jerk.
+        """
         raw = _core.program_discontinuities(*self._args(), as_finite(tol, "tol"))
         return [(int(after), int(order), float(jump)) for after, order, jump in raw]
 
@@ -157,7 +220,32 @@ class ConstantSpeed:
     theta0: float = 0.0
 
     def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
-        """``(θ, ω, α)`` at times ``t``."""
+        """Return ``(θ, ω, α)`` at times ``t``.
+
+        Parameters
+        ----------
+        t : array_like
+            Times (s), scalar or 1-D.
+
+        Returns
+        -------
+        theta, omega, alpha : ndarray, shape (n,)
+            ``θ0 + ω·t``, ``ω`` and 0.
+
+        Raises
+        ------
+        LinkageError
+            For a non-finite time, or a crank angle that overflows a float.
+
+        Examples
+        --------
+        >>> ConstantSpeed(2.0).angles([0.0, 1.0])
+        (array([0., 2.]), array([2., 2.]), array([0., 0.]))
+        >>> ConstantSpeed(2.0).angles([1e308])
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: the crank angle overflows a float at t = 1e+308
+        """
         tt, _ = as_angles(t, "t")
         w = as_finite(self.omega, "omega")
         with np.errstate(over="ignore", invalid="ignore"):
@@ -181,12 +269,69 @@ class GearTrain:
 
     @classmethod
     def simple(cls, teeth: Sequence[int]) -> GearTrain:
-        """Gears in mesh order, one per shaft: ratio ``z_first/z_last``; each mesh reverses."""
+        """Build a simple train: gears in mesh order, one per shaft.
+
+        The ratio is ``z_first/z_last`` (the idlers cancel); each mesh reverses the sense.
+
+        Parameters
+        ----------
+        teeth : sequence of int
+            Tooth counts in mesh order, at least two, each positive.
+
+        Returns
+        -------
+        GearTrain
+            The ratio ``output/input`` and the sense.
+
+        Raises
+        ------
+        LinkageError
+            For fewer than two gears or a tooth count below 1.
+        TypeError
+            For a tooth count that is not an int.
+
+        Examples
+        --------
+        Thesis 1's train: two meshes, so the output turns the motor's way:
+
+        >>> GearTrain.simple([18, 15, 14])
+        GearTrain(ratio=1.28571, sign=+1)
+        >>> GearTrain.simple([18, 0])
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: tooth counts must be positive, got 0
+        """
         return cls(*_core.gear_train_simple([_teeth(z) for z in teeth]))
 
     @classmethod
     def compound(cls, stages: Sequence[tuple[int, int]]) -> GearTrain:
-        """``(driver, driven)`` meshes, driven and next driver sharing a shaft."""
+        """Build a compound train of ``(driver, driven)`` meshes.
+
+        The driven gear of one mesh and the driver of the next share a shaft; the ratio is the
+        product of ``driver/driven`` and each mesh reverses the sense.
+
+        Parameters
+        ----------
+        stages : sequence of (int, int)
+            ``(driver, driven)`` tooth counts, one pair per mesh.
+
+        Returns
+        -------
+        GearTrain
+            The ratio ``output/input`` and the sense.
+
+        Raises
+        ------
+        LinkageError
+            For a stage that is not a pair, or a tooth count below 1.
+        TypeError
+            For a stage or tooth count of the wrong type.
+
+        Examples
+        --------
+        >>> GearTrain.compound([(10, 30), (12, 36)])
+        GearTrain(ratio=0.111111, sign=+1)
+        """
         pairs = []
         for stage in stages:
             if isinstance(stage, (str, bytes)) or not hasattr(stage, "__len__"):
@@ -201,13 +346,35 @@ class GearTrain:
         return cls(*_core.gear_train_compound(pairs))
 
     def output_speed(self, input_speed: float) -> float:
-        """Signed output speed for an input speed."""
+        """Return the signed output speed for an input speed.
+
+        Parameters
+        ----------
+        input_speed : float
+            The input shaft's speed (any unit).
+
+        Returns
+        -------
+        float
+            ``input_speed × ratio × sign``.
+
+        Raises
+        ------
+        LinkageError
+            If the input is not finite or the output overflows a float.
+
+        Examples
+        --------
+        >>> GearTrain.simple([10, 20]).output_speed(50.0)     # one mesh: reversed
+        -25.0
+        """
         out = as_finite(input_speed, "input_speed") * self.ratio * self.sign
         if not math.isfinite(out):
             raise LinkageError(f"output speed overflows: {input_speed!r} × {self.ratio!r}")
         return out
 
     def __repr__(self) -> str:
+        """Return ``GearTrain(ratio=..., sign=...)``."""
         return f"GearTrain(ratio={self.ratio:g}, sign={self.sign:+d})"
 
 
@@ -228,8 +395,11 @@ def _sum(values: Iterable[float]) -> float:
 
 
 def _check_rows(out: Array, t: Array, what: tuple[str, ...]) -> None:
-    """A drive's outputs at finite times are finite, or the times are beyond what float64 can
-    represent of it (e.g. the whole turns at t = 1e308): a ``LinkageError``, never inf/NaN."""
+    """Check that a drive's outputs at finite times are finite.
+
+    Times beyond what float64 can represent of the drive (e.g. the whole turns at t = 1e308) are a
+    ``LinkageError``, never inf/NaN.
+    """
     bad = ~np.isfinite(out)
     if bad.any():
         k, col = (int(i) for i in np.argwhere(bad)[0])
@@ -249,14 +419,37 @@ def _teeth(z: Any) -> int:
 
 @dataclass(frozen=True)
 class Geared:
-    """A motor drive seen through a gear train: the crank turns ``train.ratio`` times as fast
-    (with the train's sense)."""
+    """A motor drive seen through a gear train.
+
+    The crank turns ``train.ratio`` times as fast (with the train's sense).
+    """
 
     motor: Drive
     train: GearTrain
 
     def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
-        """``(θ, ω, α)`` of the crank at times ``t``."""
+        """Return ``(θ, ω, α)`` of the crank at times ``t``: the motor's times the train's ratio.
+
+        Parameters
+        ----------
+        t : array_like
+            Times (s), scalar or 1-D.
+
+        Returns
+        -------
+        theta, omega, alpha : ndarray, shape (n,)
+            The crank's angle, speed and acceleration.
+
+        Raises
+        ------
+        LinkageError
+            For a non-finite time, or an output that overflows a float.
+
+        Examples
+        --------
+        >>> Geared(ConstantSpeed(50.0), GearTrain.simple([18, 15, 14])).angles([1.0])
+        (array([64.28571429]), array([64.28571429]), array([0.]))
+        """
         th, w, a = self.motor.angles(t)
         k = self.train.ratio * self.train.sign
         with np.errstate(over="ignore", invalid="ignore"):
@@ -269,8 +462,10 @@ class Geared:
 
 @dataclass(frozen=True)
 class CrankSchedule:
-    """A periodic crank schedule ``θ(t)`` for one crank turn per period, stored as a compact
-    table of crank angle and speed at uniform times (see :func:`crank_schedule`).
+    """A periodic crank schedule ``θ(t)`` for one crank turn per period.
+
+    It is stored as a compact table of crank angle and speed at uniform times (see
+    :func:`crank_schedule`).
 
     ``theta`` and ``omega`` are ``float32`` — the arrays to put in firmware, interpolated there
     by ``linkage_core::ScheduleTable`` (cubic Hermite: θ and ω continuous).
@@ -300,8 +495,28 @@ class CrankSchedule:
         return self.dt * len(self.theta)
 
     def angles(self, t: ArrayLike, single: bool = False) -> tuple[Array, Array, Array]:
-        """``(θ, ω, α)`` at times ``t``, interpolated by the core in f64, or in f32 as firmware
-        would (``single=True``)."""
+        """Return ``(θ, ω, α)`` at times ``t``.
+
+        Interpolated by the core in f64, or in f32 as firmware would (``single=True``).
+
+        Parameters
+        ----------
+        t : array_like
+            Times (s), scalar or 1-D; the schedule repeats with :attr:`period`, the crank one
+            turn further each period.
+        single : bool, default False
+            Interpolate in f32, as ``linkage_core::ScheduleTable`` does on a microcontroller.
+
+        Returns
+        -------
+        theta, omega, alpha : ndarray, shape (n,)
+            The crank's angle, speed and acceleration.
+
+        Raises
+        ------
+        LinkageError
+            For a non-finite time, or an output not representable in float64.
+        """
         tt, _ = as_angles(t, "t")
         out = _core.schedule_eval(
             self.dt,
@@ -317,8 +532,10 @@ class CrankSchedule:
 
 @dataclass(frozen=True)
 class StanceProfile:
-    """A leg's stance as a crank schedule needs it (see :func:`stance_profile`): the same for
-    every foot speed and duty factor, so a search over them finds it once."""
+    """A leg's stance as a crank schedule needs it (see :func:`stance_profile`).
+
+    It is the same for every foot speed and duty factor, so a search over them finds it once.
+    """
 
     theta: NDArray[np.float64]
     """Stance crank angles (rad), increasing (unwrapped across 2π)."""
@@ -331,14 +548,51 @@ class StanceProfile:
 def stance_profile(
     leg: FourBar | Mechanism, tol: float | None = None, resolution: int = 7201
 ) -> StanceProfile:
-    """The stance of ``leg`` (a :class:`FourBar` or :class:`Mechanism` whose trace point is the
-    foot): the straight part of its foot path within ``tol`` (default 0.2 % of the path's
-    extent), sampled at ``resolution`` crank angles over a turn.
+    """Find the stance of ``leg``: the straight part of its foot path.
+
+    The foot path is sampled at ``resolution`` crank angles over a turn and its straight part
+    found by :func:`linkage.foot_path`.
+
+    Parameters
+    ----------
+    leg : FourBar or Mechanism
+        The leg; its trace point is the foot.
+    tol : float, optional
+        Straightness tolerance of the stance; default 0.2 % of the foot path's extent.
+    resolution : int, default 7201
+        Crank angles over the turn (at least 16).
+
+    Returns
+    -------
+    StanceProfile
+        The stance's crank angles (increasing), the foot's speed along the stance line per
+        radian of crank there, and the line's direction.
 
     Raises
     ------
     LinkageError
-        When the leg does not assemble over a whole turn, or for bad numbers.
+        When the leg does not assemble over a whole turn, the foot path has no straight part,
+        or for bad numbers.
+    TypeError
+        If ``leg`` is not a FourBar or Mechanism.
+    MemoryError
+        When the samples would not fit in memory.
+
+    Examples
+    --------
+    The Hoecken leg's stance spans the crank angles 75.2° to 287°:
+
+    >>> import linkage
+    >>> st = stance_profile(linkage.catalog.hoecken())
+    >>> np.degrees(st.theta[[0, -1]]).round(3)
+    array([ 75.2, 287. ])
+
+    A leg with a limited crank range has no stance to schedule:
+
+    >>> stance_profile(linkage.catalog.evans_b())
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: the leg must assemble over a whole crank turn
     """
     if not isinstance(leg, (FourBar, Mechanism)):
         raise TypeError(f"leg must be a FourBar or Mechanism, got {type(leg).__name__}")
@@ -372,7 +626,7 @@ def crank_schedule(
     resolution: int = 7201,
     stance: StanceProfile | None = None,
 ) -> CrankSchedule:
-    """A crank speed schedule that keeps a leg's foot at constant speed along its stance line.
+    """Design a crank schedule that keeps a leg's foot at constant speed along its stance line.
 
     In stance (the straight part of the foot path within ``tol``, default 0.2 % of the path's
     extent: :func:`stance_profile`, or ``stance`` when given) the crank runs at
@@ -380,14 +634,53 @@ def crank_schedule(
     so the stance lasts ``stride/V``. With duty factor ``β`` the period is ``T = stride/(V·β)``;
     the swing covers the remaining crank angle in ``(1 − β)T`` with a speed that starts and ends
     at the stance speeds (continuous ω) plus a parabolic bump sized to close the turn — bounded
-    acceleration (the core's ``StanceSchedule``). ``leg`` is a :class:`FourBar` or
-    :class:`Mechanism` whose trace point is the foot.
+    acceleration (the core's ``StanceSchedule``).
+
+    Parameters
+    ----------
+    leg : FourBar or Mechanism
+        The leg; its trace point is the foot.
+    foot_speed : float
+        ``V``, the foot's speed along the stance line (positive; length units per second).
+    duty_factor : float
+        ``β``, the share of the period in stance (strictly between 0 and 1).
+    samples : int, default 720
+        Entries of the table over one period (at least 8).
+    tol, resolution
+        The stance's tolerance and sampling, as :func:`stance_profile`.
+    stance : StanceProfile, optional
+        The leg's stance, found once for many schedules; else found here.
+
+    Returns
+    -------
+    CrankSchedule
+        The float32 table, with the foot-speed ripple it delivers and its peak crank
+        acceleration.
 
     Raises
     ------
     LinkageError
         For bad numbers, a foot path with no straight part, or a swing that would need the crank
         to stop or reverse (duty factor too low for that stance).
+    TypeError
+        If ``leg`` is not a FourBar or Mechanism, or ``stance`` not a StanceProfile.
+    MemoryError
+        When the table's checks would not fit in memory.
+
+    Examples
+    --------
+    >>> import linkage
+    >>> leg = linkage.catalog.hoecken()
+    >>> sched = crank_schedule(leg, 80.0, 0.6)
+    >>> round(sched.period, 4), sched.speed_ripple < 1e-3, sched.theta.dtype
+    (0.9314, True, dtype('float32'))
+
+    Too short a swing would need the crank to run backwards:
+
+    >>> crank_schedule(leg, 80.0, 0.3)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: the duty factor needs the crank to stop during the swing ...
     """
     if not isinstance(leg, (FourBar, Mechanism)):
         raise TypeError(f"leg must be a FourBar or Mechanism, got {type(leg).__name__}")

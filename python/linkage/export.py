@@ -1,11 +1,14 @@
-"""The data of a run for other programs: ``summary.json`` (typed figures with units and error
-estimates; schema in ``docs/summary-schema.md``), ``data.csv`` (one row per sample, units in
-the headers), ``data.npz`` (every array) and the mechanism at one pose as ``mechanism.dxf``
-(ezdxf; layers, units) and ``mechanism.svg`` — links, pivots, sliders and every traced path,
-drawn from :mod:`linkage.drawing`, the model the plots and the HTML page draw too.
+"""The data of a run for other programs: JSON summary, CSV, NPZ, and the mechanism as DXF and SVG.
 
-``write_data(res, folder)`` writes them all into ``folder`` (the report's folder, last, so that
-the summary lists every file of the report).
+``summary.json`` holds typed figures with units and error estimates (schema in
+``docs/summary-schema.md``), ``data.csv`` one row per sample (units in the headers),
+``data.npz`` every array. For a scene that asks for the output ``cad``, ``mechanism.dxf``
+(ezdxf, imported only then; layers, units) and ``mechanism.svg`` hold the mechanism at one pose —
+links, pivots, sliders and every traced path, drawn from :mod:`linkage.drawing`, the model the
+plots and the HTML page draw too.
+
+``write_data(res, folder, cad=...)`` writes them into ``folder`` (the report's folder, last, so
+that the summary lists every file of the report).
 
 A ``[synthesis]`` scene's report has no samples over time: instead ``candidates.csv`` (one row
 per candidate, units in the headers), ``candidate-<k>.toml`` (each candidate as a ready-to-run
@@ -90,9 +93,12 @@ def layer_name(name: str) -> str:
 
 
 def drawing_of(res: Result) -> Drawing | None:
-    """The drawing model of the run: the mechanism over its sweep, or a walker seen in its legs'
-    plane (from the side, or from above when most legs work in the horizontal plane); ``None``
-    when the run has neither (it always has one after :func:`linkage.runner.run`)."""
+    """Return the drawing model of the run, or ``None`` when the run has nothing to draw.
+
+    The mechanism over its sweep, or a walker seen in its legs' plane (from the side, or from above
+    when most legs work in the horizontal plane); a run always has one after
+    :func:`linkage.runner.run`.
+    """
     units = res.scene.units
     if res.synthesis is not None:
         return synthesis_drawing(res)
@@ -111,7 +117,7 @@ def drawing_of(res: Result) -> Drawing | None:
 
 
 def default_pose(d: Drawing) -> int:
-    """The first sample at which every joint is placed.
+    """Return the first sample at which every joint is placed.
 
     Raises
     ------
@@ -142,7 +148,7 @@ def _check_pose(d: Drawing, pose: int | None) -> int:
 
 
 def _runs(path: Array) -> Iterator[Array]:
-    """The runs of consecutive finite points of ``path`` (N, 2), each of two points or more."""
+    """Yield the runs of consecutive finite points of ``path`` (N, 2) of two points or more."""
     finite: NDArray[np.bool_] = np.asarray(np.isfinite(path).all(axis=1))
     ok = [bool(v) for v in finite]
     k = 0
@@ -165,8 +171,10 @@ def _symbol_size(d: Drawing) -> float:
 
 
 def _shapes(d: Drawing, k: int) -> Iterator[tuple[str, str, Array]]:
-    """``(layer, kind, points)`` of everything drawn at sample ``k``: kind ``"open"`` or
-    ``"closed"`` (polylines), ``"circle"`` (points = [[cx, cy, r]])."""
+    """Yield ``(layer, kind, points)`` of everything drawn at sample ``k``.
+
+    Kind ``"open"`` or ``"closed"`` (polylines), ``"circle"`` (points = [[cx, cy, r]]).
+    """
     p = d.positions[k]
     size = _symbol_size(d)
     legs = d.legs
@@ -221,7 +229,7 @@ _DXF_PATH_COLOURS = (5, 3, 6, 4, 30, 140, 210, 94, 172, 12, 52, 232)
 
 
 def _drawn(res: Result, pose: int | None, drawing: Drawing | None) -> tuple[Drawing, int]:
-    """The drawing to export (``drawing``, else built from ``res``) and the checked pose."""
+    """Return the drawing to export (``drawing``, else built from ``res``) and the checked pose."""
     d = drawing or drawing_of(res)
     if d is None:
         raise LinkageError("nothing to draw: the run has no mechanism or walker")
@@ -231,8 +239,10 @@ def _drawn(res: Result, pose: int | None, drawing: Drawing | None) -> tuple[Draw
 def write_dxf(
     res: Result, path: Path, pose: int | None = None, drawing: Drawing | None = None
 ) -> int:
-    """Write the mechanism at sample ``pose`` (default: the first assembled one) and every traced
-    path as ``path`` (DXF R2010, ``$INSUNITS`` from the scene's units); returns the pose.
+    """Write the mechanism at sample ``pose`` and every traced path as ``path``; return the pose.
+
+    ``pose`` defaults to the first assembled sample; the file is DXF R2010, with ``$INSUNITS`` from
+    the scene's units.
 
     Raises
     ------
@@ -284,9 +294,10 @@ def _num(x: float) -> str:
 def svg_text(
     res: Result, pose: int | None = None, drawing: Drawing | None = None
 ) -> tuple[str, int]:
-    """The SVG of the mechanism at sample ``pose`` (default: the first assembled one) with every
-    traced path, in the scene's coordinates (y up, by a flip of the whole drawing): each layer
-    a ``<g id="layer-NAME" data-layer="NAME">``; returns the text and the pose.
+    """Draw the mechanism at sample ``pose`` with every traced path as SVG; return text and pose.
+
+    ``pose`` defaults to the first assembled sample. The drawing is in the scene's coordinates (y
+    up, by a flip of the whole drawing), each layer a ``<g id="layer-NAME" data-layer="NAME">``.
 
     Raises
     ------
@@ -346,7 +357,7 @@ def _escape(text: str) -> str:
 
 
 def _array_unit(res: Result, key: str) -> str:
-    """The unit of ``res.arrays[key]`` (per element)."""
+    """Return the unit of ``res.arrays[key]`` (per element)."""
     u = length_unit(res.scene)
     walker = res.simulation is not None
     return {
@@ -381,11 +392,13 @@ _CSV_NAMES = {"point": "trace"}
 
 
 def csv_columns(res: Result) -> dict[str, Array]:
-    """The per-sample columns of ``data.csv``, by header (``name [unit]``): time and crank
-    angles, the trace point, every joint, rates, curvature, torque; a walker's feet (x, y, z per
-    leg), stance flags and body travel. Arrays not sampled over the run's time (the cam's
-    profile, over the cam angle) and the instant centres (many pairs; in the NPZ) are left
-    out."""
+    """Return the per-sample columns of ``data.csv``, by header (``name [unit]``).
+
+    Time and crank angles, the trace point, every joint, rates, curvature, torque; a walker's feet
+    (x, y, z per leg), stance flags and body travel. Arrays not sampled over the run's time (the
+    cam's profile, over the cam angle) and the instant centres (many pairs; in the NPZ) are left
+    out.
+    """
     n = len(res.time)
     cols: dict[str, Array] = {}
     names = list(res.sweep.joint_names) if res.sweep is not None else []
@@ -425,8 +438,7 @@ def csv_columns(res: Result) -> dict[str, Array]:
 
 
 def write_csv(res: Result, path: Path) -> list[str]:
-    """Write ``data.csv`` (one row per sample, a header of ``name [unit]``); returns the
-    headers."""
+    """Write ``data.csv`` (one row per sample, a header of ``name [unit]``); return the headers."""
     cols = csv_columns(res)
     for h in cols:
         if "," in h or '"' in h:  # pragma: no cover - names come from joints and legs
@@ -453,7 +465,7 @@ def write_npz(res: Result, path: Path) -> None:
 
 
 def _json_number(x: Any) -> Any:
-    """A finite number as an int or float, anything not finite as ``None``."""
+    """Return a finite number as an int or float, anything not finite as ``None``."""
     if isinstance(x, (bool, np.bool_)):
         return bool(x)
     if isinstance(x, (int, np.integer)):
@@ -486,9 +498,10 @@ def figure_json(row: Sequence[str]) -> dict[str, Any]:
     }
 
 
-def summary(res: Result, files: Sequence[str], columns: Sequence[str], pose: int | None) -> Any:
-    """The ``summary.json`` object of a run."""
-
+def summary(
+    res: Result, files: Sequence[str], columns: Sequence[str], pose: int | None
+) -> dict[str, Any]:
+    """Return the ``summary.json`` object of a run."""
     scene = res.scene
     pose_info = None
     run = res.synthesis
@@ -531,8 +544,10 @@ def summary(res: Result, files: Sequence[str], columns: Sequence[str], pose: int
 
 
 def write_cad(res: Result, folder: Path, pose: int | None = None) -> tuple[list[Path], int | None]:
-    """Write ``mechanism.dxf`` and ``mechanism.svg`` at sample ``pose`` into ``folder``; returns
-    the files and the pose drawn (no files and ``None`` for a run with nothing to draw)."""
+    """Write ``mechanism.dxf`` and ``mechanism.svg`` at sample ``pose`` into ``folder``.
+
+    Returns the files and the pose drawn (no files and ``None`` for a run with nothing to draw).
+    """
     d = drawing_of(res)
     if d is None:
         return [], None
@@ -547,8 +562,11 @@ def write_cad(res: Result, folder: Path, pose: int | None = None) -> tuple[list[
 
 
 def synthesis_drawing(res: Result) -> Drawing:
-    """The best candidate of a ``[synthesis]`` run over its circuit, with its coupler curve
-    (``trace P``) and the target (``target``, closed when the target is) as paths."""
+    """Draw the best candidate of a ``[synthesis]`` run over its circuit.
+
+    Its coupler curve (``trace P``) and the target (``target``, closed when the target is) are its
+    paths.
+    """
     run = res.synthesis
     if run is None:
         raise LinkageError("not a synthesis run")
@@ -560,16 +578,22 @@ def synthesis_drawing(res: Result) -> Drawing:
 
 
 def synthesis_pose(d: Drawing) -> int:
-    """The sample a synthesis report draws the best candidate at: a sixth of its circuit in (a
-    crank along the ground line at the start hides it), or the first assembled one."""
+    """Return the sample a synthesis report draws the best candidate at.
+
+    A sixth of its circuit in (a crank along the ground line at the start hides it), or the first
+    assembled one.
+    """
     ok = np.asarray(np.isfinite(d.positions).all(axis=(1, 2)), dtype=bool)
     k = ok.shape[0] // 6
     return k if bool(ok[k]) else default_pose(d)
 
 
 def _digits(size: float) -> int:
-    """Decimals that keep a length to 1e-10 of ``size`` (the search's own precision is 1e-10
-    of the size at best): the exported numbers stay readable (20.0, not 19.99999999999998)."""
+    """Return the decimals that keep a length to 1e-10 of ``size``.
+
+    The search's own precision is 1e-10 of the size at best: the exported numbers stay readable
+    (20.0, not 19.99999999999998).
+    """
     return 10 - math.floor(math.log10(size)) if math.isfinite(size) and size > 0 else 12
 
 
@@ -578,7 +602,7 @@ def _num_toml(x: float, decimals: int) -> str:
 
 
 def _mechanism_of(c: Candidate, side: str, phase: float) -> Mechanism:
-    """The candidate as the joints of its exported scene: the crank at ``theta + phase``."""
+    """Build the candidate from the joints of its exported scene: the crank at ``theta + phase``."""
     fb = c.linkage
     m = Mechanism()
     m.fixed("O", fb.o)
@@ -607,9 +631,12 @@ CANDIDATE_RPM = 60.0
 
 
 def candidate_drive(c: Candidate) -> tuple[float, float]:
-    """The exported scene's crank phase and run time: the crank starts at the beginning of the
-    candidate's crank range (``phase`` in radians, the scene's ``phase_deg``) and turns at
-    :data:`CANDIDATE_RPM` over that range: one turn, or from one limit to the other."""
+    """Return the exported scene's crank phase and run time.
+
+    The crank starts at the beginning of the candidate's crank range (``phase`` in radians, the
+    scene's ``phase_deg``) and turns at :data:`CANDIDATE_RPM` over that range: one turn, or from one
+    limit to the other.
+    """
     lo, hi = c.crank_range
     omega = CANDIDATE_RPM * 2 * math.pi / 60
     span = 2 * math.pi if c.full_turn else hi - lo
@@ -617,9 +644,11 @@ def candidate_drive(c: Candidate) -> tuple[float, float]:
 
 
 def candidate_side(c: Candidate, target: Array) -> str:
-    """The side of the exported scene's dyad (``B`` relative to ``A → C``): the candidate's
-    assembly (``open`` is ``left``), except for a crank that rocks within its limits over a
-    part of the curve traced on the other assembly, where the other side draws the target."""
+    """Return the side of the exported scene's dyad (``B`` relative to ``A → C``).
+
+    The candidate's assembly (``open`` is ``left``), except for a crank that rocks within its limits
+    over a part of the curve traced on the other assembly, where the other side draws the target.
+    """
     side = "left" if c.linkage.assembly == "open" else "right"
     if c.full_turn or c.through_limit:
         return side
@@ -633,11 +662,13 @@ def candidate_side(c: Candidate, target: Array) -> str:
 
 
 def candidate_scene(res: Result, k: int) -> str:
-    """Candidate ``k`` (1 = best) of a ``[synthesis]`` run as the text of a ``[mechanism]``
-    scene: the four-bar as joints in the target's frame (ground pivots ``O``, ``C``, crank end
-    ``A``, coupler–rocker joint ``B``, coupler point ``P`` traced), a constant drive over the
-    crank range (one turn, or from limit to limit), its numbers kept to 1e-10 of the target's
-    size, and comments with the candidate's figures. ``linkage check`` accepts it."""
+    """Write candidate ``k`` (1 = best) of a ``[synthesis]`` run as a ``[mechanism]`` scene's text.
+
+    The four-bar as joints in the target's frame (ground pivots ``O``, ``C``, crank end ``A``,
+    coupler–rocker joint ``B``, coupler point ``P`` traced), a constant drive over the crank range
+    (one turn, or from limit to limit), its numbers kept to 1e-10 of the target's size, and comments
+    with the candidate's figures. ``linkage check`` accepts it.
+    """
     run = res.synthesis
     if run is None or not 1 <= k <= len(run.candidates):
         raise LinkageError(f"no candidate {k} in this run")
@@ -749,7 +780,7 @@ CANDIDATE_COLUMNS = (
 
 
 def candidate_rows(res: Result) -> tuple[list[str], list[list[Any]]]:
-    """The header (``name [unit]``) and one row per candidate of ``candidates.csv``."""
+    """Return the header (``name [unit]``) and one row per candidate of ``candidates.csv``."""
     run = res.synthesis
     assert run is not None
     u = length_unit(res.scene)
@@ -852,9 +883,11 @@ def _synthesis_json(res: Result) -> dict[str, Any]:
 
 
 def write_synthesis(res: Result, folder: Path, cad: bool = True) -> list[Path]:
-    """Write a ``[synthesis]`` run's files into ``folder``: ``candidate-<k>.toml`` for every
-    candidate, ``candidates.csv``, ``mechanism.dxf`` and ``mechanism.svg`` of the best (with
-    ``cad``), ``data.npz`` and, last, ``summary.json``; returns the files written."""
+    """Write a ``[synthesis]`` run's files into ``folder``; return the files written.
+
+    ``candidate-<k>.toml`` for every candidate, ``candidates.csv``, ``mechanism.dxf`` and
+    ``mechanism.svg`` of the best (with ``cad``), ``data.npz`` and, last, ``summary.json``.
+    """
     folder = Path(folder)
     run = res.synthesis
     if run is None:
@@ -885,9 +918,10 @@ def write_synthesis(res: Result, folder: Path, cad: bool = True) -> list[Path]:
 
 
 def write_data(res: Result, folder: Path, pose: int | None = None, cad: bool = True) -> list[Path]:
-    """Write the run's data into ``folder``: ``mechanism.dxf`` and ``mechanism.svg`` (with
-    ``cad``), ``data.npz``, ``data.csv`` and, last, ``summary.json`` listing every file in the
-    folder; returns the files written.
+    """Write the run's data into ``folder``; return the files written.
+
+    ``mechanism.dxf`` and ``mechanism.svg`` (with ``cad``), ``data.npz``, ``data.csv`` and, last,
+    ``summary.json`` listing every file in the folder.
 
     Raises
     ------

@@ -1,6 +1,7 @@
-"""Figures as a report prints them: a row of figure, value, unit and error estimate, numbers
-with the digits their error supports, units of the scene, and the sample counts at which a run
-is repeated to estimate its errors.
+"""Figures as a report prints them: rows of figure, value, unit and error estimate.
+
+Numbers carry the digits their error supports, in the units of the scene; the sample counts at which
+a run is repeated to estimate its errors are chosen here too.
 """
 
 from __future__ import annotations
@@ -8,7 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Union
+from typing import Union
 
 import numpy as np
 from numpy.typing import NDArray
@@ -16,6 +17,8 @@ from numpy.typing import NDArray
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._sweep import Sweep
+from linkage.cam import CamProfile
+from linkage.drive import Drive
 from linkage.forces import Forces
 from linkage.geometry import StraightPart
 from linkage.scene import (
@@ -38,9 +41,10 @@ _AS_TEXT = _AsText()
 
 
 class Row(tuple[str, str, str, str]):
-    """One figure of the table: iterable as four strings — (figure, value, unit, error
-    estimate) — as the terminal shows them, and carrying the typed :attr:`value`, :attr:`unit`
-    and :attr:`error` (a number, or ``None`` when there is none) for the JSON summary.
+    """One figure of the table, as the terminal shows it and typed for the JSON summary.
+
+    Iterable as four strings — (figure, value, unit, error estimate) — and carrying the typed
+    :attr:`value`, :attr:`unit` and :attr:`error` (a number, or ``None`` when there is none).
     """
 
     value: Value
@@ -57,6 +61,7 @@ class Row(tuple[str, str, str, str]):
         error: float | None = None,
         exact: bool = False,
     ) -> Row:
+        """Make a row; ``value`` defaults to ``text`` (``None`` when it is empty)."""
         self = super().__new__(cls, (figure, text, unit, note))
         self.value = (text or None) if isinstance(value, _AsText) else value
         self.error = error
@@ -65,18 +70,22 @@ class Row(tuple[str, str, str, str]):
 
     @property
     def figure(self) -> str:
+        """The figure's name."""
         return self[0]
 
     @property
     def text(self) -> str:
+        """The value as printed."""
         return self[1]
 
     @property
     def unit(self) -> str:
+        """The unit as printed."""
         return self[2]
 
     @property
     def note(self) -> str:
+        """The error estimate as printed (or a note such as ``exact``)."""
         return self[3]
 
 
@@ -114,11 +123,12 @@ class Result:
     geometry: Sweep | None = None
     straight: StraightPart | None = None
     forces: Forces | None = None
-    cam: Any = None
+    cam: CamProfile | None = None
+    """The cam's profile, with the output ``cam``."""
     simulation: Simulation | None = None
     mechanism: FourBar | Mechanism | None = None
     walker: Walker | None = None
-    drive: Any = None
+    drive: Drive | None = None
     """The drive the run used (its crank angles over time)."""
     synthesis: SynthesisRun | None = None
     """A ``[synthesis]`` scene's search (then there is no mechanism, walker or sweep, and
@@ -138,8 +148,11 @@ SIG_UNKNOWN = 4
 
 
 def significant_digits(x: float, error: float | None) -> int:
-    """Digits of ``x`` its ``error`` supports: down to one digit below the error's leading
-    digit, between 2 and :data:`SIG_MAX` (:data:`SIG_UNKNOWN` without an error)."""
+    """Return the digits of ``x`` its ``error`` supports.
+
+    Down to one digit below the error's leading digit, between 2 and :data:`SIG_MAX`
+    (:data:`SIG_UNKNOWN` without an error).
+    """
     if error is None or not math.isfinite(error) or error < 0:
         return SIG_UNKNOWN
     if x == 0 or not math.isfinite(x):
@@ -151,9 +164,10 @@ def significant_digits(x: float, error: float | None) -> int:
 
 
 def format_number(x: float, error: float | None = None, digits: int | None = None) -> str:
-    """``x`` with the significant digits its ``error`` supports (or ``digits``): positional
-    from 0.001 to 10⁶, else ``1.4e-4`` style; ``∞``/``−∞``/``NaN`` spelled as such. An exact
-    value (``error == 0``) gets up to :data:`SIG_MAX` digits, without trailing zeros.
+    """Format ``x`` with the significant digits its ``error`` supports (or ``digits``).
+
+    Positional from 0.001 to 10⁶, else ``1.4e-4`` style; ``∞``/``−∞``/``NaN`` spelled as such. An
+    exact value (``error == 0``) gets up to :data:`SIG_MAX` digits, without trailing zeros.
 
     >>> format_number(44.2523, 0.155), format_number(0.0014, 1e-7), format_number(6.6e-4, 1.2e-4)
     ('44.25', '0.00140000', '6.6e-4')
@@ -183,24 +197,24 @@ def format_number(x: float, error: float | None = None, digits: int | None = Non
 
 
 def format_error(error: float | None) -> str:
-    """An error estimate to two significant digits (``0`` when the values agreed exactly)."""
+    """Format an error estimate to two significant digits (``0`` when the values agreed exactly)."""
     if error is None or not math.isfinite(error):
         return "unknown"
     return "0" if error == 0 else format_number(error, digits=2)
 
 
 def unit_label(units: str) -> str:
-    """A length unit as printed: ``units``, or ``length units`` when it is empty."""
+    """Return a length unit as printed: ``units``, or ``length units`` when it is empty."""
     return units or "length units"
 
 
 def length_unit(scene: Scene) -> str:
-    """The scene's length unit, or ``length units`` when the scene names none."""
+    """Return the scene's length unit, or ``length units`` when the scene names none."""
     return unit_label(scene.units)
 
 
 def torque_unit(scene: Scene) -> str:
-    """The unit of a torque: force × length, with masses in kg and times in s."""
+    """Return the unit of a torque: force × length, with masses in kg and times in s."""
     if scene.units == "m":
         return "N·m"
     if scene.units:
@@ -209,11 +223,12 @@ def torque_unit(scene: Scene) -> str:
 
 
 def sci(x: float) -> str:
+    """Format ``x`` to two significant digits."""
     return format_number(x, digits=2)
 
 
 def spread(x: float, others: Sequence[float | None]) -> float | None:
-    """The largest difference between ``x`` and the same figure at the other resolutions."""
+    """Return the largest difference between ``x`` and the same figure at the other resolutions."""
     diffs = [abs(x - o) for o in others if o is not None]
     if not diffs or not all(math.isfinite(d) for d in diffs):
         return None
@@ -221,6 +236,7 @@ def spread(x: float, others: Sequence[float | None]) -> float | None:
 
 
 def versus(ns: Sequence[int]) -> str:
+    """Say which sample counts an error estimate compares with: ``vs 360 and 1441 samples``."""
     if not ns:
         return "no second resolution within the memory limit"
     return f"vs {' and '.join(map(str, ns))} samples"
@@ -234,8 +250,11 @@ def row(
     ns: Sequence[int],
     note: str = "",
 ) -> Row:
-    """A sampled figure: ``x`` at the run's samples, its error estimated as the largest
-    difference from ``others``, the same figure at ``ns`` samples."""
+    """Make the row of a sampled figure: ``x`` at the run's samples, with its error estimate.
+
+    The error is estimated as the largest difference from ``others``, the same figure at ``ns``
+    samples.
+    """
     err = spread(x, others) if math.isfinite(x) else None
     told = f"±{format_error(err)} ({versus(ns)})"
     return Row(
@@ -249,7 +268,7 @@ def row(
 
 
 def exact(figure: str, x: float, unit: str, note: str = "exact", error: float = 0.0) -> Row:
-    """A figure that does not depend on the sampling (``error`` its round-off, if known)."""
+    """Make the row of a figure that does not depend on the sampling (``error``: its round-off)."""
     return Row(figure, format_number(x, error), unit, note, value=x, error=error, exact=True)
 
 
@@ -261,7 +280,7 @@ def pair(
     ns: Sequence[int],
     sep: str = " … ",
 ) -> Row:
-    """A pair of sampled figures (a range, min/max), the error the larger of the two."""
+    """Make the row of a pair of sampled figures (a range, min/max): the larger error of the two."""
     e0 = spread(pair[0], [o[0] if o else None for o in others])
     e1 = spread(pair[1], [o[1] if o else None for o in others])
     err = None if e0 is None or e1 is None else max(e0, e1)
@@ -277,11 +296,12 @@ def pair(
 
 
 def check_counts(n: int, double: bool = True) -> tuple[int, ...]:
-    """The sample counts a run of ``n`` samples is checked at: about half as many, on a grid
-    that shares only its ends with the run's (``n_half − 1`` coprime to ``n − 1``, so that no
-    extreme is found again at a shared sample), and — when ``double`` — twice as many, on the
-    run's grid refined (every sample and the midpoints). The first catches aliasing (a
-    figure that depends on where the samples fall), the second the slow convergence of
+    """Return the sample counts a run of ``n`` samples is checked at.
+
+    About half as many, on a grid that shares only its ends with the run's (``n_half − 1`` coprime
+    to ``n − 1``, so that no extreme is found again at a shared sample), and — when ``double`` —
+    twice as many, on the run's grid refined (every sample and the midpoints). The first catches
+    aliasing (a figure that depends on where the samples fall), the second the slow convergence of
     extremes; a figure's error estimate is its largest difference from the two.
 
     >>> check_counts(721), check_counts(8, double=False)

@@ -1,14 +1,15 @@
-"""Kinetostatics: driver torque and joint reactions from link masses, inertias, gravity and
-external loads — by Newton–Euler (every joint force) and, as a cross-check, by the power method.
+"""Kinetostatics: driver torque and joint reactions from masses, inertias, gravity and loads.
+
+Solved by Newton–Euler (every joint force) and, as a cross-check, by the power method.
 
 >>> import numpy as np, linkage
->>> from linkage.forces import LinkMass, PointLoad, forces
+>>> from linkage.forces import LinkMass, PointLoad, joint_forces
 >>> leg = linkage.FourBar(ground=0.020, crank=0.010, coupler=0.025, rocker=0.025, point=(0.050, 0))
->>> f = forces(leg, np.radians(np.arange(360.0)), omega=-20 * 2 * np.pi / 60,
-...            masses={"crank": LinkMass(0.0036, (0.005, 0), 0.122432e-6),
-...                    "coupler": LinkMass(0.0210, (0.0312566, 0), 2.17781e-6),
-...                    "rocker": LinkMass(0.0060, (0.0125, 0), 0.774427e-6)},
-...            gravity=(0, 0), loads=[PointLoad("coupler", "P", (0.5 * 9.81, 0))])
+>>> f = joint_forces(leg, np.radians(np.arange(360.0)), omega=-20 * 2 * np.pi / 60,
+...                  masses={"crank": LinkMass(0.0036, (0.005, 0), 0.122432e-6),
+...                          "coupler": LinkMass(0.0210, (0.0312566, 0), 2.17781e-6),
+...                          "rocker": LinkMass(0.0060, (0.0125, 0), 0.774427e-6)},
+...                  gravity=(0, 0), loads=[PointLoad("coupler", "P", (0.5 * 9.81, 0))])
 >>> bool(np.allclose(f.torque, f.power_torque, atol=1e-12))
 True
 """
@@ -16,6 +17,7 @@ True
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -42,15 +44,18 @@ Array = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class LinkMass:
-    """Mass properties of a link: ``mass``, centre of mass ``centre = (along, left)`` in the
-    link's frame (from its first joint toward its second, as in ``Mechanism.link_members``), and
-    the moment of ``inertia`` about the centre of mass."""
+    """Mass properties of a link: its ``mass``, centre of mass and moment of inertia.
+
+    The centre of mass ``centre = (along, left)`` is in the link's frame (from its first joint
+    toward its second, as in ``Mechanism.link_members``); ``inertia`` is the moment about it.
+    """
 
     mass: float
     centre: tuple[float, float] = (0.0, 0.0)
     inertia: float = 0.0
 
     def __post_init__(self) -> None:
+        """Check that mass and inertia are finite and non-negative, the centre a finite pair."""
         m = as_finite(self.mass, "mass")
         if m < 0:
             raise LinkageError(f"mass must be non-negative, got {m}")
@@ -61,8 +66,11 @@ class LinkMass:
 
 @dataclass(frozen=True)
 class PointLoad:
-    """An external force on ``link`` applied at its joint ``joint`` — a pair ``(fx, fy)`` or an
-    ``(N, 2)`` array, one per sample — and an optional torque on the link."""
+    """An external force on ``link`` applied at its joint ``joint``, and an optional torque.
+
+    The force is a pair ``(fx, fy)`` or an ``(N, 2)`` array, one per sample; the torque acts on the
+    link.
+    """
 
     link: str
     joint: str
@@ -72,8 +80,10 @@ class PointLoad:
 
 @dataclass
 class Forces:
-    """Driver torque and joint reactions along a sweep (NaN where it cannot assemble or the
-    statics are singular, ``valid`` False)."""
+    """Driver torque and joint reactions along a sweep.
+
+    NaN where it cannot assemble or the statics are singular (``valid`` False).
+    """
 
     theta: Array
     torque: Array
@@ -88,7 +98,38 @@ class Forces:
     time: Array | None = field(default=None)
 
     def reaction(self, joint: str, to: str | None = None) -> Array:
-        """Force at ``joint`` (on link ``to``, if the joint joins more than two), shape (N, 2)."""
+        """Return the force at ``joint`` on the link ``to``, per sample.
+
+        Parameters
+        ----------
+        joint : str
+            The joint's name.
+        to : str, optional
+            The link the force acts on; needed only where the joint joins more than two links
+            (else the first reaction at the joint, as listed in :attr:`reaction_links`).
+
+        Returns
+        -------
+        ndarray, shape (N, 2)
+            The force; NaN at samples that are not :attr:`valid`.
+
+        Raises
+        ------
+        LinkageError
+            (also a ``KeyError``) When there is no reaction at ``joint`` on ``to``.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> m = {name: LinkMass(1.0) for name in ("crank", "coupler", "rocker")}
+        >>> f = joint_forces(linkage.catalog.hoecken(), [0.0], omega=1.0, masses=m)
+        >>> f.reaction_links[2], f.reaction("A", "coupler")
+        (('A', 'crank', 'coupler'), array([[-10.  ,   9.81]]))
+        >>> f.reaction("Z")
+        Traceback (most recent call last):
+        ...
+        linkage._arrays.UnknownNameError: no reaction at joint 'Z'
+        """
         cols = [
             k for k, (j, _, t) in enumerate(self.reaction_links) if j == joint and to in (None, t)
         ]
@@ -100,8 +141,10 @@ class Forces:
 
     @property
     def mean_abs_torque(self) -> float:
-        """Mean of ``|torque|`` over the valid samples (the thesis 2 'average torque'); NaN when
-        no sample is valid."""
+        """Mean of ``|torque|`` over the valid samples (the thesis 2 'average torque').
+
+        NaN when no sample is valid.
+        """
         t = np.abs(self.torque[self.valid])
         return float(np.mean(t)) if t.size else math.nan
 
@@ -119,7 +162,7 @@ def _rate(value: Any, name: str, n: int) -> Array:
     return arr
 
 
-def forces(
+def joint_forces(
     linkage_obj: FourBar | Mechanism,
     theta: ArrayLike | None = None,
     omega: ArrayLike | None = None,
@@ -127,17 +170,74 @@ def forces(
     *,
     time: ArrayLike | None = None,
     drive: Drive | None = None,
-    masses: Mapping[str, LinkMass | Sequence[Any]],
+    masses: Mapping[str, LinkMass | tuple[float, tuple[float, float], float]],
     gravity: Sequence[float] = (0.0, -9.81),
     loads: Sequence[PointLoad] = (),
 ) -> Forces:
-    """Newton–Euler kinetostatics of a one-degree-of-freedom linkage along a sweep.
+    """Joint reactions and driver torque of a one-degree-of-freedom linkage along a sweep.
 
-    Give crank angles with ``omega`` (rad/s, scalar or per angle) and ``alpha``, or ``time=``
-    with ``drive=``. ``masses`` maps every moving link's name (``linkage_obj.links`` minus the
-    ground; a FourBar's are crank, coupler, rocker) to a :class:`LinkMass` or a tuple
-    ``(mass, (along, left), inertia)``; none may be left out — use ``LinkMass(0)`` for a
-    massless link.
+    Kinetostatics by Newton–Euler: at each sample the links' inertial forces (from the analytic
+    accelerations), gravity and the loads are balanced by the joint reactions and the torque on
+    the crank. The torque is also found by the power method (``Forces.power_torque``, no joint
+    forces), a cross-check that agrees to round-off.
+
+    Parameters
+    ----------
+    linkage_obj : FourBar or Mechanism
+        The linkage, driven by its crank.
+    theta : array_like, optional
+        Crank angles (radians), shape ``(N,)`` or a scalar; give ``omega`` with them.
+    omega, alpha : array_like, optional
+        Crank speed (rad/s) and acceleration (rad/s²), scalars or one per angle; ``alpha``
+        defaults to 0.
+    time : array_like, optional
+        Times (s) at which ``drive`` gives the crank's angle, speed and acceleration; instead of
+        ``theta``/``omega``/``alpha``.
+    drive : Drive, optional
+        A drive (:mod:`linkage.drive`), with ``time``.
+    masses : mapping of str to LinkMass or tuple
+        Every moving link's name (``linkage_obj.links`` minus the ground; a FourBar's are
+        crank, coupler, rocker) to a :class:`LinkMass` or a tuple ``(mass, (along, left),
+        inertia)``; none may be left out — use ``LinkMass(0)`` for a massless link.
+    gravity : pair of float, default (0, -9.81)
+        The acceleration of gravity, in the linkage's units.
+    loads : sequence of PointLoad, default ()
+        External forces and torques.
+
+    Returns
+    -------
+    Forces
+        Driver torque, power-method torque and joint reactions per sample. A sample where the
+        linkage cannot be assembled (or the statics are singular) is NaN with ``valid`` False.
+
+    Raises
+    ------
+    LinkageError
+        For a missing or unknown link in ``masses``, a load on an unknown link or joint, a
+        wrong shape or a non-finite value, or both or neither of ``theta`` and ``time``.
+    TypeError
+        For arguments of the wrong type (a linkage that is not a FourBar or Mechanism, a drive
+        without ``angles``, a load that is not a :class:`PointLoad`).
+
+    Examples
+    --------
+    Evans B turns only within ±1.42 rad: at 3 rad it cannot be assembled and its row is NaN.
+
+    >>> import linkage
+    >>> m = {name: LinkMass(1.0) for name in ("crank", "coupler", "rocker")}
+    >>> f = joint_forces(linkage.catalog.evans_b(), [0.0, 3.0], omega=1.0, masses=m)
+    >>> f.torque.round(6), f.valid
+    (array([98.1,  nan]), array([ True, False]))
+    >>> f.reaction("B")
+    array([[ 0., -0.],
+           [nan, nan]])
+
+    Every moving link needs a mass:
+
+    >>> joint_forces(linkage.catalog.evans_b(), [0.0], omega=1.0, masses={"crank": LinkMass(1.0)})
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: masses missing for links ['coupler', 'rocker']: give every moving link ...
     """
     mech = linkage_obj.mechanism() if isinstance(linkage_obj, FourBar) else linkage_obj
     if not isinstance(mech, Mechanism):
@@ -223,4 +323,61 @@ def forces(
         reactions=raw["reactions"],
         reaction_links=[(names[j], links[f], links[t]) for j, f, t in raw["reaction_links"]],
         time=times,
+    )
+
+
+def forces(
+    linkage_obj: FourBar | Mechanism,
+    theta: ArrayLike | None = None,
+    omega: ArrayLike | None = None,
+    alpha: ArrayLike = 0.0,
+    *,
+    time: ArrayLike | None = None,
+    drive: Drive | None = None,
+    masses: Mapping[str, LinkMass | tuple[float, tuple[float, float], float]],
+    gravity: Sequence[float] = (0.0, -9.81),
+    loads: Sequence[PointLoad] = (),
+) -> Forces:
+    """Joint reactions and driver torque: the deprecated name of :func:`joint_forces`.
+
+    .. deprecated:: 0.2.0
+        ``linkage.forces.forces`` shadows its module's name: use :func:`joint_forces` (same
+        arguments, same result). ``forces.forces`` will be removed in the release after 0.2.
+
+    Parameters
+    ----------
+    linkage_obj, theta, omega, alpha, time, drive, masses, gravity, loads
+        As :func:`joint_forces`.
+
+    Returns
+    -------
+    Forces
+        As :func:`joint_forces`.
+
+    Raises
+    ------
+    LinkageError, TypeError
+        As :func:`joint_forces`.
+
+    Warns
+    -----
+    DeprecationWarning
+        At every call (shown once per call site by Python's default filter).
+    """
+    warnings.warn(
+        "linkage.forces.forces is deprecated: use linkage.forces.joint_forces (same arguments "
+        "and result)",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return joint_forces(
+        linkage_obj,
+        theta,
+        omega,
+        alpha,
+        time=time,
+        drive=drive,
+        masses=masses,
+        gravity=gravity,
+        loads=loads,
     )

@@ -1,5 +1,6 @@
-"""Geometry of motion: curvature, circumcentres, straight-line quality, foot paths, the
-inflection circle and Ball point, and mobility.
+"""Geometry of motion: curvature, circumcentres, straight parts, foot paths and mobility.
+
+Also the inflection circle and Ball point of a four-bar's coupler.
 
 Vectorised like shapely: points are arrays shaped ``(..., 2)``; a degenerate configuration
 gives NaN, a wrong shape raises.
@@ -7,6 +8,7 @@ gives NaN, a wrong shape raises.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -44,13 +46,39 @@ def curvature_centre(
     """Centre of curvature and signed curvature of paths from velocity and acceleration.
 
     ``κ = (v × a)/|v|³`` (positive when turning counter-clockwise in the direction of motion) and
-    centre ``p + v⊥·|v|²/(v × a)``, the same for every timing of the same path. Returns
-    ``(centre (..., 2), curvature (...))``; the centre is NaN at an inflection (curvature 0)
-    and both are NaN where the point is at rest.
+    centre ``p + v⊥·|v|²/(v × a)``, the same for every timing of the same path.
 
-    >>> c, k = curvature_centre([2, 0], [0, 3], [-4.5, 0])   # circle r = 2 about the origin
-    >>> c.round(12), float(k)
-    (array([0., 0.]), 0.5)
+    Parameters
+    ----------
+    point, velocity, acceleration : array_like, shape (..., 2)
+        The moving point and its first two time derivatives; they broadcast together.
+
+    Returns
+    -------
+    centre : ndarray, shape (..., 2)
+        Centre of curvature; NaN at an inflection (curvature 0) and where the point is at rest.
+    curvature : ndarray, shape (...)
+        Signed curvature ``κ``; NaN where the point is at rest.
+
+    Raises
+    ------
+    LinkageError
+        If an argument is not shaped ``(..., 2)`` or they do not broadcast.
+    TypeError
+        For non-numeric arrays.
+
+    Examples
+    --------
+    On a circle of radius 2 about the origin; at an inflection; at rest:
+
+    >>> c, k = curvature_centre([[2, 0], [0, 0], [0, 0]], [[0, 3], [1, 0], [0, 0]],
+    ...                         [[-4.5, 0], [0, 0], [1, 0]])
+    >>> c
+    array([[ 0.,  0.],
+           [nan, nan],
+           [nan, nan]])
+    >>> k
+    array([0.5, 0. , nan])
     """
     p, v, a = (
         _points(x, n)
@@ -62,11 +90,36 @@ def curvature_centre(
 
 
 def circumcentre(p0: ArrayLike, p1: ArrayLike, p2: ArrayLike) -> Points:
-    """Centre of the circle through three points, shape ``(..., 2)``; NaN when they are
-    collinear or coincide.
+    """Centre of the circle through three points.
 
-    >>> circumcentre([1, 0], [0, 1], [-1, 0]).round(12)
-    array([0., 0.])
+    Parameters
+    ----------
+    p0, p1, p2 : array_like, shape (..., 2)
+        The points; they broadcast together.
+
+    Returns
+    -------
+    ndarray, shape (..., 2)
+        The centres; NaN where the points are collinear or coincide.
+
+    Raises
+    ------
+    LinkageError
+        If a point array is not shaped ``(..., 2)`` or they do not broadcast.
+    TypeError
+        For non-numeric arrays.
+
+    Examples
+    --------
+    The second triple is collinear:
+
+    >>> circumcentre([[1, 0], [0, 0]], [[0, 1], [1, 1]], [[-1, 0], [2, 2]])
+    array([[ 0.,  0.],
+           [nan, nan]])
+    >>> circumcentre([1, 0, 0], [0, 1], [0, 0])
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: p0 must have shape (..., 2), got (3,)
     """
     a, b, c = (_points(x, n) for x, n in ((p0, "p0"), (p1, "p1"), (p2, "p2")))
     shape, (fa, fb, fc) = _rows(a, b, c)
@@ -75,11 +128,43 @@ def circumcentre(p0: ArrayLike, p1: ArrayLike, p2: ArrayLike) -> Points:
 
 
 def three_point_centres(path: ArrayLike, step: int = 1) -> Points:
-    """The first source's three-point estimate of the centre of curvature (thesis 1 §2.1.1):
-    the circumcentre of samples ``k − step, k, k + step`` for each interior sample ``k``.
+    """Estimate the centres of curvature of a sampled path from three points each.
 
-    Returns ``(N − 2·step, 2)``, aligned with ``path[step:-step]``. It converges to the analytic
-    centre (:attr:`Sweep.curvature_centre`) as the spacing shrinks.
+    The first source's estimate (thesis 1 §2.1.1): the circumcentre of samples ``k − step, k,
+    k + step`` for each interior sample ``k``. It converges to the analytic centre
+    (:attr:`Sweep.curvature_centre`) as the spacing shrinks.
+
+    Parameters
+    ----------
+    path : array_like, shape (N, 2)
+        The sampled path.
+    step : int, default 1
+        Samples between the three points.
+
+    Returns
+    -------
+    ndarray, shape (N − 2·step, 2)
+        The centres, aligned with ``path[step:-step]``; NaN where the three points are collinear
+        (a straight stretch or an inflection).
+
+    Raises
+    ------
+    LinkageError
+        If ``path`` is not ``(N, 2)`` or has fewer than ``2·step + 1`` points, or ``step < 1``.
+
+    Examples
+    --------
+    Every triple of a circle has the circle's centre:
+
+    >>> t = np.linspace(0, np.pi, 7)
+    >>> arc = np.c_[2 * np.cos(t), 2 * np.sin(t)]
+    >>> c = three_point_centres(arc)
+    >>> c.shape, bool(np.abs(c).max() < 1e-12)
+    ((5, 2), True)
+    >>> three_point_centres(arc, step=4)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: path needs at least 9 points for step 4
     """
     p = _points(path, "path")
     if p.ndim != 2:
@@ -119,17 +204,52 @@ class StraightPart:
 def straightness(
     path: ArrayLike, tol: float, closed: bool = False, velocity: ArrayLike | None = None
 ) -> StraightPart | None:
-    """The near-straight part of a path: the longest run of consecutive samples that stays
-    within ``tol`` of its own least-squares line (at least 3 samples), or None.
+    """Find the near-straight part of a path, or None.
 
-    ``closed`` lets the run wrap from the last sample to the first (pass a closed curve without
-    repeating its first sample). With ``velocity`` (same shape as ``path``, e.g. a sweep at
-    constant crank speed) the speed along the run is summarised too. NaN samples break runs.
+    The longest run of consecutive samples that stays within ``tol`` of its own least-squares line
+    (at least 3 samples). The scan is O(n log n) (a queue of two convex hulls) with the result of
+    the direct search.
 
+    Parameters
+    ----------
+    path : array_like, shape (N, 2)
+        The sampled path. NaN samples break runs.
+    tol : float
+        Largest distance of a run sample from the run's line (non-negative).
+    closed : bool, default False
+        Let the run wrap from the last sample to the first (pass a closed curve without
+        repeating its first sample).
+    velocity : array_like, shape (N, 2), optional
+        The path's velocity (e.g. a sweep at constant crank speed): the speed along the run is
+        summarised too.
+
+    Returns
+    -------
+    StraightPart or None
+        The longest run, or None when no 3 consecutive samples are within ``tol`` of a line.
+
+    Raises
+    ------
+    LinkageError
+        For a path not shaped ``(N, 2)``, a negative or non-finite ``tol``, or a ``velocity``
+        of another shape.
+
+    Examples
+    --------
     >>> x = np.linspace(0, 10, 11)
     >>> part = straightness(np.c_[x, 0.01 * (x - 5) ** 2], tol=0.1)
     >>> part.count, round(part.length, 6)
     (9, 8.0)
+
+    A NaN sample breaks the run; a circle has no straight part at a tight tolerance:
+
+    >>> y = np.zeros(11)
+    >>> y[5] = np.nan
+    >>> straightness(np.c_[x, y], tol=0.1).indices
+    array([0, 1, 2, 3, 4])
+    >>> t = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    >>> straightness(np.c_[np.cos(t), np.sin(t)], tol=1e-6) is None
+    True
     """
     p = _points(path, "path")
     if p.ndim != 2:
@@ -190,13 +310,43 @@ class FootPath:
 
 
 def foot_path(path: ArrayLike, tol: float, velocity: ArrayLike | None = None) -> FootPath:
-    """Split one closed cycle of a foot path (without a repeated end sample) into stance and
-    swing: stance is :func:`straightness` on the closed path, swing the rest.
+    """Split one closed cycle of a foot path (without a repeated end sample) into stance and swing.
+
+    Stance is :func:`straightness` on the closed path, swing the rest.
+
+    Parameters
+    ----------
+    path : array_like, shape (N, 2)
+        One cycle of the foot path, its first sample not repeated at the end.
+    tol : float
+        Straightness tolerance of the stance (see :func:`straightness`).
+    velocity : array_like, shape (N, 2), optional
+        The foot's velocity, for the stance's speed figures.
+
+    Returns
+    -------
+    FootPath
+        Stance, swing indices, stride, lift height and the stance's share of the samples.
 
     Raises
     ------
     LinkageError
-        If the path has no straight part within ``tol``.
+        If the path has no straight part within ``tol``, or is not shaped ``(N, 2)``.
+
+    Examples
+    --------
+    The Hoecken leg's foot path within 0.025 mm:
+
+    >>> import linkage
+    >>> s = linkage.catalog.hoecken().sweep(np.linspace(0, 2 * np.pi, 360, endpoint=False))
+    >>> fp = foot_path(s.point, 0.025)
+    >>> round(fp.stride, 3), round(fp.lift_height, 3), fp.stance.count
+    (16.215, 8.987, 71)
+    >>> t = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    >>> foot_path(np.c_[np.cos(t), np.sin(t)], 1e-9)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: the path has no straight part within tol = 1e-09
     """
     p = _points(path, "path")
     if p.ndim != 2:
@@ -242,21 +392,59 @@ class Inflection:
     ``FourBar(point=...)``."""
 
 
-def ball_point(fb: FourBar, theta: float) -> Inflection:
-    """Inflection circle (Euler–Savary) and Ball point of ``fb``'s coupler at crank angle
-    ``theta``, from third-order analytic rates.
+def inflection_circle(fb: FourBar, theta: float) -> Inflection:
+    """Inflection circle (Euler–Savary) and Ball point of ``fb``'s coupler at crank angle ``theta``.
 
-    >>> import linkage
-    >>> inf = ball_point(linkage.catalog.hoecken(), 3.14159)
-    >>> round(float(np.hypot(*np.subtract(inf.ball_point, inf.centre))) - inf.radius, 9)
-    0.0
+    The inflection circle is the locus of coupler points whose paths have zero curvature at this
+    instant; it passes through the velocity pole. The Ball point is the point of the circle whose
+    path also has stationary curvature, the best straight-line point of the coupler there.
+    Computed from the linkage's third-order analytic rates, not by differencing.
+
+    Parameters
+    ----------
+    fb : FourBar
+        The linkage; its coupler is the moving plane.
+    theta : float
+        One crank angle (radians).
+
+    Returns
+    -------
+    Inflection
+        Pole, inflection pole, centre and radius of the circle, and the Ball point in the fixed
+        frame and in coupler coordinates (NaN where the Ball point is undefined).
 
     Raises
     ------
     AssemblyError
-        Where the linkage cannot be assembled.
+        Where the linkage cannot be assembled at ``theta``.
     LinkageError
-        At a toggle or where the coupler is instantaneously translating (no finite pole).
+        At a toggle or where the coupler is instantaneously translating (no finite pole), or
+        when ``theta`` is not one angle.
+    TypeError
+        If ``fb`` is not a :class:`~linkage.FourBar`.
+
+    Examples
+    --------
+    The Ball point lies on the circle:
+
+    >>> import linkage
+    >>> inf = inflection_circle(linkage.catalog.hoecken(), 3.14159)
+    >>> round(float(np.hypot(*np.subtract(inf.ball_point, inf.centre))) - inf.radius, 9)
+    0.0
+
+    A parallelogram's coupler only translates, so it has no inflection circle:
+
+    >>> inflection_circle(linkage.FourBar(ground=10, crank=4, coupler=10, rocker=4), 1.0)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: no inflection circle at theta = 1.0: ... the coupler is translating
+
+    Outside its input range a linkage cannot be assembled:
+
+    >>> inflection_circle(linkage.catalog.evans_b(), 3.0)
+    Traceback (most recent call last):
+    ...
+    linkage.AssemblyError: the linkage cannot be assembled at theta = 3.0
     """
     if not isinstance(fb, FourBar):
         raise TypeError(f"fb must be a FourBar, got {type(fb).__name__}")
@@ -279,3 +467,42 @@ def ball_point(fb: FourBar, theta: float) -> Inflection:
             f"(radius {radius!r}): the coupler is nearly translating"
         )
     return Inflection(pole, jpole, centre, float(radius), ball, local)
+
+
+def ball_point(fb: FourBar, theta: float) -> Inflection:
+    """Inflection circle and Ball point: the deprecated name of :func:`inflection_circle`.
+
+    .. deprecated:: 0.2.0
+        ``ball_point`` returns the whole inflection circle, not only the Ball point: use
+        :func:`inflection_circle` (same arguments, same result). ``ball_point`` will be removed
+        in the release after 0.2.
+
+    Parameters
+    ----------
+    fb : FourBar
+        The linkage; its coupler is the moving plane.
+    theta : float
+        One crank angle (radians).
+
+    Returns
+    -------
+    Inflection
+        As :func:`inflection_circle`.
+
+    Raises
+    ------
+    AssemblyError, LinkageError, TypeError
+        As :func:`inflection_circle`.
+
+    Warns
+    -----
+    DeprecationWarning
+        At every call (shown once per call site by Python's default filter).
+    """
+    warnings.warn(
+        "linkage.ball_point is deprecated: use linkage.inflection_circle (same arguments and "
+        "result)",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return inflection_circle(fb, theta)

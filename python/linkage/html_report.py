@@ -80,7 +80,7 @@ def write_index(
 def page(
     res: Result, images: Sequence[Path] = (), drawings: Sequence[Drawing] | None = None
 ) -> str:
-    """The text of the report's ``index.html`` (see :func:`write_index`)."""
+    """Return the text of the report's ``index.html`` (see :func:`write_index`)."""
     scene = res.scene
     if res.synthesis is not None:
         return _synthesis_page(res, images)
@@ -112,7 +112,7 @@ def page(
 
 
 def _synthesis_page(res: Result, images: Sequence[Path]) -> str:
-    """The page of a ``[synthesis]`` run: figures, candidates, plots."""
+    """Return the page of a ``[synthesis]`` run: figures, candidates, plots."""
     scene = res.scene
     title = html.escape(scene.name or "linkage report")
     description = getattr(scene, "description", "") or ""
@@ -133,8 +133,11 @@ def _synthesis_page(res: Result, images: Sequence[Path]) -> str:
 
 
 def _candidates_table(res: Result) -> str:
-    """The candidates as a table: rank, errors, class, crank range, transmission, pivots,
-    lengths, coupler point, assembly and the scene file that runs it."""
+    """Return the candidates as an HTML table.
+
+    Rank, errors, class, crank range, transmission, pivots, lengths, coupler point, assembly and the
+    scene file that runs it.
+    """
     run = res.synthesis
     assert run is not None
     u = html.escape(length_unit(res.scene))
@@ -172,8 +175,10 @@ def _candidates_table(res: Result) -> str:
 
 
 def frames(n: int, most: int = MAX_FRAMES) -> NDArray[np.intp]:
-    """Indices of the samples the page embeds: all ``n`` or ``most`` spread evenly (first and
-    last included)."""
+    """Return the indices of the samples the page embeds.
+
+    All ``n``, or ``most`` spread evenly (first and last included).
+    """
     if n <= most:
         return np.arange(n)
     idx: NDArray[np.intp] = np.unique(np.round(np.linspace(0, n - 1, most)).astype(np.intp))
@@ -184,8 +189,11 @@ def frames(n: int, most: int = MAX_FRAMES) -> NDArray[np.intp]:
 
 
 class _Frame:
-    """Maps a view's world coordinates (y up) to page units (y down, the larger side
-    :data:`PAGE_SIZE`), heights multiplied by ``stretch`` (1: to scale)."""
+    """Map from a view's world coordinates (y up) to page units (y down).
+
+    The larger side is :data:`PAGE_SIZE` page units; heights are multiplied by ``stretch`` (1: to
+    scale).
+    """
 
     def __init__(self, bounds: tuple[float, float, float, float], stretch: float = 1.0) -> None:
         x0, x1, y0, y1 = bounds
@@ -199,8 +207,10 @@ class _Frame:
         )
 
     def __call__(self, p: Array) -> Array:
-        """Page coordinates of world points ``(..., 2)``, rounded to whole page units (NaN
-        where not finite)."""
+        """Page coordinates of world points ``(..., 2)``, rounded to whole page units.
+
+        NaN where not finite.
+        """
         p = np.asarray(p, dtype=float)
         q = np.empty(p.shape, dtype=np.float64)
         q[..., 0] = (p[..., 0] - self.x0) * self.scale
@@ -217,11 +227,13 @@ def _ints(q: Array) -> list[int]:
 
 
 def _points(q: Array) -> tuple[dict[str, list[int]], list[int], list[list[int] | None]]:
-    """Page positions ``(F, P, 2)`` of a view's points as the page stores them: the points that
-    never move once (``{index: [x, y]}``), the indices of the others, and their flat positions
-    per frame, ``None`` at a frame where any is missing (a sample that did not assemble). A row
-    that follows a row (not ``None``) holds the change from it; the first row and a row after
-    ``None`` hold positions."""
+    """Page positions ``(F, P, 2)`` of a view's points as the page stores them.
+
+    The points that never move once (``{index: [x, y]}``), the indices of the others, and their flat
+    positions per frame, ``None`` at a frame where any is missing (a sample that did not assemble).
+    A row that follows a row (not ``None``) holds the change from it; the first row and a row after
+    ``None`` hold positions.
+    """
     finite: NDArray[np.bool_] = np.asarray(np.isfinite(q).all(axis=2), dtype=bool)
     still = np.zeros(q.shape[1], dtype=bool)
     fixed: dict[str, list[int]] = {}
@@ -249,8 +261,11 @@ PATH_POINTS = 2000
 
 
 def _path(q: Array) -> str:
-    """An SVG path through page points ``(N, 2)`` (at most :data:`PATH_POINTS`, taken evenly),
-    broken where a point is not finite, repeated points dropped."""
+    """Return an SVG path through page points ``(N, 2)``.
+
+    At most :data:`PATH_POINTS` are taken, evenly; the path is broken where a point is not finite,
+    repeated points dropped.
+    """
     q = q[frames(len(q), PATH_POINTS)]
     parts: list[str] = []
     pen = "M"
@@ -268,7 +283,7 @@ def _path(q: Array) -> str:
 
 
 def _views(res: Result, drawings: Sequence[Drawing] | None = None) -> list[dict[str, Any]]:
-    """The page's views of the run: the mechanism, or a walker's side and top views."""
+    """Return the page's views of the run: the mechanism, or a walker's side and top views."""
     idx = frames(len(res.time))
     units = res.scene.units
     given = list(drawings or ())
@@ -303,9 +318,11 @@ def _views(res: Result, drawings: Sequence[Drawing] | None = None) -> list[dict[
 
 
 def _cranks(d: Drawing) -> set[int]:
-    """Indices in ``d.links`` of the driven cranks (one per walker leg): the links named
-    ``crank``, else each leg's first binary link on a ground pivot (a crank is the first
-    construction on the ground in a program)."""
+    """Return the indices in ``d.links`` of the driven cranks (one per walker leg).
+
+    The links named ``crank``, else each leg's first binary link on a ground pivot (a crank is the
+    first construction on the ground in a program).
+    """
     named = {
         k for k, link in enumerate(d.links) if link.name == "crank" or link.name.endswith(".crank")
     }
@@ -325,8 +342,11 @@ def _view(
     to_scale: bool = True,
     shift: Array | None = None,
 ) -> dict[str, Any]:
-    """One view of a drawing for the page: its shapes and the page positions of their points
-    at the embedded frames (joints, then feet, then the centre of gravity)."""
+    """Build one view of a drawing for the page.
+
+    The view holds its shapes and the page positions of their points at the embedded frames
+    (joints, then feet, then the centre of gravity).
+    """
     bounds = d.bounds(0.06)
     stretch = 1.0
     if not to_scale:
@@ -426,8 +446,11 @@ def _view(
 
 
 def _foot_joints(d: Drawing, idx: NDArray[np.intp]) -> dict[int, int]:
-    """Leg index → the joint that is that leg's foot at every embedded frame (its linkage's
-    trace point, or the end of its foot bar), for the legs that have one."""
+    """Map a leg index to the joint that is that leg's foot at every embedded frame.
+
+    The foot is its linkage's trace point, or the end of its foot bar; legs without one are left
+    out.
+    """
     feet = np.asarray(d.feet, dtype=float)[idx]
     pos = np.asarray(d.positions, dtype=float)[idx]
     tol = 1e-9 * max(1.0, float(np.nanmax(np.abs(pos))) if np.isfinite(pos).any() else 1.0)
@@ -510,7 +533,7 @@ def _json_script(data: Any) -> str:
 
 
 def _cells(row: Any) -> list[str]:
-    """A figures row as its four cells (figure, value, unit, error estimate)."""
+    """Return a figures row as its four cells (figure, value, unit, error estimate)."""
     if isinstance(row, (tuple, list)):
         cells = [str(c) for c in row]
     else:

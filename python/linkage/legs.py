@@ -1,5 +1,7 @@
-"""Walking-leg families: parametrised leg generators with documented bounds and the design a
-source chose, and their figures from the core's leg figures (``linkage_core::gait``).
+"""Walking-leg families: parametrised leg generators and their figures from the core.
+
+Each family has documented bounds and the design a source chose; figures come from the core's leg
+figures (``linkage_core::gait``).
 
 A family builds a candidate as scene joint constructions (trace ``F``, the foot), so every
 candidate is also a :class:`linkage.Mechanism` and a ready-to-run scene. Four-bar legs are
@@ -22,7 +24,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._core import LinkageError
@@ -73,9 +75,11 @@ UNITS: dict[str, str] = {
 
 @dataclass(frozen=True)
 class Settings:
-    """How a candidate's figures are measured: samples per turn, the stance tolerance (a
-    fraction of the foot path's extent) and a rigid vertical foot bar (thesis 1's guided legs:
-    the foot ``foot_bar`` below the trace point)."""
+    """How a candidate's figures are measured: samples, stance tolerance and foot bar.
+
+    ``samples`` per turn, the stance tolerance (a fraction of the foot path's extent) and a rigid
+    vertical foot bar (thesis 1's guided legs: the foot ``foot_bar`` below the trace point).
+    """
 
     samples: int = 360
     stance_tol: float = 2.5e-3
@@ -84,8 +88,11 @@ class Settings:
 
 @dataclass(frozen=True)
 class Family:
-    """A parametrised leg generator: parameter names, documented bounds, the reference design
-    and how to build one candidate (``joints``: scene joint constructions, trace ``"F"``)."""
+    """A parametrised leg generator, with bounds and a reference design.
+
+    Parameter names, documented bounds, the reference design and how to build one candidate
+    (``joints``: scene joint constructions, trace ``"F"``).
+    """
 
     name: str
     params: tuple[str, ...]
@@ -105,9 +112,8 @@ class Family:
         """``{parameter: (lower, upper)}``."""
         return {p: (lo, hi) for p, lo, hi in zip(self.params, self.lower, self.upper)}
 
-    def mechanism(self, x: Any) -> Any:
-        """The candidate ``x`` as a :class:`linkage.Mechanism` whose trace ``F`` is the foot."""
-
+    def mechanism(self, x: ArrayLike) -> Mechanism:
+        """Build candidate ``x`` as a :class:`linkage.Mechanism` whose trace ``F`` is the foot."""
         m = Mechanism()
         for j in self.joints(x):
             kind = j["kind"]
@@ -123,8 +129,10 @@ class Family:
         return m
 
     def evaluate(self, x: Array, settings: Settings, threads: int = 1) -> Array:
-        """Figures ``(M, len(FIGURES))`` of the candidates ``x`` ``(M, len(params))``; a
-        candidate that does not turn fully has ``full_turn = 0`` and NaN figures."""
+        """Compute the figures ``(M, len(FIGURES))`` of the candidates ``x`` ``(M, len(params))``.
+
+        A candidate that does not turn fully has ``full_turn = 0`` and NaN figures.
+        """
         x = np.ascontiguousarray(np.atleast_2d(np.asarray(x, dtype=np.float64)))
         if x.shape[1] != len(self.params):
             raise LinkageError(
@@ -138,7 +146,7 @@ class Family:
 
 
 def _four_bar_figures(x: Array, s: Settings, threads: int) -> Array:
-    """The four-bar family by the core's batched leg figures."""
+    """Compute the four-bar family's figures by the core's batched leg figures."""
     # Fresh contiguous columns (a one-row column view is "contiguous" to numpy but strided).
     ground, angle, coupler, rocker, along, left = (x[:, k].copy() for k in range(6))
     m = len(x)
@@ -175,7 +183,7 @@ def _assemble(col: dict[str, Array], foot_bar: float) -> Array:
 
 
 def _mechanism_figures(family: Family, x: Array, s: Settings) -> Array:
-    """A multi-loop leg: sweep the mechanism over a turn, figures by the core's leg_gait."""
+    """Compute a multi-loop leg's figures: sweep it over a turn, figures by the core's leg_gait."""
     nan = np.full(len(FIGURES), np.nan)
     nan[FIGURES.index("full_turn")] = 0.0
     try:
@@ -365,7 +373,7 @@ FAMILIES: dict[str, Family] = {
 
 
 def family(name: str) -> Family:
-    """A leg family by name (``fourbar``, ``jansen``, ``klann``)."""
+    """Return a leg family by name (``fourbar``, ``jansen``, ``klann``)."""
     if not isinstance(name, str):
         raise TypeError(f"family must be a str, got {type(name).__name__}")
     if name not in FAMILIES:

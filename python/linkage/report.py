@@ -1,38 +1,21 @@
-"""The report folder of a run: plots (PNG), an animation (GIF), the data (CSV, NPZ) and a JSON
-summary — only the files the scene's outputs call for. A ``[synthesis]`` scene's report holds
-``synthesis.png`` (the target and every candidate's coupler curve, the best drawn at one pose),
-``candidates.csv``, each candidate as a scene to run and the summary.
+"""The report folder of a run: plots (PNG), an animation (GIF), the data and a JSON summary.
 
-The folder is the user's disk, so this module removes only what it wrote:
+Only the files the scene's outputs call for are written; the data are CSV and NPZ. A
+``[synthesis]`` scene's report holds ``synthesis.png`` (the target and every candidate's coupler
+curve, the best drawn at one pose), ``candidates.csv``, each candidate as a scene to run and the
+summary.
 
-- every report folder carries a marker file, ``.linkage-report`` (JSON: tool, version, scene and
-  the files written), written last;
-- a report is written into a temporary sibling (``.<name>.partial-<pid>``) and renamed into place
-  when complete; any failure, ``KeyboardInterrupt`` included, removes the temporary folder and
-  leaves an earlier report untouched;
-- ``force`` replaces a folder only if it carries the marker and holds nothing but the files the
-  marker lists; the old report is renamed aside, the new one renamed in, and then the old one is
-  removed file by file (only the listed files; never ``rmtree`` on a folder the tool did not
-  create);
-- a target that is a symbolic link (dangling or not), not a folder, the file-system root, the home
-  folder, the working directory or one of their ancestors is refused, force or not.
+The folder is written safely by :mod:`linkage.report_folder` (a temporary sibling, a marker,
+an atomic rename; only what linkage wrote is ever removed), whose names are re-exported here:
+:func:`write_folder`, :func:`prepare`, :func:`default_folder`, :func:`read_marker`,
+:data:`MARKER` and :data:`DEFAULT_BASE`.
 """
 
 from __future__ import annotations
 
-import contextlib
-import datetime
-import errno
-import json
 import math
-import os
-import re
-import shutil
-import signal
-import sys
-import threading
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -46,8 +29,7 @@ from matplotlib.patches import Polygon
 from matplotlib.ticker import MaxNLocator
 from PIL import Image, ImageDraw, ImageFont
 
-from linkage import __version__, export, html_report
-from linkage._core import LinkageError
+from linkage import export, html_report
 from linkage.build import build_drive
 from linkage.drawing import (
     Array,
@@ -61,221 +43,21 @@ from linkage.drawing import (
 from linkage.drive import CrankSchedule
 from linkage.figures import Result, format_number, torque_unit, unit_label
 
-MARKER = ".linkage-report"
-"""Name of the marker file that makes a folder a report linkage wrote (and may replace)."""
-
-DEFAULT_BASE = Path("linkage-report")
-"""Where reports go without ``--out``: ``linkage-report/<scene name>``."""
-
-_SAFE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,127}")
-_NOTHING = "nothing was written"
-
-
-def default_folder(name: str, base: Path = DEFAULT_BASE) -> Path:
-    """The default report folder of a scene called ``name``: ``base/name``, refused unless ``name``
-    is a single plain folder name that stays inside ``base`` (no ``.``, ``..``, separators, or a
-    leading dot, which is kept for the tool's temporary folders)."""
-    if not _SAFE_NAME.fullmatch(name) or name in (".", ".."):
-        raise LinkageError(
-            f"scene name {name!r} cannot name a folder inside {base}/ (it must start with a "
-            f"letter or digit and hold only letters, digits, '_', '-' or '.'); give --out "
-            f"({_NOTHING})"
-        )
-    folder = base / name
-    try:
-        inside = folder.resolve().parent == base.resolve()
-    except (OSError, RuntimeError):
-        inside = False
-    if not inside:
-        raise LinkageError(f"{folder} would not be inside {base}/; give --out ({_NOTHING})")
-    return folder
-
-
-def read_marker(folder: Path) -> dict[str, Any] | None:
-    """The marker of a report folder written by linkage, or ``None`` if it has none (or one that
-    does not parse as a linkage marker: such a folder is treated as the user's)."""
-    path = folder / MARKER
-    try:
-        if not path.is_file() or path.is_symlink():
-            return None
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, ValueError):
-        return None
-    if not isinstance(data, dict) or data.get("tool") != "linkage":
-        return None
-    files = data.get("files")
-    if not isinstance(files, list) or not all(_plain_name(f) for f in files):
-        return None
-    return data
-
-
-def _plain_name(f: object) -> bool:
-    return (
-        isinstance(f, str) and f not in ("", ".", "..", MARKER) and "/" not in f and "\\" not in f
-    )
-
-
-def _describe(folder: Path, target: Path) -> str:
-    return str(folder) if Path(os.path.abspath(folder)) == target else f"{folder} (= {target})"
-
-
-def _resolve(folder: Path) -> Path:
-    """The real path the report would occupy, refusing every target that is not a folder of its
-    own: a link, the root, home, the working directory or an ancestor of those."""
-    if folder.is_symlink():
-        try:
-            to = os.readlink(folder)
-        except OSError:
-            to = "?"
-        dangling = "dangling " if not folder.exists() else ""
-        raise LinkageError(
-            f"{folder} is a {dangling}symbolic link (to {to}); give a real folder ({_NOTHING})"
-        )
-    try:
-        target = folder.resolve()
-    except (OSError, RuntimeError) as exc:
-        raise LinkageError(f"{folder}: cannot resolve the path: {exc} ({_NOTHING})") from None
-    where = _describe(folder, target)
-    if target.parent == target:
-        raise LinkageError(f"{where} is the root of the file system; refused ({_NOTHING})")
-    protected: list[tuple[Path, str]] = []
-    with contextlib.suppress(OSError, RuntimeError):
-        protected.append((Path.cwd().resolve(), "the working directory"))
-    with contextlib.suppress(OSError, RuntimeError, KeyError):
-        protected.append((Path.home().resolve(), "the home folder"))
-    for base, what in protected:
-        if target == base:
-            raise LinkageError(
-                f"{where} is {what}; a report needs a folder of its own ({_NOTHING})"
-            )
-        if target in base.parents:
-            raise LinkageError(
-                f"{where} holds {what}; a report needs a folder of its own ({_NOTHING})"
-            )
-    if os.path.lexists(target) and not target.is_dir():
-        raise LinkageError(f"{where} exists and is not a folder ({_NOTHING})")
-    return target
-
-
-def _check_existing(folder: Path, target: Path, force: bool) -> dict[str, Any] | None:
-    """For an existing ``target``: its marker if ``force`` may replace it; otherwise refuse."""
-    where = _describe(folder, target)
-    marker = read_marker(target)
-    if marker is None:
-        raise LinkageError(
-            f"{where} exists and is not a report written by linkage (no readable {MARKER} "
-            f"marker); --force replaces only folders linkage wrote: choose another --out or "
-            f"remove it yourself ({_NOTHING})"
-        )
-    if not force:
-        raise LinkageError(
-            f"{where} holds an earlier report; pass --force to replace it ({_NOTHING})"
-        )
-    listed = set(marker["files"])
-    try:
-        entries = sorted(os.listdir(target))
-    except OSError as exc:
-        raise LinkageError(
-            f"{where}: cannot list the folder: {exc.strerror} ({_NOTHING})"
-        ) from None
-    foreign = [
-        e
-        for e in entries
-        if e != MARKER
-        and (e not in listed or not (target / e).is_file() or (target / e).is_symlink())
-    ]
-    if foreign:
-        shown = ", ".join(foreign[:5]) + (
-            f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
-        )
-        raise LinkageError(
-            f"{where} holds files linkage did not write ({shown}); --force replaces only a "
-            f"folder holding nothing but a linkage report: move them or choose another --out "
-            f"({_NOTHING})"
-        )
-    return marker
-
-
-def prepare(folder: Path, force: bool) -> None:
-    """Check, before anything is computed, that the report can be written to ``folder`` without
-    losing anything; raise ``LinkageError`` naming the folder and the reason otherwise. Nothing is
-    created or removed here (``write`` repeats the check just before it moves anything)."""
-    target = _resolve(folder)
-    if os.path.lexists(target):
-        _check_existing(folder, target, force)
-
-
-@contextlib.contextmanager
-def _sigint_held() -> Iterator[None]:
-    """Hold Ctrl-C off a few renames or a clean-up so they cannot be cut in half (main thread
-    only; elsewhere signals are not delivered to Python anyway)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    try:
-        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    except (ValueError, OSError):
-        yield
-        return
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-
-
-def _make_sibling(parent: Path, name: str, kind: str) -> Path:
-    """Create a new, empty hidden sibling folder ``.<name>.<kind>-<pid>[-k]`` in ``parent``."""
-    stem = f".{name}.{kind}-{os.getpid()}"
-    for k in range(1000):
-        path = parent / (stem if k == 0 else f"{stem}-{k}")
-        try:
-            path.mkdir()
-        except FileExistsError:
-            continue
-        return path
-    raise FileExistsError(errno.EEXIST, "no free temporary folder name", str(parent / stem))
-
-
-def _discard_partial(tmp: Path) -> None:
-    """Remove a temporary folder this run created (everything in it is this run's)."""
-    if tmp.is_dir() and not tmp.is_symlink() and ".partial-" in tmp.name:
-        shutil.rmtree(tmp, ignore_errors=True)
-
-
-def _remove_report(folder: Path, marker: dict[str, Any]) -> bool:
-    """Remove a report folder linkage wrote: only the files its marker lists, then the marker,
-    then the folder if it is empty. Returns whether the folder is gone."""
-    for name in marker["files"]:
-        path = folder / name
-        if path.is_file() and not path.is_symlink():
-            with contextlib.suppress(OSError):
-                path.unlink()
-    with contextlib.suppress(OSError):
-        (folder / MARKER).unlink()
-    try:
-        folder.rmdir()
-    except OSError:
-        return False
-    return True
-
-
-def _os_message(exc: OSError, tmp: Path, folder: Path) -> str:
-    reason = exc.strerror or str(exc)
-    name = exc.filename
-    if name is None:
-        return reason
-    shown = str(name)
-    if shown.startswith(str(tmp)):
-        shown = str(folder) + shown[len(str(tmp)) :]
-    return f"{shown}: {reason}"
+# The folder writer, re-exported: ``linkage.report.write_folder`` etc. keep working.
+from linkage.report_folder import DEFAULT_BASE as DEFAULT_BASE
+from linkage.report_folder import MARKER as MARKER
+from linkage.report_folder import default_folder as default_folder
+from linkage.report_folder import prepare as prepare
+from linkage.report_folder import read_marker as read_marker
+from linkage.report_folder import write_folder as write_folder
 
 
 def write(res: Result, folder: Path, frames: int = 48, force: bool = False) -> list[Path]:
-    """Write the report for ``res`` to ``folder``; returns the files written (in ``folder``).
+    """Write the report for ``res`` to ``folder``; return the files written (in ``folder``).
 
-    The report is written as :func:`write_folder` writes any folder: into a temporary sibling,
-    its marker last, renamed into place; an existing ``folder`` is replaced only with ``force``
-    and only if linkage wrote it (see the module docstring).
+    The report is written as :func:`~linkage.report_folder.write_folder` writes any folder: into
+    a temporary sibling, its marker last, renamed into place; an existing ``folder`` is replaced
+    only with ``force`` and only if linkage wrote it (see :mod:`linkage.report_folder`).
     """
     return write_folder(
         folder,
@@ -283,88 +65,6 @@ def write(res: Result, folder: Path, frames: int = 48, force: bool = False) -> l
         lambda tmp: [p.name for p in _write_files(res, tmp, frames)],
         force,
     )
-
-
-def write_folder(
-    folder: Path, name: str, fill: Callable[[Path], Sequence[str]], force: bool = False
-) -> list[Path]:
-    """Write a folder of results safely: ``fill(tmp)`` writes the files into a temporary
-    sibling of ``folder`` and returns their names; the marker (naming them and ``name``) is
-    written last and the folder renamed into place. An existing ``folder`` is replaced only
-    with ``force`` and only if linkage wrote it. On any failure — an exception,
-    ``KeyboardInterrupt``, a full disk — the temporary folder is removed and an earlier folder
-    is left as it was; an ``OSError`` becomes a ``LinkageError`` naming the path. Returns the
-    files written (in ``folder``).
-    """
-    target = _resolve(folder)
-    earlier = os.path.lexists(target)
-    if earlier:
-        _check_existing(folder, target, force)
-    parent = target.parent
-    created: list[Path] = []
-    tmp: Path | None = None
-    try:
-        missing = [p for p in (parent, *parent.parents) if not p.exists()]
-        # Held off Ctrl-C so that every folder made here is known to the clean-up below.
-        with _sigint_held():
-            for p in reversed(missing):
-                p.mkdir()
-                created.append(p)
-            tmp = _make_sibling(parent, target.name, "partial")
-        names = list(fill(tmp))
-        marker = {
-            "tool": "linkage",
-            "version": _version(),
-            "scene": name,
-            "written": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-            "files": sorted(names),
-        }
-        (tmp / MARKER).write_text(json.dumps(marker, indent=2) + "\n", encoding="utf-8")
-        with _sigint_held():
-            _commit(folder, target, tmp, force)
-    except BaseException as exc:
-        with _sigint_held():
-            if tmp is not None:
-                _discard_partial(tmp)
-            for p in reversed(created):
-                with contextlib.suppress(OSError):
-                    p.rmdir()
-        if isinstance(exc, OSError):
-            kept = "; the earlier report is unchanged" if earlier else ""
-            raise LinkageError(
-                f"{folder}: cannot write the report: {_os_message(exc, tmp or target, folder)} "
-                f"({_NOTHING}{kept})"
-            ) from None
-        raise
-    return [target / n for n in names]
-
-
-def _commit(folder: Path, target: Path, tmp: Path, force: bool) -> None:
-    """Move the finished ``tmp`` into place at ``target``, replacing a report linkage wrote."""
-    if not os.path.lexists(target):
-        os.rename(tmp, target)
-        return
-    # Check again: the folder may have changed while the report was computed.
-    old = _check_existing(folder, target, force)
-    assert old is not None
-    aside = _make_sibling(target.parent, target.name, "old")
-    aside.rmdir()
-    os.rename(target, aside)
-    try:
-        os.rename(tmp, target)
-    except BaseException:
-        os.rename(aside, target)
-        raise
-    if not _remove_report(aside, old):
-        sys.stderr.write(
-            f"linkage: warning: the replaced report was kept in {aside}: it held files linkage "
-            f"did not write\n"
-        )
-
-
-def _version() -> str:
-
-    return str(__version__)
 
 
 # -- figures ------------------------------------------------------------------------------------
@@ -426,7 +126,7 @@ def _margins(
     gap: float = 0.0,
     rows: int = 1,
 ) -> None:
-    """Fixed margins in inches (no tight layout: it lays out every tick label twice)."""
+    """Set fixed margins in inches (no tight layout: it lays out every tick label twice)."""
     w, h = fig.get_size_inches()
     inner = h - bottom - top - gap * (rows - 1)
     fig.subplots_adjust(
@@ -473,8 +173,7 @@ def _panel_height(d: Drawing, width: float, equal: bool) -> float:
 
 
 def _ground_symbol(ax: Any, d: Drawing, size: float) -> None:
-    """The hatched ground symbol under every pivot (static)."""
-
+    """Draw the hatched ground symbol under every pivot (static)."""
     if not d.pivots:
         return
     row = _reference_row(d)
@@ -505,8 +204,10 @@ def _size(d: Drawing) -> float:
 
 
 class _Pose:
-    """The moving artists of a drawing, updated to a sample by :meth:`update` (the static ones
-    — paths, ground, body, pivots — are drawn once by :func:`_static`)."""
+    """The moving artists of a drawing, updated to a sample by :meth:`update`.
+
+    The static ones — paths, ground, body, pivots — are drawn once by :func:`_static`.
+    """
 
     def __init__(self, ax: Any, d: Drawing, animated: bool, faint: bool = False) -> None:
 
@@ -628,7 +329,7 @@ class _Pose:
 
 
 def _driver_link(d: Drawing) -> LinkShape | None:
-    """The crank: the first moving link of a mechanism's program."""
+    """Return the crank: the first moving link of a mechanism's program."""
     for k in d.links:
         if k.kind != "ground" and k.leg is None:
             return k
@@ -636,8 +337,10 @@ def _driver_link(d: Drawing) -> LinkShape | None:
 
 
 def _static(ax: Any, d: Drawing, paths: bool = True, labels: bool = True) -> list[Any]:
-    """The parts of a drawing that do not move: traced paths, ground line, body, pivots, CG.
-    Returns the paths' lines (for a legend)."""
+    """Draw the parts of a drawing that do not move; return the paths' lines (for a legend).
+
+    Those are the traced paths, ground line, body, pivots and CG.
+    """
     handles: list[Any] = []
     size = _size(d)
     if d.ground is not None:
@@ -681,17 +384,21 @@ def _static(ax: Any, d: Drawing, paths: bool = True, labels: bool = True) -> lis
 
 
 def _pose_sample(d: Drawing) -> int:
-    """The sample a static figure shows: a sixth of the run in (a crank along the ground line
-    at θ = 0 hides it), or the first assembled one."""
+    """Return the sample a static figure shows.
+
+    A sixth of the run in (a crank along the ground line at θ = 0 hides it), or the first assembled
+    one.
+    """
     ok = np.asarray(np.isfinite(d.positions).all(axis=(1, 2)), dtype=bool)
     k = ok.shape[0] // 6
     return k if bool(ok[k]) else int(np.argmax(ok))
 
 
 def _walker_views(res: Result, units: str) -> list[tuple[Drawing, bool]]:
-    """The side and top views of a run's walker, each with whether it is drawn to scale (the
-    side view of legs that all lie in the horizontal plane is only a few pad heights tall)."""
+    """Build the side and top views of a run's walker, each with whether it is drawn to scale.
 
+    The side view of legs that all lie in the horizontal plane is only a few pad heights tall.
+    """
     walker, sim = res.walker, res.simulation
     assert walker is not None and sim is not None
     drive, _ = build_drive(res.scene, walker.legs[0].linkage)
@@ -705,7 +412,7 @@ def _walker_views(res: Result, units: str) -> list[tuple[Drawing, bool]]:
 def _drawing_figure(
     views: list[tuple[Drawing, bool]], width: float, top: float = 0.4, bottom: float = 0.6
 ) -> tuple[Any, list[Any]]:
-    """A figure with one panel per view, each as tall as its drawing at the figure's width."""
+    """Make a figure with one panel per view, each as tall as its drawing at the figure's width."""
     heights = [_panel_height(d, width - 1.05, eq) for d, eq in views]
     gap = 0.85
     fig = _new_figure(width, sum(heights) + top + bottom + gap * (len(views) - 1))
@@ -722,7 +429,6 @@ def _mechanism_drawing(res: Result, units: str) -> Drawing:
 
 def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
     """Write the report's files into the (new, empty) ``folder``; returns them."""
-
     started = time.perf_counter()
     files: list[Path] = []
     scene = res.scene
@@ -833,9 +539,10 @@ def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
 
 
 def _trajectory(res: Result, d: Drawing) -> Any:
-    """The trace path with the mechanism drawn at its first assembled pose, the straight part
-    and the centres of curvature that fall in the view."""
+    """Plot the trace path with the mechanism drawn at its first assembled pose.
 
+    The plot also shows the straight part and the centres of curvature that fall in the view.
+    """
     s = res.sweep
     assert s is not None
     fig, (ax,) = _drawing_figure([(d, True)], 6.4, bottom=0.95)
@@ -884,10 +591,12 @@ SYNTHESIS_SHOWN = 8
 
 
 def _synthesis(res: Result) -> Any:
-    """``synthesis.png``: the target points and every candidate's coupler curve (each named in
-    the legend with its largest error), the best candidate drawn at one pose with its ground
-    pivots; to scale, limits from the target and the best candidate's links and curve (the
-    other curves may leave the view: they are compared where the target is)."""
+    """Plot ``synthesis.png``: the target points and every candidate's coupler curve.
+
+    Each curve is named in the legend with its largest error, the best candidate drawn at one pose
+    with its ground pivots; to scale, limits from the target and the best candidate's links and
+    curve (the other curves may leave the view: they are compared where the target is).
+    """
     run = res.synthesis
     assert run is not None
     units = res.scene.units
@@ -1012,10 +721,11 @@ def _gait(res: Result, names: list[str]) -> Any:
 
 
 def _animation(res: Result, views: list[tuple[Drawing, bool]], path: Path, frames: int) -> Path:
-    """The GIF: static parts drawn once; each frame restores them and draws only the moving
-    artists (blitting on the Agg canvas), its caption written with Pillow, and every frame
-    quantised to one shared palette."""
+    """Write the GIF: static parts drawn once, each frame drawing only the moving artists.
 
+    Each frame restores the static parts and draws the moving artists (blitting on the Agg canvas),
+    its caption written with Pillow, and every frame quantised to one shared palette.
+    """
     d0 = views[0][0]
     walker = bool(d0.legs)
     fig, axes = _drawing_figure(
@@ -1084,7 +794,6 @@ def _animation(res: Result, views: list[tuple[Drawing, bool]], path: Path, frame
 
 def _caption_font(size: int) -> Any:
     """Matplotlib's own sans-serif font for Pillow (Pillow's default if it cannot be read)."""
-
     try:
         return ImageFont.truetype(font_manager.findfont("DejaVu Sans"), size)
     except OSError:

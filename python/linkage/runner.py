@@ -1,6 +1,8 @@
-"""Running a scene: build the study (:mod:`linkage.build`), run only the stages its outputs
-need, and collect figures (:mod:`linkage.figures`) with their error estimates and the time of
-each stage. A ``[synthesis]`` scene runs one stage, the search (:func:`linkage.synthesis.path`).
+"""Running a scene: build the study, run only the stages its outputs need, collect figures.
+
+The study is built by :mod:`linkage.build`; the figures (:mod:`linkage.figures`) carry their error
+estimates, and the time of each stage is kept. A ``[synthesis]`` scene runs one stage, the search
+(:func:`linkage.synthesis.path`).
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ from linkage.build import (
     synthesis_atlas,
     synthesis_target,
 )
+from linkage.cam import CamProfile
 from linkage.drive import (
     CrankSchedule,
     Geared,
@@ -55,7 +58,7 @@ from linkage.figures import (
     torque_unit,
     versus,
 )
-from linkage.forces import Forces, forces
+from linkage.forces import Forces, joint_forces
 from linkage.geometry import StraightPart, straightness, three_point_centres
 from linkage.scene import Scene
 from linkage.walker import Simulation, Walker
@@ -66,9 +69,11 @@ Array = NDArray[np.float64]
 def run(
     scene: Scene, samples: int | None = None, progress: Callable[[str], None] | None = None
 ) -> Result:
-    """Run the stages ``scene.outputs`` need, and each again at the sample counts of
-    :func:`check_counts` (the stage ``second resolution``; the doubled run only when it fits
-    the memory limit): the largest difference is the error estimate of every sampled figure.
+    """Run the stages ``scene.outputs`` need, and each again at other sample counts.
+
+    The other sample counts are those of :func:`check_counts` (the stage ``second resolution``; the
+    doubled run only when it fits the memory limit): the largest difference is the error estimate of
+    every sampled figure.
 
     Raises
     ------
@@ -195,9 +200,12 @@ CONSTRAINTS = ("full_turn", "min_transmission_deg", "lengths", "pivots")
 
 
 def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], Any]) -> Result:
-    """The search of a ``[synthesis]`` scene: its candidates, each one's coupler curve over its
-    circuit in ``n`` samples, and the figures (errors with three significant digits: they are
-    distances measured to ~1e-3 of themselves, not sampled quantities)."""
+    """Search for a ``[synthesis]`` scene's four-bars: candidates, coupler curves and figures.
+
+    Each candidate's coupler curve is over its circuit in ``n`` samples; the figures' errors have
+    three significant digits (they are distances measured to ~1e-3 of themselves, not sampled
+    quantities).
+    """
     s = scene.synthesis or {}
     check_synthesis_memory(scene, n)
     closed = bool(s.get("closed", True))
@@ -348,8 +356,11 @@ def _drive_label(scene: Scene, drive: Any) -> str:
 
 
 def _rigidity(mech: FourBar | Mechanism, s: Sweep) -> float:
-    """Largest change of any distance between two joints of one link over the sweep: the
-    loop-closure residual (zero for exact kinematics)."""
+    """Return the loop-closure residual: the largest change of a link's joint distances.
+
+    That is the largest change of any distance between two joints of one link over the sweep (zero
+    for exact kinematics).
+    """
     m = mech.mechanism() if isinstance(mech, FourBar) else mech
     names = s.joint_names
     worst = 0.0
@@ -435,9 +446,11 @@ radius is reported as ∞ (the finite values are round-off of an exact line)."""
 
 
 def _on_a_line(p: Array, extent: float) -> bool:
-    """Whether every point of ``p`` lies within 1e-9 × ``extent`` of one line (a straight
-    path: its radius is ∞ even where the point stops and turns back, where the sampled
-    radius ``|v|³/|v × a|`` is 0/0)."""
+    """Say whether every point of ``p`` lies within 1e-9 × ``extent`` of one line.
+
+    On a straight path the radius is ∞ even where the point stops and turns back, where the sampled
+    radius ``|v|³/|v × a|`` is 0/0.
+    """
     if len(p) < 3 or not extent > 0:
         return False
     d = p - p.mean(axis=0)
@@ -447,7 +460,7 @@ def _on_a_line(p: Array, extent: float) -> bool:
 
 
 def _smallest_radius(g: Sweep, s: Sweep) -> float:
-    """The smallest radius of curvature over the run; ``inf`` for a straight path."""
+    """Return the smallest radius of curvature over the run; ``inf`` for a straight path."""
     r = g.curvature_radius
     fin = np.isfinite(r) & (r >= 0)
     p = s.point[s.valid]
@@ -589,9 +602,9 @@ def _torque(
     res: Result, scene: Scene, mech: FourBar | Mechanism, t: Array, alts: list[Array], drive: Any
 ) -> Forces:
     masses, loads = build_masses(scene, mech)
-    f = forces(mech, time=t, drive=drive, masses=masses, gravity=scene.gravity, loads=loads)
+    f = joint_forces(mech, time=t, drive=drive, masses=masses, gravity=scene.gravity, loads=loads)
     f2 = [
-        forces(mech, time=ta, drive=drive, masses=masses, gravity=scene.gravity, loads=loads)
+        joint_forces(mech, time=ta, drive=drive, masses=masses, gravity=scene.gravity, loads=loads)
         for ta in alts
     ]
     res.arrays.update(torque=f.torque, power_torque=f.power_torque)
@@ -614,8 +627,9 @@ def _cam_values(p: Any) -> tuple[float, float]:
     return math.degrees(p.max_pressure_angle), float(np.nanmin(np.abs(p.profile_radius)))
 
 
-def _cam(res: Result, scene: Scene) -> Any:
+def _cam(res: Result, scene: Scene) -> CamProfile:
     cam = build_cam(scene)
+    assert cam is not None  # the stage runs only for a scene with a [cam]
     p = cam.profile(CAM_SAMPLES)
     ns = check_counts(CAM_SAMPLES)
     alt = [_cam_values(cam.profile(k)) for k in ns]
@@ -630,7 +644,7 @@ def _cam(res: Result, scene: Scene) -> Any:
 
 
 def _walker_values(sim: Simulation, duration: float, period: float) -> dict[str, float]:
-    """The sampled walker figures of one simulation (compared between two resolutions)."""
+    """Return the sampled walker figures of one simulation (compared between two resolutions)."""
     cycles = duration / period if period > 0 else 1.0
     down = sim.stance.sum(1)
     travel = float(sim.body_position[-1])
@@ -701,8 +715,11 @@ def _walker_figures(
 
 
 def _margin_row(sim: Simulation, units: str, others: list[float], ns: Sequence[int]) -> Row:
-    """The smallest stability margin; with no foot on the ground at some samples there is no
-    support polygon and no margin, which the row says instead of printing −inf."""
+    """Make the row of the smallest stability margin.
+
+    With no foot on the ground at some samples there is no support polygon and no margin, which the
+    row says instead of printing −inf.
+    """
     unsupported = sim.margin == -np.inf
     if unsupported.any():
         k = int(np.argmax(unsupported))

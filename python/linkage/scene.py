@@ -1,5 +1,6 @@
-"""Scene files: one study described in TOML, validated with messages that name the file, the
-line and the key.
+"""Scene files: one study described in TOML, validated with located messages.
+
+Every message names the file, the line and the key.
 
 A scene names a mechanism (a catalogue entry, an explicit four-bar, or joint constructions) or a
 walker, its drive, optional masses and loads, an optional cam, and the outputs wanted. Only the
@@ -49,7 +50,7 @@ if sys.version_info >= (3, 11):  # pragma: no cover - depends on the interpreter
 else:  # pragma: no cover
     import tomli as tomllib
 
-OUTPUTS = (
+REPORT_OUTPUTS = (
     "trajectory",
     "velocity",
     "acceleration",
@@ -66,9 +67,14 @@ OUTPUTS = (
     "synthesis",
 )
 
-"""What a scene can ask for. ``cad`` writes the mechanism at its first pose and every traced
-path as ``mechanism.dxf`` and ``mechanism.svg`` (of a ``[synthesis]`` scene: the best
-candidate); ``synthesis`` is the search of a ``[synthesis]`` scene and its report."""
+"""What a scene's ``outputs`` can ask for in its report (not :data:`linkage.OUTPUTS`, the
+arrays a sweep computes). ``cad`` writes the mechanism at its first pose and every traced path
+as ``mechanism.dxf`` and ``mechanism.svg`` (of a ``[synthesis]`` scene: the best candidate);
+``synthesis`` is the search of a ``[synthesis]`` scene and its report."""
+
+# Deprecated alias (0.2.0) of REPORT_OUTPUTS, which does not clash with linkage.OUTPUTS (a
+# sweep's outputs); a module attribute cannot warn cheaply. To be removed after 0.2.
+OUTPUTS = REPORT_OUTPUTS
 
 # `linkage run` with no scene: thesis 1's quadruped under its drive (also
 # examples/quadruped_hoecken.toml, kept equal by a test).
@@ -172,9 +178,11 @@ class Scene:
         """Whether any of ``names`` is among the outputs."""
         return any(n in self.outputs for n in names)
 
-    def error(self, path: Sequence[Any], key: str, problem: str) -> SceneError:
-        """A :class:`SceneError` for ``key`` under ``path`` (section names and indices),
-        located in the scene's file when it came from one."""
+    def error(self, path: Sequence[str | int], key: str, problem: str) -> SceneError:
+        """Return a :class:`SceneError` for ``key`` under ``path`` (section names and indices).
+
+        It is located in the scene's file when the scene came from one.
+        """
         if self.locator is not None:
             return SceneError(self.locator.message(path, key, problem))
         return SceneError(f"{label(path)}{key}: {problem}")
@@ -348,9 +356,10 @@ def load(path: str | Path) -> Scene:
 
 
 def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene:
-    """Validate scene ``text`` (``path`` names it in messages, and a ``[synthesis]`` section's
-    files are relative to its folder — else to the working directory; ``name`` is the name when
-    the text gives none).
+    """Validate scene ``text`` and return the scene.
+
+    ``path`` names it in messages, and a ``[synthesis]`` section's files are relative to its folder
+    — else to the working directory; ``name`` is the name when the text gives none.
 
     Raises
     ------
@@ -487,8 +496,10 @@ def _outputs(data: Mapping[str, Any], scene: Scene, synthesis: bool) -> tuple[st
     for o in outputs:
         if not isinstance(o, str):
             raise scene.error((), "outputs", f"entries must be names, got {o!r}")
-        if o not in OUTPUTS:
-            raise scene.error((), "outputs", f"unknown output {o!r}{_did_you_mean(o, OUTPUTS)}")
+        if o not in REPORT_OUTPUTS:
+            raise scene.error(
+                (), "outputs", f"unknown output {o!r}{_did_you_mean(o, REPORT_OUTPUTS)}"
+            )
         if o in seen:
             raise scene.error((), "outputs", f"lists {o!r} twice")
         seen.append(o)
@@ -700,9 +711,10 @@ def _legs(legs: Sequence[Mapping[str, Any]], scene: Scene) -> None:
 def _turn(
     segments: Sequence[Mapping[str, Any]], scene: Scene, owner: tuple[Any, ...], key: str
 ) -> None:
-    """Segments of a program over one turn (a cam, a leg's lift): they span 360° and rise back
-    to the start."""
+    """Check the segments of a program over one turn: they span 360° and rise back to the start.
 
+    Such programs are a cam and a leg's lift.
+    """
     if not segments:
         raise scene.error(owner, key, "is empty: give segments spanning 360°")
     total, rise, size = 0.0, 0.0, 0.0
@@ -810,8 +822,10 @@ def _cam(c: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
 
 
 def _synthesis_scene(data: Mapping[str, Any], scene: Scene) -> Scene:
-    """The rest of a ``[synthesis]`` scene: its outputs, no drive or loads, the section; then
-    the target points (and atlas) are read by :func:`linkage.build.validate`."""
+    """Check the rest of a ``[synthesis]`` scene: its outputs, no drive or loads, the section.
+
+    The target points (and atlas) are then read by :func:`linkage.build.validate`.
+    """
     bad = [o for o in scene.outputs if o not in SYNTHESIS_OUTPUTS]
     if bad:
         raise scene.error(
@@ -907,8 +921,10 @@ def _synthesis(s: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
 
 
 def base_folder(scene: Scene) -> Path:
-    """The folder a scene's relative file names are relative to: the scene file's, or the
-    working directory for a scene given as text."""
+    """Return the folder a scene's relative file names are relative to.
+
+    The scene file's folder, or the working directory for a scene given as text.
+    """
     return scene.path.parent if scene.path is not None else Path(".")
 
 

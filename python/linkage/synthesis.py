@@ -1,5 +1,6 @@
-"""Dimensional synthesis of four-bars for path generation: the linkage whose coupler curve
-passes through given points.
+"""Dimensional synthesis of four-bars for path generation.
+
+The linkage sought is one whose coupler curve passes through given points.
 
 ``path(points)`` normalises the target's elliptic Fourier descriptors, looks up the nearest
 shapes in an :class:`Atlas` of normalised four-bars, places each in the target's frame, refines
@@ -14,19 +15,20 @@ Precision-point synthesis lives here too: :func:`motion` (Burmester, 3 or 4 pose
 
 from __future__ import annotations
 
+import argparse
 import hashlib
 import importlib
 import json
 import math
 import os
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import as_count, as_finite, as_flag, as_point, as_real_array
@@ -78,8 +80,10 @@ Float2D = NDArray[np.float64]
 
 @dataclass
 class Atlas:
-    """Normalised four-bars (ground ``O = (0, 0)``, ``C = (1, 0)``) and the normalised elliptic
-    Fourier descriptors of their circuits' coupler curves.
+    """Normalised four-bars and the elliptic Fourier descriptors of their coupler curves.
+
+    The four-bars have their ground at ``O = (0, 0)``, ``C = (1, 0)``; the descriptors of their
+    circuits' coupler curves are normalised.
 
     ``descriptors`` is ``(N, D)`` float32 (``D = 1 + 4(harmonics − 1)``), ``params`` ``(N, 6)``
     float64 ``crank, coupler, rocker, along, left, crossed``. Stored as a folder of ``.npy``
@@ -92,14 +96,17 @@ class Atlas:
     samples: int
 
     def __len__(self) -> int:
+        """Return the number of entries."""
         return int(self.descriptors.shape[0])
 
     @classmethod
     def build(
         cls, entries: int, harmonics: int = 8, samples: int = 64, threads: int | None = None
     ) -> Atlas:
-        """Build an atlas of ``entries`` entries on ``threads`` threads (default: every core);
-        the result does not depend on ``threads``."""
+        """Build an atlas of ``entries`` entries on ``threads`` threads (default: every core).
+
+        The result does not depend on ``threads``.
+        """
         n = as_count(entries, "entries")
         h = as_count(harmonics, "harmonics")
         m = as_count(samples, "samples", 8)
@@ -123,7 +130,7 @@ class Atlas:
 
     @classmethod
     def load(cls, folder: str | os.PathLike[str]) -> Atlas:
-        """An atlas written by :meth:`save`, memory-mapped."""
+        """Open an atlas written by :meth:`save`, memory-mapped."""
         src = Path(folder)
         try:
             meta = json.loads((src / "meta.json").read_text())
@@ -144,8 +151,10 @@ class Atlas:
     def nearest(
         self, targets: NDArray[np.float32], k: int, threads: int | None = None
     ) -> tuple[NDArray[np.int64], NDArray[np.float32], NDArray[np.int64]]:
-        """The ``k`` entries nearest any row of ``targets``: ``(entry, squared distance,
-        target row)``, nearest first."""
+        """Find the ``k`` entries nearest any row of ``targets``, nearest first.
+
+        Returns ``(entry, squared distance, target row)``.
+        """
         q = np.asarray(targets)
         if q.dtype.kind not in "iuf":
             raise TypeError(f"targets must be a numeric array, got dtype {q.dtype}")
@@ -164,8 +173,11 @@ def _threads(threads: int | None) -> int:
 
 
 def default_atlas(entries: int = DEFAULT_ENTRIES, harmonics: int = 8) -> Atlas:
-    """The default atlas, built on first use into the cache folder (``$LINKAGE_CACHE_DIR``,
-    else the user's cache folder) and memory-mapped from there afterwards."""
+    """Return the default atlas, built on first use into the cache folder.
+
+    The cache folder is ``$LINKAGE_CACHE_DIR``, else the user's cache folder; the atlas is
+    memory-mapped from there afterwards.
+    """
     core = getattr(_core, "__file__", "") or ""
     key = hashlib.sha256(
         json.dumps(
@@ -224,9 +236,10 @@ class Candidate:
 # -- input ----------------------------------------------------------------------------------
 
 
-def read_points(points: str | os.PathLike[str] | Any) -> Float2D:
-    """Target points as an ``(n, 2)`` float64 array, from an array-like or a CSV file (two
-    numeric columns, an optional header line).
+def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
+    """Read target points as an ``(n, 2)`` float64 array, from an array-like or a CSV file.
+
+    A CSV file has two numeric columns and an optional header line.
 
     Raises
     ------
@@ -241,7 +254,7 @@ def read_points(points: str | os.PathLike[str] | Any) -> Float2D:
             text = p.read_text()
         except OSError as e:
             raise LinkageError(f"cannot read {p}: {e.strerror or e}") from None
-        rows = []
+        rows: list[list[float]] = []
         for k, line in enumerate(text.splitlines(), 1):
             cells = [c.strip() for c in line.replace(";", ",").split(",") if c.strip()]
             if not cells or cells[0].startswith("#"):
@@ -269,8 +282,10 @@ def read_points(points: str | os.PathLike[str] | Any) -> Float2D:
 
 
 def _clean(points: Float2D, closed: bool) -> Float2D:
-    """Drop repeated consecutive points (and a closing repeat of the first); check there are
-    enough and that a closed target encloses something."""
+    """Drop repeated consecutive points (and a closing repeat of the first), and check the rest.
+
+    There must be enough points, and a closed target must enclose something.
+    """
     keep = np.ones(len(points), dtype=bool)
     keep[1:] = np.any(points[1:] != points[:-1], axis=1)
     pts = points[keep]
@@ -300,8 +315,10 @@ def _placed(
     frame_c: NDArray[np.float64],
     flip: bool,
 ) -> NDArray[np.float64]:
-    """An atlas entry's linkage moved by the similarity that takes its curve's normalisation
-    frame onto the target's (``flip``: the other end of the major axis)."""
+    """Move an atlas entry's linkage by the similarity taking its curve's frame onto the target's.
+
+    The frames are the curves' normalisation frames; ``flip`` takes the other end of the major axis.
+    """
     k = frame_t[2] / frame_c[2]
     phi = frame_t[3] - frame_c[3] + (math.pi if flip else 0.0)
     rot = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
@@ -345,8 +362,11 @@ def _refine(
     bounds: tuple[NDArray[np.float64], NDArray[np.float64]],
     max_nfev: int,
 ) -> NDArray[np.float64]:
-    """Least-squares fit of the true point-to-curve distance: unknowns the nine parameters and
-    each target point's circuit parameter, residuals ``P(s_i) − t_i`` evaluated in Rust."""
+    """Fit the true point-to-curve distance by least squares.
+
+    The unknowns are the nine parameters and each target point's circuit parameter, the residuals
+    ``P(s_i) − t_i`` evaluated in Rust.
+    """
     # scipy.optimize costs ~0.3 s to import: only when a fit runs.
     from scipy.optimize import least_squares  # type: ignore[import-untyped]  # noqa: PLC0415
 
@@ -403,8 +423,10 @@ def _refine(
 
 
 def _arc(feet: NDArray[np.float64], closed: bool) -> tuple[float, float]:
-    """The circuit-parameter arc that holds every foot: the whole circuit for a closed target,
-    else the complement of the largest gap between feet."""
+    """Return the circuit-parameter arc that holds every foot.
+
+    The whole circuit for a closed target, else the complement of the largest gap between feet.
+    """
     if closed:
         return (0.0, 2 * math.pi)
     s = np.sort(np.mod(feet, 2 * math.pi))
@@ -428,8 +450,10 @@ def _de(
     bar: Any,
     keep: int = 4,
 ) -> list[tuple[NDArray[np.float64], bool]]:
-    """Differential evolution over placed linkages (both assemblies), the population evaluated
-    in one batch call per generation."""
+    """Search by differential evolution over placed linkages (both assemblies).
+
+    The population is evaluated in one batch call per generation.
+    """
     from scipy.optimize import differential_evolution  # noqa: PLC0415 (as above)
 
     span = 3.0 * size
@@ -480,7 +504,7 @@ def _de(
 
 
 def path(
-    points: str | os.PathLike[str] | Any,
+    points: str | os.PathLike[str] | ArrayLike,
     closed: bool = True,
     top: int = 5,
     *,
@@ -654,8 +678,10 @@ def _finish(
     bar: Any,
     enough: int | None = None,
 ) -> list[Candidate]:
-    """Refine the first ``refine`` of ``pool``, then measure and check every one; stop early
-    once ``enough`` distinct candidates draw the target exactly (to 1e-10 of its size)."""
+    """Refine the first ``refine`` of ``pool``, then measure and check every one.
+
+    Stop early once ``enough`` distinct candidates draw the target exactly (to 1e-10 of its size).
+    """
     out: list[Candidate] = []
     exact: list[NDArray[np.float64]] = []
     for k, (x, crossed, source) in enumerate(pool):
@@ -689,8 +715,10 @@ def _finish(
 def _measure(
     x: NDArray[np.float64], crossed: bool, target: Float2D, closed: bool, source: str, threads: int
 ) -> Candidate | None:
-    """A checked candidate (``None`` when its circuit does not assemble throughout or the
-    tracker leaves it)."""
+    """Measure and check a candidate.
+
+    ``None`` when its circuit does not assemble throughout or the tracker leaves it.
+    """
     e, feet = _errors(x[None, :], np.array([crossed]), target, closed, samples=2048, exact=True)
     if not np.all(np.isfinite(e)):
         return None
@@ -748,7 +776,7 @@ def _meets(
     return True
 
 
-def command(args: Any) -> int:
+def command(args: argparse.Namespace) -> int:
     """``linkage synth curve.csv``: print the candidates as a table with units."""
     if int(args.top) < 1:
         raise LinkageError(f"--top must be at least 1, got {args.top}")
@@ -812,7 +840,10 @@ def command(args: Any) -> int:
     return 0
 
 
-def timed(fn: Any, *args: Any, **kw: Any) -> tuple[Any, float]:
+_T = TypeVar("_T")
+
+
+def timed(fn: Callable[..., _T], *args: Any, **kw: Any) -> tuple[_T, float]:
     """``fn(*args, **kw)`` and its wall time in seconds (for the benchmark and CLI)."""
     t0 = time.perf_counter()
     out = fn(*args, **kw)

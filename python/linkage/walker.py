@@ -1,5 +1,6 @@
-"""Walking machines: legs on a body, gaits as crank phases, ground contact, support polygons,
-static stability margin, body motion and foot slip.
+"""Walking machines: legs on a body, gaits as crank phases, ground contact and stability.
+
+A simulation gives support polygons, the static stability margin, body motion and foot slip.
 
 Each leg is a one-degree-of-freedom linkage whose trace point is the foot, mounted on the body in
 a vertical ("sagittal") plane — the linkage's x forward, y up — or in the horizontal plane with
@@ -15,12 +16,11 @@ the body is held level at constant height, and the ground is the lowest level an
 
 from __future__ import annotations
 
-import itertools
 import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -28,7 +28,6 @@ from numpy.typing import ArrayLike, NDArray
 from linkage import _core
 from linkage._arrays import (
     as_angles,
-    as_choice,
     as_count,
     as_finite,
     as_flag,
@@ -38,7 +37,12 @@ from linkage._arrays import (
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
-from linkage.drive import Drive, Program, crank_schedule, stance_profile
+from linkage.drive import Drive, Program
+
+if TYPE_CHECKING:
+    # Re-exported lazily by __getattr__ below (gait_search imports this module).
+    from linkage.gait_search import search_duty_factor as search_duty_factor
+    from linkage.gait_search import search_phases as search_phases
 
 Array = NDArray[np.float64]
 PLANES = ("sagittal", "horizontal")
@@ -46,8 +50,7 @@ PLANES = ("sagittal", "horizontal")
 
 @dataclass(frozen=True)
 class Leg:
-    """One leg: a linkage whose trace point is the foot, where it sits on the body, its crank
-    phase, and its foot pad."""
+    """One leg: a linkage whose trace point is the foot, its mount, crank phase and foot pad."""
 
     name: str
     linkage: FourBar | Mechanism
@@ -69,6 +72,7 @@ class Leg:
     """Side of the square foot pad (0: a point foot)."""
 
     def __post_init__(self) -> None:
+        """Check every field's type and range (a horizontal leg needs a ``lift``)."""
         if not isinstance(self.name, str):
             raise TypeError(f"a leg's name must be a str, got {type(self.name).__name__}")
         if not isinstance(self.plane, str):
@@ -101,8 +105,25 @@ class Leg:
             raise LinkageError(f"leg {self.name!r}: a horizontal leg needs a lift program")
 
     def feet(self, theta: Array, omega: Array) -> tuple[Array, Array]:
-        """Foot positions and velocities in the body frame, (N, 3) each, at crank angles
-        ``theta`` (the drive's; the leg adds its phase) turning at ``omega``."""
+        """Return foot positions and velocities in the body frame, (N, 3) each.
+
+        Parameters
+        ----------
+        theta : ndarray, shape (N,)
+            The drive's crank angles (rad); the leg adds its phase.
+        omega : ndarray, shape (N,)
+            The crank's speed at each angle (rad/s).
+
+        Returns
+        -------
+        feet, velocity : ndarray, shape (N, 3)
+            The foot's position (the foot offset or lift included) and velocity, body frame.
+
+        Raises
+        ------
+        LinkageError
+            If the leg cannot be assembled at one of the angles.
+        """
         th = theta + self.phase
         s = self.linkage.sweep(th, omega=omega, outputs=("point", "velocity"))
         if not s.valid.all():
@@ -270,7 +291,39 @@ class Walker:
         )
 
     def with_phases(self, phases: Sequence[float]) -> Walker:
-        """The same walker with new crank phases (one per leg)."""
+        """Return the same walker with new crank phases (one per leg).
+
+        Parameters
+        ----------
+        phases : sequence of float
+            Each leg's crank phase (rad), in leg order.
+
+        Returns
+        -------
+        Walker
+            A new walker; this one is unchanged.
+
+        Raises
+        ------
+        LinkageError
+            For a wrong number of phases or a non-finite phase.
+        TypeError
+            If ``phases`` is not a sequence of numbers.
+
+        Examples
+        --------
+        Thesis 1's quadruped in a crawl instead of its trot, which it cannot hold statically:
+
+        >>> import linkage
+        >>> q = linkage.catalog.quadruped_hoecken()
+        >>> crawl = q.with_phases(gait_phases("crawl", ["A", "B", "C", "D"]))
+        >>> round(crawl.simulate(np.linspace(0, 2 * np.pi, 721)).min_margin, 3)
+        -40.0
+        >>> q.with_phases([0.0, 1.0])
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: need 4 phases, got 2
+        """
         if isinstance(phases, (str, bytes)) or not hasattr(phases, "__len__"):
             raise TypeError(f"phases must be a sequence of numbers, got {type(phases).__name__}")
         if len(phases) != len(self.legs):
@@ -287,8 +340,15 @@ class Walker:
         return np.array([leg.phase for leg in self.legs])
 
     def leg_labels(self) -> tuple[str, ...]:
-        """Each leg named by side and position, in leg order (see :func:`leg_labels`).
+        """Name each leg by side and position, in leg order (see :func:`leg_labels`).
 
+        Returns
+        -------
+        tuple of str
+            ``L1``, ``R1``, … for the legs in order.
+
+        Examples
+        --------
         >>> import linkage
         >>> linkage.catalog.quadruped_hoecken().leg_labels()   # legs A, B, C, D
         ('L1', 'R1', 'L2', 'R2')
@@ -304,12 +364,59 @@ class Walker:
         drive: Drive | None = None,
         per_leg_time: bool = False,
     ) -> Simulation:
-        """Simulate at crank angles ``theta`` (constant speed ``omega``, rad/s) or at times
-        ``time`` of a ``drive``.
+        """Simulate at crank angles ``theta`` or at times ``time`` of a ``drive``.
+
+        At crank angles, the crank turns at the constant speed ``omega`` (rad/s).
 
         With ``per_leg_time`` (a periodic drive with a ``period``, such as a crank schedule),
         each leg runs the drive shifted in time by its phase's share of the period instead of
         adding the phase to the angle: how one would run one motor per leg on the same schedule.
+
+        Parameters
+        ----------
+        theta : array_like, optional
+            Crank angles (rad) of the drive, scalar or 1-D; or give ``time`` and ``drive``.
+        omega : float, default 1.0
+            Constant crank speed (rad/s, non-zero) with ``theta``: the times are ``theta/omega``.
+        time : array_like, optional
+            Times (s), with ``drive``.
+        drive : Drive, optional
+            The crank's drive (:mod:`linkage.drive`), with ``time``.
+        per_leg_time : bool, default False
+            Shift each leg's drive in time by its phase (a periodic drive only).
+
+        Returns
+        -------
+        Simulation
+            Feet, stance, ground, support polygons, stability margins, body motion and slip per
+            sample.
+
+        Raises
+        ------
+        LinkageError
+            If a leg cannot be assembled at a sample (a walker's legs must turn fully), for
+            ``omega`` 0, both or neither of ``theta`` and ``time``, no sample, or
+            ``per_leg_time`` with a drive that has no period.
+        TypeError
+            With neither ``theta`` nor ``time`` and ``drive``, or a drive without ``angles``.
+        MemoryError
+            When the simulation would not fit in memory.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> q = linkage.catalog.quadruped_hoecken()
+        >>> sim = q.simulate(np.linspace(0, 2 * np.pi, 721))
+        >>> sim.feet.shape, round(sim.min_margin, 3)
+        ((721, 4, 3), 3.997)
+
+        A leg that cannot turn fully cannot walk:
+
+        >>> evans = Walker([Leg("E", linkage.catalog.evans_b(), (0, 0, 0))])
+        >>> evans.simulate(np.linspace(0, 2 * np.pi, 9))
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: leg 'E' cannot be assembled over the whole cycle
         """
         per_leg_time = as_flag(per_leg_time, "per_leg_time")
         if drive is not None or time is not None:
@@ -411,7 +518,29 @@ class Walker:
         )
 
     def body_clearance(self, samples: int = 721) -> float:
-        """Height of the body's underside above the ground (the obstacle the body clears)."""
+        """Height of the body's underside above the ground (the obstacle the body clears).
+
+        Parameters
+        ----------
+        samples : int, default 721
+            Crank angles over one turn at which the ground (the lowest foot) is found.
+
+        Returns
+        -------
+        float
+            ``body_underside`` minus the ground's height.
+
+        Raises
+        ------
+        LinkageError
+            For ``samples`` below 1 or a leg that does not assemble.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> linkage.catalog.quadruped_hoecken().body_clearance()
+        60.0
+        """
         samples = as_count(samples, "samples")
         _check_size(samples, len(self.legs))
         sim = self.simulate(np.linspace(0, 2 * math.pi, samples))
@@ -425,132 +554,63 @@ class Walker:
         rounds: int = 3,
         max_evals: int = 5000,
     ) -> tuple[Array, float]:
-        """Crank phases (the first leg's kept) that maximise the minimum stability margin
-        (``"margin"``) or minimise the total foot slip per cycle among statically stable
-        phasings (``"slip"``: a phasing whose margin ever drops below zero is rejected — all legs
-        in phase slip least but fall over), by coordinate search over a grid of ``step``.
-        The search is exhaustive over the grid when it has at most ``max_evals`` phasings,
-        otherwise a coordinate search from the current phases, which may take at most
-        ``max_evals`` evaluations too (``rounds × (legs − 1) × 2π/step``; a finer ``step`` is a
-        ``LinkageError``, so the search time stays bounded). Legs' tracks are computed once and
-        shifted, so a phasing costs one support-polygon pass. Returns ``(phases, objective
-        value)``."""
-        objective = as_choice(objective, "objective", ("margin", "slip"))
-        step = as_finite(step, "step")
-        samples = as_count(samples, "samples")
-        rounds = as_count(rounds, "rounds", 0)
-        max_evals = as_count(max_evals, "max_evals", 0)
-        turns = 2 * math.pi / step if step > 0 else math.inf
-        if not (math.isfinite(turns) and turns < 2**53):
-            raise LinkageError(
-                f"step must divide a full turn into at most 2**53 parts, got {step!r}"
-            )
-        g = round(turns)
-        if g < 2 or abs(g * step - 2 * math.pi) > 1e-9:
-            raise LinkageError("step must divide a full turn (2π/step a whole number ≥ 2)")
-        per = max(1, -(-samples // g))
-        n = g * per
-        _check_size(n, len(self.legs))
-        theta = np.linspace(0, 2 * math.pi, n, endpoint=False)
-        # Every leg's track at phase 0 over one turn; a phase on the grid is a cyclic shift.
-        base = [replace(leg, phase=0.0).feet(theta, np.ones(n)) for leg in self.legs]
-        t = theta.copy()
+        """Search the crank phases that maximise the stability margin or minimise the foot slip.
 
-        def score(k: Sequence[int]) -> float:
-            feet = np.stack([np.roll(base[i][0], -k[i] * per, axis=0) for i in range(len(k))], 1)
-            vel = np.stack([np.roll(base[i][1], -k[i] * per, axis=0) for i in range(len(k))], 1)
-            sim = self._evaluate(theta, t, feet, vel)
-            if objective == "margin":
-                return sim.min_margin
-            if sim.min_margin < 0:
-                return -math.inf
-            return -float(sim.slip_distance.sum())
+        The same as :func:`linkage.gait_search.search_phases` with this walker; see there.
 
-        start = [round(p / step) % g for p in self.phases]
-        free = len(self.legs) - 1
-        exhaustive = g**free <= max_evals
-        if not exhaustive and rounds * free * g > max(max_evals, 1):
-            # Bounded time: the coordinate search tries every grid phase of every leg per round.
-            raise LinkageError(
-                f"step {step:g} gives {g} phases per leg: the search would need "
-                f"{rounds * free * g} evaluations, more than max_evals = {max_evals}"
-            )
-        if exhaustive:
-            # Exhaustive over the grid (the first leg fixed).
-            best_k, best_val = start, score(start)
-            for combo in itertools.product(range(g), repeat=free):
-                k = [start[0], *combo]
-                v = score(k)
-                if v > best_val + 1e-12:
-                    best_k, best_val = k, v
-        else:
-            best_k, best_val = start, score(start)
-            for _ in range(rounds):
-                improved = False
-                for i in range(1, len(self.legs)):
-                    for c in range(g):
-                        k = list(best_k)
-                        k[i] = c
-                        v = score(k)
-                        if v > best_val + 1e-12:
-                            best_k, best_val, improved = k, v, True
-                if not improved:
-                    break
-        phases = np.array([k * step for k in best_k])
-        return phases, best_val if objective == "margin" else -best_val
+        Parameters
+        ----------
+        objective, step, samples, rounds, max_evals
+            As :func:`linkage.gait_search.search_phases`.
 
+        Returns
+        -------
+        phases : ndarray, shape (legs,)
+            The best crank phases found (radians).
+        value : float
+            Their minimum stability margin or foot slip per cycle.
 
-def search_duty_factor(
-    walker: Walker,
-    foot_speed: float,
-    objective: str = "margin",
-    duty_factors: Sequence[float] = tuple(np.linspace(0.5, 0.75, 11)),
-    samples: int = 721,
-) -> tuple[float, float]:
-    """The duty factor of a crank-speed schedule (every leg on its own motor, shifted by its
-    phase) that maximises the minimum stability margin (``"margin"``) or minimises the slip per
-    cycle among stable runs (``"slip"``). Duty factors whose schedule is infeasible are skipped.
-    Returns ``(duty factor, objective value)``."""
-    if not isinstance(walker, Walker):
-        raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
-    objective = as_choice(objective, "objective", ("margin", "slip"))
-    samples = as_count(samples, "samples")
-    _check_size(samples, len(walker.legs))
-    if isinstance(duty_factors, (str, bytes)) or not hasattr(duty_factors, "__iter__"):
-        raise TypeError(
-            f"duty_factors must be a sequence of numbers, got {type(duty_factors).__name__}"
-        )
-    betas = [as_finite(b, "duty_factors[]") for b in duty_factors]
-    best: tuple[float, float] | None = None
-    # The stance is the same for every duty factor: find it once.
-    leg = walker.legs[0].linkage
-    stance = stance_profile(leg)
-    for beta in betas:
-        try:
-            sched = crank_schedule(leg, foot_speed, beta, stance=stance)
-        except LinkageError:
-            continue
-        t = np.linspace(0.0, sched.period, samples)
-        sim = walker.simulate(time=t, drive=sched, per_leg_time=True)
-        if objective == "margin":
-            value = sim.min_margin
-        else:
-            value = -float(sim.slip_distance.sum()) if sim.min_margin >= 0 else -math.inf
-        if best is None or value > best[1]:
-            best = (float(beta), value)
-    if best is None:
-        raise LinkageError("no duty factor gives a feasible schedule")
-    return best[0], best[1] if objective == "margin" else -best[1]
+        Raises
+        ------
+        LinkageError, TypeError
+            As :func:`linkage.gait_search.search_phases`.
+        """
+        # gait_search imports this module: importing it at the top would be a cycle.
+        from linkage.gait_search import search_phases  # noqa: PLC0415 (see above)
+
+        return search_phases(self, objective, step, samples, rounds, max_evals)
 
 
 def leg_labels(mounts: Sequence[Sequence[float]]) -> tuple[str, ...]:
-    """Labels naming legs by side and position from their body-frame mounts ``(x, y, z)``:
-    ``L`` for a mount left of the midline (y > 0), ``R`` right of it (y < 0), ``M`` on it;
-    numbered 1, 2, … from the front (largest x) to the rear on each side. Mounts at the same x
-    keep their given order.
+    """Name legs by side and position from their body-frame mounts ``(x, y, z)``.
 
+    ``L`` for a mount left of the midline (y > 0), ``R`` right of it (y < 0), ``M`` on it; numbered
+    1, 2, … from the front (largest x) to the rear on each side. Mounts at the same x keep their
+    given order.
+
+    Parameters
+    ----------
+    mounts : sequence of (x, y, z)
+        The legs' mounts in the body frame (x forward, y left).
+
+    Returns
+    -------
+    tuple of str
+        One label per mount, in the given order.
+
+    Raises
+    ------
+    LinkageError
+        For a mount that is not three finite numbers.
+
+    Examples
+    --------
     >>> leg_labels([(0.04, 0.02, 0), (-0.02, 0.02, 0), (0.04, -0.02, 0), (-0.08, 0.02, 0)])
     ('L1', 'L2', 'R1', 'L3')
+    >>> leg_labels([(0, 0)])
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: mounts[0] must be (x, y, z), got (0, 0)
     """
     sides = []
     for k, m in enumerate(mounts):
@@ -568,8 +628,11 @@ def leg_labels(mounts: Sequence[Sequence[float]]) -> tuple[str, ...]:
 
 
 def _check_size(n: int, legs: int) -> None:
-    """Refuse a simulation that cannot fit: per sample and leg, positions, velocities, support
-    corners and the sweep's arrays (about 60 float64 values)."""
+    """Refuse a simulation that cannot fit in memory.
+
+    Per sample and leg: positions, velocities, support corners and the sweep's arrays (about 60
+    float64 values).
+    """
     check_memory(n * max(1, legs) * 8 * 60, f"a walker simulation of {n} samples × {legs} legs")
 
 
@@ -606,6 +669,35 @@ def gait_phases(gait: str, legs: Sequence[str]) -> Array:
     for legs L1–L3 / R1–R3 front to hind; "diagonal" (trot: A & D against B & C, thesis 1) and
     "crawl" for quadruped legs A–D. A leg's phase is ``−2π × (its share of the cycle)``: a leg
     whose protraction comes later runs behind.
+
+    Parameters
+    ----------
+    gait : str
+        One of :data:`GAITS`: ``"tripod"``, ``"wave"``, ``"ripple"``, ``"diagonal"``,
+        ``"crawl"``.
+    legs : sequence of str
+        Leg names, as the gait's table names them.
+
+    Returns
+    -------
+    ndarray, shape (len(legs),)
+        The phases (rad), in the order of ``legs``.
+
+    Raises
+    ------
+    LinkageError
+        For an unknown gait or a leg the gait has no phase for.
+    TypeError
+        For a gait or leg name that is not a str.
+
+    Examples
+    --------
+    >>> gait_phases("diagonal", ["A", "B", "C", "D"]).round(6)
+    array([-0.      , -3.141593, -3.141593, -0.      ])
+    >>> gait_phases("tripod", ["A"])
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: gait 'tripod' has no phase for legs ['A']
     """
     if not isinstance(gait, str):
         raise TypeError(f"gait must be a name (str), got {type(gait).__name__}")
@@ -622,3 +714,16 @@ def gait_phases(gait: str, legs: Sequence[str]) -> Array:
     if missing:
         raise LinkageError(f"gait {gait!r} has no phase for legs {missing}")
     return np.array([-2 * math.pi * table[leg] for leg in legs])
+
+
+def __getattr__(name: str) -> Any:
+    """Resolve the gait searches, which moved to :mod:`linkage.gait_search`.
+
+    ``from linkage.walker import search_duty_factor`` keeps working; the import is deferred to
+    the first use because :mod:`linkage.gait_search` imports this module.
+    """
+    if name in ("search_duty_factor", "search_phases"):
+        from linkage import gait_search  # noqa: PLC0415 (see the docstring)
+
+        return getattr(gait_search, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,5 +1,7 @@
-"""Walking-leg design search: leg families, their figures from the core, a Pareto front by
-NSGA-II (pymoo), evaluated in chunks on Dask, with checkpoints and a report.
+"""Walking-leg design search: a Pareto front of leg designs by NSGA-II, evaluated on Dask.
+
+The search covers leg families and their figures from the core, evaluates candidates in chunks
+(pymoo's NSGA-II, Dask), with checkpoints and a report.
 
 A *family* is a parametrised leg generator with documented bounds and a reference point (the
 design a source chose). A candidate's figures come from the core's leg figures

@@ -1,6 +1,9 @@
-"""The search's report: candidates and front as CSV (or Parquet), the Pareto plot, the chosen
-designs drawn and exported as scenes, a JSON summary — written like :mod:`linkage.report`
-(a temporary sibling renamed into place, a marker, nothing of the user's overwritten)."""
+"""The search's report, written safely like a run's (:mod:`linkage.report_folder`).
+
+Candidates and front as CSV (or Parquet), the Pareto plot, the chosen designs drawn and exported as
+scenes, a JSON summary — written as a temporary sibling renamed into place, with a marker, nothing
+of the user's overwritten.
+"""
 
 from __future__ import annotations
 
@@ -13,7 +16,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage import report
+from linkage import report_folder
 from linkage.design.search import (
     Front,
     Study,
@@ -32,8 +35,11 @@ Array = NDArray[np.float64]
 
 
 def chosen(result: Front, count: int) -> list[int]:
-    """Up to ``count`` front designs to draw and export: the best in each objective in turn,
-    then the design nearest the ideal point (objectives scaled to the front's range)."""
+    """Choose up to ``count`` front designs to draw and export.
+
+    The best in each objective in turn, then the design nearest the ideal point (objectives scaled
+    to the front's range).
+    """
     study = result.study
     if len(result.front) == 0 or count <= 0:
         return []
@@ -52,7 +58,7 @@ def chosen(result: Front, count: int) -> list[int]:
 
 
 def scene_text(study: Study, x: Sequence[float], name: str) -> str:
-    """A ready-to-run scene (TOML) of the design ``x``: its joints, a constant crank speed."""
+    """Return a ready-to-run scene (TOML) of design ``x``: its joints, a constant crank speed."""
     fam = family(study.family)
     lines = [
         f"# Designed by `linkage design` (family {fam.name}, study {study.name!r}).",
@@ -89,13 +95,15 @@ def scene_text(study: Study, x: Sequence[float], name: str) -> str:
 def write_report(
     result: Front, folder: str | Path, choose: int = 3, force: bool = False
 ) -> list[Path]:
-    """Write the search's report to ``folder`` (safely: see :mod:`linkage.report`): every
-    candidate (``candidates.parquet`` with pyarrow, else ``candidates.csv``), ``front.csv``,
-    ``pareto.png`` (objectives pairwise, with units, the reference design marked),
+    """Write the search's report to ``folder`` (safely: see :mod:`linkage.report_folder`).
+
+    The report holds every candidate (``candidates.parquet`` with pyarrow, else ``candidates.csv``),
+    ``front.csv``, ``pareto.png`` (objectives pairwise, with units, the reference design marked),
     ``designs.png`` (the chosen designs' foot paths and linkages), one scene per chosen design
-    (``design-<k>.toml``) and ``summary.json`` (the reference's placement)."""
+    (``design-<k>.toml``) and ``summary.json`` (the reference's placement).
+    """
     out = Path(os.path.expanduser(str(folder)))
-    return report.write_folder(
+    return report_folder.write_folder(
         out, result.study.name, lambda tmp: _write_files(result, tmp, choose), force
     )
 
@@ -247,11 +255,10 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
 def main_design(
     path: str, out: str | None, force: bool, checkpoint: str | None, quiet: bool
 ) -> int:
-    """``linkage design study.toml``: search, write the report, print where the reference
-    design sits."""
+    """Run ``linkage design study.toml``: search, write the report, place the reference."""
     sf = load_study(path)
-    folder = Path(out) if out else report.default_folder(sf.study.name)
-    report.prepare(folder, force)
+    folder = Path(out) if out else report_folder.default_folder(sf.study.name)
+    report_folder.prepare(folder, force)
     ck = Path(checkpoint) if checkpoint else folder.with_name(f".{folder.name}.checkpoint")
     result = search(sf.study, checkpoint=ck, progress=not quiet)
     files = write_report(result, folder, sf.choose, force)

@@ -1,7 +1,10 @@
-"""The search: a study (family, bounds, objectives, constraints, budget, seed, where it
-runs), its evaluation in chunks (in this process, on a LocalCluster or on a scheduler's
-cluster), NSGA-II by ask and tell with a checkpoint after every generation, the Pareto front
-and where the family's reference design sits relative to it."""
+"""The search: a study, its evaluation in chunks, NSGA-II and the Pareto front.
+
+A study gives the family, bounds, objectives, constraints, budget, seed and where it runs; its
+candidates are evaluated in chunks (in this process, on a LocalCluster or on a scheduler's cluster),
+NSGA-II runs by ask and tell with a checkpoint after every generation, and the result is the Pareto
+front and where the family's reference design sits relative to it.
+"""
 
 from __future__ import annotations
 
@@ -66,6 +69,7 @@ class Study:
     name: str = "design"
 
     def __post_init__(self) -> None:
+        """Check the objectives, the bounds (the family's parameters) and the sizes."""
         fam = family(self.family)
         for o in self.objectives:
             if o not in OBJECTIVES:
@@ -104,7 +108,7 @@ class Study:
         )
 
     def fingerprint(self) -> str:
-        """What a checkpoint must match to be resumed (everything but where it runs)."""
+        """Return what a checkpoint must match to be resumed (everything but where it runs)."""
         d = {
             "family": self.family,
             "objectives": self.objectives,
@@ -118,11 +122,13 @@ class Study:
 
 
 def objectives_and_constraints(study: Study, figs: Array) -> tuple[Array, Array]:
-    """pymoo's ``F`` (minimised) and ``G`` (≤ 0 feasible) from figures. Constraints are
-    scaled to comparable sizes (angles by 90°, lengths by the family's scale, the duty factor
-    as it is) so that the optimiser's summed violation weighs them alike. A candidate without
-    figures (no full turn) gets the worst objectives the optimiser can rank (1e12, never
-    reported) and violates every constraint by 10."""
+    """Compute pymoo's ``F`` (minimised) and ``G`` (≤ 0 feasible) from figures.
+
+    Constraints are scaled to comparable sizes (angles by 90°, lengths by the family's scale, the
+    duty factor as it is) so that the optimiser's summed violation weighs them alike. A candidate
+    without figures (no full turn) gets the worst objectives the optimiser can rank (1e12, never
+    reported) and violates every constraint by 10.
+    """
     col = {n: figs[:, k] for k, n in enumerate(FIGURES)}
     f = np.stack([-OBJECTIVES[o] * col[o] for o in study.objectives], axis=1)
     c = study.constraints
@@ -154,8 +160,10 @@ def evaluate_chunk(family_name: str, x: Array, settings: Settings) -> Array:
 
 
 class Evaluator:
-    """Evaluates candidates in this process, on a LocalCluster or on a scheduler's cluster,
-    in chunks of ``chunk`` candidates gathered in order (the same figures either way)."""
+    """Evaluator of candidates in this process, on a LocalCluster or on a scheduler's cluster.
+
+    Candidates are evaluated in chunks of ``chunk`` gathered in order (the same figures either way).
+    """
 
     def __init__(self, study: Study) -> None:
         self.study = study
@@ -173,6 +181,7 @@ class Evaluator:
             self.client = distributed.Client(self.cluster)  # type: ignore[no-untyped-call]
 
     def __call__(self, x: Array) -> Array:
+        """Evaluate the candidates ``x`` (M, params): their figures (M, figures), in order."""
         s = self.study
         if self.client is None:
             return evaluate_chunk(s.family, x, s.settings)
@@ -183,15 +192,18 @@ class Evaluator:
         return np.concatenate(self.client.gather(futures), axis=0)
 
     def close(self) -> None:
+        """Close the client and the local cluster, if any."""
         if self.client is not None:
             self.client.close()
         if self.cluster is not None:
             self.cluster.close()
 
     def __enter__(self) -> Evaluator:
+        """Return the evaluator itself."""
         return self
 
     def __exit__(self, *exc: Any) -> None:
+        """Close the evaluator (see :meth:`close`)."""
         self.close()
 
 
@@ -207,8 +219,10 @@ class _Box(Problem):  # type: ignore[misc]
 
 @dataclass
 class Front:
-    """The search's result: every candidate evaluated (parameters and figures, in order), the
-    indices of the final Pareto front, and the study."""
+    """The search's result: every candidate evaluated, the final Pareto front, and the study.
+
+    Candidates are kept in order (parameters and figures); the front is their indices.
+    """
 
     study: Study
     x: Array
@@ -219,9 +233,11 @@ class Front:
     seconds: float = 0.0
 
     def front_x(self) -> Array:
+        """Return the parameters of the front's candidates, (F, params)."""
         return self.x[self.front]
 
     def front_figures(self) -> Array:
+        """Return the figures of the front's candidates, (F, figures)."""
         return self.figures[self.front]
 
 
@@ -337,7 +353,7 @@ def search(
 
 
 def _bar(done: int, total: int, evaluations: int) -> None:
-    """A progress bar on a terminal (redrawn in place); elsewhere a line every tenth."""
+    """Draw a progress bar on a terminal (redrawn in place); elsewhere print a line every tenth."""
     width = 30
     full = int(width * done / max(total, 1))
     text = (
@@ -352,8 +368,10 @@ def _bar(done: int, total: int, evaluations: int) -> None:
 
 
 def pareto_front(study: Study, figs: Array) -> NDArray[np.int64]:
-    """Indices of the feasible candidates no other feasible candidate dominates (over every
-    candidate evaluated, in order; duplicates keep their first)."""
+    """Return the indices of the feasible candidates no other feasible candidate dominates.
+
+    Over every candidate evaluated, in order; duplicates keep their first.
+    """
     f, g = objectives_and_constraints(study, figs)
     ok = np.flatnonzero((g <= 0).all(axis=1))
     if len(ok) == 0:
@@ -376,9 +394,11 @@ def reference_figures(study: Study) -> Array:
 
 
 def placement(study: Study, result: Front) -> dict[str, Any]:
-    """Where the reference design sits relative to the front: whether it is feasible, which
-    front designs dominate it (indices into ``result.x``) and, per objective, its rank among
-    the front's values (0 = better than every front design)."""
+    """Place the reference design relative to the front.
+
+    Returns whether it is feasible, which front designs dominate it (indices into ``result.x``) and,
+    per objective, its rank among the front's values (0 = better than every front design).
+    """
     ref = reference_figures(study)
     f_ref, g_ref = objectives_and_constraints(study, ref[None, :])
     f_front, _ = objectives_and_constraints(study, result.front_figures())

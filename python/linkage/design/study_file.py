@@ -1,5 +1,7 @@
-"""Study files: a TOML ``[design]`` section read into a :class:`~linkage.design.Study`, with
-``file:line: [section] key: problem`` messages for every mistake."""
+"""Study files: a TOML ``[design]`` section read into a :class:`~linkage.design.Study`.
+
+Every mistake is a ``file:line: [section] key: problem`` message.
+"""
 
 from __future__ import annotations
 
@@ -44,8 +46,10 @@ _CONSTRAINT_KEYS = ("min_transmission", "foot_below_hip", "min_lift", "min_duty"
 
 @dataclass(frozen=True)
 class StudyFile:
-    """A study read from a TOML file: the study, how many front designs to draw and export
-    (``choose``), and the file it came from."""
+    """A study read from a TOML file, with how many designs to choose and the file it came from.
+
+    ``choose`` is how many front designs to draw and export.
+    """
 
     study: Study
     choose: int
@@ -53,11 +57,12 @@ class StudyFile:
 
 
 def load_study(path: str | Path) -> StudyFile:
-    """Read a study file: a ``[design]`` section (family, objectives, population, budget,
-    seed, workers or scheduler, chunk, samples, stance_tol, foot_bar, choose) with
-    ``[design.bounds]`` (``parameter = [lower, upper]``) and ``[design.constraints]``.
-    Errors name ``file:line: [section] key``."""
+    """Read a study file.
 
+    The file has a ``[design]`` section (family, objectives, population, budget, seed, workers or
+    scheduler, chunk, samples, stance_tol, foot_bar, choose) with ``[design.bounds]`` (``parameter =
+    [lower, upper]``) and ``[design.constraints]``. Errors name ``file:line: [section] key``.
+    """
     p = Path(path)
     try:
         data = p.read_bytes()

@@ -1,0 +1,342 @@
+"""Safe report folders: written whole or not at all, and only what linkage wrote is removed.
+
+A report folder is on the user's disk, so this module removes only what it wrote:
+
+- every report folder carries a marker file, ``.linkage-report`` (JSON: tool, version, scene and
+  the files written), written last;
+- a report is written into a temporary sibling (``.<name>.partial-<pid>``) and renamed into place
+  when complete; any failure, ``KeyboardInterrupt`` included, removes the temporary folder and
+  leaves an earlier report untouched;
+- ``force`` replaces a folder only if it carries the marker and holds nothing but the files the
+  marker lists; the old report is renamed aside, the new one renamed in, and then the old one is
+  removed file by file (only the listed files; never ``rmtree`` on a folder the tool did not
+  create);
+- a target that is a symbolic link (dangling or not), not a folder, the file-system root, the home
+  folder, the working directory or one of their ancestors is refused, force or not.
+
+:func:`prepare` checks a target before anything is computed; :func:`write_folder` writes any
+folder of results this way (the run's report, :func:`linkage.report.write`; the design search's,
+:func:`linkage.design.report.write_report`). Every refusal is a ``LinkageError`` that names the
+folder and the reason.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import datetime
+import errno
+import json
+import os
+import re
+import shutil
+import signal
+import sys
+import threading
+from collections.abc import Callable, Iterator, Sequence
+from pathlib import Path
+from typing import Any
+
+from linkage import __version__
+from linkage._core import LinkageError
+
+MARKER = ".linkage-report"
+"""Name of the marker file that makes a folder a report linkage wrote (and may replace)."""
+
+DEFAULT_BASE = Path("linkage-report")
+"""Where reports go without ``--out``: ``linkage-report/<scene name>``."""
+
+_SAFE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,127}")
+_NOTHING = "nothing was written"
+
+
+def default_folder(name: str, base: Path = DEFAULT_BASE) -> Path:
+    """Return the default report folder of a scene called ``name``: ``base/name``.
+
+    Refused unless ``name`` is a single plain folder name that stays inside ``base`` (no ``.``,
+    ``..``, separators, or a leading dot, which is kept for the tool's temporary folders).
+    """
+    if not _SAFE_NAME.fullmatch(name) or name in (".", ".."):
+        raise LinkageError(
+            f"scene name {name!r} cannot name a folder inside {base}/ (it must start with a "
+            f"letter or digit and hold only letters, digits, '_', '-' or '.'); give --out "
+            f"({_NOTHING})"
+        )
+    folder = base / name
+    try:
+        inside = folder.resolve().parent == base.resolve()
+    except (OSError, RuntimeError):
+        inside = False
+    if not inside:
+        raise LinkageError(f"{folder} would not be inside {base}/; give --out ({_NOTHING})")
+    return folder
+
+
+def read_marker(folder: Path) -> dict[str, Any] | None:
+    """Read the marker of a report folder written by linkage, or ``None`` if it has none.
+
+    A marker that does not parse as a linkage marker counts as none: such a folder is treated as the
+    user's.
+    """
+    path = folder / MARKER
+    try:
+        if not path.is_file() or path.is_symlink():
+            return None
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, ValueError):
+        return None
+    if not isinstance(data, dict) or data.get("tool") != "linkage":
+        return None
+    files = data.get("files")
+    if not isinstance(files, list) or not all(_plain_name(f) for f in files):
+        return None
+    return data
+
+
+def _plain_name(f: object) -> bool:
+    return (
+        isinstance(f, str) and f not in ("", ".", "..", MARKER) and "/" not in f and "\\" not in f
+    )
+
+
+def _describe(folder: Path, target: Path) -> str:
+    return str(folder) if Path(os.path.abspath(folder)) == target else f"{folder} (= {target})"
+
+
+def _resolve(folder: Path) -> Path:
+    """Return the real path the report would occupy, refusing every target not a folder of its own.
+
+    Refused: a link, the root, home, the working directory or an ancestor of those.
+    """
+    if folder.is_symlink():
+        try:
+            to = os.readlink(folder)
+        except OSError:
+            to = "?"
+        dangling = "dangling " if not folder.exists() else ""
+        raise LinkageError(
+            f"{folder} is a {dangling}symbolic link (to {to}); give a real folder ({_NOTHING})"
+        )
+    try:
+        target = folder.resolve()
+    except (OSError, RuntimeError) as exc:
+        raise LinkageError(f"{folder}: cannot resolve the path: {exc} ({_NOTHING})") from None
+    where = _describe(folder, target)
+    if target.parent == target:
+        raise LinkageError(f"{where} is the root of the file system; refused ({_NOTHING})")
+    protected: list[tuple[Path, str]] = []
+    with contextlib.suppress(OSError, RuntimeError):
+        protected.append((Path.cwd().resolve(), "the working directory"))
+    with contextlib.suppress(OSError, RuntimeError, KeyError):
+        protected.append((Path.home().resolve(), "the home folder"))
+    for base, what in protected:
+        if target == base:
+            raise LinkageError(
+                f"{where} is {what}; a report needs a folder of its own ({_NOTHING})"
+            )
+        if target in base.parents:
+            raise LinkageError(
+                f"{where} holds {what}; a report needs a folder of its own ({_NOTHING})"
+            )
+    if os.path.lexists(target) and not target.is_dir():
+        raise LinkageError(f"{where} exists and is not a folder ({_NOTHING})")
+    return target
+
+
+def _check_existing(folder: Path, target: Path, force: bool) -> dict[str, Any] | None:
+    """For an existing ``target``: its marker if ``force`` may replace it; otherwise refuse."""
+    where = _describe(folder, target)
+    marker = read_marker(target)
+    if marker is None:
+        raise LinkageError(
+            f"{where} exists and is not a report written by linkage (no readable {MARKER} "
+            f"marker); --force replaces only folders linkage wrote: choose another --out or "
+            f"remove it yourself ({_NOTHING})"
+        )
+    if not force:
+        raise LinkageError(
+            f"{where} holds an earlier report; pass --force to replace it ({_NOTHING})"
+        )
+    listed = set(marker["files"])
+    try:
+        entries = sorted(os.listdir(target))
+    except OSError as exc:
+        raise LinkageError(
+            f"{where}: cannot list the folder: {exc.strerror} ({_NOTHING})"
+        ) from None
+    foreign = [
+        e
+        for e in entries
+        if e != MARKER
+        and (e not in listed or not (target / e).is_file() or (target / e).is_symlink())
+    ]
+    if foreign:
+        shown = ", ".join(foreign[:5]) + (
+            f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
+        )
+        raise LinkageError(
+            f"{where} holds files linkage did not write ({shown}); --force replaces only a "
+            f"folder holding nothing but a linkage report: move them or choose another --out "
+            f"({_NOTHING})"
+        )
+    return marker
+
+
+def prepare(folder: Path, force: bool) -> None:
+    """Check, before anything is computed, that the report can be written to ``folder`` safely.
+
+    Raise ``LinkageError`` naming the folder and the reason when it would lose anything. Nothing is
+    created or removed here (``write`` repeats the check just before it moves anything).
+    """
+    target = _resolve(folder)
+    if os.path.lexists(target):
+        _check_existing(folder, target, force)
+
+
+@contextlib.contextmanager
+def _sigint_held() -> Iterator[None]:
+    """Hold Ctrl-C off a few renames or a clean-up so they cannot be cut in half.
+
+    Main thread only; elsewhere signals are not delivered to Python anyway.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    try:
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except (ValueError, OSError):
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _make_sibling(parent: Path, name: str, kind: str) -> Path:
+    """Create a new, empty hidden sibling folder ``.<name>.<kind>-<pid>[-k]`` in ``parent``."""
+    stem = f".{name}.{kind}-{os.getpid()}"
+    for k in range(1000):
+        path = parent / (stem if k == 0 else f"{stem}-{k}")
+        try:
+            path.mkdir()
+        except FileExistsError:
+            continue
+        return path
+    raise FileExistsError(errno.EEXIST, "no free temporary folder name", str(parent / stem))
+
+
+def _discard_partial(tmp: Path) -> None:
+    """Remove a temporary folder this run created (everything in it is this run's)."""
+    if tmp.is_dir() and not tmp.is_symlink() and ".partial-" in tmp.name:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _remove_report(folder: Path, marker: dict[str, Any]) -> bool:
+    """Remove a report folder linkage wrote; return whether the folder is gone.
+
+    Only the files its marker lists are removed, then the marker, then the folder if it is empty.
+    """
+    for name in marker["files"]:
+        path = folder / name
+        if path.is_file() and not path.is_symlink():
+            with contextlib.suppress(OSError):
+                path.unlink()
+    with contextlib.suppress(OSError):
+        (folder / MARKER).unlink()
+    try:
+        folder.rmdir()
+    except OSError:
+        return False
+    return True
+
+
+def _os_message(exc: OSError, tmp: Path, folder: Path) -> str:
+    reason = exc.strerror or str(exc)
+    name = exc.filename
+    if name is None:
+        return reason
+    shown = str(name)
+    if shown.startswith(str(tmp)):
+        shown = str(folder) + shown[len(str(tmp)) :]
+    return f"{shown}: {reason}"
+
+
+def write_folder(
+    folder: Path, name: str, fill: Callable[[Path], Sequence[str]], force: bool = False
+) -> list[Path]:
+    """Write a folder of results safely; return the files written (in ``folder``).
+
+    ``fill(tmp)`` writes the files into a temporary sibling of ``folder`` and returns their names;
+    the marker (naming them and ``name``) is written last and the folder renamed into place. An
+    existing ``folder`` is replaced only with ``force`` and only if linkage wrote it. On any failure
+    — an exception, ``KeyboardInterrupt``, a full disk — the temporary folder is removed and an
+    earlier folder is left as it was; an ``OSError`` becomes a ``LinkageError`` naming the path.
+    """
+    target = _resolve(folder)
+    earlier = os.path.lexists(target)
+    if earlier:
+        _check_existing(folder, target, force)
+    parent = target.parent
+    created: list[Path] = []
+    tmp: Path | None = None
+    try:
+        missing = [p for p in (parent, *parent.parents) if not p.exists()]
+        # Held off Ctrl-C so that every folder made here is known to the clean-up below.
+        with _sigint_held():
+            for p in reversed(missing):
+                p.mkdir()
+                created.append(p)
+            tmp = _make_sibling(parent, target.name, "partial")
+        names = list(fill(tmp))
+        marker = {
+            "tool": "linkage",
+            "version": _version(),
+            "scene": name,
+            "written": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+            "files": sorted(names),
+        }
+        (tmp / MARKER).write_text(json.dumps(marker, indent=2) + "\n", encoding="utf-8")
+        with _sigint_held():
+            _commit(folder, target, tmp, force)
+    except BaseException as exc:
+        with _sigint_held():
+            if tmp is not None:
+                _discard_partial(tmp)
+            for p in reversed(created):
+                with contextlib.suppress(OSError):
+                    p.rmdir()
+        if isinstance(exc, OSError):
+            kept = "; the earlier report is unchanged" if earlier else ""
+            raise LinkageError(
+                f"{folder}: cannot write the report: {_os_message(exc, tmp or target, folder)} "
+                f"({_NOTHING}{kept})"
+            ) from None
+        raise
+    return [target / n for n in names]
+
+
+def _commit(folder: Path, target: Path, tmp: Path, force: bool) -> None:
+    """Move the finished ``tmp`` into place at ``target``, replacing a report linkage wrote."""
+    if not os.path.lexists(target):
+        os.rename(tmp, target)
+        return
+    # Check again: the folder may have changed while the report was computed.
+    old = _check_existing(folder, target, force)
+    assert old is not None
+    aside = _make_sibling(target.parent, target.name, "old")
+    aside.rmdir()
+    os.rename(target, aside)
+    try:
+        os.rename(tmp, target)
+    except BaseException:
+        os.rename(aside, target)
+        raise
+    if not _remove_report(aside, old):
+        sys.stderr.write(
+            f"linkage: warning: the replaced report was kept in {aside}: it held files linkage "
+            f"did not write\n"
+        )
+
+
+def _version() -> str:
+    return str(__version__)
