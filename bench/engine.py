@@ -23,6 +23,12 @@ two builds (e.g. ``/work/main/.venv/bin/python bench/engine.py``).
 
 from __future__ import annotations
 
+import os
+
+# One thread for numpy's BLAS: process CPU time counts every thread, and idle BLAS threads
+# spinning after a call would be charged to whichever side ran next.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 import argparse
 import statistics
 import sys
@@ -193,15 +199,18 @@ def main() -> None:
     print(f"CPU-time medians of {repeat} interleaved runs; ratio = numpy / ours")
 
     # 1. Coupler point only.
-    s = fb.sweep(theta)
+    point = ("point",)
+    s = fb.sweep(theta, outputs=point)
     _, _, _, _, px, py = fourbar_pos(theta)
     diff = rel(s.point, np.stack([px, py], -1))
-    t = cpu_medians([lambda: fb.sweep(theta).point, lambda: fourbar_pos(theta)], repeat)
+    t = cpu_medians(
+        [lambda: fb.sweep(theta, outputs=point).point, lambda: fourbar_pos(theta)], repeat
+    )
     row(f"coupler point, {n} angles", t[0], t[1], 8, diff, n)
 
     # 1b. The same on evenly spaced angles in order (the tracker's best case, for reference).
     lin = np.linspace(0.0, 2 * np.pi, n)
-    t = cpu_medians([lambda: fb.sweep(lin).point, lambda: fourbar_pos(lin)], repeat)
+    t = cpu_medians([lambda: fb.sweep(lin, outputs=point).point, lambda: fourbar_pos(lin)], repeat)
     row("  (same, linspace angles in order)", t[0], t[1], 8, 0.0, n)
 
     # 2. Point, velocity, acceleration.

@@ -83,6 +83,8 @@ class Mechanism:
         acceleration: bool = False,
         instant_centres: bool = False,
         curvature: bool = False,
+        column: int | None = None,
+        flags: bool = True,
     ) -> dict[str, Any]: ...
 
 @final

@@ -267,17 +267,27 @@ class Mechanism:
         n = th.shape[0]
         w = as_rate(omega, "omega", n)
         a = as_rate(alpha, "alpha", n)
-        raw = self._core.sweep(
-            th,
-            w,
-            a,
+        trace = self._index(self.trace, "trace")
+        asked = dict(
             velocity="velocity" in out,
             acceleration="acceleration" in out,
             instant_centres="instant_centres" in out,
             curvature="curvature" in out,
         )
-        trace = self._index(self.trace, "trace")
-        s = Sweep(th, raw, self.joint_names, trace, out, scalar, links=self.links)
+        core = self._core
+        # Without "joints" the per-joint outputs hold the trace point only, and the margin,
+        # gap and regular flags are left out: every joint and the flags are computed on first
+        # use (Sweep.joints, .margin, ...), with the same positions bit for bit.
+        full = "joints" in out
+        raw = core.sweep(th, w, a, **asked, column=None if full else trace, flags=full)
+
+        def complete() -> dict[str, Any]:
+            more: dict[str, Any] = core.sweep(th, w, a, **asked, column=None, flags=True)
+            return more
+
+        s = Sweep(
+            th, raw, self.joint_names, trace, out, scalar, links=self.links, complete=complete
+        )
         s.time = times
         return s
 

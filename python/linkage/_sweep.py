@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -76,6 +77,7 @@ class Sweep:
         outputs: tuple[str, ...],
         scalar: bool = False,
         links: tuple[str, ...] = (),
+        complete: Callable[[], dict[str, Any]] | None = None,
     ) -> None:
         self.joint_names = joint_names
         self.time: NDArray[np.float64] | None = None
@@ -87,33 +89,62 @@ class Sweep:
         self.trace = joint_names[trace]
         self.outputs = outputs
         self._trace = trace
+        self._scalar = scalar
+        self._raw = raw
+        # Per-joint arrays hold every joint, or (a sweep asked for the point only) the trace
+        # point alone; `complete` recomputes every joint and the flags on first use.
+        self._full = raw["joints"].shape[-2] == len(joint_names)
+        self._complete = complete
+        self.theta: NDArray[np.float64] = self._pick(theta)
+        self.valid: NDArray[np.bool_] = self._pick(raw["valid"])
 
-        def pick(a: Any) -> Any:
-            return a[0] if scalar else a
+    def _pick(self, a: Any) -> Any:
+        return a[0] if self._scalar else a
 
-        self.theta: NDArray[np.float64] = pick(theta)
-        self.joints: NDArray[np.float64] = pick(raw["joints"])
-        self.valid: NDArray[np.bool_] = pick(raw["valid"])
-        self.margin: NDArray[np.float64] = pick(raw["margin"])
-        self.gap: NDArray[np.float64] = pick(raw["gap"])
-        if "regular" in raw:
-            self.regular: NDArray[np.bool_] = pick(raw["regular"])
-        else:
-            with np.errstate(invalid="ignore"):
-                self.regular = self.valid & (np.asarray(self.margin) >= RATE_MARGIN)
-        self._rates = {
-            k: pick(raw[k]) for k in ("velocity", "acceleration") if k in raw and k in outputs
-        }
-        self._extra = {
-            k: pick(raw[k])
-            for k in (
-                "instant_centres",
-                "instant_centre_directions",
-                "curvature_centres",
-                "curvature",
+    def _column(self) -> int:
+        return self._trace if self._full else 0
+
+    def _get_raw(self, key: str, full: bool) -> Any:
+        """``raw[key]``, after computing every joint and the flags when ``full`` is asked of a
+        point-only sweep or the key is missing (the same positions, bit for bit)."""
+        if (full and not self._full) or key not in self._raw:
+            if self._complete is None:
+                raise AttributeError(f"{key} was not computed")
+            self._raw.update(self._complete())
+            self._full = True
+            self._complete = None
+        return self._pick(self._raw[key])
+
+    @property
+    def joints(self) -> NDArray[np.float64]:
+        """Every joint, shape (N, J, 2), in ``joint_names`` order (computed on first use when
+        the sweep asked for the point only)."""
+        arr: NDArray[np.float64] = self._get_raw("joints", True)
+        return arr
+
+    @property
+    def margin(self) -> NDArray[np.float64]:
+        """Smallest dyad assembly margin per sample, shape (N,); NaN where invalid."""
+        arr: NDArray[np.float64] = self._get_raw("margin", False)
+        return arr
+
+    @property
+    def gap(self) -> NDArray[np.float64]:
+        """0 where valid; how much the lengths miss closure where not, shape (N,)."""
+        arr: NDArray[np.float64] = self._get_raw("gap", False)
+        return arr
+
+    @property
+    def regular(self) -> NDArray[np.bool_]:
+        """Valid and clear of the rate margin, shape (N,) (see the class)."""
+        if "regular" in self._raw or self._complete is not None:
+            arr: NDArray[np.bool_] = self._get_raw("regular", False)
+            return arr
+        with np.errstate(invalid="ignore"):
+            flags: NDArray[np.bool_] = np.asarray(self.valid) & (
+                np.asarray(self.margin) >= RATE_MARGIN
             )
-            if k in raw
-        }
+        return flags
 
     def __len__(self) -> int:
         return int(np.size(self.valid))
@@ -148,20 +179,21 @@ class Sweep:
     @property
     def point(self) -> NDArray[np.float64]:
         """The trace point, shape (N, 2)."""
-        return self.joints[..., self._trace, :]
+        arr: NDArray[np.float64] = self._pick(self._raw["joints"])[..., self._column(), :]
+        return arr
 
-    def _rate(self, kind: str) -> NDArray[np.float64]:
-        if kind not in self._rates:
+    def _rate(self, kind: str, full: bool = False) -> NDArray[np.float64]:
+        if kind not in self.outputs or kind not in self._raw:
             raise AttributeError(
                 f"{kind} was not computed: pass outputs=(..., {kind!r}) and omega to sweep()"
             )
-        arr: NDArray[np.float64] = self._rates[kind]
+        arr: NDArray[np.float64] = self._get_raw(kind, full)
         return arr
 
-    def _get(self, key: str, output: str) -> NDArray[Any]:
-        if key not in self._extra:
+    def _get(self, key: str, output: str, full: bool = False) -> NDArray[Any]:
+        if key not in self._raw:
             raise AttributeError(f"{output} was not computed: pass outputs=(..., {output!r})")
-        arr: NDArray[Any] = self._extra[key]
+        arr: NDArray[Any] = self._get_raw(key, full)
         return arr
 
     @property
@@ -199,17 +231,18 @@ class Sweep:
     @property
     def joint_curvatures(self) -> NDArray[np.float64]:
         """Signed path curvature of every joint, shape (N, J)."""
-        return self._get("curvature", "curvature")
+        return self._get("curvature", "curvature", full=True)
 
     @property
     def joint_curvature_centres(self) -> NDArray[np.float64]:
         """Centres of curvature of every joint's path, shape (N, J, 2)."""
-        return self._get("curvature_centres", "curvature")
+        return self._get("curvature_centres", "curvature", full=True)
 
     @property
     def curvature(self) -> NDArray[np.float64]:
         """Signed curvature of the trace point's path, shape (N,)."""
-        return self.joint_curvatures[..., self._trace]
+        arr: NDArray[np.float64] = self._get("curvature", "curvature")[..., self._column()]
+        return arr
 
     @property
     def curvature_radius(self) -> NDArray[np.float64]:
@@ -222,24 +255,26 @@ class Sweep:
     @property
     def curvature_centre(self) -> NDArray[np.float64]:
         """Centre of curvature of the trace point's path, shape (N, 2)."""
-        return self.joint_curvature_centres[..., self._trace, :]
+        arr = self._get("curvature_centres", "curvature")
+        out: NDArray[np.float64] = arr[..., self._column(), :]
+        return out
 
     @property
     def velocity(self) -> NDArray[np.float64]:
         """Velocity of the trace point, shape (N, 2)."""
-        return self._rate("velocity")[..., self._trace, :]
+        return self._rate("velocity")[..., self._column(), :]
 
     @property
     def acceleration(self) -> NDArray[np.float64]:
         """Acceleration of the trace point, shape (N, 2)."""
-        return self._rate("acceleration")[..., self._trace, :]
+        return self._rate("acceleration")[..., self._column(), :]
 
     @property
     def joint_velocities(self) -> NDArray[np.float64]:
         """Velocities of every joint, shape (N, J, 2)."""
-        return self._rate("velocity")
+        return self._rate("velocity", full=True)
 
     @property
     def joint_accelerations(self) -> NDArray[np.float64]:
         """Accelerations of every joint, shape (N, J, 2)."""
-        return self._rate("acceleration")
+        return self._rate("acceleration", full=True)

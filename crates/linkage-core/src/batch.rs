@@ -29,12 +29,16 @@
 //!
 //! Next to a toggle the kernel's Kahan factor `f₂` (the triangle inequality's slack, formed
 //! from a `d` rounded to `ε·d`) keeps only the digits its size allows, and `h ∝ √f₂` loses half
-//! of them; [`FourBar::pose`] forms that factor without cancellation. A sample whose factor is
-//! below `2⁻¹²` of the longest side (`|f₂| < 2⁻¹²·max(d, r₁, r₂)`) is therefore solved again by
-//! [`FourBar::pose`]: elsewhere the kernel's height error `≈ ε·L^{3/2}/(2√f₂)` is at most
-//! about `4·10⁻¹⁵` of the size `L`, and the valid/invalid decision (a closure miss within `8ε`
-//! of the lengths is a toggle, beyond it a failure) is made by the same code as the tracker's
-//! wherever it could go either way.
+//! of them; where the base `d` itself is short (a crank pin passing near the rocker pivot), its
+//! direction `(C − A)/d` carries a relative error `ε·L/d`. [`FourBar::pose`] forms both without
+//! cancellation, and takes that form exactly where the slack is below a sixteenth of the
+//! longest side (`f₂ < max(d, r₁, r₂)/16`; `f₂` is also at most `d` there, so a short base is
+//! one case of it). The kernel uses the same rule: such samples are solved again by
+//! [`FourBar::pose`], and elsewhere both compute the same formula, so they agree to rounding
+//! (the kernel's errors are then at most about `16ε` of the size times the coupler point's
+//! lever), and the valid/invalid decision (a closure miss within `8ε` of the lengths is a
+//! toggle, beyond it a failure) is made by the same code as the tracker's wherever it could go
+//! either way.
 
 use nalgebra::RealField;
 
@@ -54,8 +58,9 @@ const BLOCK: usize = 512;
 const SIZE_LO: f64 = 1.0 / 65_536.0;
 const SIZE_HI: f64 = 65_536.0;
 
-/// Relative closure slack below which a sample is solved by [`FourBar::pose`] (see the module).
-const NEAR_TOGGLE: f64 = 1.0 / 4096.0;
+/// Relative closure slack below which a sample is solved by [`FourBar::pose`] (see the module):
+/// the slack below which the mechanism forms the dyad's base without cancellation.
+const NEAR_TOGGLE: f64 = crate::dyad::EXACT_BASE_SLACK;
 
 /// Angle margin (radians) kept between the swept angles and a flat position for the fast path:
 /// far above the rounding of the angles that locate it.
@@ -316,9 +321,7 @@ impl<'a, T: RealField + Copy> FourBarBatch<'a, T> {
         while start < n {
             let stop = (start + BLOCK).min(n);
             let len = stop - start;
-            for (j, &t) in theta[start..stop].iter().enumerate() {
-                (sin[j], cos[j]) = t.sin_cos();
-            }
+            crate::trig::sin_cos_block(&theta[start..stop], &mut sin[..len], &mut cos[..len]);
             for i in 0..m {
                 if !go_on() {
                     work.stopped = true;

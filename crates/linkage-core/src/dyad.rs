@@ -120,6 +120,11 @@ pub(crate) fn pow2_scale<T: RealField + Copy>(x: T) -> T {
     s
 }
 
+/// Relative triangle slack (`f₂` over the longest side) below which a dyad asks its caller for a
+/// cancellation-free base ([`Dyad::solve_with_base`]); vectorised kernels that have no such
+/// base solve those samples again exactly, so both agree to rounding everywhere.
+pub(crate) const EXACT_BASE_SLACK: f64 = 0.0625;
+
 /// A solved dyad: both mirror-image candidates are `foot ± offset`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DyadPose<T: RealField + Copy> {
@@ -212,7 +217,7 @@ impl<T: RealField + Copy> Dyad<T> {
         let longest = d.max(r1).max(r2);
         let plain = (d + r1.min(r2)).min(r1 + r2) - longest;
         let mut flat = None;
-        if plain < longest * lit::<T>(0.0625) {
+        if plain < longest * lit::<T>(EXACT_BASE_SLACK) {
             if let Some((v, f2)) = base() {
                 (dv, d) = (v, length(v));
                 flat = Some(f2);
@@ -242,14 +247,17 @@ impl<T: RealField + Copy> Dyad<T> {
             None => triangle_area(ds, r1s, r2s, tols),
         }
         .map_err(|g| DyadFailure::Gap(g * s))?;
+        // Products by reciprocals rather than divisions (the block kernel's formulas, see
+        // `held.rs`: the same bits either way).
         let inv_d = T::one() / d;
+        let inv_ds = if s == T::one() { inv_d } else { T::one() / ds };
         let u = dv * inv_d;
         let x = (d + (r1 - r2) * ((r1 + r2) * inv_d)) * lit::<T>(0.5);
-        let h = lit::<T>(2.0) * (area / ds) * s;
+        let h = lit::<T>(2.0) * (area * inv_ds) * s;
         Ok(DyadPose {
             foot: p1 + u * x,
             offset: perp(u) * h,
-            margin: lit::<T>(2.0) * area / (r1s * r2s),
+            margin: area * (lit::<T>(2.0) / (r1s * r2s)),
         })
     }
 

@@ -68,6 +68,7 @@ mod fourbar;
 mod freudenstein;
 mod gait;
 mod gear_train;
+mod held;
 mod inflection;
 #[cfg(feature = "alloc")]
 mod kinetostatics;
@@ -83,6 +84,7 @@ mod straightness;
 mod support;
 mod sweep;
 mod tracker;
+mod trig;
 mod uniform_sweep;
 
 // Path synthesis (feature `synthesis`, needs `std` for its threads).
@@ -145,8 +147,9 @@ pub use slider::{Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
 pub use support::{convex_hull, stability_margin, support_margins};
 pub use sweep::{
-    sweep, sweep_pairs, sweep_planned, Plan, Rate, SweepOutputs, Swept, SWEEP_CHUNK,
+    sweep, sweep_pairs, sweep_planned, Columns, Plan, Rate, SweepOutputs, Swept, SWEEP_CHUNK,
     SWEEP_WORK_CHUNK,
 };
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
+pub use trig::{sin_cos_f64, sin_cos_f64_slice};
 pub use uniform_sweep::{AngleMode, MAX_TABLE};

@@ -585,6 +585,25 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         Ok((margin, least))
     }
 
+    /// The length of the link `from → to` when the mechanism fixes it (a crank, or one side of
+    /// a dyad): a point carried by that link divides by it instead of the computed distance,
+    /// which it equals to rounding (one square root and one division fewer a sample).
+    pub(crate) fn link_length(&self, from: usize, to: usize) -> Option<T> {
+        let side = |j: usize, other: usize| match self.steps[j] {
+            Construction::Crank { centre, radius, .. } if centre == other => Some(radius),
+            Construction::Dyad { p1, dyad, .. } if p1 == other => Some(dyad.r1),
+            Construction::Dyad { p2, dyad, .. } if p2 == other => Some(dyad.r2),
+            _ => None,
+        };
+        side(to, from).or_else(|| side(from, to))
+    }
+
+    /// Whether the dyad on `p1`, `p2` forms its base from the crank angle near flat positions
+    /// (see [`Mechanism::crank_base`]).
+    pub(crate) fn has_crank_base(&self, p1: usize, p2: usize) -> bool {
+        self.crank_and_fixed(p1, p2).is_some()
+    }
+
     /// The crank joint and the fixed joint of a dyad on `p1`, `p2`, when it is built on a crank
     /// pin (turning about a fixed joint) and another fixed joint.
     fn crank_and_fixed(&self, p1: usize, p2: usize) -> Option<(usize, usize)> {
@@ -654,7 +673,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                 radius,
                 phase,
             } => {
-                let (s, c) = (theta + phase).sin_cos();
+                let (s, c) = crate::trig::sin_cos(theta + phase);
                 Ok(Candidates::One(pos[centre] + Vec2::new(c, s) * radius))
             }
             Construction::Dyad { p1, p2, dyad, .. } => {
@@ -697,7 +716,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                 if n == T::zero() {
                     return Err(Error::Coincident { joint: i });
                 }
-                let e = d / n;
+                let e = d * (T::one() / self.link_length(from, to).unwrap_or(n));
                 Ok(Candidates::One(pos[from] + e * along + perp(e) * left))
             }
         }

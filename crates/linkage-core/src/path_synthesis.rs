@@ -29,6 +29,10 @@ use crate::tracker::{Rates, Tracker};
 /// Local minima of the polyline distance refined by [`CircuitPath::foot`].
 pub const FOOT_STARTS: usize = 4;
 
+/// Quarter steps of the polyline [`CircuitPath::foot`] scans about each local minimum (five
+/// steps) before its golden-section search.
+const FOOT_SCAN: usize = 20;
+
 /// Numbers of a placed four-bar: `[ox, oy, cx, cy, crank, coupler, rocker, along, left]`.
 pub const PLACED_PARAMS: usize = 9;
 
@@ -291,10 +295,11 @@ impl<T: RealField + Copy> CircuitPath<T> {
 
     /// True distance from `target` to the circuit's curve and the circuit parameter of the
     /// nearest point: the vertices of `poly` (from [`CircuitPath::polyline`]) nearest `target`
-    /// by vertex or segment distance are found among the local minima along the polyline, and
-    /// a golden-section search of `|P(s) − target|` runs about each of the best
-    /// [`FOOT_STARTS`] (where the curve crosses itself or passes close by itself the nearest
-    /// vertex may lie on the wrong pass). `None` when `poly` has no finite point.
+    /// by vertex or segment distance are found among the local minima along the polyline; about
+    /// each of the best [`FOOT_STARTS`] the curve is sampled at a quarter of the polyline's step
+    /// over five steps and a golden-section search of `|P(s) − target|` runs within a quarter
+    /// step of the best sample (where the curve crosses itself or passes close by itself the
+    /// nearest vertex may lie on the wrong pass, and two passes may lie within one step). `None` when `poly` has no finite point.
     pub fn foot(&self, target: Vec2<T>, poly: &[Vec2<T>]) -> Option<(T, T)> {
         let m = poly.len();
         let finite = |p: &Vec2<T>| p.x.is_finite() && p.y.is_finite();
@@ -335,9 +340,30 @@ impl<T: RealField + Copy> CircuitPath<T> {
                     best = (dv, centre);
                 }
             }
-            let (dg, sg) = self.golden(target, centre - step, centre + step + step);
-            if dg < best.0 {
-                best = (dg, sg);
+            // The curve between the polyline's vertices may pass the target twice within a
+            // step (a loop or a near cusp): sample [−2, +3] steps at a quarter step and run a
+            // golden-section search within a quarter step of every local minimum of the samples
+            // (a sharp pass through the target can sample worse than a broad near miss).
+            let (a, h) = (centre - step - step, step / lit::<T>(4.0));
+            let mut dk = [big; FOOT_SCAN + 1];
+            for (k, d) in dk.iter_mut().enumerate() {
+                if let Some(p) = self.point(a + h * lit::<T>(k as f64)) {
+                    *d = (p - target).norm();
+                }
+            }
+            for k in 0..=FOOT_SCAN {
+                let prev = if k == 0 { big } else { dk[k - 1] };
+                let next = if k == FOOT_SCAN { big } else { dk[k + 1] };
+                if dk[k] >= big || dk[k] > prev || dk[k] > next {
+                    continue;
+                }
+                let mid = a + h * lit::<T>(k as f64);
+                let (dg, sg) = self.golden(target, mid - h, mid + h);
+                for (dc, sc) in [(dk[k], mid), (dg, sg)] {
+                    if dc < best.0 {
+                        best = (dc, sc);
+                    }
+                }
             }
         }
         Some(best)

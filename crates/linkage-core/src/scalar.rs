@@ -41,6 +41,20 @@ pub(crate) fn nan<T: RealField + Copy>() -> T {
     T::zero() / T::zero()
 }
 
+/// The least sum of squares [`length`] takes as it is: far above the subnormal range, 1e-270
+/// (about 2⁻⁸⁹⁷) for f64; that literal is zero in f32, whose squares turn subnormal below
+/// |v| ≈ 1e-19, so there the bound is ε⁵ ≈ 2.4e-35 (f32's smallest normal is 1.2e-38).
+#[inline]
+pub(crate) fn tiny_square<T: RealField + Copy>() -> T {
+    let tiny = T::from_subset(&1e-270_f64);
+    if tiny > T::zero() {
+        tiny
+    } else {
+        let e = T::default_epsilon();
+        e * e * e * e * e
+    }
+}
+
 /// Euclidean length without overflow or underflow of the squares: `√(x² + y²)` when the sum
 /// of squares is a normal number, else the same formula on the vector divided by a power of two
 /// near its size, times that power ([`crate::dyad::pow2_scale`]: exact, so a linkage scaled by
@@ -48,17 +62,7 @@ pub(crate) fn nan<T: RealField + Copy>() -> T {
 #[inline]
 pub(crate) fn length<T: RealField + Copy>(v: Vec2<T>) -> T {
     let n2 = v.x * v.x + v.y * v.y;
-    // The fast path only where the sum of squares is far above the subnormal range: above
-    // 1e-270 (about 2⁻⁸⁹⁷) for f64; that literal is zero in f32, whose squares turn subnormal
-    // below |v| ≈ 1e-19, so there the bound is ε⁵ ≈ 2.4e-35 (f32's smallest normal is 1.2e-38).
-    let tiny = T::from_subset(&1e-270_f64);
-    let tiny = if tiny > T::zero() {
-        tiny
-    } else {
-        let e = T::default_epsilon();
-        e * e * e * e * e
-    };
-    if n2.is_finite() && n2 > tiny {
+    if n2.is_finite() && n2 > tiny_square::<T>() {
         n2.sqrt()
     } else if v.x.is_finite() && v.y.is_finite() && (v.x != T::zero() || v.y != T::zero()) {
         let s = crate::dyad::pow2_scale(v.x.abs().max(v.y.abs()));

@@ -13,6 +13,7 @@ use nalgebra::RealField;
 use crate::bodies::{Bodies, BodyId, GROUND};
 use crate::centres::{path_curvature, relative_centre, BodyMotion, Centre};
 use crate::error::Error;
+use crate::held::{BlockPoses, BLOCK};
 use crate::mechanism::{Mechanism, Motion};
 use crate::motion::rate_margin;
 use crate::scalar::{lit, nan, Vec2};
@@ -47,38 +48,82 @@ impl<T: Copy> Rate<'_, T> {
     }
 }
 
+/// Which joints a sweep's per-joint outputs (positions, rates, curvature) hold.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Columns {
+    /// Every joint: rows of `j` entries per sample.
+    #[default]
+    All,
+    /// One joint (the trace point): one entry per sample. Nothing of the others is written.
+    One(usize),
+}
+
+impl Columns {
+    /// Entries per sample for a mechanism of `j` joints.
+    pub fn width(self, j: usize) -> usize {
+        match self {
+            Columns::All => j,
+            Columns::One(_) => 1,
+        }
+    }
+}
+
 /// Where a sweep of `n` samples of a mechanism of `j` joints and `p` link pairs
-/// ([`sweep_pairs`]) writes its results, row-major by sample. The per-sample fields are
-/// always written; an output left `None` is not computed at all.
+/// ([`sweep_pairs`]) writes its results, row-major by sample, `w` entries per sample in the
+/// per-joint outputs (`w = columns.width(j)`). `joints` and `valid` are always written; an
+/// output left `None` is not computed at all.
 ///
 /// Every element of every slice given is written (the slices may hold anything before the
 /// call): NaN rows at samples that do not assemble, and NaN entries where a value does not
 /// exist (a centre at infinity in `centres`, a finite one in `centre_directions`).
 #[derive(Debug)]
 pub struct SweepOutputs<'a, T> {
-    /// `n·j` joint positions (NaN where the sample is invalid).
+    /// Which joints `joints`, `velocity`, `acceleration`, `curvature_centres` and `curvature`
+    /// hold.
+    pub columns: Columns,
+    /// `n·w` joint positions (NaN where the sample is invalid).
     pub joints: &'a mut [Vec2<T>],
     /// `n`: whether each sample assembled.
     pub valid: &'a mut [bool],
     /// `n`: the smallest dyad margin (NaN where invalid).
-    pub margin: &'a mut [T],
+    pub margin: Option<&'a mut [T]>,
     /// `n`: whether a valid sample is clear of the rate margin ([`crate::rate_margin`]), so
     /// its rates, centres and curvatures are numbers.
-    pub regular: &'a mut [bool],
+    pub regular: Option<&'a mut [bool]>,
     /// `n`: how much the lengths miss closure (0 where valid, NaN where undetermined).
-    pub gap: &'a mut [T],
-    /// `n·j` joint velocities for the drive (needs `omega`).
+    pub gap: Option<&'a mut [T]>,
+    /// `n·w` joint velocities for the drive (needs `omega`).
     pub velocity: Option<&'a mut [Vec2<T>]>,
-    /// `n·j` joint accelerations for the drive.
+    /// `n·w` joint accelerations for the drive.
     pub acceleration: Option<&'a mut [Vec2<T>]>,
     /// `n·p` finite instant centres of every pair of bodies (NaN otherwise).
     pub centres: Option<&'a mut [Vec2<T>]>,
     /// `n·p` directions of the instant centres at infinity (NaN otherwise).
     pub centre_directions: Option<&'a mut [Vec2<T>]>,
-    /// `n·j` finite centres of curvature of every joint's path (NaN otherwise).
+    /// `n·w` finite centres of curvature of the joints' paths (NaN otherwise).
     pub curvature_centres: Option<&'a mut [Vec2<T>]>,
-    /// `n·j` signed path curvatures of every joint.
+    /// `n·w` signed path curvatures of the joints.
     pub curvature: Option<&'a mut [T]>,
+}
+
+impl<'a, T> SweepOutputs<'a, T> {
+    /// Positions of every joint and the validity flags only (add outputs by setting fields).
+    pub fn positions(joints: &'a mut [Vec2<T>], valid: &'a mut [bool]) -> Self {
+        SweepOutputs {
+            columns: Columns::All,
+            joints,
+            valid,
+            margin: None,
+            regular: None,
+            gap: None,
+            velocity: None,
+            acceleration: None,
+            centres: None,
+            centre_directions: None,
+            curvature_centres: None,
+            curvature: None,
+        }
+    }
 }
 
 /// Number of body pairs `(k, l)`, `k < l` in [`Bodies::ids`] order, a sweep writes instant
@@ -150,15 +195,35 @@ struct Engine<'m, T: RealField + Copy, const N: usize> {
     /// Joints and body pairs.
     j: usize,
     np: usize,
+    columns: Columns,
     rates: bool,
+    wants_acc: bool,
     wants_centres: bool,
     wants_curvature: bool,
-    /// Velocities for accelerations asked without them.
-    own_vel: [Vec2<T>; N],
+    /// One sample's positions, velocities and accelerations of every joint.
+    pos: [Vec2<T>; N],
+    vel: [Vec2<T>; N],
+    acc: [Vec2<T>; N],
     /// Unit-drive rates of centres and curvature.
     uvel: [Vec2<T>; N],
     uacc: [Vec2<T>; N],
     motions: Motions<T, N>,
+}
+
+/// Writes `row` (every joint of one sample) into sample `k`'s entries of a per-joint output.
+#[inline]
+fn put<V: Copy>(buf: &mut [V], columns: Columns, k: usize, row: &[V]) {
+    match columns {
+        Columns::All => buf[k * row.len()..(k + 1) * row.len()].copy_from_slice(row),
+        Columns::One(t) => buf[k] = row[t],
+    }
+}
+
+/// Fills sample `k`'s entries of a per-joint output with `v`.
+#[inline]
+fn fill<V: Copy>(buf: &mut [V], columns: Columns, k: usize, j: usize, v: V) {
+    let w = columns.width(j);
+    buf[k * w..(k + 1) * w].fill(v);
 }
 
 impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
@@ -166,11 +231,17 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
     fn invalid(&self, out: &mut SweepOutputs<'_, T>, k: usize, gap: T) {
         let nan_t = nan::<T>();
         let nan2 = Vec2::new(nan_t, nan_t);
+        let (j, cols) = (self.j, self.columns);
         out.valid[k] = false;
-        out.margin[k] = nan_t;
-        out.regular[k] = false;
-        out.gap[k] = gap;
-        let row = k * self.j..(k + 1) * self.j;
+        if let Some(m) = out.margin.as_deref_mut() {
+            m[k] = nan_t;
+        }
+        if let Some(r) = out.regular.as_deref_mut() {
+            r[k] = false;
+        }
+        if let Some(g) = out.gap.as_deref_mut() {
+            g[k] = gap;
+        }
         for buf in [
             Some(&mut *out.joints),
             out.velocity.as_deref_mut(),
@@ -180,10 +251,10 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         .into_iter()
         .flatten()
         {
-            buf[row.clone()].fill(nan2);
+            fill(buf, cols, k, j, nan2);
         }
         if let Some(c) = out.curvature.as_deref_mut() {
-            c[row].fill(nan_t);
+            fill(c, cols, k, j, nan_t);
         }
         let pairs = k * self.np..(k + 1) * self.np;
         for buf in [
@@ -197,8 +268,9 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         }
     }
 
-    /// Writes what follows a valid sample `k` whose joints are in place: its flags, and the
-    /// instant centres and curvatures asked for (per unit crank angle).
+    /// Writes sample `k`, valid with its joints in `self.pos` (and its rates in `self.vel`,
+    /// `self.acc` when asked): positions, flags, rates, and the instant centres and curvatures
+    /// asked for (per unit crank angle).
     fn valid(
         &mut self,
         out: &mut SweepOutputs<'_, T>,
@@ -206,17 +278,30 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         margin: T,
         regular: bool,
     ) -> Result<(), Error> {
+        let (j, np, cols) = (self.j, self.np, self.columns);
+        put(out.joints, cols, k, &self.pos[..j]);
         out.valid[k] = true;
-        out.margin[k] = margin;
-        out.regular[k] = regular;
-        out.gap[k] = T::zero();
+        if let Some(m) = out.margin.as_deref_mut() {
+            m[k] = margin;
+        }
+        if let Some(r) = out.regular.as_deref_mut() {
+            r[k] = regular;
+        }
+        if let Some(g) = out.gap.as_deref_mut() {
+            g[k] = T::zero();
+        }
+        if let Some(v) = out.velocity.as_deref_mut() {
+            put(v, cols, k, &self.vel[..j]);
+        }
+        if let Some(a) = out.acceleration.as_deref_mut() {
+            put(a, cols, k, &self.acc[..j]);
+        }
         if !(self.wants_centres || self.wants_curvature) {
             return Ok(());
         }
-        let (j, np) = (self.j, self.np);
         let nan2 = Vec2::new(nan::<T>(), nan::<T>());
         let zero = [Vec2::zeros(); N];
-        let pos = &out.joints[k * j..(k + 1) * j];
+        let pos = &self.pos[..j];
         let unit_acc = self.wants_curvature.then_some(&mut self.uacc[..j]);
         self.mech
             .motion(pos, Motion::unit(), &mut self.uvel[..j], unit_acc, None)?;
@@ -256,17 +341,40 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
             }
         }
         if self.wants_curvature {
-            for i in 0..j {
+            let mut write = |i: usize, e: usize| {
                 let (kappa, centre) = path_curvature(pos[i], self.uvel[i], self.uacc[i]);
                 if let Some(c) = out.curvature.as_deref_mut() {
-                    c[k * j + i] = kappa;
+                    c[e] = kappa;
                 }
                 if let Some(c) = out.curvature_centres.as_deref_mut() {
-                    c[k * j + i] = centre.finite().unwrap_or(nan2);
+                    c[e] = centre.finite().unwrap_or(nan2);
                 }
+            };
+            match cols {
+                Columns::All => (0..j).for_each(|i| write(i, k * j + i)),
+                Columns::One(t) => write(t, k),
             }
         }
         Ok(())
+    }
+
+    /// Rates of the joints in `self.pos` for the drive `(w, a)` into `self.vel`, `self.acc`;
+    /// whether they are regular. `None` for a drive that is not finite.
+    fn rates_at(&mut self, w: T, a: T) -> Result<Option<bool>, Error> {
+        if !(w.is_finite() && a.is_finite()) {
+            return Ok(None);
+        }
+        let j = self.j;
+        let acc = self.wants_acc.then_some(&mut self.acc[..j]);
+        self.mech
+            .motion(
+                &self.pos[..j],
+                Motion::new(w, a),
+                &mut self.vel[..j],
+                acc,
+                None,
+            )
+            .map(Some)
     }
 
     /// The tracker, sample by sample.
@@ -291,15 +399,13 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
                 }
                 next_check = tracker.work().saturating_add(SWEEP_WORK_CHUNK);
             }
-            let row = k * j..(k + 1) * j;
             let motion = self.rates.then(|| Motion::new(omega.at(k), alpha.at(k)));
-            let buffers = match (out.velocity.as_deref_mut(), out.acceleration.as_deref_mut()) {
-                (Some(v), Some(a)) => Rates::acceleration(&mut v[row.clone()], &mut a[row.clone()]),
-                (None, Some(a)) => Rates::acceleration(&mut self.own_vel[..j], &mut a[row.clone()]),
-                (Some(v), None) => Rates::velocity(&mut v[row.clone()]),
-                (None, None) => Rates::none(),
+            let buffers = match (self.rates, self.wants_acc) {
+                (true, true) => Rates::acceleration(&mut self.vel[..j], &mut self.acc[..j]),
+                (true, false) => Rates::velocity(&mut self.vel[..j]),
+                _ => Rates::none(),
             };
-            match tracker.step(th, motion, &mut out.joints[row], buffers) {
+            match tracker.step(th, motion, &mut self.pos[..j], buffers) {
                 Ok(s) => self.valid(out, k, s.margin, s.regular)?,
                 Err(
                     e @ (Error::CannotAssemble { .. }
@@ -322,11 +428,71 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         })
     }
 
+    /// Writes a posed block's positions and flags straight from `blk` when every sample of it
+    /// is plain (finite angle, posed by the kernel, watched margins clear of `toggle_margin`):
+    /// what the sample-by-sample path writes, without its per-sample work. Returns whether it
+    /// wrote the block.
+    #[inline(always)]
+    fn block_positions(
+        &self,
+        blk: &BlockPoses<T, N>,
+        toggle_margin: T,
+        theta: &[T],
+        k0: usize,
+        out: &mut SweepOutputs<'_, T>,
+    ) -> bool {
+        let m = theta.len().min(BLOCK);
+        // A fold without early exit over the whole block: it vectorises.
+        let mut plain = true;
+        for (b, th) in theta[..m].iter().enumerate() {
+            plain &= th.is_finite()
+                & !blk.scalar[b]
+                & !blk.failed[b]
+                & (blk.watched[b] >= toggle_margin);
+        }
+        if !plain {
+            return false;
+        }
+        let j = self.j;
+        match self.columns {
+            Columns::One(t) => {
+                for (b, p) in out.joints[k0..k0 + m].iter_mut().enumerate() {
+                    *p = Vec2::new(blk.x[t][b], blk.y[t][b]);
+                }
+            }
+            Columns::All => {
+                for (b, row) in out.joints[k0 * j..(k0 + m) * j]
+                    .chunks_exact_mut(j)
+                    .enumerate()
+                {
+                    for (i, p) in row.iter_mut().enumerate() {
+                        *p = Vec2::new(blk.x[i][b], blk.y[i][b]);
+                    }
+                }
+            }
+        }
+        out.valid[k0..k0 + m].fill(true);
+        if let Some(g) = out.margin.as_deref_mut() {
+            g[k0..k0 + m].copy_from_slice(&blk.margin[..m]);
+        }
+        if let Some(r) = out.regular.as_deref_mut() {
+            let m_star = rate_margin::<T>();
+            for (r, &g) in r[k0..k0 + m].iter_mut().zip(&blk.margin[..m]) {
+                *r = g >= m_star;
+            }
+        }
+        if let Some(g) = out.gap.as_deref_mut() {
+            g[k0..k0 + m].fill(T::zero());
+        }
+        true
+    }
+
     /// The held pass: every sample posed on the declared orientations, no walk (valid only
-    /// after [`Tracker::holds_everywhere`]). Returns `None`, having written some rows, at the
-    /// first sample whose own `watched` margins are below the toggle margin or that does not
-    /// assemble:
-    /// the tracker must sweep then.
+    /// after [`Tracker::holds_everywhere`]), a block of samples at a time where the block
+    /// kernel applies ([`BlockPoses`]: the same bits as one pose). Returns `None`, having
+    /// written some rows, at the first sample whose own `watched` margins are below the toggle
+    /// margin or that does not assemble: the tracker must sweep then.
+    #[inline(always)]
     fn held(
         &mut self,
         toggle_margin: T,
@@ -338,47 +504,78 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
     ) -> Result<Option<Swept>, Error> {
         let j = self.j;
         let m_star = rate_margin::<T>();
-        for (k, &th) in theta.iter().enumerate() {
-            if k > 0 && k % SWEEP_CHUNK == 0 && !go_on() {
+        let blocks = BlockPoses::<T, N>::applies(self.mech);
+        let mut blk = BlockPoses::<T, N>::new();
+        blk.prepare(self.mech);
+        // Margins are needed for the watched dyads always, for the others only when written
+        // (margin, regular) or used (centres condition on them; rates by the sample path).
+        blk.margins = out.margin.is_some()
+            || out.regular.is_some()
+            || self.rates
+            || self.wants_centres
+            || self.wants_curvature;
+        let n = theta.len();
+        let mut k0 = 0;
+        while k0 < n {
+            // SWEEP_CHUNK is a multiple of BLOCK: blocks never straddle a check.
+            if k0 > 0 && k0 % SWEEP_CHUNK == 0 && !go_on() {
                 return Ok(Some(Swept {
-                    samples: k,
+                    samples: k0,
                     work: 0,
                     held: true,
                 }));
             }
-            // The tracker's order: the angle, the pose, then the drive.
-            if !th.is_finite() {
-                self.invalid(out, k, nan::<T>());
-                continue;
+            let k1 = (k0 + BLOCK).min(n);
+            if blocks {
+                blk.pose(self.mech, &theta[k0..k1], watched);
+                if !(self.rates || self.wants_centres || self.wants_curvature)
+                    && self.block_positions(&blk, toggle_margin, &theta[k0..k1], k0, out)
+                {
+                    k0 = k1;
+                    continue;
+                }
             }
-            let row = k * j..(k + 1) * j;
-            let margin = match self
-                .mech
-                .pose_watched(th, &mut out.joints[row.clone()], watched)
-            {
-                Ok((m, w)) if w >= toggle_margin => m,
-                _ => return Ok(None),
-            };
-            let regular = if self.rates {
-                let (w, a) = (omega.at(k), alpha.at(k));
-                if !(w.is_finite() && a.is_finite()) {
+            for (b, &th) in theta[k0..k1].iter().enumerate() {
+                let k = k0 + b;
+                // The tracker's order: the angle, the pose, then the drive.
+                if !th.is_finite() {
                     self.invalid(out, k, nan::<T>());
                     continue;
                 }
-                let pos = &out.joints[row.clone()];
-                let vel = match out.velocity.as_deref_mut() {
-                    Some(v) => &mut v[row.clone()],
-                    None => &mut self.own_vel[..j],
+                let (margin, least) = if blocks && !blk.scalar[b] {
+                    if blk.failed[b] {
+                        return Ok(None);
+                    }
+                    for (i, p) in self.pos[..j].iter_mut().enumerate() {
+                        *p = Vec2::new(blk.x[i][b], blk.y[i][b]);
+                    }
+                    (blk.margin[b], blk.watched[b])
+                } else {
+                    match self.mech.pose_watched(th, &mut self.pos[..j], watched) {
+                        Ok(m) => m,
+                        Err(_) => return Ok(None),
+                    }
                 };
-                let acc = out.acceleration.as_deref_mut().map(|a| &mut a[row.clone()]);
-                self.mech.motion(pos, Motion::new(w, a), vel, acc, None)?
-            } else {
-                margin >= m_star
-            };
-            self.valid(out, k, margin, regular)?;
+                if least < toggle_margin || !least.is_finite() {
+                    return Ok(None);
+                }
+                let regular = if self.rates {
+                    match self.rates_at(omega.at(k), alpha.at(k))? {
+                        Some(r) => r,
+                        None => {
+                            self.invalid(out, k, nan::<T>());
+                            continue;
+                        }
+                    }
+                } else {
+                    margin >= m_star
+                };
+                self.valid(out, k, margin, regular)?;
+            }
+            k0 = k1;
         }
         Ok(Some(Swept {
-            samples: theta.len(),
+            samples: n,
             work: 0,
             held: true,
         }))
@@ -398,32 +595,34 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
 /// whichever comes first; when it returns false the sweep stops there (see [`Swept`]).
 ///
 /// ```
-/// use linkage_core::{sweep, sweep_pairs, Assembly, FourBar, Rate, SweepOutputs, Vec2};
+/// use linkage_core::{sweep, Assembly, Columns, FourBar, Rate, SweepOutputs, Vec2};
 /// let fb = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
 /// let m = fb.mechanism();
 /// let theta = [0.0, 0.5, 1.0];
-/// let (n, j) = (theta.len(), m.len());
+/// let n = theta.len();
+/// // Every joint's position, and the crank pin A's velocity only (columns: joint 2).
 /// let mut joints = [Vec2::zeros(); 15];
-/// let mut vel = [Vec2::zeros(); 15];
-/// let (mut valid, mut regular) = ([false; 3], [false; 3]);
-/// let (mut margin, mut gap) = ([0.0; 3], [0.0; 3]);
-/// let out = SweepOutputs {
-///     joints: &mut joints, valid: &mut valid, margin: &mut margin,
-///     regular: &mut regular, gap: &mut gap, velocity: Some(&mut vel),
-///     acceleration: None, centres: None, centre_directions: None,
-///     curvature_centres: None, curvature: None,
-/// };
+/// let mut valid = [false; 3];
+/// let mut out = SweepOutputs::positions(&mut joints, &mut valid);
+/// sweep(&m, &theta, Rate::Scalar(0.0), Rate::Scalar(0.0), out, &mut || true).unwrap();
+/// assert!(valid.iter().all(|&v| v));
+/// let (mut a, mut va, mut ok) = ([Vec2::zeros(); 3], [Vec2::zeros(); 3], [false; 3]);
+/// let mut out = SweepOutputs::positions(&mut a, &mut ok);
+/// out.columns = Columns::One(FourBar::<f64>::A);
+/// out.velocity = Some(&mut va);
 /// let done = sweep(&m, &theta, Rate::Scalar(2.0), Rate::Scalar(0.0), out, &mut || true).unwrap();
 /// assert_eq!(done.samples, n);
-/// assert!(valid.iter().all(|&v| v));
-/// // The crank pin A (joint 2) turns at 2 rad/s on a radius of 10.
-/// assert!((vel[j + 2].norm() - 20.0).abs() < 1e-12);
-/// # let _ = sweep_pairs(&m);
+/// // The crank pin turns at 2 rad/s on a radius of 10: 20 a second, at the joint's row.
+/// assert!((va[1].norm() - 20.0).abs() < 1e-12 && a[1] == joints[5 + 2]);
 /// ```
 ///
 /// # Errors
 /// [`Error::NoDriver`] for a mechanism without a crank; [`Error::BufferLength`] for an output
-/// slice or per-sample rate of the wrong length. Nothing is written then.
+/// slice or per-sample rate of the wrong length, or [`Columns::One`] naming no joint. Nothing
+/// is written then.
+// Inlined into its caller, so a caller compiled for wider vectors (the binding's AVX builds)
+// gets the block kernel compiled for them too.
+#[inline(always)]
 pub fn sweep<T: RealField + Copy, const N: usize>(
     mech: &Mechanism<T, N>,
     theta: &[T],
@@ -444,12 +643,15 @@ pub fn sweep<T: RealField + Copy, const N: usize>(
 /// declared orientations with the margin of every dyad that may flip at least the toggle
 /// margin (one pose per grid point; a four-bar-like dyad on a crank pin and a fixed joint with
 /// no flat position never flips), the tracker provably keeps those orientations everywhere,
-/// and each sample whose own such margins clear the toggle margin is simply posed on them — one pose per sample,
-/// whatever the order of the samples, and the same bits as the tracker. A sample that does not
-/// clear it sends the whole sweep back to the tracker (its rows are rewritten).
+/// and each sample whose own such margins clear the toggle margin is simply posed on them — one
+/// pose per sample, whatever the order of the samples, and the same bits as the tracker. A
+/// sample that does not clear it sends the whole sweep back to the tracker (its rows are
+/// rewritten). Poses are computed a block of samples at a time by a vectorised kernel with the
+/// same formulas (see `held.rs`).
 ///
 /// # Errors
 /// As [`sweep`].
+#[inline(always)]
 pub fn sweep_planned<T: RealField + Copy, const N: usize>(
     mech: &Mechanism<T, N>,
     theta: &[T],
@@ -464,13 +666,22 @@ pub fn sweep_planned<T: RealField + Copy, const N: usize>(
     let bodies = Bodies::of(mech);
     let nb = bodies.count();
     let np = nb * nb.saturating_sub(1) / 2;
-    let rows = n.saturating_mul(j);
+    if let Columns::One(t) = out.columns {
+        if t >= j {
+            return Err(Error::BufferLength {
+                what: "joint of the one column (joints of the mechanism)",
+                expected: j,
+                got: t,
+            });
+        }
+    }
+    let rows = n.saturating_mul(out.columns.width(j));
     check_len("joints", rows, out.joints.len())?;
     check_len("valid", n, out.valid.len())?;
-    check_len("margin", n, out.margin.len())?;
-    check_len("regular", n, out.regular.len())?;
-    check_len("gap", n, out.gap.len())?;
     for (what, len, got) in [
+        ("margin", n, out.margin.as_ref().map(|v| v.len())),
+        ("regular", n, out.regular.as_ref().map(|v| v.len())),
+        ("gap", n, out.gap.as_ref().map(|v| v.len())),
         ("velocity", rows, out.velocity.as_ref().map(|v| v.len())),
         (
             "acceleration",
@@ -517,10 +728,14 @@ pub fn sweep_planned<T: RealField + Copy, const N: usize>(
         bodies,
         j,
         np,
+        columns: out.columns,
         rates: out.velocity.is_some() || out.acceleration.is_some(),
+        wants_acc: out.acceleration.is_some(),
         wants_centres: out.centres.is_some() || out.centre_directions.is_some(),
         wants_curvature: out.curvature.is_some() || out.curvature_centres.is_some(),
-        own_vel: zero,
+        pos: zero,
+        vel: zero,
+        acc: zero,
         uvel: zero,
         uacc: zero,
         motions: Motions {

@@ -146,14 +146,14 @@ impl<T: RealField + Copy> FourBar<T> {
             let m = stop - k;
             match mode {
                 AngleMode::Trig => {
-                    for (i, idx) in (k..stop).enumerate() {
-                        let (s, c) = angle(idx).sin_cos();
-                        cos_buf[i] = c;
-                        sin_buf[i] = s;
+                    let mut angles = [T::zero(); MAX_TABLE];
+                    for (a, idx) in angles.iter_mut().zip(k..stop) {
+                        *a = angle(idx);
                     }
+                    crate::trig::sin_cos_block(&angles[..m], &mut sin_buf[..m], &mut cos_buf[..m]);
                 }
                 AngleMode::Table { .. } => {
-                    let (sa, ca) = angle(anchor).sin_cos();
+                    let (sa, ca) = crate::trig::sin_cos(angle(anchor));
                     let j0 = k - anchor;
                     for i in 0..m {
                         let (c, s) = (tc[j0 + i], ts[j0 + i]);
@@ -164,7 +164,7 @@ impl<T: RealField + Copy> FourBar<T> {
                 AngleMode::Recurrence { .. } => {
                     // Start at the anchor and step up, so a sweep split at any sample gives the
                     // same bits as the whole.
-                    let (mut zs, mut zc) = angle(anchor).sin_cos();
+                    let (mut zs, mut zc) = crate::trig::sin_cos(angle(anchor));
                     for _ in anchor..k {
                         (zc, zs) = (zc * dc - zs * ds, zs * dc + zc * ds);
                     }

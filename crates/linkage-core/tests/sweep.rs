@@ -13,8 +13,8 @@
 //! Cases per property: `LINKAGE_PROPTEST_CASES` (default 2000).
 
 use linkage_core::{
-    catalog, sweep, sweep_pairs, sweep_planned, Assembly, Error, FourBar, Mechanism, Motion, Plan,
-    Rate, Rates, SweepOutputs, Swept, Tracker, Vec2, SWEEP_CHUNK,
+    catalog, sweep, sweep_pairs, sweep_planned, Assembly, Columns, Error, FourBar, Mechanism,
+    Motion, Plan, Rate, Rates, SweepOutputs, Swept, Tracker, Vec2, SWEEP_CHUNK,
 };
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -75,11 +75,12 @@ fn engine_with<const N: usize>(
 ) -> (All<f64>, bool) {
     let mut b = buffers(theta.len(), m.len(), sweep_pairs(m));
     let out = SweepOutputs {
+        columns: Columns::All,
         joints: &mut b.joints,
         valid: &mut b.valid,
-        margin: &mut b.margin,
-        regular: &mut b.regular,
-        gap: &mut b.gap,
+        margin: Some(&mut b.margin),
+        regular: Some(&mut b.regular),
+        gap: Some(&mut b.gap),
         velocity: Some(&mut b.velocity),
         acceleration: Some(&mut b.acceleration),
         centres: Some(&mut b.centres),
@@ -289,11 +290,12 @@ proptest! {
         let all = engine(&m, &theta, Rate::Scalar(1.3), Rate::Scalar(-0.2));
         let mut b = buffers(theta.len(), m.len(), sweep_pairs(&m));
         let out = SweepOutputs {
+            columns: Columns::All,
             joints: &mut b.joints,
             valid: &mut b.valid,
-            margin: &mut b.margin,
-            regular: &mut b.regular,
-            gap: &mut b.gap,
+            margin: Some(&mut b.margin),
+            regular: Some(&mut b.regular),
+            gap: Some(&mut b.gap),
             velocity: None,
             acceleration: None,
             centres: Some(&mut b.centres),
@@ -505,11 +507,12 @@ fn go_on_stops_between_chunks() {
     let mut b = buffers(n, m.len(), 6);
     let mut calls = 0;
     let out = SweepOutputs {
+        columns: Columns::All,
         joints: &mut b.joints,
         valid: &mut b.valid,
-        margin: &mut b.margin,
-        regular: &mut b.regular,
-        gap: &mut b.gap,
+        margin: Some(&mut b.margin),
+        regular: Some(&mut b.regular),
+        gap: Some(&mut b.gap),
         velocity: None,
         acceleration: None,
         centres: None,
@@ -553,11 +556,12 @@ fn wrong_slices_are_errors_and_nothing_is_written() {
             _ => (&mut b.joints[..], None, Rate::PerSample(&omega[..])),
         };
         let out = SweepOutputs {
+            columns: Columns::All,
             joints,
             valid: &mut b.valid,
-            margin: &mut b.margin,
-            regular: &mut b.regular,
-            gap: &mut b.gap,
+            margin: Some(&mut b.margin),
+            regular: Some(&mut b.regular),
+            gap: Some(&mut b.gap),
             velocity,
             acceleration: None,
             centres: None,
@@ -573,11 +577,12 @@ fn wrong_slices_are_errors_and_nothing_is_written() {
     let none = Mechanism::<f64, 2>::new();
     let mut b = buffers(0, 0, 0);
     let out = SweepOutputs {
+        columns: Columns::All,
         joints: &mut b.joints,
         valid: &mut b.valid,
-        margin: &mut b.margin,
-        regular: &mut b.regular,
-        gap: &mut b.gap,
+        margin: Some(&mut b.margin),
+        regular: Some(&mut b.regular),
+        gap: Some(&mut b.gap),
         velocity: None,
         acceleration: None,
         centres: None,
@@ -610,11 +615,12 @@ fn runs_in_f32() {
     let (mut valid, mut regular) = (vec![false; n], vec![false; n]);
     let (mut margin, mut gap) = (vec![0.0f32; n], vec![0.0f32; n]);
     let out = SweepOutputs {
+        columns: Columns::All,
         joints: &mut joints,
         valid: &mut valid,
-        margin: &mut margin,
-        regular: &mut regular,
-        gap: &mut gap,
+        margin: Some(&mut margin),
+        regular: Some(&mut regular),
+        gap: Some(&mut gap),
         velocity: Some(&mut vel),
         acceleration: None,
         centres: None,

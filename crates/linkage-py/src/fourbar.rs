@@ -63,7 +63,7 @@ fn fast_sweep(
 
 /// Which build of the fast sweep runs on this CPU (only `simd_level` makes one).
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Simd {
+pub(crate) enum Simd {
     Portable,
     #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     Avx2,
@@ -71,7 +71,7 @@ enum Simd {
     Avx512,
 }
 
-fn simd_level() -> Simd {
+pub(crate) fn simd_level() -> Simd {
     // LINKAGE_PORTABLE=1 keeps the portable build's code (for comparisons and tests).
     if std::env::var_os("LINKAGE_PORTABLE").is_some_and(|v| !v.is_empty() && v != "0") {
         return Simd::Portable;

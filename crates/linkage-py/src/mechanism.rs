@@ -2,7 +2,7 @@
 //! the sweep over numpy arrays (checked and allocated here, computed by the core).
 
 use linkage_core::{
-    sweep_pairs, Bodies, LineDirection, Mechanism as CoreMechanism, Rate, Reach, Side,
+    sweep_pairs, Bodies, Columns, LineDirection, Mechanism as CoreMechanism, Rate, Reach, Side,
     SweepOutputs, Vec2,
 };
 use numpy::{Ix1, Ix2, Ix3, PyArray, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray};
@@ -220,10 +220,15 @@ impl Mechanism {
     }
 
     /// Sweeps over `theta` (contiguous float64, 1-D). `omega`, `alpha`: None, one value, or one
-    /// per angle. Returns a dict of numpy arrays.
+    /// per angle. `column`: the one joint the per-joint outputs hold (None: every joint);
+    /// `flags`: whether to return `margin`, `regular` and `gap`. Returns a dict of numpy arrays
+    /// (per-joint ones shaped `(n, w, 2)` or `(n, w)`, `w` joints or 1).
     #[pyo3(signature = (theta, omega=None, alpha=None, velocity=false, acceleration=false,
-                        instant_centres=false, curvature=false))]
-    #[allow(clippy::too_many_arguments)]
+                        instant_centres=false, curvature=false, column=None, flags=true))]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "mirrors the keywords of Mechanism.sweep's outputs"
+    )]
     fn sweep<'py>(
         &self,
         py: Python<'py>,
@@ -234,6 +239,8 @@ impl Mechanism {
         acceleration: bool,
         instant_centres: bool,
         curvature: bool,
+        column: Option<usize>,
+        flags: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let th = theta
             .as_slice()
@@ -247,40 +254,63 @@ impl Mechanism {
         // lock.
         let mech = Sweepable::of(&self.lock());
         let (j, np) = mech.shape();
+        let columns = match column {
+            None => Columns::All,
+            Some(c) if c < j => Columns::One(c),
+            Some(c) => {
+                return Err(linkage_error(format!(
+                    "column {c} is not a joint (the mechanism has {j})"
+                )))
+            }
+        };
+        let width = columns.width(j);
         let rates = velocity || acceleration;
         // The total is checked first (a `MemoryError` naming it), then numpy allocates each
-        // output and the core writes into it: no copy, and pages are touched once.
-        let (nu, ju, pu) = (n as u128, j as u128, np as u128);
+        // output (not zeroed: the core writes every element) and the core writes into it: no
+        // copy, and pages are touched once.
+        let (nu, wu, pu) = (n as u128, width as u128, np as u128);
         let on = |b: bool| u128::from(b);
-        let floats = nu * ju * 2 * (1 + on(rates) + on(acceleration) + on(curvature))
-            + nu * 2
+        let floats = nu * wu * 2 * (1 + on(rates) + on(acceleration) + on(curvature))
+            + nu * 2 * on(flags)
             + nu * pu * 4 * on(instant_centres)
-            + nu * ju * on(curvature);
+            + nu * wu * on(curvature);
         let what = || format!("sweep of {n} samples");
-        memory::check(&what, memory::bytes_of::<f64>(floats) + 2 * nu)?;
+        memory::check(
+            &what,
+            memory::bytes_of::<f64>(floats) + (1 + on(flags)) * nu,
+        )?;
         let points = |on: bool, cols: usize| -> PyResult<Option<Bound<'py, PyArray<f64, Ix3>>>> {
-            on.then(|| memory::zeros(py, &what, &[n, cols, 2]))
+            on.then(|| memory::uninit(py, &what, &[n, cols, 2]))
                 .transpose()
         };
-        let joints = points(true, j)?.ok_or_else(|| linkage_error("internal error"))?;
-        let valid = memory::zeros::<bool, Ix1>(py, &what, &[n])?;
-        let margin = memory::zeros::<f64, Ix1>(py, &what, &[n])?;
-        let regular = memory::zeros::<bool, Ix1>(py, &what, &[n])?;
-        let gap = memory::zeros::<f64, Ix1>(py, &what, &[n])?;
-        let vel = points(rates, j)?;
-        let acc = points(acceleration, j)?;
+        let joints = points(true, width)?.ok_or_else(|| linkage_error("internal error"))?;
+        let valid = memory::uninit::<bool, Ix1>(py, &what, &[n])?;
+        let flag = |on: bool| -> PyResult<_> {
+            Ok(if on {
+                Some((
+                    memory::uninit::<f64, Ix1>(py, &what, &[n])?,
+                    memory::uninit::<bool, Ix1>(py, &what, &[n])?,
+                    memory::uninit::<f64, Ix1>(py, &what, &[n])?,
+                ))
+            } else {
+                None
+            })
+        };
+        let flag_arrays = flag(flags)?;
+        let vel = points(rates, width)?;
+        let acc = points(acceleration, width)?;
         let centres = points(instant_centres, np)?;
         let directions = points(instant_centres, np)?;
-        let curv_centres = points(curvature, j)?;
+        let curv_centres = points(curvature, width)?;
         let curv = curvature
-            .then(|| memory::zeros::<f64, Ix2>(py, &what, &[n, j]))
+            .then(|| memory::uninit::<f64, Ix2>(py, &what, &[n, width]))
             .transpose()?;
         {
             let mut joints_w = joints.readwrite();
             let mut valid_w = valid.readwrite();
-            let mut margin_w = margin.readwrite();
-            let mut regular_w = regular.readwrite();
-            let mut gap_w = gap.readwrite();
+            let mut margin_w = flag_arrays.as_ref().map(|f| f.0.readwrite());
+            let mut regular_w = flag_arrays.as_ref().map(|f| f.1.readwrite());
+            let mut gap_w = flag_arrays.as_ref().map(|f| f.2.readwrite());
             let write =
                 |a: &Option<Bound<'py, PyArray<f64, Ix3>>>| a.as_ref().map(|a| a.readwrite());
             let (mut vel_w, mut acc_w) = (write(&vel), write(&acc));
@@ -288,11 +318,12 @@ impl Mechanism {
             let mut curv_centres_w = write(&curv_centres);
             let mut curv_w = curv.as_ref().map(|a| a.readwrite());
             let out = SweepOutputs {
+                columns,
                 joints: as_points(&mut joints_w)?,
                 valid: as_slice(&mut valid_w)?,
-                margin: as_slice(&mut margin_w)?,
-                regular: as_slice(&mut regular_w)?,
-                gap: as_slice(&mut gap_w)?,
+                margin: margin_w.as_mut().map(as_slice).transpose()?,
+                regular: regular_w.as_mut().map(as_slice).transpose()?,
+                gap: gap_w.as_mut().map(as_slice).transpose()?,
                 velocity: vel_w.as_mut().map(as_points).transpose()?,
                 acceleration: acc_w.as_mut().map(as_points).transpose()?,
                 centres: centres_w.as_mut().map(as_points).transpose()?,
@@ -311,9 +342,10 @@ impl Mechanism {
                         false
                     }
                 };
+                let simd = crate::fourbar::simd_level();
                 match &mech {
-                    Sweepable::S8(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
-                    Sweepable::S16(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
+                    Sweepable::S8(m) => sweep_isa(simd, m, th, (w, a), out, &mut go_on),
+                    Sweepable::S16(m) => sweep_isa(simd, m, th, (w, a), out, &mut go_on),
                     Sweepable::S32(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
                     Sweepable::S64(m) => linkage_core::sweep(m, th, w, a, out, &mut go_on),
                 }
@@ -326,9 +358,11 @@ impl Mechanism {
         let d = PyDict::new(py);
         d.set_item(pyo3::intern!(py, "joints"), joints)?;
         d.set_item(pyo3::intern!(py, "valid"), valid)?;
-        d.set_item(pyo3::intern!(py, "margin"), margin)?;
-        d.set_item(pyo3::intern!(py, "regular"), regular)?;
-        d.set_item(pyo3::intern!(py, "gap"), gap)?;
+        if let Some((margin, regular, gap)) = flag_arrays {
+            d.set_item(pyo3::intern!(py, "margin"), margin)?;
+            d.set_item(pyo3::intern!(py, "regular"), regular)?;
+            d.set_item(pyo3::intern!(py, "gap"), gap)?;
+        }
         for (key, arr) in [
             (pyo3::intern!(py, "velocity"), vel),
             (pyo3::intern!(py, "acceleration"), acc),
@@ -345,6 +379,65 @@ impl Mechanism {
         }
         Ok(d)
     }
+}
+
+/// [`linkage_core::sweep`] compiled again for AVX-512 and for AVX2 + FMA and chosen at run time
+/// (as the fast uniform sweep, see `fourbar.rs`): the core poses blocks of samples with a
+/// branch-free kernel (`held.rs`) that these builds vectorise wider. The arithmetic is the
+/// same in every build, so are the bits. Only the small capacities (up to 16 joints: four-bars,
+/// six-bars, Jansen's and Klann's legs) carry the extra builds.
+fn sweep_isa<const N: usize>(
+    simd: crate::fourbar::Simd,
+    m: &CoreMechanism<f64, N>,
+    theta: &[f64],
+    (omega, alpha): (Rate<'_, f64>, Rate<'_, f64>),
+    out: SweepOutputs<'_, f64>,
+    go_on: &mut dyn FnMut() -> bool,
+) -> Result<linkage_core::Swept, linkage_core::Error> {
+    use crate::fourbar::Simd;
+    match simd {
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512 => {
+            #[allow(unsafe_code, reason = "calling a target_feature function")]
+            // SAFETY: a `Simd` other than `Portable` comes only from `simd_level`, which checked
+            // that the CPU has these features.
+            unsafe {
+                sweep_avx512(m, theta, omega, alpha, out, go_on)
+            }
+        }
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2 => {
+            #[allow(unsafe_code, reason = "calling a target_feature function")]
+            // SAFETY: as above.
+            unsafe {
+                sweep_avx2(m, theta, omega, alpha, out, go_on)
+            }
+        }
+        _ => linkage_core::sweep(m, theta, omega, alpha, out, go_on),
+    }
+}
+
+/// The sweep compiled with extra target features (each name is one instantiation).
+macro_rules! sweep_with_features {
+    ($($name:ident = $features:literal;)*) => {$(
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $features)]
+        fn $name<const N: usize>(
+            m: &CoreMechanism<f64, N>,
+            theta: &[f64],
+            omega: Rate<'_, f64>,
+            alpha: Rate<'_, f64>,
+            out: SweepOutputs<'_, f64>,
+            go_on: &mut dyn FnMut() -> bool,
+        ) -> Result<linkage_core::Swept, linkage_core::Error> {
+            linkage_core::sweep(m, theta, omega, alpha, out, go_on)
+        }
+    )*};
+}
+
+sweep_with_features! {
+    sweep_avx512 = "avx512f,avx512dq,avx512vl,avx2,fma";
+    sweep_avx2 = "avx2,fma";
 }
 
 /// A copy of a program at the least capacity of 8, 16, 32, 64 that holds it: a sweep's arrays
