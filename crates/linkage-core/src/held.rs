@@ -245,6 +245,137 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
     }
 }
 
+/// Velocities and accelerations of a block of posed samples (structure of arrays), by the
+/// formulas of [`Mechanism::motion`] term for term for fixed joints, cranks, dyads and carried
+/// points (a block never holds a slider).
+pub(crate) struct BlockRates<T, const N: usize> {
+    pub(crate) vx: [[T; BLOCK]; N],
+    pub(crate) vy: [[T; BLOCK]; N],
+    pub(crate) ax: [[T; BLOCK]; N],
+    pub(crate) ay: [[T; BLOCK]; N],
+    /// Whether every joint's velocity is finite (the motion's `regular`).
+    pub(crate) regular: [bool; BLOCK],
+    /// Samples whose rows the kernel cannot vouch for (a scale the scalar code would change):
+    /// to be redone one by one.
+    pub(crate) scalar: [bool; BLOCK],
+}
+
+impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
+    /// An empty block.
+    pub(crate) fn new() -> Self {
+        let z = [[T::zero(); BLOCK]; N];
+        BlockRates {
+            vx: z,
+            vy: z,
+            ax: z,
+            ay: z,
+            regular: [true; BLOCK],
+            scalar: [false; BLOCK],
+        }
+    }
+
+    /// Rates of the posed block `pos` for the drive `(omega, alpha)` per sample.
+    #[inline(always)]
+    pub(crate) fn rates(
+        &mut self,
+        mech: &Mechanism<T, N>,
+        pos: &BlockPoses<T, N>,
+        omega: &[T; BLOCK],
+        alpha: &[T; BLOCK],
+    ) {
+        let zero = [T::zero(); BLOCK];
+        let m_star = crate::motion::rate_margin::<T>();
+        let (lo, hi) = (
+            lit::<T>(2.328_306_436_538_696_3e-10),
+            lit::<T>(4_294_967_296.0),
+        );
+        self.regular = [true; BLOCK];
+        self.scalar = [false; BLOCK];
+        for (i, step) in mech.constructions().iter().enumerate() {
+            let (px, py) = (pos.x[i], pos.y[i]);
+            let (mut vx, mut vy, mut ax, mut ay) = (zero, zero, zero, zero);
+            match *step {
+                Construction::Fixed { .. } | Construction::Slider { .. } => {}
+                Construction::Crank { centre: c, .. } => {
+                    let (cx, cy) = (pos.x[c], pos.y[c]);
+                    let (cvx, cvy, cax, cay) = (self.vx[c], self.vy[c], self.ax[c], self.ay[c]);
+                    for k in 0..BLOCK {
+                        let (rx, ry) = (px[k] - cx[k], py[k] - cy[k]);
+                        let (w, al) = (omega[k], alpha[k]);
+                        // carried: origin + perp(r)·ω, origin + perp(r)·α − r·ω².
+                        vx[k] = cvx[k] + -ry * w;
+                        vy[k] = cvy[k] + rx * w;
+                        ax[k] = cax[k] + -ry * al - rx * (w * w);
+                        ay[k] = cay[k] + rx * al - ry * (w * w);
+                    }
+                }
+                Construction::Dyad { p1, p2, dyad, .. } => {
+                    let (x1, y1, x2, y2) = (pos.x[p1], pos.y[p1], pos.x[p2], pos.y[p2]);
+                    let (v1x, v1y, v2x, v2y) = (self.vx[p1], self.vy[p1], self.vx[p2], self.vy[p2]);
+                    let (a1x, a1y, a2x, a2y) = (self.ax[p1], self.ay[p1], self.ax[p2], self.ay[p2]);
+                    let bound = m_star * dyad.r1 * dyad.r2;
+                    let mut scalar = self.scalar;
+                    for k in 0..BLOCK {
+                        let (e1x, e1y) = (px[k] - x1[k], py[k] - y1[k]);
+                        let (e2x, e2y) = (px[k] - x2[k], py[k] - y2[k]);
+                        let amax = e1x.abs().max(e1y.abs()).max(e2x.abs()).max(e2y.abs());
+                        scalar[k] |= amax > hi || amax < lo;
+                        let det = e1x * e2y - e1y * e2x;
+                        let ok = det.abs() >= bound && det != T::zero() && det.is_finite();
+                        let b1 = e1x * v1x[k] + e1y * v1y[k];
+                        let b2 = e2x * v2x[k] + e2y * v2y[k];
+                        let wx = (b1 * e2y - b2 * e1y) / det;
+                        let wy = (e1x * b2 - e2x * b1) / det;
+                        let (w1x, w1y) = (wx - v1x[k], wy - v1y[k]);
+                        let (w2x, w2y) = (wx - v2x[k], wy - v2y[k]);
+                        let c1 = (e1x * a1x[k] + e1y * a1y[k]) - (w1x * w1x + w1y * w1y);
+                        let c2 = (e2x * a2x[k] + e2y * a2y[k]) - (w2x * w2x + w2y * w2y);
+                        let nan = T::zero() / T::zero();
+                        vx[k] = if ok { wx } else { nan };
+                        vy[k] = if ok { wy } else { nan };
+                        ax[k] = if ok { (c1 * e2y - c2 * e1y) / det } else { nan };
+                        ay[k] = if ok { (e1x * c2 - e2x * c1) / det } else { nan };
+                    }
+                    self.scalar = scalar;
+                }
+                Construction::Point { from, to, .. } => {
+                    let (fx, fy, tx, ty) = (pos.x[from], pos.y[from], pos.x[to], pos.y[to]);
+                    let (fvx, fvy, fax, fay) =
+                        (self.vx[from], self.vy[from], self.ax[from], self.ay[from]);
+                    let (tvx, tvy, tax, tay) = (self.vx[to], self.vy[to], self.ax[to], self.ay[to]);
+                    let two = lit::<T>(2.0);
+                    let mut scalar = self.scalar;
+                    for k in 0..BLOCK {
+                        // direction_rates(d, d1, d2): ω = (d × d1)/|d|², α = (d × d2 − 2ω(d·d1))/|d|².
+                        let (dx, dy) = (tx[k] - fx[k], ty[k] - fy[k]);
+                        let (d1x, d1y) = (tvx[k] - fvx[k], tvy[k] - fvy[k]);
+                        let (d2x, d2y) = (tax[k] - fax[k], tay[k] - fay[k]);
+                        let amax = dx.abs().max(dy.abs());
+                        scalar[k] |= amax > hi || amax < lo;
+                        let l2 = dx * dx + dy * dy;
+                        let sd = dx * d1x + dy * d1y;
+                        let w = (dx * d1y - dy * d1x) / l2;
+                        let n = dx * d2y - dy * d2x;
+                        let al = (n - two * w * sd) / l2;
+                        let (rx, ry) = (px[k] - fx[k], py[k] - fy[k]);
+                        vx[k] = fvx[k] + -ry * w;
+                        vy[k] = fvy[k] + rx * w;
+                        ax[k] = fax[k] + -ry * al - rx * (w * w);
+                        ay[k] = fay[k] + rx * al - ry * (w * w);
+                    }
+                    self.scalar = scalar;
+                }
+            }
+            let mut regular = self.regular;
+            for k in 0..BLOCK {
+                regular[k] &= vx[k].is_finite() & vy[k].is_finite();
+            }
+            self.regular = regular;
+            (self.vx[i], self.vy[i], self.ax[i], self.ay[i]) = (vx, vy, ax, ay);
+        }
+    }
+}
+
 #[cfg(test)]
 mod timing {
     use super::*;

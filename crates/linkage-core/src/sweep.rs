@@ -13,7 +13,7 @@ use nalgebra::RealField;
 use crate::bodies::{Bodies, BodyId, GROUND};
 use crate::centres::{path_curvature, relative_centre, BodyMotion, Centre};
 use crate::error::Error;
-use crate::held::{BlockPoses, BLOCK};
+use crate::held::{BlockPoses, BlockRates, BLOCK};
 use crate::mechanism::{Mechanism, Motion};
 use crate::motion::rate_margin;
 use crate::scalar::{lit, nan, Vec2};
@@ -428,14 +428,19 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         })
     }
 
-    /// Writes a posed block's positions and flags straight from `blk` when every sample of it
-    /// is plain (finite angle, posed by the kernel, watched margins clear of `toggle_margin`):
-    /// what the sample-by-sample path writes, without its per-sample work. Returns whether it
-    /// wrote the block.
+    /// Writes a posed block straight from `blk` (and its rates from `rates`, when the sweep
+    /// asks for rates) when every sample of it is plain: a finite angle and drive, posed by the
+    /// kernel, watched margins clear of `toggle_margin`. What the sample-by-sample path writes,
+    /// without its per-sample work. Returns whether it wrote the block.
     #[inline(always)]
-    fn block_positions(
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the block, its rates and drive, and where it goes"
+    )]
+    fn block_write(
         &self,
         blk: &BlockPoses<T, N>,
+        rates: Option<(&BlockRates<T, N>, &[T; BLOCK], &[T; BLOCK])>,
         toggle_margin: T,
         theta: &[T],
         k0: usize,
@@ -450,35 +455,51 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
                 & !blk.failed[b]
                 & (blk.watched[b] >= toggle_margin);
         }
+        if let Some((r, w, a)) = rates {
+            for b in 0..m {
+                plain &= w[b].is_finite() & a[b].is_finite() & !r.scalar[b];
+            }
+        }
         if !plain {
             return false;
         }
-        let j = self.j;
-        match self.columns {
+        let (j, cols) = (self.j, self.columns);
+        let write = |buf: &mut [Vec2<T>], x: &[[T; BLOCK]; N], y: &[[T; BLOCK]; N]| match cols {
             Columns::One(t) => {
-                for (b, p) in out.joints[k0..k0 + m].iter_mut().enumerate() {
-                    *p = Vec2::new(blk.x[t][b], blk.y[t][b]);
+                for (b, p) in buf[k0..k0 + m].iter_mut().enumerate() {
+                    *p = Vec2::new(x[t][b], y[t][b]);
                 }
             }
             Columns::All => {
-                for (b, row) in out.joints[k0 * j..(k0 + m) * j]
-                    .chunks_exact_mut(j)
-                    .enumerate()
-                {
+                for (b, row) in buf[k0 * j..(k0 + m) * j].chunks_exact_mut(j).enumerate() {
                     for (i, p) in row.iter_mut().enumerate() {
-                        *p = Vec2::new(blk.x[i][b], blk.y[i][b]);
+                        *p = Vec2::new(x[i][b], y[i][b]);
                     }
                 }
+            }
+        };
+        write(out.joints, &blk.x, &blk.y);
+        if let Some((r, _, _)) = rates {
+            if let Some(v) = out.velocity.as_deref_mut() {
+                write(v, &r.vx, &r.vy);
+            }
+            if let Some(a) = out.acceleration.as_deref_mut() {
+                write(a, &r.ax, &r.ay);
             }
         }
         out.valid[k0..k0 + m].fill(true);
         if let Some(g) = out.margin.as_deref_mut() {
             g[k0..k0 + m].copy_from_slice(&blk.margin[..m]);
         }
-        if let Some(r) = out.regular.as_deref_mut() {
-            let m_star = rate_margin::<T>();
-            for (r, &g) in r[k0..k0 + m].iter_mut().zip(&blk.margin[..m]) {
-                *r = g >= m_star;
+        if let Some(reg) = out.regular.as_deref_mut() {
+            match rates {
+                Some((r, _, _)) => reg[k0..k0 + m].copy_from_slice(&r.regular[..m]),
+                None => {
+                    let m_star = rate_margin::<T>();
+                    for (reg, &g) in reg[k0..k0 + m].iter_mut().zip(&blk.margin[..m]) {
+                        *reg = g >= m_star;
+                    }
+                }
             }
         }
         if let Some(g) = out.gap.as_deref_mut() {
@@ -507,6 +528,7 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let blocks = BlockPoses::<T, N>::applies(self.mech);
         let mut blk = BlockPoses::<T, N>::new();
         blk.prepare(self.mech);
+        let mut rts = BlockRates::<T, N>::new();
         // Margins are needed for the watched dyads always, for the others only when written
         // (margin, regular) or used (centres condition on them; rates by the sample path).
         blk.margins = out.margin.is_some()
@@ -528,11 +550,22 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
             let k1 = (k0 + BLOCK).min(n);
             if blocks {
                 blk.pose(self.mech, &theta[k0..k1], watched);
-                if !(self.rates || self.wants_centres || self.wants_curvature)
-                    && self.block_positions(&blk, toggle_margin, &theta[k0..k1], k0, out)
-                {
-                    k0 = k1;
-                    continue;
+                if !(self.wants_centres || self.wants_curvature) {
+                    let done = if self.rates {
+                        let (mut w, mut a) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
+                        for b in 0..k1 - k0 {
+                            (w[b], a[b]) = (omega.at(k0 + b), alpha.at(k0 + b));
+                        }
+                        rts.rates(self.mech, &blk, &w, &a);
+                        let r = Some((&rts, &w, &a));
+                        self.block_write(&blk, r, toggle_margin, &theta[k0..k1], k0, out)
+                    } else {
+                        self.block_write(&blk, None, toggle_margin, &theta[k0..k1], k0, out)
+                    };
+                    if done {
+                        k0 = k1;
+                        continue;
+                    }
                 }
             }
             for (b, &th) in theta[k0..k1].iter().enumerate() {

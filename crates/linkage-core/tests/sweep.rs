@@ -154,6 +154,50 @@ fn reference<const N: usize>(
     }
 }
 
+/// The held plan with positions (and `rates`) only, every joint or (`one`) the last one,
+/// against the tracker's reference, bit for bit.
+fn block_case<const N: usize>(
+    m: &Mechanism<f64, N>,
+    theta: &[f64],
+    omega: &[f64],
+    rates: bool,
+    one: bool,
+) -> Result<(), TestCaseError> {
+    let (n, j) = (theta.len(), m.len());
+    let w = if one { 1 } else { j };
+    let mut got = buffers(n, w, 0);
+    let mut out = SweepOutputs::positions(&mut got.joints, &mut got.valid);
+    out.columns = if one { Columns::One(j - 1) } else { Columns::All };
+    out.margin = Some(&mut got.margin);
+    out.regular = Some(&mut got.regular);
+    out.gap = Some(&mut got.gap);
+    if rates {
+        out.velocity = Some(&mut got.velocity);
+        out.acceleration = Some(&mut got.acceleration);
+    }
+    let plan = Plan::Held;
+    sweep_planned(m, theta, Rate::PerSample(omega), Rate::Scalar(0.5), out, &mut || true, plan)
+        .unwrap();
+    let want = reference(m, theta, omega, 0.5);
+    let col = |v: &[Vec2<f64>]| -> Vec<Vec2<f64>> {
+        if one {
+            (0..n).map(|k| v[k * j + j - 1]).collect()
+        } else {
+            v.to_vec()
+        }
+    };
+    prop_assert!(same_points(&got.joints, &col(&want.joints)));
+    prop_assert_eq!(&got.valid, &want.valid);
+    prop_assert!(same_floats(&got.margin, &want.margin));
+    prop_assert!(same_floats(&got.gap, &want.gap));
+    if rates {
+        prop_assert!(same_points(&got.velocity, &col(&want.velocity)));
+        prop_assert!(same_points(&got.acceleration, &col(&want.acceleration)));
+        prop_assert_eq!(&got.regular, &want.regular);
+    }
+    Ok(())
+}
+
 /// Bitwise equality, NaN equal to NaN.
 fn same(a: f64, b: f64) -> bool {
     a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
@@ -280,6 +324,28 @@ proptest! {
             }
             prop_assert!(got.curvature[k * j..(k + 1) * j].iter().all(|&c| c != -12345.0));
             prop_assert!(got.margin[k] != -12345.0 && got.gap[k] != -12345.0);
+        }
+    }
+
+    /// The held pass's block paths (positions only; positions and rates; the trace point
+    /// alone) give the tracker's bits: every sample's row, flag and margin, on four-bars and
+    /// on the catalogue's multi-loop linkages.
+    #[test]
+    fn block_paths_equal_the_tracker(
+        fb in fourbar(),
+        theta in prop_oneof![angles(), prop::collection::vec(-7.0f64..7.0, 1..80)],
+        w in -3.0f64..3.0,
+        which in 0usize..5,
+        rates in any::<bool>(),
+        one in any::<bool>(),
+    ) {
+        let omega: Vec<f64> = (0..theta.len()).map(|k| w + 0.1 * k as f64).collect();
+        if which == 4 {
+            block_case(&fb.mechanism(), &theta, &omega, rates, one)?;
+        } else {
+            let name = catalog::MULTI_LOOP[which];
+            let m = catalog::linkage_by_name::<f64>(name).unwrap().mechanism;
+            block_case(&m, &theta, &omega, rates, one)?;
         }
     }
 
