@@ -14,8 +14,8 @@
 use nalgebra::RealField;
 
 use crate::dyad::EXACT_BASE_SLACK;
-use crate::mechanism::{Construction, Mechanism};
-use crate::scalar::{eps, lit, tiny_square};
+use crate::mechanism::{Construction, CrankBaseFrame, Mechanism};
+use crate::scalar::{eps, lit, tiny_square, Vec2};
 
 /// Samples per block.
 pub(crate) const BLOCK: usize = 16;
@@ -38,6 +38,8 @@ pub(crate) struct BlockPoses<T, const N: usize> {
     /// Whether `margin` is wanted (else only the watched dyads' margins are computed and
     /// `margin` holds 1).
     pub(crate) margins: bool,
+    /// The frame of each dyad's crank base, if it has one (see [`Self::prepare`]).
+    bases: [Option<CrankBaseFrame<T>>; N],
 }
 
 /// Powers of two of ordinary sizes: a mechanism whose every nonzero length and coordinate lies
@@ -55,15 +57,25 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             scalar: [false; BLOCK],
             failed: [false; BLOCK],
             margins: true,
+            bases: [None; N],
         }
     }
 
-    /// Places `mech`'s fixed joints, which every block shares (call before [`Self::pose`]).
+    /// Places `mech`'s fixed joints and the frames of its crank bases, which every block
+    /// shares (call before [`Self::pose`]).
     pub(crate) fn prepare(&mut self, mech: &Mechanism<T, N>) {
+        let mut fixed = [Vec2::zeros(); N];
         for (i, step) in mech.constructions().iter().enumerate() {
-            if let Construction::Fixed { at } = *step {
-                self.x[i] = [at.x; BLOCK];
-                self.y[i] = [at.y; BLOCK];
+            match *step {
+                Construction::Fixed { at } => {
+                    self.x[i] = [at.x; BLOCK];
+                    self.y[i] = [at.y; BLOCK];
+                    fixed[i] = at;
+                }
+                Construction::Dyad { p1, p2, .. } => {
+                    self.bases[i] = mech.crank_base_frame(p1, p2, &fixed[..i]);
+                }
+                _ => {}
             }
         }
     }
@@ -117,16 +129,11 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                     (self.x[i], self.y[i]) = (xi, yi);
                 }
                 Construction::Dyad { p1, p2, dyad, side } => {
-                    let exact_base = mech.has_crank_base(p1, p2);
-                    let sign = side.sign::<T>();
-                    self.dyad(
-                        i,
-                        (p1, p2),
-                        (dyad.r1, dyad.r2),
-                        sign,
-                        exact_base,
-                        watched[i],
-                    );
+                    let mut th = [T::zero(); BLOCK];
+                    th[..n].copy_from_slice(&theta[..n]);
+                    let (base, sign) = (self.bases[i], side.sign::<T>());
+                    let lengths = (dyad.r1, dyad.r2);
+                    self.dyad(i, (p1, p2), lengths, sign, base, watched[i], &th);
                 }
                 Construction::Point {
                     from,
@@ -163,11 +170,12 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
         // from an angle that is not (the callers check those) or from a sample marked above.
     }
 
-    /// The RRR dyad `i` on `p1`, `p2` over the block: [`crate::Dyad::solve_with_base`] without
-    /// a base, term for term.
+    /// The RRR dyad `i` on `p1`, `p2` over the block: [`crate::Dyad::solve_with_base`] term
+    /// for term, with the crank-pin-and-fixed-joint base of `Mechanism::crank_base` (`base`)
+    /// at the samples within [`EXACT_BASE_SLACK`] of flat.
     #[allow(
         clippy::too_many_arguments,
-        reason = "the dyad's joints, lengths, side and flags, passed as plain numbers so the loop vectorises"
+        reason = "the dyad's joints, lengths, side, base and flags, passed as plain numbers so the loop vectorises"
     )]
     #[inline(always)]
     fn dyad(
@@ -176,8 +184,9 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
         (p1, p2): (usize, usize),
         (r1, r2): (T, T),
         sign: T,
-        exact_base: bool,
+        base: Option<CrankBaseFrame<T>>,
         watched: bool,
+        theta: &[T; BLOCK],
     ) {
         // Local copies: the loop then reads and writes distinct arrays of known length, which
         // is what lets it vectorise (measured: twice as fast as slices into the tables).
@@ -193,10 +202,39 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
         let two_r1r2 = two / (r1 * r2);
         let margins = self.margins || watched;
         let tiny = tiny_square::<T>();
+        // The base vector and its length, replaced by the crank base's (with Kahan's vanishing
+        // factor `given`) at the samples that take it.
+        let (mut dvx, mut dvy) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
+        let mut dd = [T::zero(); BLOCK];
+        let mut use_base = [false; BLOCK];
+        let mut any_base = false;
         for k in 0..BLOCK {
             let (dx, dy) = (bx[k] - ax[k], by[k] - ay[k]);
             let n2 = dx * dx + dy * dy;
             let d = n2.sqrt();
+            // (nearly) zero base, where the scalar length rescales or the dyad is refused.
+            scalar[k] |= n2 <= tiny || !n2.is_finite();
+            let longest = d.max(r1).max(r2);
+            let plain = (d + rmin).min(sum) - longest;
+            use_base[k] = base.is_some() && plain < longest * slack;
+            any_base |= use_base[k];
+            (dvx[k], dvy[k], dd[k]) = (dx, dy, d);
+        }
+        let mut given = [T::zero(); BLOCK];
+        if let (true, Some(b)) = (any_base, base) {
+            let base_out = (&mut dvx, &mut dvy, &mut dd);
+            Self::crank_base(
+                b,
+                (r1, r2),
+                theta,
+                &use_base,
+                base_out,
+                &mut given,
+                &mut scalar,
+            );
+        }
+        for k in 0..BLOCK {
+            let (dx, dy, d) = (dvx[k], dvy[k], dd[k]);
             let tol = eight_eps
                 * (d + r1 + r2 + ax[k].abs().max(ay[k].abs()) + bx[k].abs().max(by[k].abs()));
             // Kahan's sides sorted: with r1, r2 fixed, hi = max(d, rmax), lo = min(d, rmin),
@@ -211,18 +249,16 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                 d
             };
             let amb = hi - mid;
-            let f2 = lo - amb;
-            let flat = f2 < T::zero();
+            let f2 = if use_base[k] { given[k] } else { lo - amb };
+            let flat = f2 < T::zero() || (use_base[k] && !f2.is_finite());
             let prod = (hi + (mid + lo)) * f2 * (lo + amb) * (hi + (mid - lo));
             let area = if flat {
                 T::zero()
             } else {
                 prod.sqrt() * quarter
             };
-            // Where the scalar code would take the crank base, or meets a zero base.
-            // (nearly) zero base, where the scalar length rescales or the dyad is refused.
-            scalar[k] |= (exact_base && f2 < slack * hi) || n2 <= tiny || !n2.is_finite();
-            failed[k] |= flat && -f2 > tol;
+            // A closure miss beyond rounding (NaN included) is a failure.
+            failed[k] |= flat && (-f2 > tol || !f2.is_finite());
             let inv_d = T::one() / d;
             let (ux, uy) = (dx * inv_d, dy * inv_d);
             let x = (d + diff * (sum * inv_d)) * half;
@@ -242,6 +278,63 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
         (self.x[i], self.y[i]) = (xi, yi);
         (self.scalar, self.failed) = (scalar, failed);
         (self.margin, self.watched) = (margin_of, watched_of);
+    }
+
+    /// `Mechanism::crank_base` over the block at the samples `use_base` marks: the base
+    /// vector `(dvx, dvy)`, its length `dd` and the vanishing factor `given`, term for term.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the frame, the lengths, the angles and the block's arrays"
+    )]
+    #[allow(clippy::type_complexity, reason = "the three arrays the base replaces")]
+    #[inline(always)]
+    fn crank_base(
+        b: CrankBaseFrame<T>,
+        (r1, r2): (T, T),
+        theta: &[T; BLOCK],
+        use_base: &[bool; BLOCK],
+        (dvx, dvy, dd): (&mut [T; BLOCK], &mut [T; BLOCK], &mut [T; BLOCK]),
+        given: &mut [T; BLOCK],
+        scalar: &mut [bool; BLOCK],
+    ) {
+        let (gv, g, beta, r) = (b.gv, b.g, b.beta, b.r);
+        let (mut halfs, mut turned) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
+        for k in 0..BLOCK {
+            let psi = theta[k] + b.phase - beta;
+            halfs[k] = psi * lit::<T>(0.5);
+            turned[k] = beta + halfs[k];
+        }
+        let (mut s, mut c) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
+        let (mut sb, mut cb) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
+        crate::trig::sin_cos_block(&halfs, &mut s, &mut c);
+        crate::trig::sin_cos_block(&turned, &mut sb, &mut cb);
+        let (delta, sigma) = ((r1 - r2).abs(), r1 + r2);
+        let four_gr = lit::<T>(4.0) * g * r;
+        let shrink = (g - r) / g;
+        let two_r = lit::<T>(2.0) * r;
+        let (lo, hi) = (
+            lit::<T>(2.328_306_436_538_696_3e-10),
+            lit::<T>(4_294_967_296.0),
+        );
+        let rmax = r1.max(r2);
+        let tiny = tiny_square::<T>();
+        for k in 0..BLOCK {
+            // Q − A = gv·(g − r)/g + (sin, −cos)(β + ψ/2)·2r·sin(ψ/2).
+            let qx = gv.x * shrink + sb[k] * (two_r * s[k]);
+            let qy = gv.y * shrink + -cb[k] * (two_r * s[k]);
+            let (x, y) = if b.crank_first { (qx, qy) } else { (-qx, -qy) };
+            let n2 = x * x + y * y;
+            let d = n2.sqrt();
+            let stretch = ((sigma - g - r) * (sigma + g + r) + four_gr * c[k] * c[k]) / (sigma + d);
+            let fold = ((g - r - delta) * (g - r + delta) + four_gr * s[k] * s[k]) / (d + delta);
+            let f2 = if d >= rmax { stretch } else { fold };
+            let top = g.max(r).max(sigma).max(d);
+            if use_base[k] {
+                (dvx[k], dvy[k], dd[k], given[k]) = (x, y, d, f2);
+                // Scales at which the scalar code's power-of-two units are not 1.
+                scalar[k] |= n2 <= tiny || !n2.is_finite() || top > hi || top < lo;
+            }
+        }
     }
 }
 

@@ -119,6 +119,19 @@ impl<T: RealField + Copy> Construction<T> {
     }
 }
 
+/// The fixed part of a crank-pin-and-fixed-joint dyad's base ([`Mechanism::crank_base_frame`]):
+/// from the crank centre `O` to the fixed joint `Q`, `gv = Q − O`, its length `g` and direction
+/// `β`; the crank radius `r` and phase; whether the crank pin is the dyad's first base joint.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CrankBaseFrame<T> {
+    pub(crate) gv: Vec2<T>,
+    pub(crate) g: T,
+    pub(crate) beta: T,
+    pub(crate) r: T,
+    pub(crate) phase: T,
+    pub(crate) crank_first: bool,
+}
+
 /// Where a construction may put its joint.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Candidates<T: RealField + Copy> {
@@ -446,25 +459,15 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         pos: &[Vec2<T>],
         dyad: Dyad<T>,
     ) -> Option<(Vec2<T>, T)> {
-        let (k, q) = self.crank_and_fixed(p1, p2)?;
-        let Construction::Crank {
-            centre,
-            radius: r,
-            phase,
-        } = self.steps[k]
-        else {
-            return None;
-        };
-        let gv = pos[q] - pos[centre];
-        let g = crate::scalar::length(gv);
-        let beta = gv.y.atan2(gv.x);
-        let psi = theta + phase - beta;
+        let b = self.crank_base_frame(p1, p2, pos)?;
+        let (gv, g, beta, r) = (b.gv, b.g, b.beta, b.r);
+        let psi = theta + b.phase - beta;
         let half = psi * lit::<T>(0.5);
-        let (s, c) = half.sin_cos();
+        let (s, c) = crate::trig::sin_cos(half);
         // Q − A = (g − r)·ĝ + r·(ĝ − ŵ), and ĝ − ŵ = 2 sin(ψ/2)·(sin(β + ψ/2), −cos(β + ψ/2)).
-        let (sb, cb) = (beta + half).sin_cos();
+        let (sb, cb) = crate::trig::sin_cos(beta + half);
         let qa = gv * ((g - r) / g) + Vec2::new(sb, -cb) * (lit::<T>(2.0) * r * s);
-        let dv = if k == p1 { qa } else { -qa };
+        let dv = if b.crank_first { qa } else { -qa };
         let d = crate::scalar::length(dv);
         let (delta, sigma) = ((dyad.r1 - dyad.r2).abs(), dyad.r1 + dyad.r2);
         let unit = crate::dyad::pow2_scale(g.max(r).max(sigma).max(d));
@@ -585,6 +588,34 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         Ok((margin, least))
     }
 
+    /// What [`Mechanism::crank_base`] needs of a dyad on a crank pin and a fixed joint besides
+    /// the crank angle (`None` for other dyads); `pos` holds the fixed joints.
+    pub(crate) fn crank_base_frame(
+        &self,
+        p1: usize,
+        p2: usize,
+        pos: &[Vec2<T>],
+    ) -> Option<CrankBaseFrame<T>> {
+        let (k, q) = self.crank_and_fixed(p1, p2)?;
+        let Construction::Crank {
+            centre,
+            radius,
+            phase,
+        } = self.steps[k]
+        else {
+            return None;
+        };
+        let gv = pos[q] - pos[centre];
+        Some(CrankBaseFrame {
+            gv,
+            g: crate::scalar::length(gv),
+            beta: gv.y.atan2(gv.x),
+            r: radius,
+            phase,
+            crank_first: k == p1,
+        })
+    }
+
     /// The length of the link `from → to` when the mechanism fixes it (a crank, or one side of
     /// a dyad): a point carried by that link divides by it instead of the computed distance,
     /// which it equals to rounding (one square root and one division fewer a sample).
@@ -596,12 +627,6 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
             _ => None,
         };
         side(to, from).or_else(|| side(from, to))
-    }
-
-    /// Whether the dyad on `p1`, `p2` forms its base from the crank angle near flat positions
-    /// (see [`Mechanism::crank_base`]).
-    pub(crate) fn has_crank_base(&self, p1: usize, p2: usize) -> bool {
-        self.crank_and_fixed(p1, p2).is_some()
     }
 
     /// The crank joint and the fixed joint of a dyad on `p1`, `p2`, when it is built on a crank

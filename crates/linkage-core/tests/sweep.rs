@@ -167,7 +167,11 @@ fn block_case<const N: usize>(
     let w = if one { 1 } else { j };
     let mut got = buffers(n, w, 0);
     let mut out = SweepOutputs::positions(&mut got.joints, &mut got.valid);
-    out.columns = if one { Columns::One(j - 1) } else { Columns::All };
+    out.columns = if one {
+        Columns::One(j - 1)
+    } else {
+        Columns::All
+    };
     out.margin = Some(&mut got.margin);
     out.regular = Some(&mut got.regular);
     out.gap = Some(&mut got.gap);
@@ -176,8 +180,16 @@ fn block_case<const N: usize>(
         out.acceleration = Some(&mut got.acceleration);
     }
     let plan = Plan::Held;
-    sweep_planned(m, theta, Rate::PerSample(omega), Rate::Scalar(0.5), out, &mut || true, plan)
-        .unwrap();
+    sweep_planned(
+        m,
+        theta,
+        Rate::PerSample(omega),
+        Rate::Scalar(0.5),
+        out,
+        &mut || true,
+        plan,
+    )
+    .unwrap();
     let want = reference(m, theta, omega, 0.5);
     let col = |v: &[Vec2<f64>]| -> Vec<Vec2<f64>> {
         if one {
