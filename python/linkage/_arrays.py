@@ -15,24 +15,37 @@ from linkage._core import LinkageError
 Float1D = NDArray[np.float64]
 
 
-def as_angles(value: Any, name: str = "theta") -> tuple[Float1D, bool]:
+def as_angles(value: Any, name: str = "theta", finite: bool = True) -> tuple[Float1D, bool]:
     """Return ``value`` as a contiguous 1-D float64 array, and whether it was a scalar.
 
     Zero-copy when ``value`` already is a contiguous float64 array. Integers are accepted and
     converted; booleans, complex numbers, strings and objects raise ``TypeError``; arrays of more
-    than one dimension, empty-but-not-1-D input and non-finite values raise ``LinkageError``.
+    than one dimension, empty-but-not-1-D input and (unless ``finite`` is False: the caller's
+    extension checks them) non-finite values raise ``LinkageError``.
     """
+    if (
+        not finite
+        and type(value) is np.ndarray
+        and value.dtype == np.float64
+        and value.ndim == 1
+        and value.flags.c_contiguous
+    ):
+        return value, False  # the common case, without the generic conversions
     arr = _as_real_array(value, name)
     scalar = arr.ndim == 0
     if arr.ndim > 1:
         raise LinkageError(f"{name} must be a scalar or 1-D, got shape {arr.shape}")
     arr = np.ascontiguousarray(arr.reshape(-1), dtype=np.float64)
-    _check_finite(arr, name)
+    if finite:
+        _check_finite(arr, name)
     return arr, scalar
 
 
-def as_rate(value: Any, name: str, n: int) -> Float1D | None:
-    """Return a per-sample rate (omega, alpha): None, a scalar (length-1 array) or one per angle."""
+def as_rate(value: Any, name: str, n: int, finite: bool = True) -> Float1D | None:
+    """Return a per-sample rate (omega, alpha): None, a scalar (length-1 array) or one per angle.
+
+    Non-finite values are refused unless ``finite`` is False (the caller's extension checks them).
+    """
     if value is None:
         return None
     arr = _as_real_array(value, name)
@@ -41,7 +54,8 @@ def as_rate(value: Any, name: str, n: int) -> Float1D | None:
             f"{name} must be a scalar or have one value per angle ({n}), got shape {arr.shape}"
         )
     arr = np.ascontiguousarray(arr.reshape(-1), dtype=np.float64)
-    _check_finite(arr, name)
+    if finite:
+        _check_finite(arr, name)
     return arr
 
 

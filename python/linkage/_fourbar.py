@@ -85,11 +85,13 @@ class FourBar:
         k = as_length(rocker, "rocker")
         along, left = as_point(point, "point")
         self._core = _core.FourBar((ox, oy), (cx, cy), r, b, k, (along, left), assembly)
+        self._sweeper: Mechanism | None = None
 
     @classmethod
     def _from_core(cls, core: Any) -> FourBar:
         fb = cls.__new__(cls)
         fb._core = core
+        fb._sweeper = None
         return fb
 
     # -- parameters -----------------------------------------------------------------------
@@ -215,7 +217,11 @@ class FourBar:
     ) -> Sweep:
         """Solve at each crank angle, or at each time of a drive; see :meth:`Mechanism.sweep`.
         ``s.point`` is the coupler point, ``s.joints`` holds O, C, A, B, P."""
-        return self.mechanism().sweep(theta, omega, alpha, outputs, time=time, drive=drive)
+        sweeper = self._sweeper
+        if sweeper is None:
+            # A private copy, never handed out (a Mechanism can be extended by its owner).
+            sweeper = self._sweeper = self.mechanism()
+        return sweeper.sweep(theta, omega, alpha, outputs, time=time, drive=drive)
 
     def uniform_sweep(
         self,

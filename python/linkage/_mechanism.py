@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterable, Sequence
 from typing import Any
 
@@ -14,8 +15,30 @@ from linkage._sweep import OUTPUTS, Sweep
 DEFAULT_OUTPUTS = ("point", "joints")
 
 
+@functools.lru_cache(maxsize=64)
+def _asked(out: tuple[str, ...]) -> dict[str, bool]:
+    """The extension's keywords for the outputs ``out`` (computed once per set of outputs)."""
+    return dict(
+        velocity="velocity" in out,
+        acceleration="acceleration" in out,
+        instant_centres="instant_centres" in out,
+        curvature="curvature" in out,
+    )
+
+
+@functools.lru_cache(maxsize=64)
+def _known_outputs(out: tuple[str, ...], has_omega: bool) -> tuple[str, ...]:
+    return _check_outputs(out, has_omega)
+
+
 def check_outputs(outputs: Iterable[str], omega: Any) -> tuple[str, ...]:
     """Validate ``outputs=``: known names only, and rates only with ``omega``."""
+    if type(outputs) is tuple and all(type(o) is str for o in outputs):
+        return _known_outputs(outputs, omega is not None)  # the common case, cached
+    return _check_outputs(outputs, omega is not None)
+
+
+def _check_outputs(outputs: Iterable[str], has_omega: bool) -> tuple[str, ...]:
     if isinstance(outputs, str):
         outputs = (outputs,)
     try:
@@ -30,7 +53,7 @@ def check_outputs(outputs: Iterable[str], omega: Any) -> tuple[str, ...]:
         if o not in OUTPUTS:
             raise LinkageError(f"unknown output {o!r}; choose from {', '.join(OUTPUTS)}")
     wants_rates = "velocity" in out or "acceleration" in out
-    if wants_rates and omega is None:
+    if wants_rates and not has_omega:
         raise LinkageError("outputs 'velocity'/'acceleration' need omega (crank speed, rad/s)")
     return out
 
@@ -263,17 +286,13 @@ class Mechanism:
         elif theta is None:
             raise TypeError("sweep() needs theta (crank angles) or time= and drive=")
         out = check_outputs(outputs, omega)
-        th, scalar = as_angles(theta, "theta")
+        # Non-finite angles and rates are refused by the extension, with the same messages.
+        th, scalar = as_angles(theta, "theta", finite=False)
         n = th.shape[0]
-        w = as_rate(omega, "omega", n)
-        a = as_rate(alpha, "alpha", n)
+        w = as_rate(omega, "omega", n, finite=False)
+        a = as_rate(alpha, "alpha", n, finite=False)
         trace = self._index(self.trace, "trace")
-        asked = dict(
-            velocity="velocity" in out,
-            acceleration="acceleration" in out,
-            instant_centres="instant_centres" in out,
-            curvature="curvature" in out,
-        )
+        asked = _asked(out)
         core = self._core
         # Without "joints" the per-joint outputs hold the trace point only, and the margin,
         # gap and regular flags are left out: every joint and the flags are computed on first

@@ -29,12 +29,35 @@ fn rate<'a>(
     let s = arr
         .as_slice()
         .map_err(|_| linkage_error(format!("{name} must be a contiguous float64 array")))?;
+    finite(name, s)?;
     match s.len() {
         1 => Ok(Rate::Scalar(s[0])),
         len if len == n => Ok(Rate::PerSample(s)),
         len => Err(linkage_error(format!(
             "{name} must be a scalar or have one value per angle ({n}), got {len}"
         ))),
+    }
+}
+
+/// Refuses a non-finite value of `values` with the message the Python layer gives
+/// (`theta must be finite: theta[3] is nan`): the check is done here, once, rather than by
+/// two numpy passes in Python (a few µs of a one-sample call).
+fn finite(name: &str, values: &[f64]) -> PyResult<()> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(k) => {
+            let v = values[k];
+            let shown = if v.is_nan() {
+                "nan"
+            } else if v > 0.0 {
+                "inf"
+            } else {
+                "-inf"
+            };
+            Err(linkage_error(format!(
+                "{name} must be finite: {name}[{k}] is {shown}"
+            )))
+        }
     }
 }
 
@@ -245,6 +268,7 @@ impl Mechanism {
         let th = theta
             .as_slice()
             .map_err(|_| linkage_error("theta must be a contiguous float64 array"))?;
+        finite("theta", th)?;
         let n = th.len();
         let (w, a) = (
             rate("omega", &omega, n, 0.0)?,
@@ -253,7 +277,7 @@ impl Mechanism {
         // The program on arrays sized to it (the same bits at any capacity), copied under the
         // lock.
         let mech = Sweepable::of(&self.lock());
-        let (j, np) = mech.shape();
+        let (j, np) = mech.shape(instant_centres);
         let columns = match column {
             None => Columns::All,
             Some(c) if c < j => Columns::One(c),
@@ -306,30 +330,19 @@ impl Mechanism {
             .then(|| memory::uninit::<f64, Ix2>(py, &what, &[n, width]))
             .transpose()?;
         {
-            let mut joints_w = joints.readwrite();
-            let mut valid_w = valid.readwrite();
-            let mut margin_w = flag_arrays.as_ref().map(|f| f.0.readwrite());
-            let mut regular_w = flag_arrays.as_ref().map(|f| f.1.readwrite());
-            let mut gap_w = flag_arrays.as_ref().map(|f| f.2.readwrite());
-            let write =
-                |a: &Option<Bound<'py, PyArray<f64, Ix3>>>| a.as_ref().map(|a| a.readwrite());
-            let (mut vel_w, mut acc_w) = (write(&vel), write(&acc));
-            let (mut centres_w, mut directions_w) = (write(&centres), write(&directions));
-            let mut curv_centres_w = write(&curv_centres);
-            let mut curv_w = curv.as_ref().map(|a| a.readwrite());
             let out = SweepOutputs {
                 columns,
-                joints: as_points(&mut joints_w)?,
-                valid: as_slice(&mut valid_w)?,
-                margin: margin_w.as_mut().map(as_slice).transpose()?,
-                regular: regular_w.as_mut().map(as_slice).transpose()?,
-                gap: gap_w.as_mut().map(as_slice).transpose()?,
-                velocity: vel_w.as_mut().map(as_points).transpose()?,
-                acceleration: acc_w.as_mut().map(as_points).transpose()?,
-                centres: centres_w.as_mut().map(as_points).transpose()?,
-                centre_directions: directions_w.as_mut().map(as_points).transpose()?,
-                curvature_centres: curv_centres_w.as_mut().map(as_points).transpose()?,
-                curvature: curv_w.as_mut().map(as_slice).transpose()?,
+                joints: fresh_points(&joints)?,
+                valid: fresh(&valid)?,
+                margin: flag_arrays.as_ref().map(|f| fresh(&f.0)).transpose()?,
+                regular: flag_arrays.as_ref().map(|f| fresh(&f.1)).transpose()?,
+                gap: flag_arrays.as_ref().map(|f| fresh(&f.2)).transpose()?,
+                velocity: fresh_opt(&vel)?,
+                acceleration: fresh_opt(&acc)?,
+                centres: fresh_opt(&centres)?,
+                centre_directions: fresh_opt(&directions)?,
+                curvature_centres: fresh_opt(&curv_centres)?,
+                curvature: curv.as_ref().map(fresh).transpose()?,
             };
             // Ctrl-C: the signal handler only sets a flag; the core calls `go_on` between
             // chunks of samples, which checks it.
@@ -465,14 +478,15 @@ impl Sweepable {
         }
     }
 
-    /// Joints and body pairs.
-    fn shape(&self) -> (usize, usize) {
-        match self {
-            Sweepable::S8(m) => (m.len(), sweep_pairs(m)),
-            Sweepable::S16(m) => (m.len(), sweep_pairs(m)),
-            Sweepable::S32(m) => (m.len(), sweep_pairs(m)),
-            Sweepable::S64(m) => (m.len(), sweep_pairs(m.as_ref())),
-        }
+    /// Joints and (when `pairs`, else 0) body pairs.
+    fn shape(&self, pairs: bool) -> (usize, usize) {
+        let (j, p) = match self {
+            Sweepable::S8(m) => (m.len(), pairs.then(|| sweep_pairs(m))),
+            Sweepable::S16(m) => (m.len(), pairs.then(|| sweep_pairs(m))),
+            Sweepable::S32(m) => (m.len(), pairs.then(|| sweep_pairs(m))),
+            Sweepable::S64(m) => (m.len(), pairs.then(|| sweep_pairs(m.as_ref()))),
+        };
+        (j, p.unwrap_or(0))
     }
 }
 
@@ -482,6 +496,41 @@ pub(crate) fn as_slice<'a, T: numpy::Element, D: numpy::ndarray::Dimension>(
 ) -> PyResult<&'a mut [T]> {
     a.as_slice_mut()
         .map_err(|_| linkage_error("internal error: output not contiguous"))
+}
+
+/// An array this call has just allocated, as a mutable slice, without numpy's borrow
+/// tracking (a few hundred ns a call, which a one-sample sweep feels).
+#[allow(
+    clippy::mut_from_ref,
+    reason = "the array is new and unseen: its data has no other reference (see SAFETY)"
+)]
+fn fresh<'a, T: numpy::Element, D: numpy::ndarray::Dimension>(
+    a: &'a Bound<'_, PyArray<T, D>>,
+) -> PyResult<&'a mut [T]> {
+    #[allow(
+        unsafe_code,
+        reason = "numpy's slice of an array nobody else can see yet"
+    )]
+    // SAFETY: `a` was created by `memory::uninit` in this call (C-contiguous, owned by numpy
+    // for the array's lifetime) and has not been returned to Python yet: no other reference
+    // to its data exists, so one mutable slice of it is the only access while it lives.
+    let s = unsafe { a.as_slice_mut() };
+    s.map_err(|_| linkage_error("internal error: output not contiguous"))
+}
+
+/// [`fresh`] of a `(…, 2)` float64 array, as points.
+fn fresh_points<'a, D: numpy::ndarray::Dimension>(
+    a: &'a Bound<'_, PyArray<f64, D>>,
+) -> PyResult<&'a mut [Vec2<f64>]> {
+    bytemuck::try_cast_slice_mut(fresh(a)?)
+        .map_err(|e| linkage_error(format!("internal error: output misaligned ({e})")))
+}
+
+/// [`fresh_points`] of an optional output.
+fn fresh_opt<'a>(
+    a: &'a Option<Bound<'_, PyArray<f64, Ix3>>>,
+) -> PyResult<Option<&'a mut [Vec2<f64>]>> {
+    a.as_ref().map(fresh_points).transpose()
 }
 
 /// A writeable `(…, 2)` float64 array as points.
