@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import functools
-from collections.abc import Iterable, Sequence
+import math
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 from linkage import _core
@@ -240,6 +241,49 @@ class Mechanism:
         f, t = self._index(on[0], "on[0]"), self._index(on[1], "on[1]")
         along, left = as_point(at, "at")
         self._add(name, lambda: self._core.point(f, t, along, left))
+
+    def add_joint(self, joint: Mapping[str, Any]) -> None:
+        """Add one joint given as a scene's joint table (the one reader of that form).
+
+        ``{"kind": "fixed", "name", "at"}``, ``{"kind": "crank", "name", "centre", "radius",
+        "phase_deg"?}``, ``{"kind": "dyad", "name", "p1", "p2", "r1", "r2", "side"?}`` or
+        ``{"kind": "point", "name", "on", "along", "left"?}``.
+
+        >>> m = Mechanism()
+        >>> m.add_joint({"kind": "fixed", "name": "O", "at": (0, 0)})
+        >>> m.add_joint({"kind": "crank", "name": "A", "centre": "O", "radius": 1, "phase_deg": 90})
+        >>> m.sweep([0.0], outputs=("joints",)).joint("A").round(12).tolist()
+        [[0.0, 1.0]]
+        >>> m.add_joint({"kind": "slider", "name": "B"})
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: unknown joint kind 'slider' (fixed, crank, dyad, point)
+        """
+        kind = joint.get("kind")
+        if kind == "fixed":
+            self.fixed(joint["name"], joint["at"])
+        elif kind == "crank":
+            phase = math.radians(as_finite(joint.get("phase_deg", 0.0), "phase_deg"))
+            self.crank(joint["name"], joint["centre"], joint["radius"], phase)
+        elif kind == "dyad":
+            side = joint.get("side", "left")
+            self.dyad(joint["name"], joint["p1"], joint["p2"], joint["r1"], joint["r2"], side)
+        elif kind == "point":
+            self.point(joint["name"], tuple(joint["on"]), (joint["along"], joint.get("left", 0.0)))
+        else:
+            raise LinkageError(f"unknown joint kind {kind!r} (fixed, crank, dyad, point)")
+
+    @classmethod
+    def from_joints(
+        cls, joints: Iterable[Mapping[str, Any]], trace: str | None = None
+    ) -> Mechanism:
+        """A mechanism from joint tables (:meth:`add_joint`), traced at ``trace`` if given."""
+        m = cls()
+        for j in joints:
+            m.add_joint(j)
+        if trace is not None:
+            m.trace = trace
+        return m
 
     # -- solving --------------------------------------------------------------------------
     def sweep(

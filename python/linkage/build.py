@@ -110,7 +110,7 @@ def build_mechanism(scene: Scene) -> FourBar | Mechanism:
     mech = Mechanism()
     for idx, j in enumerate(m["joints"]):
         with _blame(scene, ("mechanism", "joints", idx), JOINT_KEY[j["kind"]]):
-            _add_joint(mech, j)
+            mech.add_joint(j)
     if "trace" in m:
         with _blame(scene, sec, "trace"):
             mech.trace = m["trace"]
@@ -555,18 +555,6 @@ def no_assembly(
     )
 
 
-def _add_joint(mech: Mechanism, j: dict[str, Any]) -> None:
-    kind = j["kind"]
-    if kind == "fixed":
-        mech.fixed(j["name"], j["at"])
-    elif kind == "crank":
-        mech.crank(j["name"], j["centre"], j["radius"], math.radians(j.get("phase_deg", 0.0)))
-    elif kind == "dyad":
-        mech.dyad(j["name"], j["p1"], j["p2"], j["r1"], j["r2"], j.get("side", "left"))
-    else:
-        mech.point(j["name"], tuple(j["on"]), (j["along"], j.get("left", 0.0)))
-
-
 def _first_unplaced(
     joints: list[dict[str, Any]], theta: float
 ) -> tuple[int, dict[str, Any], dict[str, Any]] | None:
@@ -580,7 +568,7 @@ def _first_unplaced(
     for k in range(crank + 1, len(joints) + 1):
         mech = Mechanism()
         for j in joints[:k]:
-            _add_joint(mech, j)
+            mech.add_joint(j)
         s = mech.sweep(np.array([theta]), outputs=("joints",))
         if not s.valid[0]:
             return k - 1, joints[k - 1], placed

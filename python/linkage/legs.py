@@ -114,19 +114,7 @@ class Family:
 
     def mechanism(self, x: ArrayLike) -> Mechanism:
         """Build candidate ``x`` as a :class:`linkage.Mechanism` whose trace ``F`` is the foot."""
-        m = Mechanism()
-        for j in self.joints(x):
-            kind = j["kind"]
-            if kind == "fixed":
-                m.fixed(j["name"], j["at"])
-            elif kind == "crank":
-                m.crank(j["name"], j["centre"], j["radius"])
-            elif kind == "dyad":
-                m.dyad(j["name"], j["p1"], j["p2"], j["r1"], j["r2"], j["side"])
-            else:
-                m.point(j["name"], tuple(j["on"]), (j["along"], j.get("left", 0.0)))
-        m.trace = "F"
-        return m
+        return Mechanism.from_joints(self.joints(x), trace="F")
 
     def evaluate(self, x: Array, settings: Settings, threads: int = 1) -> Array:
         """Compute the figures ``(M, len(FIGURES))`` of the candidates ``x`` ``(M, len(params))``.
