@@ -264,3 +264,12 @@ def test_cli_synth(tmp_path, capsys, atlas: Atlas) -> None:  # type: ignore[no-u
     code = cli.main(["synth", str(f), "--quiet", "--atlas", str(tmp_path)])
     assert code == 2
     assert "not a readable atlas" in capsys.readouterr().err
+
+
+def test_progress_is_reported_on_stderr(atlas: Atlas, capsys) -> None:  # type: ignore[no-untyped-def]
+    fb = linkage.catalog.get("hoecken")
+    assert isinstance(fb, linkage.FourBar)
+    pts = fb.circuit(121).point[:-1][::3]
+    synthesis.path(pts, top=1, atlas=atlas, refine=2, global_search=False, progress=True)
+    err = capsys.readouterr().err
+    assert "synthesis: [" in err and "/2" in err, err

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import argparse
 import hashlib
-import importlib
 import json
 import math
 import os
@@ -44,6 +43,7 @@ from linkage._precision import (
     function,
     motion,
 )
+from linkage._progress import Bar
 from linkage.catalog import cache_dir
 
 __all__ = [
@@ -481,7 +481,7 @@ def _de(
 
         def step(*_: Any, **__: Any) -> bool:
             if bar is not None:
-                bar.update(1)
+                bar.update(1, "global search")
             return False
 
         r = differential_evolution(
@@ -574,7 +574,7 @@ def path(
     centre = target.mean(axis=0)
     size = float(np.sqrt(np.mean(np.sum((target - centre) ** 2, axis=1))))
     bounds = _bounds(lengths, pivots, size)
-    bar = _bar(progress)
+    bar = _bar(progress, refine)
     pool: list[tuple[NDArray[np.float64], bool, str]] = []
     if closed:
         at = (
@@ -614,6 +614,8 @@ def path(
         else (not closed or not found or min(c.error for c in found) > tol * size)
     )
     if run_global:
+        if bar is not None and bar.total is not None:
+            bar.total += 2 * maxiter + 8  # generations of both assemblies, then refinements
         de = _de(target, closed, size, centre, seed, maxiter, nthreads, bar)
         found += _finish(
             [(x, c, "global") for x, c in de], target, closed, size, bounds, len(de), nthreads, bar
@@ -657,14 +659,8 @@ def _bounds(
     return lo, hi
 
 
-def _bar(progress: bool) -> Any:
-    if not progress:
-        return None
-    try:
-        tqdm = importlib.import_module("tqdm").tqdm
-    except ImportError:
-        return None
-    return tqdm(desc="synthesis", unit="step", leave=False)
+def _bar(progress: bool, total: int) -> Bar | None:
+    return Bar("synthesis", total=total) if progress else None
 
 
 def _finish(

@@ -13,7 +13,6 @@ import json
 import math
 import os
 import pickle
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -26,6 +25,7 @@ from pymoo.algorithms.moo.nsga2 import NSGA2  # type: ignore[import-untyped]
 from pymoo.core.problem import Problem  # type: ignore[import-untyped]
 
 from linkage._core import LinkageError
+from linkage._progress import Bar
 from linkage.legs import FIGURES, OBJECTIVES, Settings, family
 
 Array = NDArray[np.float64]
@@ -310,6 +310,8 @@ def search(
         algorithm = state["algorithm"]
         xs, figs, gen = state["x"], state["figures"], state["generation"]
     done_here = 0
+    bar = Bar("design search", total=study.generations, enabled=progress)
+    bar.done = gen
     with Evaluator(study) as ev:
         while gen < study.generations:
             if stop_after is not None and done_here >= stop_after:
@@ -335,10 +337,8 @@ def search(
                         "generation": gen,
                     },
                 )
-            if progress:
-                _bar(gen, study.generations, sum(len(v) for v in xs))
-    if progress and sys.stderr.isatty():
-        sys.stderr.write("\n")
+            bar.update(1, f"{sum(len(v) for v in xs)} legs evaluated")
+    bar.close()
     x_all = np.concatenate(xs) if xs else np.empty((0, len(fam.params)))
     f_all = np.concatenate(figs) if figs else np.empty((0, len(FIGURES)))
     return Front(
@@ -350,21 +350,6 @@ def search(
         evaluations=len(x_all),
         seconds=time.perf_counter() - t0,
     )
-
-
-def _bar(done: int, total: int, evaluations: int) -> None:
-    """Draw a progress bar on a terminal (redrawn in place); elsewhere print a line every tenth."""
-    width = 30
-    full = int(width * done / max(total, 1))
-    text = (
-        f"[{'#' * full}{'.' * (width - full)}] generation {done}/{total}, "
-        f"{evaluations} legs evaluated"
-    )
-    if sys.stderr.isatty():
-        sys.stderr.write("\r" + text)
-    elif done == total or done % max(1, total // 10) == 0:
-        sys.stderr.write(text + "\n")
-    sys.stderr.flush()
 
 
 def pareto_front(study: Study, figs: Array) -> NDArray[np.int64]:
