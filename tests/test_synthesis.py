@@ -135,8 +135,13 @@ def test_no_candidate_switches_branch(atlas: Atlas, coeffs: list[float], aspect:
     for cand in found:
         assert_one_circuit(cand)
         span = float(np.ptp(cand.linkage.circuit(101).point, axis=0).max())
-        d = tracked_distance(cand.linkage, target, 4001)
-        assert abs(d - cand.error) <= 1e-3 * span + 1e-9
+        d = tracked_distance(cand.linkage, target, 20001)
+        # The polyline is within its longest chord of the curve (a branch switch would differ
+        # by the size of the linkage): near a crank limit of a near-change-point linkage the
+        # curve runs fast and its chords are long (measured: 7e-3 at 4001 samples).
+        curve = cand.linkage.circuit(20001).point
+        chord = float(np.max(np.hypot(*np.diff(curve, axis=0).T)))
+        assert abs(d - cand.error) <= 1e-3 * span + chord, (d, cand.error, chord)
 
 
 def assert_one_circuit(cand: synthesis.Candidate, n: int = 1001) -> None:

@@ -684,13 +684,19 @@ def _finish(
         if enough is not None and len(exact) >= enough:
             break
         if k < refine:
-            # Rounds of least squares, each from every target point's true nearest curve point:
-            # where the curve crosses itself a first guess may put a point on the wrong pass.
-            for _ in range(3):
+            # Rounds of least squares, each from every target point's true nearest curve point
+            # (where the curve crosses itself a first guess may put a point on the wrong pass).
+            # Least squares lowers the RMS distance, which can raise the largest: the best
+            # linkage by largest distance is kept too (an earlier round or the unrefined one).
+            best_x, best_e = x, math.inf
+            for r in range(4):
                 e, feet = _errors(
                     x[None, :], np.array([crossed]), target, closed, samples=512, exact=True
                 )
-                if not np.all(np.isfinite(feet)) or e[0, 0] <= 1e-10 * size:
+                err = float(e[0, 0]) if np.isfinite(e[0, 0]) else math.inf
+                if err < best_e:
+                    best_x, best_e = x, err
+                if r == 3 or not np.all(np.isfinite(feet)) or err <= 1e-10 * size:
                     break
                 try:
                     x = _refine(x, crossed, target, feet[0], size, bounds, 60)
@@ -698,13 +704,19 @@ def _finish(
                     break
             if bar is not None:
                 bar.update(1)
-        cand = _measure(x, crossed, target, closed, source, threads)
-        if cand is not None:
-            out.append(cand)
-            if cand.error <= 1e-10 * size and all(
-                np.max(np.abs(cand.params - e)) > 1e-6 * size for e in exact
-            ):
-                exact.append(cand.params)
+            # The last refinement, and the best by largest distance when that is another (an
+            # earlier round or the unrefined one): both are measured, the ranking decides.
+            tries = [x] + ([best_x] if best_x is not x else [])
+        else:
+            tries = [x]
+        for xt in tries:
+            cand = _measure(xt, crossed, target, closed, source, threads)
+            if cand is not None:
+                out.append(cand)
+                if cand.error <= 1e-10 * size and all(
+                    np.max(np.abs(cand.params - e)) > 1e-6 * size for e in exact
+                ):
+                    exact.append(cand.params)
     return out
 
 
