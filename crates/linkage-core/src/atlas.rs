@@ -41,7 +41,23 @@ pub const ENTRY_PARAMS: usize = 6;
 /// Candidate indices per unit of parallel work.
 const CHUNK: u64 = 2048;
 
+/// Most threads [`Atlas::build`] starts (more would only add start-up time; the bits are the
+/// same for any count).
+const MAX_THREADS: usize = 256;
+
 /// How an atlas is made.
+///
+/// ```
+/// use linkage_core::{Atlas, AtlasSpec, Error};
+/// let spec = AtlasSpec::default();
+/// assert_eq!((spec.harmonics, spec.samples), (8, 64));
+/// // Too few samples of a circuit to describe its shape.
+/// let coarse = AtlasSpec { samples: 4, ..spec };
+/// assert!(matches!(
+///     Atlas::build(10, coarse, 1),
+///     Err(Error::BufferLength { what: "circuit samples", .. })
+/// ));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AtlasSpec {
     /// Harmonics of the descriptors.
@@ -63,6 +79,18 @@ impl Default for AtlasSpec {
 
 /// Atlas entries as flat arrays: `descriptors[i·D .. (i+1)·D]` and
 /// `params[i·ENTRY_PARAMS ..]` of entry `i`, with `D = dim`.
+///
+/// ```
+/// use linkage_core::{candidate, nearest, Atlas, AtlasSpec, ENTRY_PARAMS};
+/// let atlas = Atlas::build(100, AtlasSpec::default(), 2).unwrap();
+/// assert_eq!((atlas.len(), atlas.dim), (100, 29));
+/// assert_eq!(Atlas::build(100, AtlasSpec::default(), 1).unwrap(), atlas); // any thread count
+/// // An entry's parameters are its candidate's, and its shape is nearest itself.
+/// let fb = candidate(atlas.candidate[7]).unwrap();
+/// assert_eq!(atlas.params[7 * ENTRY_PARAMS], fb.crank);
+/// let query = &atlas.descriptors[7 * atlas.dim..8 * atlas.dim];
+/// assert_eq!(nearest(&atlas.descriptors, atlas.dim, query, 1, 1).unwrap(), [(7, 0.0, 0)]);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Atlas {
     /// Descriptor length `D` ([`descriptor_len`] of the harmonics).
@@ -86,15 +114,27 @@ impl Atlas {
         self.candidate.is_empty()
     }
 
-    /// Builds an atlas of `entries` entries on `threads` threads (at least one). The result
-    /// does not depend on `threads`.
+    /// Builds an atlas of `entries` entries on `threads` threads (at least one, at most 256).
+    /// The result does not depend on `threads`.
     ///
     /// # Errors
-    /// [`Error::BufferLength`] for fewer than 1 harmonic or 8 samples.
+    /// [`Error::BufferLength`] for fewer than 1 harmonic or 8 samples; [`Error::CountOverflow`]
+    /// for more entries, harmonics or samples than an address space holds.
     pub fn build(entries: usize, spec: AtlasSpec, threads: usize) -> Result<Atlas, Error> {
         check_spec(spec)?;
         let dim = descriptor_len(spec.harmonics);
-        let threads = threads.max(1);
+        // The descriptors (f32) and parameters (f64) of every entry must fit in memory: this
+        // also keeps the counts below from overflowing.
+        let row = dim.saturating_mul(4).max(ENTRY_PARAMS * 8);
+        if entries
+            .checked_mul(row)
+            .is_none_or(|bytes| bytes > isize::MAX as usize)
+        {
+            return Err(Error::CountOverflow {
+                what: "atlas entries",
+            });
+        }
+        let threads = threads.clamp(1, MAX_THREADS);
         let mut atlas = Atlas {
             dim,
             ..Atlas::default()
@@ -138,6 +178,21 @@ fn check_spec(spec: AtlasSpec) -> Result<(), Error> {
             expected: 8,
             got: spec.samples,
         });
+    }
+    // A circuit's points and its harmonics' coefficients are allocated whole: counts beyond the
+    // address space are an error, not a capacity-overflow panic.
+    let fits = |count: usize, size: usize| {
+        count
+            .checked_mul(size)
+            .is_some_and(|bytes| bytes <= isize::MAX as usize)
+    };
+    if !fits(spec.samples, core::mem::size_of::<Vec2<f64>>()) {
+        return Err(Error::CountOverflow {
+            what: "circuit samples",
+        });
+    }
+    if !fits(spec.harmonics, core::mem::size_of::<[f64; 4]>()) {
+        return Err(Error::CountOverflow { what: "harmonics" });
     }
     Ok(())
 }
@@ -301,6 +356,9 @@ pub fn nearest(
     if k == 0 || n == 0 || targets.is_empty() {
         return Ok(Vec::new());
     }
+    // No more results than pairs of an entry and a target (which also bounds the lists'
+    // allocation whatever `k` is asked).
+    let k = k.min(n.saturating_mul(targets.len() / dim));
     let threads = threads.clamp(1, n.div_ceil(4096).max(1));
     let per = n.div_ceil(threads);
     let mut best: Vec<(usize, f32, usize)> = crate::parallel::map_parts(threads, threads, |t| {

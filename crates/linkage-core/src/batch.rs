@@ -113,6 +113,29 @@ pub struct FourBarBatch<'a, T> {
 }
 
 /// How a batch sweep's linkages were solved: a deterministic account of the work.
+///
+/// ```
+/// use linkage_core::{Assembly, FourBarBatch, Vec2};
+/// // A crank-rocker, and a parallelogram (a change point, flat at θ = π) swept through π.
+/// let (o, c) = ([Vec2::zeros(); 2], [Vec2::new(20.0, 0.0), Vec2::new(3.0, 0.0)]);
+/// let batch = FourBarBatch {
+///     o: &o,
+///     c: &c,
+///     crank: &[10.0, 1.0],
+///     coupler: &[25.0, 3.0],
+///     rocker: &[25.0, 1.0],
+///     along: &[50.0, 1.0],
+///     left: &[0.0, 0.0],
+///     assembly: &[Assembly::Open; 2],
+/// };
+/// let theta = [3.0, 3.1, 3.2];
+/// let (mut points, mut valid) = ([Vec2::zeros(); 6], [false; 6]);
+/// let work = batch.sweep(&theta, &mut points, &mut valid).unwrap();
+/// assert_eq!((work.fast, work.tracked, work.stopped), (1, 1, false));
+/// // `go_on` can stop it: the outputs are then partly written.
+/// let stopped = batch.sweep_with(&theta, &mut points, &mut valid, &mut || false).unwrap();
+/// assert!(stopped.stopped);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BatchWork {
     /// Linkages on the fast path.

@@ -15,6 +15,16 @@ pub const GROUND: BodyId = BodyId {
 /// A crank creates one body (its crank link); an RRR dyad two (its links from `p1` and `p2`);
 /// a slider two (the connecting link, slot 0, and the sliding block, slot 1); a point carried by
 /// a link joins the body that holds both its frame joints, or creates one if none does.
+///
+/// ```
+/// use linkage_core::{catalog, Bodies, BodyId, GROUND};
+/// let bodies = Bodies::of(&catalog::hoecken::<f64>().mechanism()); // joints O, C, A, B, P
+/// // The dyad at B (joint 3) creates the coupler (slot 0, from A) and the rocker (slot 1, from C).
+/// let (coupler, rocker) = (BodyId { joint: 3, slot: 0 }, BodyId { joint: 3, slot: 1 });
+/// assert!([2, 3, 4].iter().all(|&j| bodies.contains(coupler, j)));
+/// assert_eq!(bodies.shared_joint(coupler, rocker), Some(3));
+/// assert!(bodies.contains(GROUND, 0) && !bodies.contains(GROUND, 2));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct BodyId {
     /// The construction that created the body (`usize::MAX` for the ground).
@@ -24,6 +34,17 @@ pub struct BodyId {
 }
 
 /// How a body's motion is known.
+///
+/// ```
+/// use linkage_core::{catalog, Bodies, BodyFrame, BodyId, GROUND};
+/// let bodies = Bodies::of(&catalog::hoecken::<f64>().mechanism());
+/// assert_eq!(bodies.frame(GROUND), BodyFrame::Ground);
+/// // The crank (created by joint A = 2) turns about O = 0.
+/// let crank = BodyId { joint: 2, slot: 0 };
+/// assert_eq!(bodies.frame(crank), BodyFrame::Link { origin: 0, toward: 2 });
+/// // An id that names no body reads as the ground.
+/// assert_eq!(bodies.frame(BodyId { joint: 99, slot: 0 }), BodyFrame::Ground);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BodyFrame {
     /// The frame: does not move.
@@ -45,6 +66,16 @@ pub enum BodyFrame {
 }
 
 /// The bodies of a mechanism with capacity `N`: at most `2N + 1`.
+///
+/// ```
+/// use linkage_core::{catalog, Bodies, BodyId, GROUND};
+/// let bodies = Bodies::of(&catalog::hoecken::<f64>().mechanism());
+/// // Ground, crank, coupler (which carries the foot P) and rocker.
+/// assert_eq!(bodies.count(), 4);
+/// let ids: Vec<BodyId> = bodies.ids().collect();
+/// assert_eq!(ids[0], GROUND);
+/// assert_eq!(ids[1..], [(2, 0), (3, 0), (3, 1)].map(|(joint, slot)| BodyId { joint, slot }));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bodies<const N: usize> {
     created: [[Option<BodyFrame>; 2]; N],
@@ -54,6 +85,18 @@ pub struct Bodies<const N: usize> {
 }
 
 /// Kutzbach–Gruebler count of a planar linkage.
+///
+/// ```
+/// use linkage_core::{catalog, Bodies, Mobility};
+/// // Kutzbach–Gruebler for a four-bar: 3(4 − 1) − 2·4 = 1.
+/// let mob = Bodies::of(&catalog::hoecken::<f64>().mechanism()).mobility();
+/// assert_eq!(mob, Mobility { links: 4, lower_pairs: 4, higher_pairs: 0 });
+/// assert_eq!(mob.degrees_of_freedom(), 1);
+/// // Counts no mechanism has: out of the i64 range, saturated or None.
+/// let absurd = Mobility { links: 0, lower_pairs: usize::MAX, higher_pairs: usize::MAX };
+/// assert_eq!(absurd.checked_degrees_of_freedom(), None);
+/// assert_eq!(absurd.degrees_of_freedom(), i64::MIN);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Mobility {
     /// Number of links `n`, the ground included.

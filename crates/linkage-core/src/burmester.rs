@@ -42,6 +42,16 @@ use crate::scalar::{cross, eps, length, lit, nan, perp, Vec2};
 use crate::tracker::{Rates, Tracker};
 
 /// A position of a moving body: where its reference point is and how it is turned.
+///
+/// ```
+/// use linkage_core::{BodyPose, Vec2};
+/// // A body at (1, 2) turned a quarter turn: its point (1, 0) is at (1, 3) in the world.
+/// let pose = BodyPose::new(1.0_f64, 2.0, core::f64::consts::FRAC_PI_2).unwrap();
+/// let w = pose.to_world(Vec2::new(1.0, 0.0));
+/// assert!((w - Vec2::new(1.0, 3.0)).norm() < 1e-15);
+/// assert!((pose.to_body(w) - Vec2::new(1.0, 0.0)).norm() < 1e-15);
+/// assert!(BodyPose::new(f64::NAN, 0.0, 0.0).is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyPose<T> {
     /// The body's reference point (the coupler point of a synthesised four-bar).
@@ -103,6 +113,23 @@ pub fn pole<T: RealField + Copy>(p: &BodyPose<T>, q: &BodyPose<T>) -> Centre<T> 
 
 /// A revolute dyad found by Burmester theory: a centre point (fixed pivot) and a circle point
 /// (moving pivot, where it lies at pose 0).
+///
+/// ```
+/// use linkage_core::{catalog, centre_point, circle_point, BodyPose};
+/// // Three poses of Hoecken's coupler (its foot P and the direction of A → B).
+/// let fb = catalog::hoecken::<f64>();
+/// let at = |t: f64| {
+///     let p = fb.pose(t).unwrap();
+///     let d = p.b - p.a;
+///     (BodyPose::new(p.coupler_point.x, p.coupler_point.y, d.y.atan2(d.x)).unwrap(), p.a)
+/// };
+/// let (poses, a0) = ([at(0.4).0, at(1.3).0, at(2.5).0], at(0.4).1);
+/// // The crank pin's three positions lie on a circle about the crank pivot O.
+/// let crank = centre_point(&poses, a0).unwrap();
+/// assert!((crank.centre - fb.o).norm() < 1e-9 && (crank.radius() - fb.crank).abs() < 1e-9);
+/// // And back: the fixed point O, seen from the moving body, gives the crank pin.
+/// assert!((circle_point(&poses, fb.o).unwrap().circle - a0).norm() < 1e-9);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BurmesterPair<T> {
     /// Fixed pivot.
@@ -294,6 +321,32 @@ fn cis<T: RealField + Copy>(t: T) -> Vec2<T> {
 /// two dyads closing the compatibility triangle, or `None` where it does not close (the curve
 /// has no real point there) or the dyad is at infinity (the trivial solutions `β_j = 0` and
 /// `β_j = α_j`, where the dyad equations lose rank).
+///
+/// ```
+/// use linkage_core::{Assembly, BodyPose, BurmesterCurve, BurmesterPair, Error, FourBar, Vec2};
+/// // Four poses of a crank-rocker's coupler: its crank (O, A₀) is one of the dyads on the curve,
+/// // at the crank's own rotation to the free pose.
+/// let fb = FourBar::with_pivots(
+///     Vec2::new(0.3, -0.2), Vec2::new(2.3, 0.4), 0.7, 1.9, 1.6, (0.8, 0.6), Assembly::Open,
+/// ).unwrap();
+/// let thetas = [0.2, 0.9, 1.7, 2.6];
+/// let at = |t: f64| {
+///     let p = fb.pose(t).unwrap();
+///     let d = p.b - p.a;
+///     BodyPose::new(p.coupler_point.x, p.coupler_point.y, d.y.atan2(d.x)).unwrap()
+/// };
+/// let curve = BurmesterCurve::new(&thetas.map(at)).unwrap();
+/// let k = curve.free_pose();
+/// let a0 = fb.pose(thetas[0]).unwrap().a;
+/// let found = curve.dyads(thetas[k] - thetas[0]);
+/// let near = |d: &BurmesterPair<f64>| (d.centre - fb.o).norm() + (d.circle - a0).norm() < 1e-10;
+/// assert!(found.iter().flatten().any(near));
+/// // Four pure translations have no Burmester curve.
+/// let shift = |x: f64, y: f64| BodyPose::new(x, y, 0.2).unwrap();
+/// let translations = [shift(0.0, 0.0), shift(1.0, 0.0), shift(1.0, 1.0), shift(0.0, 2.0)];
+/// let r = BurmesterCurve::new(&translations);
+/// assert!(matches!(r, Err(Error::Degenerate { .. })));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BurmesterCurve<T> {
     origin: Vec2<T>,
@@ -459,6 +512,26 @@ impl<T: RealField + Copy> BurmesterCurve<T> {
 }
 
 /// A shortcoming of a synthesised linkage found by sweeping it through its precision positions.
+///
+/// ```
+/// use linkage_core::{centre_point, Assembly, BodyPose, Defect, FourBar, MotionCandidate, Vec2};
+/// // Poses 0 and 1 on a crank-rocker's open circuit, pose 2 on its crossed one: both dyads fit
+/// // the three poses exactly, but no motion of the linkage joins them.
+/// let fb = FourBar::with_pivots(
+///     Vec2::new(0.3, -0.2), Vec2::new(2.3, 0.4), 0.7, 1.9, 1.6, (0.8, 0.6), Assembly::Open,
+/// ).unwrap();
+/// let at = |t: f64, assembly| {
+///     let p = FourBar { assembly, ..fb }.pose(t).unwrap();
+///     let d = p.b - p.a;
+///     (BodyPose::new(p.coupler_point.x, p.coupler_point.y, d.y.atan2(d.x)).unwrap(), p.a, p.b)
+/// };
+/// let (p0, a0, b0) = at(0.4, Assembly::Open);
+/// let poses = [p0, at(1.3, Assembly::Open).0, at(2.5, Assembly::Crossed).0];
+/// let (crank, rocker) = (centre_point(&poses, a0).unwrap(), centre_point(&poses, b0).unwrap());
+/// let check = MotionCandidate::new(&poses, crank, rocker).unwrap().check;
+/// assert_eq!(check.defect, Some(Defect::Branch { pose: 2 }));
+/// assert_eq!(check.defect.unwrap().name(), "branch");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Defect {
@@ -502,6 +575,31 @@ impl Defect {
 pub const MAX_POSES: usize = 4;
 
 /// What sweeping a synthesised four-bar through its poses found.
+///
+/// ```
+/// use linkage_core::{
+///     centre_point, Assembly, BodyPose, FourBar, GrashofClass, MotionCandidate, Vec2,
+/// };
+/// let fb = FourBar::with_pivots(
+///     Vec2::new(0.3, -0.2), Vec2::new(2.3, 0.4), 0.7, 1.9, 1.6, (0.8, 0.6), Assembly::Open,
+/// ).unwrap();
+/// let at = |t: f64| {
+///     let p = fb.pose(t).unwrap();
+///     let d = p.b - p.a;
+///     (BodyPose::new(p.coupler_point.x, p.coupler_point.y, d.y.atan2(d.x)).unwrap(), p.a, p.b)
+/// };
+/// let thetas = [0.4, 1.3, 2.5];
+/// let poses = thetas.map(|t| at(t).0);
+/// let (_, a0, b0) = at(thetas[0]);
+/// let (crank, rocker) = (centre_point(&poses, a0).unwrap(), centre_point(&poses, b0).unwrap());
+/// let check = MotionCandidate::new(&poses, crank, rocker).unwrap().check;
+/// // Counter-clockwise through the three poses in order, at the crank angles they were made at.
+/// assert_eq!((check.defect, check.direction), (None, 1.0));
+/// assert_eq!(check.grashof, GrashofClass::CrankRocker);
+/// assert!((0..3).all(|k| (check.crank_angles[k] - thetas[k]).abs() < 1e-12));
+/// assert!(check.crank_angles[3].is_nan()); // three poses of at most four
+/// assert!(check.position_error < 1e-12 && check.angle_error < 1e-12);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MotionCheck<T> {
     /// `None` when the crank, turned one way, carries the body through every pose in order on
@@ -526,6 +624,29 @@ pub struct MotionCheck<T> {
 }
 
 /// A four-bar assembled from two Burmester dyads, with the check of its sweep through the poses.
+///
+/// ```
+/// use linkage_core::{catalog, centre_point, BodyPose, Error, MotionCandidate};
+/// // Three poses of Hoecken's coupler give back Hoecken's linkage from its two dyads.
+/// let fb = catalog::hoecken::<f64>();
+/// let at = |t: f64| {
+///     let p = fb.pose(t).unwrap();
+///     let d = p.b - p.a;
+///     (BodyPose::new(p.coupler_point.x, p.coupler_point.y, d.y.atan2(d.x)).unwrap(), p.a, p.b)
+/// };
+/// let poses = [at(0.4).0, at(1.3).0, at(2.5).0];
+/// let (_, a0, b0) = at(0.4);
+/// let (crank, rocker) = (centre_point(&poses, a0).unwrap(), centre_point(&poses, b0).unwrap());
+/// let cand = MotionCandidate::new(&poses, crank, rocker).unwrap();
+/// assert_eq!((cand.check.defect, cand.four_bar.assembly), (None, fb.assembly));
+/// let found = cand.four_bar;
+/// assert!((found.coupler - 25.0).abs() < 1e-9 && (found.along - 50.0).abs() < 1e-9);
+/// // Two poses are too few to check.
+/// assert!(matches!(
+///     MotionCandidate::new(&poses[..2], crank, rocker),
+///     Err(Error::TooFew { needed: 3, got: 2, .. })
+/// ));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MotionCandidate<T> {
     /// The linkage: crank pivot at the driving dyad's centre point, rocker pivot at the other's,

@@ -7,6 +7,16 @@ use crate::scalar::{cross, nan, perp, Vec2};
 
 /// One cam angle's geometry, in the cam's frame (cam centre at the origin, the cam turning
 /// counter-clockwise, the follower's axis along +y at angle 0).
+///
+/// ```
+/// use linkage_core::{CamPoint, RollerFollower};
+/// // Prime circle 30 + 10 = 40, the follower rising 40 per radian there: pressure angle 45°.
+/// let f = RollerFollower::new(30.0_f64, 10.0, 0.0).unwrap();
+/// let p: CamPoint<f64> = f.point(0.0, [0.0, 40.0, 0.0]);
+/// assert!((p.pressure_angle - core::f64::consts::FRAC_PI_4).abs() < 1e-15);
+/// // The profile is the pitch curve moved in by the roller's radius.
+/// assert!(((p.pitch - p.profile).norm() - 10.0).abs() < 1e-12);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CamPoint<T> {
     /// Pitch-curve point: the roller centre (for a flat face, the face's point on the axis).
@@ -31,6 +41,17 @@ fn into_cam<T: RealField + Copy>(v: Vec2<T>, phi: T) -> Vec2<T> {
 
 /// A translating roller follower: base-circle radius `Rb`, roller radius `Rr`, the axis offset
 /// `e` from the cam centre (positive to the +x side).
+///
+/// ```
+/// use linkage_core::{Error, RollerFollower, Vec2};
+/// // Base circle 40, roller 10, no offset, at a dwell 5 up: the pitch curve is a circle of 55.
+/// let f = RollerFollower::new(40.0_f64, 10.0, 0.0).unwrap();
+/// let p = f.point(0.0, [5.0, 0.0, 0.0]);
+/// assert!((p.pitch - Vec2::new(0.0, 55.0)).norm() < 1e-12 && p.pressure_angle == 0.0);
+/// assert!((p.pitch_radius - 55.0).abs() < 1e-12 && (p.profile_radius - 45.0).abs() < 1e-12);
+/// // The follower's axis must pass inside the prime circle (radius 50).
+/// assert!(matches!(RollerFollower::new(40.0_f64, 10.0, 50.0), Err(Error::InvalidLength { .. })));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RollerFollower<T> {
     /// Base-circle radius of the cam profile.
@@ -107,6 +128,17 @@ impl<T: RealField + Copy> RollerFollower<T> {
 
 /// A translating flat-faced follower, its face perpendicular to its axis through the cam
 /// centre, touching a cam of base-circle radius `Rb`.
+///
+/// ```
+/// use linkage_core::{FlatFollower, Vec2};
+/// let f = FlatFollower::new(20.0_f64).unwrap();
+/// // At s = 5 with s' = 3 the contact is 3 off the axis; with s'' = −30 the profile's radius
+/// // 20 + 5 − 30 is negative: a cusp, the cam is undercut there.
+/// let p = f.point(0.0, [5.0, 3.0, -30.0]);
+/// assert_eq!((p.profile, p.pressure_angle), (Vec2::new(3.0, 25.0), 0.0));
+/// assert_eq!(p.profile_radius, -5.0);
+/// assert!(FlatFollower::new(0.0_f64).is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlatFollower<T> {
     /// Base-circle radius of the cam profile.

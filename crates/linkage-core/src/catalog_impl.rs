@@ -23,6 +23,19 @@ use crate::scalar::{lit, Vec2};
 pub const CAPACITY: usize = 16;
 
 /// A catalogued mechanism: its program, joint names and the joint that traces the path.
+///
+/// ```
+/// use linkage_core::{catalog, Vec2};
+/// let p = catalog::peaucellier::<f64>();
+/// assert_eq!((p.name, p.joint_names[p.trace]), ("peaucellier", "P"));
+/// // Peaucellier's inversor traces the exact line x = 40 while the crank is in range.
+/// let mut j = [Vec2::zeros(); 6];
+/// for theta in [-1.0, 0.0, 1.2] {
+///     p.mechanism.pose(theta, &mut j).unwrap();
+///     assert!((j[p.trace].x - 40.0).abs() < 1e-12);
+/// }
+/// assert!(catalog::linkage_by_name::<f64>("klann").is_none());
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Linkage<T: RealField + Copy> {
     /// Catalogue name.

@@ -7,6 +7,19 @@ use crate::motion::direction_rates;
 use crate::scalar::{cross, eps, length, lit, perp, Vec2};
 
 /// A point of the projective plane: finite, at infinity in a direction, or undefined.
+///
+/// ```
+/// use linkage_core::{circumcentre, Centre, Vec2};
+/// let ring = circumcentre(Vec2::new(1.0_f64, 0.0), Vec2::new(0.0, 1.0), Vec2::new(-1.0, 0.0));
+/// assert!(ring.finite().unwrap().norm() < 1e-15);
+/// // Three collinear points: the centre is at infinity, along the line's normal.
+/// let line = circumcentre(Vec2::new(0.0_f64, 0.0), Vec2::new(1.0, 0.0), Vec2::new(2.0, 0.0));
+/// assert!(matches!(line, Centre::AtInfinity(d) if d.x == 0.0 && d.y.abs() == 1.0));
+/// assert_eq!(line.finite(), None);
+/// // Three coincident points: no centre at all.
+/// let p = Vec2::new(1.0_f64, 1.0);
+/// assert_eq!(circumcentre(p, p, p), Centre::Undefined);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Centre<T> {
     /// A finite point.
@@ -132,6 +145,30 @@ pub fn path_curvature<T: RealField + Copy>(p: Vec2<T>, v: Vec2<T>, a: Vec2<T>) -
 
 /// Instantaneous motion of a rigid body: a reference point's position and first three
 /// derivatives, and the body's angular velocity, acceleration and jerk.
+///
+/// ```
+/// use linkage_core::{
+///     catalog, instant_centre, Bodies, BodyId, BodyMotion, CrankRates, Vec2, GROUND,
+/// };
+/// let fb = catalog::hoecken::<f64>();
+/// let m = fb.mechanism(); // joints O, C, A, B, P
+/// let mut p = [Vec2::zeros(); 5];
+/// m.pose(0.5, &mut p).unwrap();
+/// let (mut v, mut a, j) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5], [Vec2::zeros(); 5]);
+/// m.motion(&p, CrankRates::unit(), &mut v, Some(&mut a), None).unwrap();
+/// let bodies = Bodies::of(&m);
+/// let motion = |id| BodyMotion::of(&bodies, id, &p, &v, &a, &j);
+/// let crank = motion(BodyId { joint: 2, slot: 0 });
+/// assert!((crank.omega - 1.0).abs() < 1e-12 && crank.velocity_at(p[0]).norm() < 1e-12);
+/// // The coupler's instant centre from its motion is Kennedy's I13 = OA ∩ CB.
+/// let coupler = motion(BodyId { joint: 3, slot: 0 });
+/// let i13 = instant_centre(&coupler, &motion(GROUND)).finite().unwrap();
+/// let kennedy = fb.instant_centres(0.5).unwrap()[1].finite().unwrap();
+/// assert!((i13 - kennedy).norm() < 1e-9);
+/// // Slices too short for the body's joints give a NaN motion, not a panic.
+/// let short = BodyMotion::of(&bodies, BodyId { joint: 3, slot: 0 }, &p[..3], &v, &a, &j);
+/// assert!(short.omega.is_nan());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyMotion<T> {
     /// Reference point.

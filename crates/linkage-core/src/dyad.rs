@@ -2,10 +2,29 @@
 
 use nalgebra::RealField;
 
+use crate::error::Error;
 use crate::scalar::{cross, eps, length, lit, perp, Vec2};
 
 /// Which of the two mirror-image solutions of a dyad: the side of the directed line from the
 /// first base joint to the second on which the new joint lies.
+///
+/// Named `"left"` and `"right"` ([`Side::name`], parsed back by `FromStr`).
+///
+/// ```
+/// use linkage_core::{Dyad, Error, Side, Vec2};
+/// // Base (0, 0) → (5, 0): the left solution is above the x axis, the right one its mirror.
+/// let d = Dyad { r1: 3.0_f64, r2: 4.0 };
+/// let pose = d.solve(Vec2::zeros(), Vec2::new(5.0, 0.0), 0.0).unwrap();
+/// assert!((pose.point(Side::Left) - Vec2::new(1.8, 2.4)).norm() < 1e-15);
+/// assert!((pose.point(Side::Right) - Vec2::new(1.8, -2.4)).norm() < 1e-15);
+/// assert_eq!((Side::Left.sign::<f64>(), Side::Left.flipped()), (1.0, Side::Right));
+/// assert_eq!("right".parse::<Side>(), Ok(Side::Right));
+/// assert_eq!(Side::Left.to_string(), "left");
+/// assert_eq!(
+///     "up".parse::<Side>(),
+///     Err(Error::InvalidChoice { what: "side", choices: "'left' or 'right'" })
+/// );
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Side {
     /// Left of `p1 → p2` (the triangle `p1, p2, joint` is counter-clockwise).
@@ -31,6 +50,40 @@ impl Side {
             Side::Left => Side::Right,
             Side::Right => Side::Left,
         }
+    }
+
+    /// The name users write: `"left"` or `"right"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Left => "left",
+            Side::Right => "right",
+        }
+    }
+}
+
+impl core::str::FromStr for Side {
+    type Err = Error;
+
+    /// The side named `"left"` or `"right"` (exactly; see [`Side::name`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidChoice`] for any other name.
+    fn from_str(name: &str) -> Result<Self, Error> {
+        match name {
+            "left" => Ok(Side::Left),
+            "right" => Ok(Side::Right),
+            _ => Err(Error::InvalidChoice {
+                what: "side",
+                choices: "'left' or 'right'",
+            }),
+        }
+    }
+}
+
+impl core::fmt::Display for Side {
+    /// [`Side::name`].
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -126,6 +179,19 @@ pub(crate) fn pow2_scale<T: RealField + Copy>(x: T) -> T {
 pub(crate) const EXACT_BASE_SLACK: f64 = 0.0625;
 
 /// A solved dyad: both mirror-image candidates are `foot ± offset`.
+///
+/// ```
+/// use linkage_core::{Dyad, Side, Vec2};
+/// // Links 3 and 4 on a base of 5: a right angle at the joint.
+/// let d = Dyad { r1: 3.0_f64, r2: 4.0 };
+/// let pose = d.solve(Vec2::zeros(), Vec2::new(5.0, 0.0), 0.0).unwrap();
+/// assert!((pose.foot - Vec2::new(1.8, 0.0)).norm() < 1e-15);
+/// assert_eq!(pose.point(Side::Left), pose.foot + pose.offset);
+/// assert!((pose.margin - 1.0).abs() < 1e-15);
+/// // Stretched flat (base 7 = 3 + 4): the two solutions coincide, margin 0 (a toggle).
+/// let flat = d.solve(Vec2::zeros(), Vec2::new(7.0, 0.0), 0.0).unwrap();
+/// assert_eq!((flat.offset.norm(), flat.margin), (0.0, 0.0));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DyadPose<T: RealField + Copy> {
     /// Foot of the perpendicular from the joint onto the line `p1 p2`.
@@ -169,6 +235,17 @@ pub struct Dyad<T> {
 }
 
 /// How a dyad failed to close.
+///
+/// ```
+/// use linkage_core::{Dyad, DyadFailure, Vec2};
+/// // A base of 10 for links 3 and 4: the circles miss each other by 3.
+/// let d = Dyad { r1: 3.0_f64, r2: 4.0 };
+/// assert_eq!(d.solve(Vec2::zeros(), Vec2::new(10.0, 0.0), 0.0), Err(DyadFailure::Gap(3.0)));
+/// // Coincident base joints and equal links: every point of the circle would do.
+/// let e = Dyad { r1: 2.0_f64, r2: 2.0 };
+/// let p = Vec2::new(1.0, 1.0);
+/// assert_eq!(e.solve(p, p, 0.0), Err(DyadFailure::Undetermined));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum DyadFailure<T> {
     /// The circles do not meet; the lengths miss closure by this much.

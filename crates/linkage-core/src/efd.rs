@@ -68,6 +68,29 @@ pub struct Efd<T> {
 
 /// The similarity that takes a curve to its normalised shape: `q = R(−rotation)(p − centre)/scale`
 /// with the curve's parameter started at `start` (a fraction of the period, in `[0, 1)`).
+///
+/// ```
+/// use linkage_core::{Efd, Vec2};
+/// // An ellipse with semi-axes 3 and 1 about (5, 5), its major axis turned 30°.
+/// let (s, c) = 30f64.to_radians().sin_cos();
+/// let pts: Vec<Vec2<f64>> = (0..64)
+///     .map(|k| {
+///         let t = k as f64 / 64.0 * core::f64::consts::TAU;
+///         let (x, y) = (3.0 * t.cos(), t.sin());
+///         Vec2::new(5.0 + c * x - s * y, 5.0 + s * x + c * y)
+///     })
+///     .collect();
+/// let (_, frame) = Efd::closed(&pts, 4).unwrap().normalised().unwrap();
+/// assert!((frame.centre - Vec2::new(5.0, 5.0)).norm() < 1e-12);
+/// // The major axis is turned back to +x: its end lands on the x axis. (The scale, 2.62 here,
+/// // is the first harmonic's semi-major axis: by arc length the ellipse has higher harmonics.)
+/// assert!((frame.rotation - 30f64.to_radians()).abs() < 1e-12);
+/// let end = frame.apply(Vec2::new(5.0 + 3.0 * c, 5.0 + 3.0 * s));
+/// assert!(end.y.abs() < 1e-12 && end.x > 1.0);
+/// // `invert` undoes `apply`.
+/// let p = Vec2::new(1.0, 2.0);
+/// assert!((frame.invert(frame.apply(p)) - p).norm() < 1e-12);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Normalisation<T> {
     /// The centroid subtracted.
@@ -104,7 +127,8 @@ impl<T: RealField + Copy> Efd<T> {
     /// [`Error::NotFinite`] (`"curve point"`) for a non-finite coordinate;
     /// [`Error::BufferLength`] (`"curve points"`) for fewer than [`MIN_CURVE_POINTS`] points or
     /// `harmonics == 0` (`"harmonics"`); [`Error::NotRepresentable`] (`"curve length"`) when the
-    /// points all coincide.
+    /// points all coincide; [`Error::CountOverflow`] (`"harmonics"`) for more harmonics than
+    /// memory holds.
     pub fn closed(points: &[Vec2<T>], harmonics: usize) -> Result<Self, Error> {
         check_curve(points, harmonics)?;
         let k = points.len();
@@ -146,12 +170,19 @@ impl<T: RealField + Copy> Efd<T> {
             });
         }
         let centre = moment / length;
-        let mut acc = alloc::vec![[T::zero(); 4]; harmonics];
+        // `vec![x; harmonics]` would panic (capacity overflow) or abort (out of memory) for an
+        // absurd count: refuse it instead.
+        let too_many = |_| Error::CountOverflow { what: "harmonics" };
+        let mut acc = Vec::new();
+        acc.try_reserve_exact(harmonics).map_err(too_many)?;
+        acc.resize(harmonics, [T::zero(); 4]);
         let w = T::two_pi() / length;
         let mut t = T::zero();
         let mut prev: Option<Vec2<T>> = None;
         // e^{iφ} at the previous vertex, for every harmonic (φ₀ = 0).
-        let mut last = alloc::vec![(T::one(), T::zero()); harmonics];
+        let mut last = Vec::new();
+        last.try_reserve_exact(harmonics).map_err(too_many)?;
+        last.resize(harmonics, (T::one(), T::zero()));
         for p in walk {
             if let Some(q) = prev {
                 let d = p - q;
@@ -316,10 +347,11 @@ pub fn query_descriptors<T: RealField + Copy>(
     out: &mut [f32],
 ) -> Result<Normalisation<T>, Error> {
     let dim = descriptor_len(harmonics);
-    if out.len() != QUERY_VARIANTS * dim {
+    let want = QUERY_VARIANTS.saturating_mul(dim);
+    if out.len() != want {
         return Err(Error::BufferLength {
             what: "query descriptors",
-            expected: QUERY_VARIANTS * dim,
+            expected: want,
             got: out.len(),
         });
     }
@@ -340,12 +372,19 @@ pub fn query_descriptors<T: RealField + Copy>(
     Ok(frame)
 }
 
-/// Length of [`Efd::descriptor`]'s vector for `harmonics` harmonics (`1 + 4(H − 1)`, 0 for none).
+/// Length of [`Efd::descriptor`]'s vector for `harmonics` harmonics (`1 + 4(H − 1)`, 0 for none;
+/// `usize::MAX` where that overflows, a length no slice has).
+///
+/// ```
+/// use linkage_core::descriptor_len;
+/// assert_eq!((descriptor_len(0), descriptor_len(1), descriptor_len(8)), (0, 1, 29));
+/// assert_eq!(descriptor_len(usize::MAX), usize::MAX);
+/// ```
 pub fn descriptor_len(harmonics: usize) -> usize {
     if harmonics == 0 {
         0
     } else {
-        1 + 4 * (harmonics - 1)
+        (harmonics - 1).saturating_mul(4).saturating_add(1)
     }
 }
 

@@ -6,6 +6,19 @@ use core::fmt;
 ///
 /// Lengths and gaps are carried as `f64` whatever the scalar type, so the error type is the same
 /// for `f32` and `f64` mechanisms.
+///
+/// ```
+/// use linkage_core::{Assembly, Error, FourBar};
+/// let e = FourBar::new(20.0_f64, -1.0, 25.0, 25.0, (0.0, 0.0), Assembly::Open).unwrap_err();
+/// assert_eq!(e, Error::InvalidLength { what: "crank", value: -1.0 });
+/// assert_eq!(e.to_string(), "crank must be a positive finite length, got -1");
+/// // A linkage that cannot close says where, and by how much (|AC| = 19 against 2 + 2).
+/// let short = FourBar::new(20.0_f64, 1.0, 2.0, 2.0, (0.0, 0.0), Assembly::Open).unwrap();
+/// match short.pose(0.0) {
+///     Err(Error::CannotAssemble { joint: 3, gap }) => assert!((gap - 15.0).abs() < 1e-12),
+///     r => panic!("{r:?}"),
+/// }
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Error {
@@ -124,6 +137,24 @@ pub enum Error {
         /// Which solution and why.
         what: &'static str,
     },
+    /// A name that is none of the choices, e.g. an assembly other than `"open"` or `"crossed"`
+    /// (see [`crate::Assembly`]'s `FromStr`). The name itself is not kept (the error type has
+    /// no heap): a caller that has it adds it to the message.
+    InvalidChoice {
+        /// What was named, e.g. `"assembly"`.
+        what: &'static str,
+        /// The choices as a message lists them, e.g. `"'open' or 'crossed'"`.
+        choices: &'static str,
+    },
+    /// A count or size above the most a computation takes.
+    OutOfRange {
+        /// Which count, e.g. `"table block"`.
+        what: &'static str,
+        /// The value given.
+        value: usize,
+        /// The most allowed.
+        max: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -203,6 +234,10 @@ impl fmt::Display for Error {
             ),
             Error::Degenerate { what } => write!(f, "degenerate synthesis: {what}"),
             Error::NoSolution { what } => write!(f, "no solution: {what}"),
+            Error::InvalidChoice { what, choices } => write!(f, "{what} must be {choices}"),
+            Error::OutOfRange { what, value, max } => {
+                write!(f, "{what} must be at most {max}, got {value}")
+            }
         }
     }
 }

@@ -7,13 +7,31 @@ use crate::centres::{line_intersection, BodyMotion, Centre};
 use crate::dyad::{triangle_area, Side};
 use crate::error::{check_finite, check_length, Error};
 use crate::inflection::{inflection, Inflection};
+use crate::mechanism::CrankRates;
 use crate::mechanism::Mechanism;
-use crate::mechanism::Motion;
 use crate::scalar::{cross, eps, lit, Vec2};
 use crate::tracker::{Rates, Tracker};
 
 /// Assembly of a four-bar: on which side of the diagonal `A → C` the coupler–rocker joint `B`
 /// lies.
+///
+/// Named `"open"` and `"crossed"` ([`Assembly::name`], parsed back by `FromStr`).
+///
+/// ```
+/// use linkage_core::{Assembly, Error, FourBar};
+/// // The two assemblies of one four-bar are mirror images in the diagonal A → C.
+/// let fb = |assembly| FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (0.0, 0.0), assembly).unwrap();
+/// let open = fb(Assembly::Open).pose(1.0).unwrap();
+/// let crossed = fb(Assembly::Crossed).pose(1.0).unwrap();
+/// assert_eq!(open.a, crossed.a);
+/// assert!(open.b.y > crossed.b.y);
+/// assert_eq!("crossed".parse::<Assembly>(), Ok(Assembly::Crossed));
+/// assert_eq!(Assembly::Open.to_string(), "open");
+/// assert_eq!(
+///     "sideways".parse::<Assembly>(),
+///     Err(Error::InvalidChoice { what: "assembly", choices: "'open' or 'crossed'" })
+/// );
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Assembly {
     /// `B` left of `A → C`. With the crank up and the pivots left to right this is the convex,
@@ -31,9 +49,54 @@ impl Assembly {
             Assembly::Crossed => Side::Right,
         }
     }
+
+    /// The name users write: `"open"` or `"crossed"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Assembly::Open => "open",
+            Assembly::Crossed => "crossed",
+        }
+    }
+}
+
+impl core::str::FromStr for Assembly {
+    type Err = Error;
+
+    /// The assembly named `"open"` or `"crossed"` (exactly; see [`Assembly::name`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidChoice`] for any other name.
+    fn from_str(name: &str) -> Result<Self, Error> {
+        match name {
+            "open" => Ok(Assembly::Open),
+            "crossed" => Ok(Assembly::Crossed),
+            _ => Err(Error::InvalidChoice {
+                what: "assembly",
+                choices: "'open' or 'crossed'",
+            }),
+        }
+    }
+}
+
+impl core::fmt::Display for Assembly {
+    /// [`Assembly::name`].
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// Grashof classification by `s + l` against `p + q` and by which link is shortest.
+///
+/// ```
+/// use linkage_core::{Assembly, FourBar, GrashofClass};
+/// let class = |g, a, b, c| {
+///     FourBar::new(g, a, b, c, (0.0, 0.0), Assembly::Open).unwrap().grashof()
+/// };
+/// assert_eq!(class(20.0_f64, 10.0, 25.0, 25.0), GrashofClass::CrankRocker);
+/// // s + l = p + q: a parallelogram, which can fold flat.
+/// assert_eq!(class(3.0, 1.0, 3.0, 1.0), GrashofClass::ChangePoint);
+/// assert_eq!(class(40.0, 20.0, 10.0, 20.0).name(), "triple-rocker");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum GrashofClass {
     /// `s + l < p + q`, crank shortest: the crank turns fully, the rocker oscillates.
@@ -66,6 +129,21 @@ impl GrashofClass {
 }
 
 /// The crank angles at which a four-bar assembles (absolute angles, radians).
+///
+/// ```
+/// use linkage_core::{catalog, Assembly, FourBar, InputRange};
+/// assert_eq!(catalog::hoecken::<f64>().input_range(), InputRange::Full);
+/// // Evans C (ground 20, crank 10, coupler 10, rocker 10): |AC| = 20 at θ = ±acos(1/4).
+/// match catalog::evans_c::<f64>().input_range() {
+///     InputRange::Between { lo, hi } => {
+///         assert!((hi - 0.25_f64.acos()).abs() < 1e-15 && (lo + hi).abs() < 1e-15)
+///     }
+///     r => panic!("{r:?}"),
+/// }
+/// // Coupler and rocker (2 + 2) cannot reach across the gap of 19 at least: never assembles.
+/// let short = FourBar::new(20.0_f64, 1.0, 2.0, 2.0, (0.0, 0.0), Assembly::Open).unwrap();
+/// assert_eq!(short.input_range(), InputRange::Never);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum InputRange<T> {
     /// Every crank angle: the crank turns fully.
@@ -91,6 +169,17 @@ pub enum InputRange<T> {
 }
 
 /// A solved four-bar position.
+///
+/// ```
+/// use linkage_core::{catalog, Vec2};
+/// let fb = catalog::hoecken::<f64>();
+/// let p = fb.pose(0.0).unwrap();
+/// assert_eq!(p.a, Vec2::new(10.0, 0.0)); // the crank pin, 10 along +x
+/// assert!(((p.b - p.a).norm() - 25.0).abs() < 1e-12); // the coupler
+/// assert!(((p.b - fb.c).norm() - 25.0).abs() < 1e-12); // the rocker
+/// // The margin is the sine of the transmission angle.
+/// assert!((p.margin - fb.transmission_angle(0.0).unwrap().sin()).abs() < 1e-12);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FourBarPose<T: RealField + Copy> {
     /// Crank pin.
@@ -129,6 +218,23 @@ impl<T: RealField + Copy> FourBarPose<T> {
 /// rocker `C B`, and a coupler point in coupler coordinates.
 ///
 /// Joints of [`FourBar::mechanism`] are numbered `O = 0, C = 1, A = 2, B = 3, P = 4`.
+///
+/// ```
+/// use linkage_core::{Assembly, Error, FourBar, Vec2};
+/// // Hoecken's straight-line linkage (mm): the foot 50 along the coupler line.
+/// let fb = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
+/// assert_eq!((fb.ground(), fb.c), (20.0, Vec2::new(20.0, 0.0)));
+/// let top = fb.pose(core::f64::consts::PI).unwrap().coupler_point;
+/// assert!((top - Vec2::new(20.0, 40.0)).norm() < 1e-12);
+/// // A length must be positive; a linkage that cannot close has no pose.
+/// assert_eq!(
+///     FourBar::new(20.0, 0.0, 25.0, 25.0, (0.0, 0.0), Assembly::Open),
+///     Err(Error::InvalidLength { what: "crank", value: 0.0 })
+/// );
+/// let short = FourBar::new(20.0_f64, 1.0, 2.0, 2.0, (0.0, 0.0), Assembly::Open).unwrap();
+/// assert!(matches!(short.pose(0.0), Err(Error::CannotAssemble { joint: 3, .. })));
+/// assert_eq!(short.transmission_angle(0.0), None);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FourBar<T> {
     /// Crank pivot.
@@ -399,7 +505,7 @@ impl<T: RealField + Copy> FourBar<T> {
         let margin = m.pose(theta, &mut pos).ok()?;
         let (mut v, mut a, mut j) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5], [Vec2::zeros(); 5]);
         if !m
-            .motion(&pos, Motion::unit(), &mut v, Some(&mut a), Some(&mut j))
+            .motion(&pos, CrankRates::unit(), &mut v, Some(&mut a), Some(&mut j))
             .ok()?
         {
             return None;
@@ -512,7 +618,10 @@ impl<T: RealField + Copy> FourBar<T> {
                 Some(v) => Rates::velocity(&mut v[5 * k..5 * k + 5]),
                 None => Rates::none(),
             };
-            if tracker.step(t, Some(Motion::unit()), out, rates).is_ok() {
+            if tracker
+                .step(t, Some(CrankRates::unit()), out, rates)
+                .is_ok()
+            {
                 ok += 1;
             }
         }

@@ -46,11 +46,32 @@ pub fn chebyshev_spacing<T: RealField + Copy>(x0: T, x1: T, n: usize, j: usize) 
         return nan();
     }
     let half = lit::<T>(0.5);
-    let angle = T::pi() * lit::<T>((2 * j + 1) as f64) / lit::<T>((2 * n) as f64);
+    // π(2j + 1)/2n as π(j + ½)/n: the same bits (halving is exact), and no `usize` overflow.
+    let angle = T::pi() * (lit::<T>(j as f64) + lit::<T>(0.5)) / lit::<T>(n as f64);
     (x0 + x1) * half - (x1 - x0) * half * angle.cos()
 }
 
 /// The coefficients of Freudenstein's equation (see the module notes).
+///
+/// ```
+/// use linkage_core::{Assembly, Error, Freudenstein, FourBar};
+/// let (d, a, b, c) = (1.0_f64, 0.45, 1.1, 0.8);
+/// let k = Freudenstein::of_lengths(d, a, b, c).unwrap();
+/// assert_eq!((k.k1, k.k2), (d / a, d / c));
+/// // The equation holds along the linkage's motion, and three points of it give K back.
+/// let fb = FourBar::new(d, a, b, c, (0.0, 0.0), Assembly::Open).unwrap();
+/// let output = |phi: f64| {
+///     let r = fb.pose(phi).unwrap().b - fb.c;
+///     r.y.atan2(r.x)
+/// };
+/// let phi = [0.6, 1.2, 2.0];
+/// let psi = phi.map(output);
+/// assert!(phi.iter().zip(&psi).all(|(&f, &s)| k.residual(f, s).abs() < 1e-14));
+/// assert!((Freudenstein::fit(&phi, &psi).unwrap().k3 - k.k3).abs() < 1e-12);
+/// // One input angle three times does not determine the coefficients.
+/// let same_input = Freudenstein::fit(&[1.0; 3], &[0.5, 0.6, 0.7]);
+/// assert!(matches!(same_input, Err(Error::Degenerate { .. })));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Freudenstein<T> {
     /// `K1 = d/a` (input link `a`).
@@ -171,6 +192,26 @@ impl<T: RealField + Copy> Freudenstein<T> {
 /// A four-bar function generator: input angle `φ` drives the crank at `φ + input_offset`, and
 /// the output angle is the rocker's angle minus `output_offset` (both from the ground line
 /// `O → C`, with `O = (0, 0)` and `C = (ground, 0)`).
+///
+/// ```
+/// use linkage_core::{Assembly, Error, FourBar, FunctionGenerator};
+/// // The function a known linkage generates, at three precision points, gives that linkage back.
+/// let fb = FourBar::new(1.0_f64, 0.45, 1.1, 0.8, (0.0, 0.0), Assembly::Open).unwrap();
+/// let output = |phi: f64| {
+///     let r = fb.pose(phi).unwrap().b - fb.c;
+///     r.y.atan2(r.x)
+/// };
+/// let phi = [0.6, 1.2, 2.0];
+/// let psi = phi.map(output);
+/// let gen = FunctionGenerator::synthesise(&phi, &psi, 1.0).unwrap();
+/// assert!((gen.four_bar.crank - 0.45).abs() < 1e-12 && (gen.four_bar.rocker - 0.8).abs() < 1e-12);
+/// assert!((gen.output(1.5).unwrap() - output(1.5)).abs() < 1e-12);
+/// // Two precision points are too few.
+/// assert_eq!(
+///     FunctionGenerator::synthesise(&phi[..2], &psi[..2], 1.0).err(),
+///     Some(Error::TooFew { what: "precision points", needed: 3, got: 2 })
+/// );
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FunctionGenerator<T> {
     /// The linkage (its coupler point is the crank pin `A`; the function does not use it).
@@ -184,6 +225,24 @@ pub struct FunctionGenerator<T> {
 }
 
 /// What sweeping a function generator over its input interval found.
+///
+/// ```
+/// use linkage_core::{Assembly, FourBar, FunctionGenerator, GrashofClass};
+/// let fb = FourBar::new(1.0_f64, 0.45, 1.1, 0.8, (0.0, 0.0), Assembly::Open).unwrap();
+/// let output = |phi: f64| {
+///     let r = fb.pose(phi).unwrap().b - fb.c;
+///     r.y.atan2(r.x)
+/// };
+/// let phi = [0.6, 1.2, 2.0];
+/// let psi = phi.map(output);
+/// let gen = FunctionGenerator::synthesise(&phi, &psi, 1.0).unwrap();
+/// // Swept over 0.5 ≤ φ ≤ 2.2: every precision point met, no toggle on the way.
+/// let sweep: Vec<f64> = (0..=34).map(|i| 0.5 + 0.05 * i as f64).collect();
+/// let mut out = vec![0.0; sweep.len()];
+/// let check = gen.sweep(&sweep, &mut out, &phi, &psi).unwrap();
+/// assert_eq!((check.defect, check.grashof), (None, GrashofClass::CrankRocker));
+/// assert!(check.precision_error < 1e-12 && check.min_transmission > 0.0);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FunctionCheck<T> {
     /// `None` when every precision point is met on the linkage's assembly and the whole input

@@ -37,6 +37,24 @@ use crate::uniform_sweep::AngleMode;
 
 /// Stance and swing figures of one leg's foot path over a crank turn (see the module for the
 /// definitions). Figures that need a stance sample are NaN when the path has none.
+///
+/// ```
+/// use linkage_core::{LegGait, Vec2};
+/// // A foot going round the unit circle, with the ground given 1 below its lowest point: it never
+/// // touches down, so the figures that need a stance are NaN.
+/// let n = 16;
+/// let path: Vec<Vec2<f64>> = (0..n)
+///     .map(|k| {
+///         let t = k as f64 * core::f64::consts::TAU / n as f64;
+///         Vec2::new(t.cos(), t.sin())
+///     })
+///     .collect();
+/// let rate: Vec<Vec2<f64>> = path.iter().map(|p| Vec2::new(-p.y, p.x)).collect();
+/// let mut stance = vec![true; n];
+/// let g = LegGait::measure(&path, &rate, 1e-9, Some(-2.0), &mut stance).unwrap();
+/// assert_eq!((g.stance_count, g.duty_factor, g.lift), (0, 0.0, 3.0));
+/// assert!(g.stride.is_nan() && g.peak_torque.is_nan() && !stance.contains(&true));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LegGait<T> {
     /// The ground level (the lowest foot level unless given).
@@ -266,6 +284,19 @@ fn runs(mask: &[bool]) -> (usize, usize, usize) {
 
 /// The figures of one four-bar leg over a crank turn: its [`LegGait`], the smallest
 /// transmission angle and whether the turn assembles on one circuit.
+///
+/// ```
+/// use linkage_core::{catalog, FourBarGait, GaitScratch, Vec2};
+/// let n = 64;
+/// let (mut points, mut stance) = (vec![Vec2::zeros(); 4 * n], vec![false; n]);
+/// let mut scratch = GaitScratch { points: &mut points, stance: &mut stance };
+/// let g: FourBarGait<f64> = catalog::hoecken::<f64>().gait(n, 0.01, &mut scratch).unwrap();
+/// assert!(g.full_turn && g.gait.stance_count > 0);
+/// assert!(g.min_transmission > 0.0 && g.min_transmission <= core::f64::consts::FRAC_PI_2);
+/// // Evans C's crank does not turn fully: no leg, NaN figures.
+/// let g = catalog::evans_c::<f64>().gait(n, 0.01, &mut scratch).unwrap();
+/// assert!(!g.full_turn && g.min_transmission.is_nan() && g.gait.stride.is_nan());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FourBarGait<T> {
     /// Stance and swing figures (NaN and zero counts when the turn does not assemble).
@@ -302,6 +333,19 @@ impl<T: RealField + Copy> FourBarGait<T> {
 
 /// Scratch slices of one leg's turn for [`FourBarBatch::gaits`]: `4·samples` points and
 /// `samples` flags, reused from leg to leg (no heap in the core).
+///
+/// ```
+/// use linkage_core::{catalog, Error, GaitScratch, Vec2};
+/// let (mut points, mut stance) = ([Vec2::zeros(); 4 * 8], [false; 8]);
+/// let mut scratch = GaitScratch { points: &mut points, stance: &mut stance };
+/// // Scratch for 8 samples: a gait of 8 samples works, one of 16 does not fit.
+/// let fb = catalog::hoecken::<f64>();
+/// assert!(fb.gait(8, 0.05, &mut scratch).is_ok());
+/// assert_eq!(
+///     fb.gait(16, 0.05, &mut scratch).err(),
+///     Some(Error::BufferLength { what: "scratch points", expected: 64, got: 32 })
+/// );
+/// ```
 pub struct GaitScratch<'a, T> {
     /// Foot points, `B` joints, foot rates and the crank directions: `4·samples` long.
     pub points: &'a mut [Vec2<T>],

@@ -6,6 +6,20 @@ use crate::centres::{BodyMotion, Centre};
 use crate::scalar::{lit, perp, Vec2};
 
 /// The inflection circle of a body at one instant and its Ball point.
+///
+/// ```
+/// use linkage_core::{catalog, Assembly, FourBar};
+/// let fb = catalog::hoecken::<f64>();
+/// let inf = fb.coupler_inflection(0.5).unwrap();
+/// // The pole is the coupler's instant centre; the inflection pole is across the circle from it.
+/// let i13 = fb.instant_centres(0.5).unwrap()[1].finite().unwrap();
+/// assert!((inf.pole - i13).norm() < 1e-9);
+/// assert!(((inf.inflection_pole - inf.pole).norm() - 2.0 * inf.radius).abs() < 1e-9);
+/// assert!((inf.centre - (inf.pole + inf.inflection_pole) * 0.5).norm() < 1e-9);
+/// // A parallelogram's coupler translates: no pole, no inflection circle.
+/// let par = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.5, 0.0), Assembly::Open).unwrap();
+/// assert_eq!(par.coupler_inflection(1.0), None);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inflection<T> {
     /// The instantaneous centre of rotation (velocity pole) `I`.

@@ -15,6 +15,23 @@ use crate::scalar::{cross, perp, Vec2};
 /// Mass properties of one body, its centre of mass in the body's frame: `along` its frame's
 /// axis (from the frame's origin joint toward its second joint, or along a slider's line) and
 /// `left` of it.
+///
+/// ```
+/// use linkage_core::{catalog, Dynamics, Inertia, Vec2};
+/// // Hoecken's linkage held still at θ = 0, its crank of mass 2 with the centre of mass halfway
+/// // along it (5 from O) under gravity 9.81, the other links massless: the driver holds the
+/// // crank's weight at its lever, 2·9.81·5.
+/// let m = catalog::hoecken::<f64>().mechanism();
+/// let none = Inertia { mass: 0.0, along: 0.0, left: 0.0, inertia: 0.0 };
+/// let crank = Inertia { mass: 2.0, along: 5.0, ..none };
+/// // One entry per body, the ground first: ground, crank, coupler, rocker.
+/// let dynamics = Dynamics::new(&m, &[none, crank, none, none], Vec2::new(0.0, -9.81)).unwrap();
+/// let mut p = [Vec2::zeros(); 5];
+/// m.pose(0.0, &mut p).unwrap();
+/// let still = [Vec2::zeros(); 5];
+/// let sol = dynamics.solve(&p, &still, &still, &[]).unwrap();
+/// assert!((sol.torque - 98.1).abs() < 1e-9);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inertia<T> {
     /// Mass.
@@ -28,6 +45,24 @@ pub struct Inertia<T> {
 }
 
 /// An external load on a body: a force applied at a joint of it, and a torque.
+///
+/// ```
+/// use linkage_core::{Assembly, Bodies, Dynamics, FourBar, Inertia, Load, Vec2};
+/// // A parallelogram's coupler translates, so a weight W anywhere on it needs the crank torque
+/// // W·r·cos θ (virtual work).
+/// let fb = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.5, 0.0), Assembly::Open).unwrap();
+/// let m = fb.mechanism();
+/// let none = Inertia { mass: 0.0, along: 0.0, left: 0.0, inertia: 0.0 };
+/// let dynamics = Dynamics::new(&m, &[none; 4], Vec2::zeros()).unwrap();
+/// let coupler = Bodies::of(&m).ids().nth(2).unwrap();
+/// let load = Load { body: coupler, joint: 4, force: Vec2::new(0.0, -7.0), torque: 0.0 };
+/// let (mut p, still) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5]);
+/// m.pose(1.0, &mut p).unwrap();
+/// let sol = dynamics.solve(&p, &still, &still, &[load]).unwrap();
+/// assert!((sol.torque - 7.0 * 1.0_f64.cos()).abs() < 1e-12);
+/// // A load at a joint the mechanism does not have is refused.
+/// assert!(dynamics.solve(&p, &still, &still, &[Load { joint: 9, ..load }]).is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Load<T> {
     /// The body loaded.
@@ -41,6 +76,23 @@ pub struct Load<T> {
 }
 
 /// The force a joint transmits between two bodies.
+///
+/// ```
+/// use linkage_core::{Assembly, Bodies, Dynamics, FourBar, Inertia, Load, Vec2};
+/// // A weight of 7 on a massless parallelogram's coupler: the ground pins O and C carry it.
+/// let fb = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.5, 0.0), Assembly::Open).unwrap();
+/// let m = fb.mechanism();
+/// let none = Inertia { mass: 0.0, along: 0.0, left: 0.0, inertia: 0.0 };
+/// let dynamics = Dynamics::new(&m, &[none; 4], Vec2::zeros()).unwrap();
+/// let coupler = Bodies::of(&m).ids().nth(2).unwrap();
+/// let load = Load { body: coupler, joint: 4, force: Vec2::new(0.0, -7.0), torque: 0.0 };
+/// let (mut p, still) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5]);
+/// m.pose(1.0, &mut p).unwrap();
+/// let sol = dynamics.solve(&p, &still, &still, &[load]).unwrap();
+/// let ground: f64 = sol.reactions.iter().filter(|r| r.joint <= 1).map(|r| r.force.y).sum();
+/// assert!((ground - 7.0).abs() < 1e-12);
+/// assert!(sol.reactions.iter().all(|r| r.couple == 0.0)); // pins only
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Reaction<T> {
     /// The joint.
@@ -56,6 +108,21 @@ pub struct Reaction<T> {
 }
 
 /// Result of a kinetostatic solve at one instant.
+///
+/// ```
+/// use linkage_core::{catalog, Dynamics, Inertia, Vec2};
+/// let m = catalog::hoecken::<f64>().mechanism();
+/// let none = Inertia { mass: 0.0, along: 0.0, left: 0.0, inertia: 0.0 };
+/// let dynamics = Dynamics::new(&m, &[none; 4], Vec2::zeros()).unwrap();
+/// let (mut p, still) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5]);
+/// m.pose(0.5, &mut p).unwrap();
+/// let sol = dynamics.solve(&p, &still, &still, &[]).unwrap();
+/// // Massless and unloaded: no torque, and the reactions come in the layout's order.
+/// assert!(sol.torque.abs() < 1e-12);
+/// let layout: Vec<_> = dynamics.reaction_layout().collect();
+/// assert_eq!(sol.reactions.len(), layout.len());
+/// assert!(sol.reactions.iter().zip(&layout).all(|(r, &l)| (r.joint, r.from, r.to) == l));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct ForceSolution<T> {
     /// Driver torque on the crank (from the body carrying the crank's centre).
@@ -75,6 +142,26 @@ struct Unknown {
 }
 
 /// The dynamic problem of a mechanism: bodies, their mass properties, gravity.
+///
+/// ```
+/// use linkage_core::{catalog, Dynamics, Error, Inertia, Mechanism, Vec2};
+/// let m = catalog::hoecken::<f64>().mechanism();
+/// let none = Inertia { mass: 0.0, along: 0.0, left: 0.0, inertia: 0.0 };
+/// // One inertia per body (4 here), and a crank to drive.
+/// assert!(matches!(
+///     Dynamics::new(&m, &[none; 3], Vec2::zeros()),
+///     Err(Error::BufferLength { expected: 4, got: 3, .. })
+/// ));
+/// let mut frame = Mechanism::<f64, 1>::new();
+/// frame.fixed(Vec2::zeros()).unwrap();
+/// assert!(matches!(Dynamics::new(&frame, &[none], Vec2::zeros()), Err(Error::NoDriver)));
+/// // The power method needs the crank to move: at rest it has no torque to give.
+/// let crank = Inertia { mass: 2.0, along: 5.0, ..none };
+/// let dynamics = Dynamics::new(&m, &[none, crank, none, none], Vec2::new(0.0, -9.81)).unwrap();
+/// let (mut p, still) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5]);
+/// m.pose(0.0, &mut p).unwrap();
+/// assert!(dynamics.power_torque(&p, &still, &still, &[]).is_nan());
+/// ```
 #[derive(Clone, Debug)]
 pub struct Dynamics<'m, T: RealField + Copy, const N: usize> {
     mech: &'m Mechanism<T, N>,
@@ -431,6 +518,35 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
 }
 
 /// A load along a sweep: one force and torque per sample, on `body` at `joint`.
+///
+/// ```
+/// use linkage_core::{Assembly, Bodies, Dynamics, ForceSweep, FourBar, Inertia, LoadSeries, Vec2};
+/// // A weight growing along a sweep of a massless parallelogram: W_k·r·cos θ_k at each sample,
+/// // by Newton–Euler and by the power method.
+/// let fb = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.5, 0.0), Assembly::Open).unwrap();
+/// let m = fb.mechanism();
+/// let none = Inertia { mass: 0.0, along: 0.0, left: 0.0, inertia: 0.0 };
+/// let dynamics = Dynamics::new(&m, &[none; 4], Vec2::zeros()).unwrap();
+/// let theta = [0.5, 1.0, 1.5];
+/// let force = [Vec2::new(0.0, -1.0), Vec2::new(0.0, -2.0), Vec2::new(0.0, -3.0)];
+/// let coupler = Bodies::of(&m).ids().nth(2).unwrap();
+/// let loads = [LoadSeries { body: coupler, joint: 4, force: &force, torque: &[0.0; 3] }];
+/// let nr = dynamics.reaction_layout().count();
+/// let (mut torque, mut power, mut valid) = ([0.0; 3], [0.0; 3], [false; 3]);
+/// let (mut reactions, mut couples) = (vec![Vec2::zeros(); 3 * nr], vec![0.0; 3 * nr]);
+/// let out = ForceSweep {
+///     torque: &mut torque,
+///     power_torque: &mut power,
+///     valid: &mut valid,
+///     reactions: &mut reactions,
+///     couples: &mut couples,
+/// };
+/// dynamics.sweep(&theta, &[1.0; 3], &[0.0; 3], &loads, out).unwrap();
+/// for k in 0..3 {
+///     let want = (k + 1) as f64 * theta[k].cos();
+///     assert!((torque[k] - want).abs() < 1e-12 && (power[k] - want).abs() < 1e-12);
+/// }
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LoadSeries<'a, T> {
     /// The body loaded.
@@ -446,6 +562,28 @@ pub struct LoadSeries<'a, T> {
 /// Where [`Dynamics::sweep`] writes, one entry per sample (`reactions`/`couples`: one row of
 /// [`Dynamics::reaction_layout`]'s length per sample). Samples that do not assemble, or sit at a
 /// toggle where statics cannot decide the reactions, are NaN with `valid` false.
+///
+/// ```
+/// use linkage_core::{catalog, Dynamics, ForceSweep, Inertia, Vec2};
+/// // Evans C swept to θ = 2, past its input limit (±75.5°): that sample is NaN and not valid.
+/// let m = catalog::evans_c::<f64>().mechanism();
+/// let none = Inertia { mass: 0.0, along: 0.0, left: 0.0, inertia: 0.0 };
+/// let dynamics = Dynamics::new(&m, &[none; 4], Vec2::zeros()).unwrap();
+/// let nr = dynamics.reaction_layout().count();
+/// let (mut torque, mut power, mut valid) = ([0.0; 3], [0.0; 3], [true; 3]);
+/// let (mut reactions, mut couples) = (vec![Vec2::zeros(); 3 * nr], vec![0.0; 3 * nr]);
+/// let out = ForceSweep {
+///     torque: &mut torque,
+///     power_torque: &mut power,
+///     valid: &mut valid,
+///     reactions: &mut reactions,
+///     couples: &mut couples,
+/// };
+/// dynamics.sweep(&[0.0, 2.0, 0.5], &[1.0; 3], &[0.0; 3], &[], out).unwrap();
+/// assert_eq!(valid, [true, false, true]);
+/// assert!(torque[1].is_nan() && power[1].is_nan() && reactions[nr].x.is_nan());
+/// assert!(torque[0].abs() < 1e-12); // massless and unloaded
+/// ```
 #[derive(Debug)]
 pub struct ForceSweep<'a, T> {
     /// Driver torque by Newton–Euler.
@@ -526,7 +664,7 @@ impl<T: RealField + Copy, const N: usize> Dynamics<'_, T, N> {
             out.reactions[row.clone()].fill(Vec2::new(nan, nan));
             out.couples[row.clone()].fill(nan);
             let rates = crate::tracker::Rates::acceleration(&mut v[..j], &mut a[..j]);
-            let motion = crate::mechanism::Motion::new(omega[k], alpha[k]);
+            let motion = crate::mechanism::CrankRates::new(omega[k], alpha[k]);
             if tracker
                 .step(theta[k], Some(motion), &mut p[..j], rates)
                 .is_err()

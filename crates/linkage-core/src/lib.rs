@@ -47,6 +47,8 @@
     clippy::allow_attributes_without_reason,
     clippy::missing_assert_message
 )]
+// glam's: every public function that can panic or fail says when.
+#![warn(clippy::missing_panics_doc, clippy::missing_errors_doc)]
 
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("linkage-core needs a math backend: enable the `std` feature or the `libm` feature");
@@ -138,7 +140,12 @@ pub use gear_train::GearTrain;
 pub use inflection::{inflection, Inflection};
 #[cfg(feature = "alloc")]
 pub use kinetostatics::{Dynamics, ForceSolution, ForceSweep, Inertia, Load, LoadSeries, Reaction};
-pub use mechanism::{Construction, LineDirection, Mechanism, Motion};
+#[allow(
+    deprecated,
+    reason = "the old name of CrankRates, kept for one release"
+)]
+pub use mechanism::Motion;
+pub use mechanism::{Construction, CrankRates, LineDirection, Mechanism};
 pub use motion::rate_margin;
 pub use motion_law::{Derivatives, Discontinuity, MotionLaw, Program, Segment};
 pub use scalar::Vec2;

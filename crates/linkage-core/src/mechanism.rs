@@ -8,6 +8,26 @@ use crate::scalar::{lit, perp, Vec2};
 use crate::slider::{Reach, SliderDyad};
 
 /// Direction of a slider's line.
+///
+/// ```
+/// use linkage_core::{Construction, Error, LineDirection, Mechanism, Reach, Vec2};
+/// // Slider-crank: crank 2 about O, rod 5, the slider on the x axis through O.
+/// let mut m = Mechanism::<f64, 4>::new();
+/// let o = m.fixed(Vec2::zeros()).unwrap();
+/// let a = m.crank(o, 2.0, 0.0).unwrap();
+/// let b = m.slider(a, 5.0, o, LineDirection::Fixed(Vec2::new(3.0, 0.0)), Reach::Ahead).unwrap();
+/// // A fixed direction is stored as a unit vector.
+/// let Construction::Slider { direction, .. } = m.constructions()[b] else { unreachable!() };
+/// assert_eq!(direction, LineDirection::Fixed(Vec2::new(1.0, 0.0)));
+/// let mut j = [Vec2::zeros(); 3];
+/// m.pose(core::f64::consts::FRAC_PI_2, &mut j).unwrap();
+/// assert!((j[b] - Vec2::new(21.0_f64.sqrt(), 0.0)).norm() < 1e-12);
+/// // A zero direction names no line.
+/// assert_eq!(
+///     m.slider(a, 5.0, o, LineDirection::Fixed(Vec2::zeros()), Reach::Ahead),
+///     Err(Error::InvalidLength { what: "slider direction", value: 0.0 })
+/// );
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LineDirection<T> {
     /// A fixed direction (stored as a unit vector).
@@ -25,6 +45,22 @@ pub enum LineDirection<T> {
 }
 
 /// One step of a mechanism's program: it places one joint from joints placed before it.
+///
+/// ```
+/// use linkage_core::{Construction, Error, Mechanism, Side, Vec2};
+/// let mut m = Mechanism::<f64, 4>::new();
+/// m.push(Construction::Fixed { at: Vec2::zeros() }).unwrap();
+/// m.push(Construction::Fixed { at: Vec2::new(3.0, 0.0) }).unwrap();
+/// let a = m.push(Construction::Crank { centre: 0, radius: 1.0, phase: 0.0 }).unwrap();
+/// assert!(!m.constructions()[a].has_branch());
+/// // A construction may refer only to joints placed before it.
+/// assert_eq!(
+///     m.push(Construction::Point { from: a, to: 3, along: 1.0, left: 0.0 }),
+///     Err(Error::UnknownJoint { joint: 3, refers_to: 3 })
+/// );
+/// let b = m.dyad(a, 1, 3.0, 1.0, Side::Left).unwrap();
+/// assert!(m.constructions()[b].has_branch());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Construction<T> {
     /// A joint fixed to the frame.
@@ -146,8 +182,22 @@ pub(crate) enum Candidates<T: RealField + Copy> {
 }
 
 /// Rates of the driver: angular velocity, acceleration and jerk of the crank.
+///
+/// ```
+/// use linkage_core::{CrankRates, Mechanism, Vec2};
+/// // A crank of radius 2 turning at 3 rad/s: its pin moves at 6, perpendicular to the crank.
+/// let mut m = Mechanism::<f64, 2>::new();
+/// let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+/// let a = m.crank(o, 2.0, 0.0).unwrap();
+/// let mut pos = [Vec2::zeros(); 2];
+/// m.pose(0.0, &mut pos).unwrap();
+/// let mut vel = [Vec2::zeros(); 2];
+/// let regular = m.motion(&pos, CrankRates::new(3.0, 0.0), &mut vel, None, None).unwrap();
+/// assert!(regular && (vel[a] - Vec2::new(0.0, 6.0)).norm() < 1e-15);
+/// assert_eq!(CrankRates::<f64>::unit(), CrankRates { omega: 1.0, alpha: 0.0, jerk: 0.0 });
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Motion<T> {
+pub struct CrankRates<T> {
     /// Crank angular velocity `dθ/dt`.
     pub omega: T,
     /// Crank angular acceleration `d²θ/dt²`.
@@ -156,10 +206,10 @@ pub struct Motion<T> {
     pub jerk: T,
 }
 
-impl<T: RealField + Copy> Motion<T> {
+impl<T: RealField + Copy> CrankRates<T> {
     /// A drive with angular velocity `omega` and acceleration `alpha`, zero jerk.
     pub fn new(omega: T, alpha: T) -> Self {
-        Motion {
+        CrankRates {
             omega,
             alpha,
             jerk: T::zero(),
@@ -171,6 +221,10 @@ impl<T: RealField + Copy> Motion<T> {
         Self::new(T::one(), T::zero())
     }
 }
+
+/// The old name of [`CrankRates`] ("motion" also names rate analysis and motion laws).
+#[deprecated(note = "renamed CrankRates")]
+pub type Motion<T> = CrankRates<T>;
 
 /// A planar mechanism: at most `N` joints, each placed by one [`Construction`] from joints
 /// before it, driven by one crank angle.
@@ -419,7 +473,9 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         })
     }
 
-    /// Unit direction of a slider line and the link that carries it (if any).
+    /// Unit direction of a slider line at the positions `pos`: the fixed direction, or the
+    /// carrying link's `from → to` turned by its angle. `None` when the carrying link's joints
+    /// coincide or its length is not finite (the direction is undetermined).
     #[inline]
     pub(crate) fn line_direction(dir: LineDirection<T>, pos: &[Vec2<T>]) -> Option<Vec2<T>> {
         match dir {
@@ -840,7 +896,7 @@ mod tests {
         m.pose(th, &mut pos).unwrap();
         let mut vel = [Vec2::zeros(); 3];
         let mut acc = [Vec2::zeros(); 3];
-        m.motion(&pos, Motion::new(w, al), &mut vel, Some(&mut acc), None)
+        m.motion(&pos, CrankRates::new(w, al), &mut vel, Some(&mut acc), None)
             .unwrap();
         // x(θ) = r cos θ + √(l² − r² sin² θ): x' and x'' in θ by hand, then chain rule.
         let (s, c) = th.sin_cos();
@@ -879,7 +935,7 @@ mod tests {
         pos[b] = Vec2::new(0.0, 0.0);
         pos[a] = Vec2::new(0.0, 1.0);
         let regular = m
-            .motion(&pos, Motion::unit(), &mut vel, None, None)
+            .motion(&pos, CrankRates::unit(), &mut vel, None, None)
             .unwrap();
         assert!(!regular && vel[b].x.is_nan());
     }

@@ -4,7 +4,7 @@ use nalgebra::RealField;
 
 use crate::dyad::solve_rows;
 use crate::error::Error;
-use crate::mechanism::{Construction, LineDirection, Mechanism, Motion};
+use crate::mechanism::{Construction, CrankRates, LineDirection, Mechanism};
 use crate::scalar::{cross, eps, lit, nan, perp, Vec2};
 
 /// The smallest assembly margin at which rates are computed: `m* = 32·√ε` (4.8e-7 for `f64`,
@@ -92,7 +92,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     pub fn motion(
         &self,
         pos: &[Vec2<T>],
-        drive: Motion<T>,
+        drive: CrankRates<T>,
         vel: &mut [Vec2<T>],
         mut acc: Option<&mut [Vec2<T>]>,
         mut jerk: Option<&mut [Vec2<T>]>,
@@ -318,7 +318,7 @@ mod tests {
             let mut p = [Vec2::zeros(); 3];
             m.pose(th, &mut p).unwrap();
             let (mut v, mut ac) = ([Vec2::zeros(); 3], [Vec2::zeros(); 3]);
-            m.motion(&p, Motion::unit(), &mut v, Some(&mut ac), None)
+            m.motion(&p, CrankRates::unit(), &mut v, Some(&mut ac), None)
                 .unwrap();
             ac[b]
         };
@@ -326,7 +326,7 @@ mod tests {
         let mut p = [Vec2::zeros(); 3];
         m.pose(th, &mut p).unwrap();
         let (mut v, mut ac, mut j) = ([Vec2::zeros(); 3], [Vec2::zeros(); 3], [Vec2::zeros(); 3]);
-        m.motion(&p, Motion::unit(), &mut v, Some(&mut ac), Some(&mut j))
+        m.motion(&p, CrankRates::unit(), &mut v, Some(&mut ac), Some(&mut j))
             .unwrap();
         let h = 1e-3;
         let fd = (-acc_at(th + 2.0 * h) + acc_at(th + h) * 8.0 - acc_at(th - h) * 8.0
@@ -343,7 +343,7 @@ mod tests {
         let p = [Vec2::zeros(), Vec2::new(1.0, 0.0)];
         let (mut v, mut j) = ([Vec2::zeros(); 2], [Vec2::zeros(); 2]);
         assert!(matches!(
-            m.motion(&p, Motion::unit(), &mut v, None, Some(&mut j)),
+            m.motion(&p, CrankRates::unit(), &mut v, None, Some(&mut j)),
             Err(Error::BufferLength { .. })
         ));
     }

@@ -12,6 +12,19 @@ use crate::scalar::lit;
 /// `a = ±4`; simple harmonic `v = π/2`, `a = π²/2`; cycloidal `v = 2`, `a = 2π`; 3-4-5
 /// `v = 15/8`, `a = 10/√3`; 4-5-6-7 `v = 35/16`, `a = 84/(5√5)`·…; modified trapezoid
 /// `a ≈ 4.888`.
+///
+/// ```
+/// use linkage_core::MotionLaw;
+/// let law = MotionLaw::from_name("cycloidal").unwrap();
+/// assert_eq!(law.name(), "cycloidal");
+/// // Halfway at mid-rise with the peak velocity 2; no acceleration at either end.
+/// let [s, v, _, _] = law.eval(0.5_f64);
+/// assert!((s - 0.5).abs() < 1e-15 && (v - 2.0).abs() < 1e-15);
+/// assert!(law.eval(0.0_f64)[2].abs() < 1e-14 && law.eval(1.0_f64)[2].abs() < 1e-14);
+/// // `u` outside [0, 1] is clamped; an unknown name is `None`.
+/// assert_eq!(law.eval(2.0_f64), law.eval(1.0));
+/// assert_eq!(MotionLaw::from_name("sinusoid"), None);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MotionLaw {
     /// `s = u`: velocity jumps at both ends.
@@ -32,6 +45,12 @@ pub enum MotionLaw {
 }
 
 /// Displacement, velocity, acceleration and jerk.
+///
+/// ```
+/// use linkage_core::{Derivatives, MotionLaw};
+/// let [s, v, a, j]: Derivatives<f64> = MotionLaw::ConstantVelocity.eval(0.25);
+/// assert_eq!([s, v, a, j], [0.25, 1.0, 0.0, 0.0]);
+/// ```
 pub type Derivatives<T> = [T; 4];
 
 /// One piece of the modified trapezoid's acceleration, `a = C(A sin kx + B cos kx + D)` with
@@ -164,6 +183,17 @@ fn modified_trapezoid<T: RealField + Copy>(u: T) -> Derivatives<T> {
 
 /// One segment of a motion program: over `duration`, the output moves by `rise` following
 /// `law` (a dwell when `law` is `None` or `rise` is 0).
+///
+/// ```
+/// use linkage_core::{MotionLaw, Segment};
+/// // A simple-harmonic rise of 10 in 2 s: halfway at 1 s, at its peak speed (π/2)·10/2.
+/// let seg = Segment::new(2.0_f64, 10.0, Some(MotionLaw::SimpleHarmonic)).unwrap();
+/// let [y, v, _, _] = seg.eval(1.0);
+/// assert!((y - 5.0).abs() < 1e-12 && (v - 2.5 * core::f64::consts::PI).abs() < 1e-12);
+/// // A dwell has zero rates; a segment of no duration is refused.
+/// assert_eq!(Segment::new(1.0_f64, 0.0, None).unwrap().eval(0.5), [0.0; 4]);
+/// assert!(Segment::new(0.0_f64, 1.0, None).is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment<T> {
     /// Length of the segment in the program's independent variable (time, or cam angle).
@@ -211,6 +241,23 @@ impl<T: RealField + Copy> Segment<T> {
 
 /// A piecewise motion program: an initial value and segments in sequence, repeating with
 /// period the sum of the durations (the output advancing by the sum of the rises per period).
+///
+/// ```
+/// use linkage_core::{MotionLaw, Program, Segment};
+/// // Rise 1 in 1 s, dwell 1 s, return in 1 s: period 3 s, no net advance.
+/// let segments = [
+///     Segment::new(1.0_f64, 1.0, Some(MotionLaw::Cycloidal)).unwrap(),
+///     Segment::new(1.0, 0.0, None).unwrap(),
+///     Segment::new(1.0, -1.0, Some(MotionLaw::Cycloidal)).unwrap(),
+/// ];
+/// let prog = Program { start: 0.0, segments: &segments };
+/// assert_eq!((prog.period(), prog.advance()), (3.0, 0.0));
+/// assert_eq!(prog.eval(1.5)[0], 1.0); // on the dwell
+/// assert_eq!(prog.eval(4.5), prog.eval(1.5)); // one period later
+/// // An empty program stays at its start; a non-finite time is NaN.
+/// assert_eq!(Program::<f64> { start: 2.0, segments: &[] }.eval(1.0), [2.0, 0.0, 0.0, 0.0]);
+/// assert!(prog.eval(f64::NAN)[0].is_nan());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Program<'a, T> {
     /// Output at the program's start.
@@ -220,6 +267,21 @@ pub struct Program<'a, T> {
 }
 
 /// A jump of a derivative at a join of a motion program.
+///
+/// ```
+/// use linkage_core::{Discontinuity, MotionLaw, Program, Segment};
+/// // A constant-velocity rise into a dwell: the velocity drops by 1 at the join, and jumps back
+/// // up where the dwell wraps round to the next rise.
+/// let segments = [
+///     Segment::new(1.0_f64, 1.0, Some(MotionLaw::ConstantVelocity)).unwrap(),
+///     Segment::new(1.0, 0.0, None).unwrap(),
+/// ];
+/// let prog = Program { start: 0.0, segments: &segments };
+/// let mut out = [Discontinuity { after: 0, order: 0, jump: 0.0 }; 4];
+/// assert_eq!(prog.discontinuities(1e-9, &mut out), 2);
+/// assert_eq!(out[0], Discontinuity { after: 0, order: 1, jump: 1.0 });
+/// assert_eq!(out[1], Discontinuity { after: 1, order: 1, jump: -1.0 });
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Discontinuity<T> {
     /// Index of the segment that ends at the join (the last one for the wrap-around join).

@@ -38,6 +38,23 @@ pub const PLACED_PARAMS: usize = 9;
 
 /// How far target points are from a candidate's coupler curve (its whole circuit), in the
 /// target's units.
+///
+/// ```
+/// use linkage_core::{path_errors, CircuitPath, FootSearch, PathError};
+/// // Hoecken's linkage against two points of its own curve, and a linkage that never assembles.
+/// let hoecken = [0.0, 0.0, 20.0, 0.0, 10.0, 25.0, 25.0, 50.0, 0.0];
+/// let broken = [0.0, 0.0, 20.0, 0.0, 1.0, 2.0, 2.0, 0.0, 0.0];
+/// let path = CircuitPath::placed(&hoecken, false).unwrap();
+/// let targets = [path.point(0.5).unwrap(), path.point(2.0).unwrap()];
+/// let (mut errors, mut feet) = ([PathError::nan(); 2], [0.0; 4]);
+/// let params = [hoecken, broken].concat();
+/// let (exact, closed, threads) = (FootSearch::Exact, false, 1);
+/// let crossed = [false; 2];
+/// path_errors(&params, &crossed, &targets, 256, exact, closed, threads, &mut errors, &mut feet)
+///     .unwrap();
+/// assert!(errors[0].max < 1e-9 && errors[0].rms < 1e-9);
+/// assert!(errors[1].max.is_nan() && feet[2].is_nan());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PathError<T> {
     /// Largest distance from a target point to the curve.
@@ -63,6 +80,18 @@ impl<T: RealField + Copy> PathError<T> {
 }
 
 /// How [`CircuitPath::errors`] finds each target point's nearest curve point.
+///
+/// ```
+/// use linkage_core::{CircuitPath, FootSearch};
+/// let hoecken = [0.0, 0.0, 20.0, 0.0, 10.0, 25.0, 25.0, 50.0, 0.0];
+/// let path = CircuitPath::placed(&hoecken, false).unwrap();
+/// // Two points of the curve between the vertices of a 64-point polyline.
+/// let on = [path.point(0.3).unwrap(), path.point(3.0).unwrap()];
+/// let mut feet = [0.0; 2];
+/// let exact = path.errors(&on, 64, FootSearch::Exact, false, &mut feet).unwrap();
+/// let chord = path.errors(&on, 64, FootSearch::Polyline, false, &mut feet).unwrap();
+/// assert!(exact.max < 1e-9 && chord.max > 100.0 * exact.max);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FootSearch {
     /// The nearest segment of the circuit's polyline (fast; a chord error of the order of the
@@ -75,6 +104,18 @@ pub enum FootSearch {
 
 /// Figures of a circuit over an arc `s_lo ≤ s ≤ s_hi` of its parameter
 /// ([`CircuitPath::arc`]).
+///
+/// ```
+/// use linkage_core::{catalog, CircuitPath};
+/// // Evans C's circuit: limit to limit on one assembly (0 ≤ s ≤ π), back on the other.
+/// let c = CircuitPath::new(catalog::evans_c::<f64>()).unwrap();
+/// let a = c.arc(0.5, 2.5, 32);
+/// assert!(!a.through_limit && a.theta.0 < a.theta.1);
+/// assert!(a.min_transmission > 0.0);
+/// assert!(c.arc(2.5, 3.5, 32).through_limit);
+/// // A crank that turns fully never meets a limit.
+/// assert!(!CircuitPath::new(catalog::hoecken::<f64>()).unwrap().arc(0.0, 7.0, 64).through_limit);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ArcFigures<T> {
     /// Least and greatest crank angle over the arc (radians, absolute).
@@ -88,6 +129,19 @@ pub struct ArcFigures<T> {
 }
 
 /// A four-bar's circuit, parametrised as in the module.
+///
+/// ```
+/// use linkage_core::{catalog, Assembly, CircuitPath, Error, FourBar};
+/// let c = CircuitPath::new(catalog::hoecken::<f64>()).unwrap();
+/// assert!(c.full_turn() && c.limits.is_none());
+/// c.check(64).unwrap(); // the tracker follows the circuit
+/// // A linkage that never assembles has no circuit.
+/// let never = FourBar::new(20.0_f64, 1.0, 2.0, 2.0, (0.0, 0.0), Assembly::Open).unwrap();
+/// assert!(matches!(CircuitPath::new(never), Err(Error::CannotAssemble { joint: 3, .. })));
+/// // A parallelogram's circuit crosses its flat positions, where the tracker switches branch.
+/// let par = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.0, 1.0), Assembly::Open).unwrap();
+/// assert!(CircuitPath::new(par).unwrap().check(256).is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CircuitPath<T> {
     /// The linkage on its declared assembly.
@@ -266,6 +320,10 @@ impl<T: RealField + Copy> CircuitPath<T> {
     }
 
     /// `m` points of the circuit at `s = 2πk/m` (NaN where a sample does not assemble).
+    ///
+    /// # Panics
+    /// When `m` points cannot be allocated: more bytes than `isize::MAX` panics (capacity
+    /// overflow), like any `Vec` of that length.
     pub fn polyline(&self, m: usize) -> Vec<Vec2<T>> {
         (0..m)
             .map(|k| {
@@ -284,6 +342,9 @@ impl<T: RealField + Copy> CircuitPath<T> {
     ///
     /// # Errors
     /// As [`Efd::closed`] and [`Efd::normalised`] (an unassembled sample is not finite).
+    ///
+    /// # Panics
+    /// As [`CircuitPath::polyline`] of `samples` points.
     pub fn normalisation(
         &self,
         samples: usize,
@@ -433,6 +494,9 @@ impl<T: RealField + Copy> CircuitPath<T> {
     ///
     /// `None` when the circuit has an unassembled sample, `samples < 8`, fewer than two
     /// targets, or `feet` is not one per target.
+    ///
+    /// # Panics
+    /// As [`CircuitPath::polyline`] of `samples` points.
     pub fn errors(
         &self,
         targets: &[Vec2<T>],
@@ -533,14 +597,22 @@ fn segment_distance<T: RealField + Copy>(p: Vec2<T>, a: Vec2<T>, b: Vec2<T>) -> 
 /// Checks `M` placed four-bars: `params` rows of [`PLACED_PARAMS`], one `crossed` flag each.
 fn placed_rows(params: &[f64], crossed: &[bool]) -> Result<usize, Error> {
     let m = crossed.len();
-    if params.len() != m * PLACED_PARAMS {
+    let expected = m.saturating_mul(PLACED_PARAMS);
+    if params.len() != expected {
         return Err(Error::BufferLength {
             what: "placed four-bar parameters",
-            expected: m * PLACED_PARAMS,
+            expected,
             got: params.len(),
         });
     }
     Ok(m)
+}
+
+/// `m·n`, the length of a `(linkages, targets)` output.
+fn rows_times(m: usize, n: usize) -> Result<usize, Error> {
+    m.checked_mul(n).ok_or(Error::CountOverflow {
+        what: "linkages × targets",
+    })
 }
 
 /// [`CircuitPath::errors`] of `M` placed four-bars (`params` rows of [`PLACED_PARAMS`], one
@@ -550,7 +622,10 @@ fn placed_rows(params: &[f64], crossed: &[bool]) -> Result<usize, Error> {
 ///
 /// # Errors
 /// [`Error::BufferLength`] for buffers of the wrong length, fewer than two targets or fewer
-/// than 8 samples.
+/// than 8 samples; [`Error::CountOverflow`] when `M·n` overflows `usize`.
+///
+/// # Panics
+/// As [`CircuitPath::polyline`] of `samples` points.
 #[allow(
     clippy::too_many_arguments,
     reason = "the batch's inputs, its two outputs and the search settings"
@@ -568,11 +643,12 @@ pub fn path_errors(
 ) -> Result<(), Error> {
     let m = placed_rows(params, crossed)?;
     let n = targets.len();
+    let mn = rows_times(m, n)?;
     for (what, expected, got, short) in [
         ("targets (at least)", 2, n, n < 2),
         ("samples (at least)", 8, samples, samples < 8),
         ("errors", m, errors.len(), errors.len() != m),
-        ("feet", m * n, feet.len(), feet.len() != m * n),
+        ("feet", mn, feet.len(), feet.len() != mn),
     ] {
         if short {
             return Err(Error::BufferLength {
@@ -605,7 +681,8 @@ pub fn path_errors(
 /// or a sample does not assemble.
 ///
 /// # Errors
-/// [`Error::BufferLength`] for buffers of the wrong length.
+/// [`Error::BufferLength`] for buffers of the wrong length; [`Error::CountOverflow`] when
+/// `M·n` overflows `usize`.
 pub fn path_residuals(
     params: &[f64],
     crossed: &[bool],
@@ -615,11 +692,12 @@ pub fn path_residuals(
 ) -> Result<(), Error> {
     let m = placed_rows(params, crossed)?;
     let n = targets.len();
+    let mn = rows_times(m, n)?;
     for (what, got) in [("circuit parameters", s.len()), ("residuals", out.len())] {
-        if got != m * n {
+        if got != mn {
             return Err(Error::BufferLength {
                 what,
-                expected: m * n,
+                expected: mn,
                 got,
             });
         }

@@ -3,6 +3,12 @@
 use nalgebra::{RealField, Vector2};
 
 /// A point or vector in the plane.
+///
+/// ```
+/// use linkage_core::Vec2;
+/// let v = Vec2::new(3.0_f64, 4.0);
+/// assert_eq!((v.norm(), v.dot(&Vec2::new(1.0, 0.0))), (5.0, 3.0));
+/// ```
 pub type Vec2<T> = Vector2<T>;
 
 /// `x` as the scalar type `T` (exact for the small constants used here).

@@ -138,6 +138,25 @@ impl<'a, T: RealField + Copy> ScheduleTable<'a, T> {
 ///
 /// The schedule borrows the stance samples; [`StanceSchedule::at`] evaluates it and
 /// [`StanceSchedule::fill`] writes the table a [`ScheduleTable`] (and firmware) interpolates.
+///
+/// ```
+/// use core::f64::consts::{FRAC_PI_2, PI};
+/// use linkage_core::{Error, StanceSchedule};
+/// // A stance over half a turn in which the foot moves 1 per radian of crank, at foot speed 1
+/// // and duty factor ½: the crank turns uniformly, 1 rad/s, stance and swing alike.
+/// let theta = [0.0, FRAC_PI_2, PI];
+/// let mut times = [0.0; 3];
+/// let s = StanceSchedule::fit(&theta, &[1.0; 3], &mut times, 1.0, 0.5).unwrap();
+/// assert_eq!((s.stance_time(), s.period()), (PI, 2.0 * PI));
+/// let (th, w) = s.at(4.0); // in the swing
+/// assert!((th - 4.0).abs() < 1e-12 && (w - 1.0).abs() < 1e-12);
+/// // A foot that stops along the stance line cannot keep a constant speed.
+/// let mut times = [0.0; 3];
+/// assert!(matches!(
+///     StanceSchedule::fit(&theta, &[1.0, 0.0, 1.0], &mut times, 1.0, 0.5),
+///     Err(Error::ScheduleInfeasible { .. })
+/// ));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StanceSchedule<'a, T> {
     theta: &'a [T],

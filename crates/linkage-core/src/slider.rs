@@ -6,6 +6,16 @@ use crate::dyad::DyadFailure;
 use crate::scalar::{cross, eps, lit, perp, Vec2};
 
 /// Which of the two intersections of a circle and a line.
+///
+/// ```
+/// use linkage_core::{Reach, SliderDyad, Vec2};
+/// // Pivot (0, 3), link 5, the x axis as the line: the joint 4 ahead of the foot, or 4 behind.
+/// let s = SliderDyad { r: 5.0_f64 };
+/// let pose = s.solve(Vec2::new(0.0, 3.0), Vec2::zeros(), Vec2::new(1.0, 0.0), 0.0).unwrap();
+/// assert_eq!(pose.point(Reach::Ahead), Vec2::new(4.0, 0.0));
+/// assert_eq!(pose.point(Reach::Behind), Vec2::new(-4.0, 0.0));
+/// assert_eq!(Reach::Behind.sign::<f64>(), -1.0);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Reach {
     /// Ahead of the foot of the perpendicular, along the line's direction.
@@ -26,6 +36,21 @@ impl Reach {
 }
 
 /// A solved slider dyad: the candidates are `foot ± offset`.
+///
+/// ```
+/// use linkage_core::{DyadFailure, SliderDyad, Vec2};
+/// let s = SliderDyad { r: 5.0_f64 };
+/// let x_axis = Vec2::new(1.0, 0.0);
+/// // Half-chord 4 of a link of 5: margin 0.8.
+/// let pose = s.solve(Vec2::new(0.0, 3.0), Vec2::zeros(), x_axis, 0.0).unwrap();
+/// assert_eq!(pose.margin, 0.8);
+/// // The link perpendicular to the line: one joint, margin 0 (a toggle).
+/// let at = s.solve(Vec2::new(0.0, 5.0), Vec2::zeros(), x_axis, 0.0).unwrap();
+/// assert_eq!((at.offset.norm(), at.margin), (0.0, 0.0));
+/// // The pivot 6 from the line: it passes outside the circle by 1.
+/// let far = s.solve(Vec2::new(0.0, 6.0), Vec2::zeros(), x_axis, 0.0);
+/// assert_eq!(far, Err(DyadFailure::Gap(1.0)));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SliderPose<T: RealField + Copy> {
     /// Foot of the perpendicular from the pivot onto the line.

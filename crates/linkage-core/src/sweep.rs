@@ -14,7 +14,7 @@ use crate::bodies::{Bodies, BodyId, GROUND};
 use crate::centres::{path_curvature, relative_centre, BodyMotion, Centre};
 use crate::error::Error;
 use crate::held::{BlockPoses, BlockRates, BLOCK};
-use crate::mechanism::{Mechanism, Motion};
+use crate::mechanism::{CrankRates, Mechanism};
 use crate::motion::rate_margin;
 use crate::scalar::{lit, nan, Vec2};
 use crate::tracker::{Rates, Tracker};
@@ -30,6 +30,22 @@ pub const SWEEP_CHUNK: usize = 4096;
 pub const SWEEP_WORK_CHUNK: u64 = 1 << 15;
 
 /// A driver rate for a sweep: one value for every sample, or one per sample.
+///
+/// ```
+/// use linkage_core::{catalog, sweep, Error, Rate, SweepOutputs, Vec2};
+/// let m = catalog::hoecken::<f64>().mechanism();
+/// let theta = [0.0, 1.0];
+/// let (mut joints, mut valid, mut vel) = ([Vec2::zeros(); 10], [false; 2], [Vec2::zeros(); 10]);
+/// let mut out = SweepOutputs::positions(&mut joints, &mut valid);
+/// out.velocity = Some(&mut vel);
+/// // A crank speeding up: 1 rad/s at the first sample, 3 at the second (crank pin A = joint 2).
+/// sweep(&m, &theta, Rate::PerSample(&[1.0, 3.0]), Rate::Scalar(0.0), out, &mut || true).unwrap();
+/// assert!((vel[2].norm() - 10.0).abs() < 1e-12 && (vel[5 + 2].norm() - 30.0).abs() < 1e-12);
+/// // One value per angle, or an error.
+/// let out = SweepOutputs::positions(&mut joints, &mut valid);
+/// let short = sweep(&m, &theta, Rate::PerSample(&[1.0]), Rate::Scalar(0.0), out, &mut || true);
+/// assert_eq!(short, Err(Error::BufferLength { what: "omega", expected: 2, got: 1 }));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Rate<'a, T> {
     /// The same value at every sample.
@@ -49,6 +65,18 @@ impl<T: Copy> Rate<'_, T> {
 }
 
 /// Which joints a sweep's per-joint outputs (positions, rates, curvature) hold.
+///
+/// ```
+/// use linkage_core::{catalog, sweep, Columns, Error, Rate, SweepOutputs, Vec2};
+/// assert_eq!((Columns::All.width(5), Columns::One(4).width(5)), (5, 1));
+/// // A column must name a joint of the mechanism (Hoecken's has 5).
+/// let m = catalog::hoecken::<f64>().mechanism();
+/// let (mut joints, mut valid) = ([Vec2::zeros(); 1], [false; 1]);
+/// let mut out = SweepOutputs::positions(&mut joints, &mut valid);
+/// out.columns = Columns::One(5);
+/// let r = sweep(&m, &[0.0], Rate::Scalar(0.0), Rate::Scalar(0.0), out, &mut || true);
+/// assert!(matches!(r, Err(Error::BufferLength { .. })));
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Columns {
     /// Every joint: rows of `j` entries per sample.
@@ -76,6 +104,19 @@ impl Columns {
 /// Every element of every slice given is written (the slices may hold anything before the
 /// call): NaN rows at samples that do not assemble, and NaN entries where a value does not
 /// exist (a centre at infinity in `centres`, a finite one in `centre_directions`).
+///
+/// ```
+/// use linkage_core::{catalog, sweep, Rate, SweepOutputs, Vec2};
+/// // Evans C's crank reaches only |θ| ≤ acos(1/4) ≈ 1.32: at θ = 2 it does not assemble.
+/// let m = catalog::evans_c::<f64>().mechanism();
+/// let (mut joints, mut valid, mut gap) = ([Vec2::zeros(); 10], [false; 2], [0.0; 2]);
+/// let mut out = SweepOutputs::positions(&mut joints, &mut valid);
+/// out.gap = Some(&mut gap);
+/// sweep(&m, &[0.0, 2.0], Rate::Scalar(0.0), Rate::Scalar(0.0), out, &mut || true).unwrap();
+/// assert_eq!(valid, [true, false]);
+/// assert!(joints[5..].iter().all(|p| p.x.is_nan() && p.y.is_nan()));
+/// assert!(gap[0] == 0.0 && gap[1] > 5.0); // |AC| ≈ 25.8 at θ = 2, coupler + rocker = 20
+/// ```
 #[derive(Debug)]
 pub struct SweepOutputs<'a, T> {
     /// Which joints `joints`, `velocity`, `acceleration`, `curvature_centres` and `curvature`
@@ -134,6 +175,19 @@ pub fn sweep_pairs<T: RealField + Copy, const N: usize>(mech: &Mechanism<T, N>) 
 }
 
 /// How a sweep ended.
+///
+/// ```
+/// use linkage_core::{catalog, sweep, Rate, SweepOutputs, Vec2, SWEEP_CHUNK};
+/// let m = catalog::hoecken::<f64>().mechanism();
+/// let n = SWEEP_CHUNK + 10;
+/// let theta: Vec<f64> = (0..n).map(|k| k as f64 * 1e-3).collect();
+/// let (mut joints, mut valid) = (vec![Vec2::zeros(); 5 * n], vec![false; n]);
+/// // `go_on` says stop at its first call: the first chunk of samples is written, no more.
+/// let out = SweepOutputs::positions(&mut joints, &mut valid);
+/// let done = sweep(&m, &theta, Rate::Scalar(0.0), Rate::Scalar(0.0), out, &mut || false).unwrap();
+/// assert_eq!(done.samples, SWEEP_CHUNK);
+/// assert!(valid[..SWEEP_CHUNK].iter().all(|&v| v) && !valid[SWEEP_CHUNK]);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Swept {
     /// Samples written: all of them, or fewer when `go_on` stopped the sweep (the rows after
@@ -146,6 +200,23 @@ pub struct Swept {
 }
 
 /// How [`sweep_planned`] sweeps. Every plan gives the same results, bit for bit.
+///
+/// ```
+/// use linkage_core::{catalog, sweep_planned, Plan, Rate, SweepOutputs, Vec2};
+/// let m = catalog::hoecken::<f64>().mechanism();
+/// let theta = [0.3, 2.0, 1.0];
+/// let run = |plan| {
+///     let (mut joints, mut valid) = ([Vec2::zeros(); 15], [false; 3]);
+///     let out = SweepOutputs::positions(&mut joints, &mut valid);
+///     let still = Rate::Scalar(0.0);
+///     let s = sweep_planned(&m, &theta, still, still, out, &mut || true, plan);
+///     (joints, s.unwrap())
+/// };
+/// let ((tracked, t), (held, h)) = (run(Plan::Tracked), run(Plan::Held));
+/// assert_eq!(tracked, held); // the same bits either way
+/// assert!(!t.held && t.work > 0);
+/// assert!(h.held && h.work == 0); // a crank-rocker never nears a toggle: posed directly
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Plan {
     /// The held pass when there are at least as many samples as the tracker's grid points
@@ -304,7 +375,7 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let pos = &self.pos[..j];
         let unit_acc = self.wants_curvature.then_some(&mut self.uacc[..j]);
         self.mech
-            .motion(pos, Motion::unit(), &mut self.uvel[..j], unit_acc, None)?;
+            .motion(pos, CrankRates::unit(), &mut self.uvel[..j], unit_acc, None)?;
         if self.wants_centres {
             let bodies = &self.bodies;
             for id in bodies.ids() {
@@ -369,7 +440,7 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         self.mech
             .motion(
                 &self.pos[..j],
-                Motion::new(w, a),
+                CrankRates::new(w, a),
                 &mut self.vel[..j],
                 acc,
                 None,
@@ -399,7 +470,9 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
                 }
                 next_check = tracker.work().saturating_add(SWEEP_WORK_CHUNK);
             }
-            let motion = self.rates.then(|| Motion::new(omega.at(k), alpha.at(k)));
+            let motion = self
+                .rates
+                .then(|| CrankRates::new(omega.at(k), alpha.at(k)));
             let buffers = match (self.rates, self.wants_acc) {
                 (true, true) => Rates::acceleration(&mut self.vel[..j], &mut self.acc[..j]),
                 (true, false) => Rates::velocity(&mut self.vel[..j]),

@@ -3,7 +3,7 @@
 use nalgebra::RealField;
 
 use crate::error::{check_finite, Error};
-use crate::mechanism::{Candidates, Mechanism, Motion};
+use crate::mechanism::{Candidates, CrankRates, Mechanism};
 use crate::scalar::{lit, Vec2};
 
 /// Assembly margin (`sin γ`, see [`crate::DyadPose::margin`]) below which a dyad is "near a
@@ -24,6 +24,20 @@ const MAX_FINE: i64 = 1 << 20;
 
 /// Where a sweep sample writes the rates it is asked for; absent buffers are not computed.
 /// Higher rates need the lower ones (a jerk needs an acceleration and a velocity buffer).
+///
+/// ```
+/// use linkage_core::{catalog, CrankRates, Error, Rates, Tracker, Vec2};
+/// let m = catalog::hoecken::<f64>().mechanism();
+/// let mut t = Tracker::new(&m).unwrap();
+/// let (mut p, mut v, mut a) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5], [Vec2::zeros(); 5]);
+/// // At 2 rad/s the crank pin (10 from O) accelerates centripetally, 2²·10 toward O.
+/// let drive = Some(CrankRates::new(2.0, 0.0));
+/// t.step(0.0, drive, &mut p, Rates::acceleration(&mut v, &mut a)).unwrap();
+/// assert!((a[2] - Vec2::new(-40.0, 0.0)).norm() < 1e-12);
+/// // Rates need a drive to be rates of.
+/// let r = t.step(0.0, None, &mut p, Rates::velocity(&mut v));
+/// assert!(matches!(r, Err(Error::BufferLength { .. })));
+/// ```
 #[derive(Debug, Default)]
 pub struct Rates<'a, T> {
     /// Joint velocities.
@@ -64,6 +78,20 @@ impl<'a, T> Rates<'a, T> {
 }
 
 /// Result of one sweep sample that assembled.
+///
+/// ```
+/// use linkage_core::{catalog, InputRange, Rates, Tracker, Vec2};
+/// // Evans C from θ = 0 to its input limit, where coupler and rocker are stretched flat.
+/// let fb = catalog::evans_c::<f64>();
+/// let InputRange::Between { hi, .. } = fb.input_range() else { unreachable!() };
+/// let m = fb.mechanism();
+/// let mut t = Tracker::new(&m).unwrap();
+/// let mut p = [Vec2::zeros(); 5];
+/// let s = t.step(0.0, None, &mut p, Rates::none()).unwrap();
+/// assert!(s.regular && (s.margin - 0.75_f64.sqrt()).abs() < 1e-12); // a 60° triangle at B
+/// let s = t.step(hi, None, &mut p, Rates::none()).unwrap();
+/// assert!(!s.regular && s.margin < 1e-6); // at the toggle: rates would be NaN
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample<T> {
     /// Smallest assembly margin of the mechanism's dyads at this sample (1 when it has none).
@@ -635,7 +663,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     pub fn step(
         &mut self,
         theta: T,
-        motion: Option<Motion<T>>,
+        motion: Option<CrankRates<T>>,
         joints: &mut [Vec2<T>],
         rates: Rates<'_, T>,
     ) -> Result<Sample<T>, Error> {

@@ -108,7 +108,9 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
     if x.abs() < REDUCE_LIMIT {
         sin_cos_reduced(x)
     } else {
-        x.sin_cos()
+        // The platform's `f64::sin_cos` with `std`, libm's without (`f64` has no inherent
+        // `sin_cos` in `no_std`).
+        <f64 as nalgebra::ComplexField>::sin_cos(x)
     }
 }
 

@@ -12,6 +12,20 @@ use crate::fourbar::FourBar;
 use crate::scalar::{lit, Vec2};
 
 /// How crank angles `θ_k = θ₀ + k·Δ` are turned into `(cos θ_k, sin θ_k)`.
+///
+/// ```
+/// use linkage_core::{catalog, AngleMode, Error, Vec2, MAX_TABLE};
+/// let fb = catalog::hoecken::<f64>();
+/// let (mut trig, mut table) = ([Vec2::zeros(); 100], [Vec2::zeros(); 100]);
+/// fb.uniform_sweep(0.0, 0.01, 0, AngleMode::Trig, &mut trig).unwrap();
+/// fb.uniform_sweep(0.0, 0.01, 0, AngleMode::Table { block: 64 }, &mut table).unwrap();
+/// assert!(trig.iter().zip(&table).all(|(p, q)| (p - q).norm() < 1e-12));
+/// // The small table lives on the stack: at most MAX_TABLE entries.
+/// assert_eq!(
+///     fb.uniform_sweep(0.0, 0.01, 0, AngleMode::Table { block: 300 }, &mut table),
+///     Err(Error::OutOfRange { what: "table block", value: 300, max: MAX_TABLE })
+/// );
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum AngleMode {
     /// `sin_cos` of every angle (libm or the platform's): the reference.
@@ -75,10 +89,12 @@ impl<T: RealField + Copy> FourBar<T> {
     /// the split.
     ///
     /// # Errors
-    /// [`Error::NotFinite`] for a non-finite `theta0`/`dtheta`; [`Error::InvalidLength`] for a
-    /// zero block; [`Error::CountOverflow`] when `first + out.len()` overflows `usize`;
-    /// [`Error::ToggleOnPath`] when a change-point linkage's flat position lies on the samples'
-    /// path (see [`FourBar::check_fixed_assembly_path`]): nothing is written.
+    /// Nothing is written on an error. [`Error::NotFinite`] for a non-finite
+    /// `theta0`/`dtheta`; [`Error::InvalidLength`] for a zero block; [`Error::OutOfRange`] for
+    /// an [`AngleMode::Table`] block above [`MAX_TABLE`]; [`Error::CountOverflow`] when
+    /// `first + out.len()` overflows `usize`; [`Error::ToggleOnPath`] when a change-point
+    /// linkage's flat position lies on the samples' path (see
+    /// [`FourBar::check_fixed_assembly_path`]).
     // Always inlined, so a caller compiled for wider vectors (the Python binding's AVX-512 and
     // AVX2 paths) gets this kernel compiled for them too.
     #[inline(always)]
@@ -100,14 +116,18 @@ impl<T: RealField + Copy> FourBar<T> {
             }
         };
         if block > MAX_TABLE && matches!(mode, AngleMode::Table { .. }) {
-            return Err(Error::InvalidLength {
-                what: "table block (at most 256)",
-                value: block as f64,
+            return Err(Error::OutOfRange {
+                what: "table block",
+                value: block,
+                max: MAX_TABLE,
             });
         }
+        let end = first.checked_add(out.len()).ok_or(Error::CountOverflow {
+            what: "first sample + samples",
+        })?;
         let angle = |i: usize| theta0 + dtheta * lit::<T>(i as f64);
         if !out.is_empty() {
-            self.check_fixed_assembly_path(angle(first), angle(first + out.len() - 1))?;
+            self.check_fixed_assembly_path(angle(first), angle(end - 1))?;
         }
         // The step's rotation (recurrence) and the small table of its multiples (table mode).
         let (ds, dc) = dtheta.sin_cos();
@@ -133,16 +153,14 @@ impl<T: RealField + Copy> FourBar<T> {
         let mut cos_buf = [T::zero(); MAX_TABLE];
         let mut sin_buf = [T::zero(); MAX_TABLE];
         let span = block.min(MAX_TABLE);
-        let end = first.checked_add(out.len()).ok_or(Error::CountOverflow {
-            what: "first sample + samples",
-        })?;
         let mut k = first;
         let mut written = 0;
         // One anchor block at a time: the anchor's exact direction, then the samples up to the
         // next anchor (or the end), in a straight loop the compiler can vectorise.
         while k < end {
             let anchor = k - k % span;
-            let stop = (anchor + span).min(end);
+            // (saturating: the last anchor block of an index range ending near `usize::MAX`)
+            let stop = anchor.saturating_add(span).min(end);
             let m = stop - k;
             match mode {
                 AngleMode::Trig => {

@@ -1,8 +1,8 @@
 //! Instant centres (Aronhold–Kennedy), curvature, jerk and the Ball point.
 
 use linkage_core::{
-    catalog, instant_centre, path_curvature, Assembly, Bodies, BodyMotion, Centre, FourBar,
-    Mechanism, Motion, Vec2,
+    catalog, instant_centre, path_curvature, Assembly, Bodies, BodyMotion, Centre, CrankRates,
+    FourBar, Mechanism, Vec2,
 };
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -27,7 +27,7 @@ fn rates<const N: usize>(m: &Mechanism<f64, N>, theta: f64) -> Option<Rates4> {
         vec![Vec2::zeros(); n],
     );
     m.pose(theta, &mut p).ok()?;
-    m.motion(&p, Motion::unit(), &mut v, Some(&mut a), Some(&mut j))
+    m.motion(&p, CrankRates::unit(), &mut v, Some(&mut a), Some(&mut j))
         .ok()?
         .then_some((p, v, a, j))
 }

@@ -2,8 +2,8 @@
 //! of the driver against the change of energy.
 
 use linkage_core::{
-    Assembly, Bodies, Dynamics, Error, ForceSweep, FourBar, Inertia, Load, LoadSeries, Mechanism,
-    Motion, Vec2,
+    Assembly, Bodies, CrankRates, Dynamics, Error, ForceSweep, FourBar, Inertia, Load, LoadSeries,
+    Mechanism, Vec2,
 };
 use std::f64::consts::PI;
 
@@ -17,8 +17,14 @@ fn state<const N: usize>(m: &Mechanism<f64, N>, theta: f64, omega: f64, alpha: f
         vec![Vec2::zeros(); n],
     );
     m.pose(theta, &mut p).unwrap();
-    m.motion(&p, Motion::new(omega, alpha), &mut v, Some(&mut a), None)
-        .unwrap();
+    m.motion(
+        &p,
+        CrankRates::new(omega, alpha),
+        &mut v,
+        Some(&mut a),
+        None,
+    )
+    .unwrap();
     (p, v, a)
 }
 

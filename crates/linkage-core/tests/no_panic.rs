@@ -9,10 +9,10 @@
 use linkage_core::{
     catalog, circumcentre, convex_hull, inflection, instant_centre, line_intersection,
     path_curvature, relative_centre, stability_margin, straight_part, triangle_area, AngleMode,
-    Assembly, Bodies, BodyId, BodyMotion, Construction, Dyad, Dynamics, Error, FlatFollower,
-    FourBar, GearTrain, Inertia, InputRange, LineDirection, Load, Mechanism, Mobility, Motion,
-    MotionLaw, Program, Rates, Reach, RollerFollower, ScheduleTable, Segment, Side, SliderDyad,
-    Tracker, Vec2,
+    Assembly, Bodies, BodyId, BodyMotion, Construction, CrankRates, Dyad, Dynamics, Error,
+    FlatFollower, FourBar, GearTrain, Inertia, InputRange, LineDirection, Load, Mechanism,
+    Mobility, MotionLaw, Program, Rates, Reach, RollerFollower, ScheduleTable, Segment, Side,
+    SliderDyad, Tracker, Vec2,
 };
 use proptest::prelude::*;
 
@@ -200,7 +200,7 @@ fn exercise_mechanism(m: &Mechanism<f64, 8>, theta: f64, omega: f64, alpha: f64,
     let mut vel = vec![Vec2::zeros(); n];
     let mut acc = vec![Vec2::zeros(); n];
     let mut jerk = vec![Vec2::zeros(); n];
-    let drive = Motion {
+    let drive = CrankRates {
         omega,
         alpha,
         jerk: omega,
@@ -544,6 +544,43 @@ fn sweep_index_overflow_is_an_error() {
         hoecken(1.0).uniform_sweep(0.0, 0.1, usize::MAX - 1, AngleMode::Trig, &mut out),
         Err(Error::CountOverflow { .. })
     ));
+    // Indices that end just below `usize::MAX`: the last anchor block would end past it (a
+    // debug-build overflow before). The angles are ~1e18 rad, so the points are only finite.
+    for mode in [
+        AngleMode::Trig,
+        AngleMode::Table { block: 256 },
+        AngleMode::Recurrence { block: 256 },
+    ] {
+        let mut out = [Vec2::zeros(); 4];
+        hoecken(1.0)
+            .uniform_sweep(0.0, 0.1, usize::MAX - 4, mode, &mut out)
+            .unwrap();
+        assert!(out.iter().all(|p| p.x.is_finite()), "{mode:?}: {out:?}");
+    }
+}
+
+#[test]
+fn string_choices_round_trip() {
+    for a in [Assembly::Open, Assembly::Crossed] {
+        assert_eq!(a.name().parse::<Assembly>(), Ok(a));
+        assert_eq!(a.to_string(), a.name());
+    }
+    for s in [Side::Left, Side::Right] {
+        assert_eq!(s.name().parse::<Side>(), Ok(s));
+        assert_eq!(s.to_string(), s.name());
+    }
+    // Exact names only: no case folding, no trimming.
+    for bad in ["Open", " open", "", "left"] {
+        assert!(matches!(
+            bad.parse::<Assembly>(),
+            Err(Error::InvalidChoice {
+                what: "assembly",
+                ..
+            })
+        ));
+    }
+    let e = "up".parse::<Side>().unwrap_err();
+    assert_eq!(e.to_string(), "side must be 'left' or 'right'");
 }
 
 #[test]
@@ -649,7 +686,7 @@ fn rates_scale_with_the_linkage() {
         let (mut pos, mut vel, mut acc) =
             ([Vec2::zeros(); 6], [Vec2::zeros(); 6], [Vec2::zeros(); 6]);
         let rates = Rates::acceleration(&mut vel, &mut acc);
-        t.step(1.0, Some(Motion::new(1.0, 0.5)), &mut pos, rates)
+        t.step(1.0, Some(CrankRates::new(1.0, 0.5)), &mut pos, rates)
             .unwrap();
         (vel, acc)
     };

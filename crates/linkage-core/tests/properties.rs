@@ -4,7 +4,7 @@
 //! Cases per property: `LINKAGE_PROPTEST_CASES` (default 2000; the long run uses 1e5).
 
 use linkage_core::{
-    Assembly, FourBar, GrashofClass, InputRange, Mechanism, Motion, Rates, Tracker, Vec2,
+    Assembly, CrankRates, FourBar, GrashofClass, InputRange, Mechanism, Rates, Tracker, Vec2,
 };
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -127,14 +127,14 @@ proptest! {
         let rates = |th: f64| {
             let j = pose(th);
             let (mut v, mut a) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5]);
-            m.motion(&j, Motion::new(omega, alpha), &mut v, Some(&mut a), None).unwrap();
+            m.motion(&j, CrankRates::new(omega, alpha), &mut v, Some(&mut a), None).unwrap();
             (v, a)
         };
         let (v, a) = rates(theta);
         let h = 1e-5;
         let (pp, pm) = (pose(theta + h), pose(theta - h));
         // Unit-speed rates to difference the velocity in θ: v = ω·dP/dθ, a = ω²·d²P/dθ² + α·dP/dθ.
-        let unit = |th: f64| { let j = pose(th); let mut v = [Vec2::zeros(); 5]; m.motion(&j, Motion::unit(), &mut v, None, None).unwrap(); v };
+        let unit = |th: f64| { let j = pose(th); let mut v = [Vec2::zeros(); 5]; m.motion(&j, CrankRates::unit(), &mut v, None, None).unwrap(); v };
         let (up, um) = (unit(theta + h), unit(theta - h));
         let u0 = unit(theta);
         for i in 2..5 {
@@ -213,7 +213,7 @@ fn tracker_rates_of_crank_pin() {
     let s = t
         .step(
             0.3,
-            Some(Motion::new(2.0, 0.5)),
+            Some(CrankRates::new(2.0, 0.5)),
             &mut j,
             Rates::acceleration(&mut v, &mut a),
         )

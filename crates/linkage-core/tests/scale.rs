@@ -17,7 +17,7 @@
 //! `1.7e305` the true jerks exceed the largest float.
 
 use linkage_core::catalog;
-use linkage_core::{Assembly, Construction, FourBar, Mechanism, Motion, Rates, Tracker, Vec2};
+use linkage_core::{Assembly, Construction, CrankRates, FourBar, Mechanism, Rates, Tracker, Vec2};
 
 /// The mechanism with every length multiplied by `k` (angles and topology unchanged).
 fn scaled<const N: usize>(m: &Mechanism<f64, N>, k: f64) -> Mechanism<f64, N> {
@@ -89,7 +89,7 @@ struct Sampled {
 fn sweep<const N: usize>(m: &Mechanism<f64, N>, thetas: &[f64]) -> Vec<Sampled> {
     let n = m.len();
     let mut t = Tracker::new(m).unwrap();
-    let drive = Motion {
+    let drive = CrankRates {
         omega: 1.3,
         alpha: -0.4,
         jerk: 0.25,

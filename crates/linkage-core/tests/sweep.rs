@@ -13,8 +13,8 @@
 //! Cases per property: `LINKAGE_PROPTEST_CASES` (default 2000).
 
 use linkage_core::{
-    catalog, sweep, sweep_pairs, sweep_planned, Assembly, Columns, Error, FourBar, Mechanism,
-    Motion, Plan, Rate, Rates, SweepOutputs, Swept, Tracker, Vec2, SWEEP_CHUNK,
+    catalog, sweep, sweep_pairs, sweep_planned, Assembly, Columns, CrankRates, Error, FourBar,
+    Mechanism, Plan, Rate, Rates, SweepOutputs, Swept, Tracker, Vec2, SWEEP_CHUNK,
 };
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -108,7 +108,7 @@ fn reference<const N: usize>(
     let (mut jp, mut jv, mut ja) = (Vec::new(), Vec::new(), Vec::new());
     let (mut valid, mut margin, mut gap, mut regular) = (vec![], vec![], vec![], vec![]);
     for (k, &th) in theta.iter().enumerate() {
-        let motion = Some(Motion::new(omega[k], alpha));
+        let motion = Some(CrankRates::new(omega[k], alpha));
         match t.step(
             th,
             motion,

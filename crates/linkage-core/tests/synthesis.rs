@@ -129,3 +129,44 @@ fn atlas_query_finds_each_entry() {
     }
     assert!(nearest(&atlas.descriptors, 0, &[], 1, 1).is_err());
 }
+
+/// Counts whose arithmetic or allocation would overflow are typed errors, not panics.
+#[test]
+fn absurd_counts_are_errors() {
+    use linkage_core::{descriptor_len, query_descriptors, Error};
+    let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| Vec2::new(x, y));
+    for harmonics in [usize::MAX, usize::MAX / 8] {
+        assert_eq!(
+            Efd::closed(&square, harmonics),
+            Err(Error::CountOverflow { what: "harmonics" })
+        );
+    }
+    assert_eq!(descriptor_len(usize::MAX), usize::MAX);
+    assert!(matches!(
+        query_descriptors(&square, usize::MAX, true, &mut [0.0; 4]),
+        Err(Error::BufferLength { .. })
+    ));
+    let spec = AtlasSpec::default();
+    assert!(matches!(
+        Atlas::build(usize::MAX, spec, 1),
+        Err(Error::CountOverflow { .. })
+    ));
+    for bad in [
+        AtlasSpec {
+            harmonics: usize::MAX,
+            ..spec
+        },
+        AtlasSpec {
+            samples: usize::MAX,
+            ..spec
+        },
+    ] {
+        assert!(matches!(
+            Atlas::build(1, bad, 1),
+            Err(Error::CountOverflow { .. })
+        ));
+    }
+    // A `k` beyond every pair of entry and target asks for them all, not for memory.
+    let rows = [0.0f32, 1.0, 2.0];
+    assert_eq!(nearest(&rows, 1, &[0.0], usize::MAX, 1).unwrap().len(), 3);
+}

@@ -10,7 +10,9 @@
 //!
 //! Cases per property: `LINKAGE_PROPTEST_CASES` (default 2000).
 
-use linkage_core::{rate_margin, Assembly, FourBar, GrashofClass, Motion, Rates, Tracker, Vec2};
+use linkage_core::{
+    rate_margin, Assembly, CrankRates, FourBar, GrashofClass, Rates, Tracker, Vec2,
+};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 
@@ -277,7 +279,7 @@ proptest! {
             let mut v = [Vec2::zeros(); 5];
             let mut a = [Vec2::zeros(); 5];
             t.step(start, None, &mut p[0], Rates::none()).unwrap();
-            let s = match t.step(th, Some(Motion::unit()), &mut p[1], Rates::acceleration(&mut v, &mut a)) {
+            let s = match t.step(th, Some(CrankRates::unit()), &mut p[1], Rates::acceleration(&mut v, &mut a)) {
                 Ok(s) => s,
                 Err(e) => {
                     // Only a kite's crank pin exactly on the rocker pivot is undetermined.

@@ -153,6 +153,17 @@ pub mod named {
     }
 }
 
+/// A name of one of the core's string choices ([`linkage_core::Assembly`],
+/// [`linkage_core::Side`]): parsed by the core's `FromStr`, so the names and the message
+/// (`assembly must be 'open' or 'crossed', got "sideways"`) are defined once, there.
+pub fn choice<T>(name: &str) -> PyResult<T>
+where
+    T: std::str::FromStr<Err = linkage_core::Error>,
+{
+    name.parse()
+        .map_err(|e| linkage_error(format!("{e}, got {name:?}")))
+}
+
 /// [`Real`] for `#[pyo3(from_py_with = ...)]`, where a default must stay a plain literal.
 pub fn real(obj: &Bound<'_, PyAny>) -> PyResult<f64> {
     obj.extract::<Real>().map(|r| r.0)

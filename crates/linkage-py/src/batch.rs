@@ -40,7 +40,7 @@ fn sweep_part(
     match simd {
         #[cfg(target_arch = "x86_64")]
         "avx512" => {
-            #[allow(unsafe_code)]
+            #[allow(unsafe_code, reason = "calling a target_feature function")]
             // SAFETY: calling a `target_feature` function needs only that the CPU has those
             // features; `sweep_simd` names "avx512" only after detecting them.
             unsafe {
@@ -49,7 +49,7 @@ fn sweep_part(
         }
         #[cfg(target_arch = "x86_64")]
         "avx2" => {
-            #[allow(unsafe_code)]
+            #[allow(unsafe_code, reason = "calling a target_feature function")]
             // SAFETY: as above ("avx2" only after detecting AVX2 and FMA).
             unsafe {
                 batch_avx2(batch, theta, points, valid, go_on)
@@ -118,7 +118,10 @@ type Outputs<'py> = (Bound<'py, PyArray3<f64>>, Bound<'py, PyArray2<bool>>);
 /// about a millisecond of work runs on worker threads while this thread checks for Ctrl-C.
 #[pyfunction]
 #[pyo3(signature = (o, c, crank, coupler, rocker, along, left, crossed, theta, threads=1, out=None))]
-#[allow(clippy::too_many_arguments)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one array per four-bar parameter, as the Python call passes them"
+)]
 pub fn batch_sweep<'py>(
     py: Python<'py>,
     o: PyReadonlyArray2<'py, f64>,

@@ -142,7 +142,10 @@ pub fn gear_train_simple(teeth: Vec<Bound<'_, PyAny>>) -> PyResult<(f64, i8)> {
 
 /// `(ratio, sign)` of a compound train given `(driver, driven)` meshes.
 #[pyfunction]
-#[allow(clippy::type_complexity)]
+#[allow(
+    clippy::type_complexity,
+    reason = "a list of (driver, driven) pairs, each an int converted with its own message"
+)]
 pub fn gear_train_compound(
     stages: Vec<Strict<(Bound<'_, PyAny>, Bound<'_, PyAny>)>>,
 ) -> PyResult<(f64, i8)> {
@@ -206,7 +209,10 @@ pub fn schedule_eval<'py>(
 /// radian), tabulated at `samples` uniform times. Returns `(dt, theta (samples,), omega
 /// (samples,), stance_time, (stance start, stance end))`.
 #[pyfunction]
-#[allow(clippy::type_complexity)]
+#[allow(
+    clippy::type_complexity,
+    reason = "the Python tuple returned, spelled out where it is built"
+)]
 pub fn stance_schedule<'py>(
     py: Python<'py>,
     theta: PyReadonlyArray1<'py, f64>,

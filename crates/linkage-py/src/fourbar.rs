@@ -4,7 +4,7 @@ use linkage_core::{AngleMode, Assembly, FourBar as CoreFourBar, InputRange, Vec2
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use crate::args::{named, xy, Real, RealPair};
+use crate::args::{choice, named, xy, Real, RealPair};
 use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
 use crate::memory;
@@ -41,7 +41,7 @@ fn fast_sweep(
     match simd {
         #[cfg(target_arch = "x86_64")]
         Simd::Avx512 => {
-            #[allow(unsafe_code)]
+            #[allow(unsafe_code, reason = "calling a target_feature function")]
             // SAFETY: the only precondition of calling a `target_feature` function is that the
             // CPU supports those features; a `Simd` other than `Portable` comes only from
             // `simd_level`, which checked them.
@@ -51,7 +51,7 @@ fn fast_sweep(
         }
         #[cfg(target_arch = "x86_64")]
         Simd::Avx2 => {
-            #[allow(unsafe_code)]
+            #[allow(unsafe_code, reason = "calling a target_feature function")]
             // SAFETY: as above.
             unsafe {
                 fast_sweep_avx2(f, theta0, dtheta, first, mode, out)
@@ -65,9 +65,15 @@ fn fast_sweep(
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Simd {
     Portable,
-    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    #[cfg_attr(
+        not(target_arch = "x86_64"),
+        allow(dead_code, reason = "made only by the x86_64 CPU check")
+    )]
     Avx2,
-    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    #[cfg_attr(
+        not(target_arch = "x86_64"),
+        allow(dead_code, reason = "made only by the x86_64 CPU check")
+    )]
     Avx512,
 }
 
@@ -139,7 +145,10 @@ impl FourBar {
 #[pymethods]
 impl FourBar {
     #[new]
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the Python constructor's arguments: pivots, three lengths, point, assembly"
+    )]
     fn new(
         o: RealPair,
         c: RealPair,
@@ -151,15 +160,7 @@ impl FourBar {
     ) -> PyResult<Self> {
         let (o, c, point) = (xy(o), xy(c), xy(point));
         let (crank, coupler, rocker) = (crank.0, coupler.0, rocker.0);
-        let assembly = match assembly {
-            "open" => Assembly::Open,
-            "crossed" => Assembly::Crossed,
-            other => {
-                return Err(linkage_error(format!(
-                    "assembly must be 'open' or 'crossed', got {other:?}"
-                )))
-            }
-        };
+        let assembly: Assembly = choice(assembly)?;
         CoreFourBar::with_pivots(
             Vec2::new(o.0, o.1),
             Vec2::new(c.0, c.1),
@@ -176,10 +177,7 @@ impl FourBar {
     /// (ox, oy, cx, cy, crank, coupler, rocker, along, left, assembly)
     fn parameters(&self) -> (f64, f64, f64, f64, f64, f64, f64, f64, f64, &'static str) {
         let f = &self.inner;
-        let asm = match f.assembly {
-            Assembly::Open => "open",
-            Assembly::Crossed => "crossed",
-        };
+        let asm = f.assembly.name();
         (
             f.o.x, f.o.y, f.c.x, f.c.y, f.crank, f.coupler, f.rocker, f.along, f.left, asm,
         )
@@ -236,7 +234,10 @@ impl FourBar {
 
     /// Circuit sweep of `n` samples: (theta (n,), joints (n, 5, 2), velocity per unit crank
     /// angle (n, 5, 2)).
-    #[allow(clippy::type_complexity)]
+    #[allow(
+        clippy::type_complexity,
+        reason = "the Python tuple returned, spelled out where it is built"
+    )]
     fn circuit<'py>(
         &self,
         py: Python<'py>,
@@ -293,7 +294,10 @@ impl FourBar {
     /// "table" or "recurrence" (with `block`), on `threads` threads (the same bits for any
     /// count); into `out` (a writeable C-contiguous float64 `(n, 2)` array) when given.
     #[pyo3(signature = (theta0, dtheta, n, mode="table", block=64, threads=1, out=None))]
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "mirrors the Python call's keywords"
+    )]
     fn uniform_sweep<'py>(
         &self,
         py: Python<'py>,

@@ -108,7 +108,10 @@ pub fn leg_gait<'py>(
 /// count).
 #[pyfunction]
 #[pyo3(signature = (o, c, crank, coupler, rocker, along, left, crossed, samples, rel_tol, threads=1))]
-#[allow(clippy::too_many_arguments)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one array per four-bar parameter and the keywords, as the Python call passes them"
+)]
 pub fn four_bar_gaits<'py>(
     py: Python<'py>,
     o: PyReadonlyArray2<'py, f64>,

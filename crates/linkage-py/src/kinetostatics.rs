@@ -21,7 +21,11 @@ fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]
 /// joint, force (N, 2), torque (N,))`. Returns torque (Newton–Euler) and power-method torque
 /// (N,), reactions (N, R, 2), couples (N, R), `reaction_links` [(joint, from, to)] and valid (N,).
 #[pyfunction]
-#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+#[allow(
+    clippy::too_many_arguments,
+    clippy::type_complexity,
+    reason = "mirrors the Python call: drive, masses, gravity and loads in, a tuple of arrays out"
+)]
 pub fn forces<'py>(
     py: Python<'py>,
     mech: &Mechanism,

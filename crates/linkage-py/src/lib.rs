@@ -4,6 +4,12 @@
 //! and converts results to numpy arrays. Validation messages for Python users that need Python
 //! context (argument names, dtypes) live in the pure-Python package `linkage`.
 
+// kurbo's: every `allow` says why, every assertion says what failed.
+#![warn(
+    clippy::allow_attributes_without_reason,
+    clippy::missing_assert_message
+)]
+
 use pyo3::prelude::*;
 
 mod args;

@@ -11,7 +11,7 @@ use pyo3::types::PyDict;
 
 use std::sync::{Mutex, MutexGuard};
 
-use crate::args::{named, Real};
+use crate::args::{choice, named, Real};
 use crate::error::{linkage_error, to_py};
 use crate::memory;
 use crate::CAPACITY;
@@ -58,17 +58,6 @@ fn finite(name: &str, values: &[f64]) -> PyResult<()> {
                 "{name} must be finite: {name}[{k}] is {shown}"
             )))
         }
-    }
-}
-
-/// Parses `"left"` / `"right"`.
-fn parse_side(side: &str) -> PyResult<Side> {
-    match side {
-        "left" => Ok(Side::Left),
-        "right" => Ok(Side::Right),
-        other => Err(linkage_error(format!(
-            "side must be 'left' or 'right', got {other:?}"
-        ))),
     }
 }
 
@@ -157,7 +146,7 @@ impl Mechanism {
         r2: Real,
         side: &str,
     ) -> PyResult<usize> {
-        let side = parse_side(side)?;
+        let side: Side = choice(side)?;
         self.lock().dyad(p1, p2, r1.0, r2.0, side).map_err(to_py)
     }
 
@@ -180,7 +169,10 @@ impl Mechanism {
 
     /// Adds a slider dyad on a line through `origin` carried by the link `from_ → to`, turned by
     /// `angle`.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the slider's joints, length and carrying link, as the Python call passes them"
+    )]
     fn slider_on_link(
         &self,
         #[pyo3(from_py_with = named::pivot)] pivot: usize,
@@ -213,7 +205,9 @@ impl Mechanism {
         self.lock().point(from_, to, along.0, left.0).map_err(to_py)
     }
 
-    /// Constructions as tuples, for display: (kind, references, numbers, branch).
+    /// Constructions as strings, one per joint in program order: each the core
+    /// `Construction`'s `Debug` form, e.g. `Crank { centre: 0, radius: 10.0, phase: 0.0 }`
+    /// (for display and debugging; `linkage.drawing` reads slider lines from it).
     fn describe(&self) -> Vec<String> {
         self.snapshot()
             .constructions()
@@ -456,7 +450,10 @@ sweep_with_features! {
 /// A copy of a program at the least capacity of 8, 16, 32, 64 that holds it: a sweep's arrays
 /// (tracker history, rate scratch) are sized to the linkage, not to [`CAPACITY`]. (On the
 /// stack: boxing the small ones would cost an allocation per call.)
-#[allow(clippy::large_enum_variant)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "lives on the stack for one call; boxing the small ones would allocate per call"
+)]
 enum Sweepable {
     S8(CoreMechanism<f64, 8>),
     S16(CoreMechanism<f64, 16>),

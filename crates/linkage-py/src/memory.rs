@@ -128,7 +128,10 @@ fn allocate<'py, T: numpy::Element, D: numpy::ndarray::Dimension>(
         // `check` has bounded the total by isize::MAX, so each extent fits npy_intp.
         *d = npy_intp::try_from(s).map_err(|_| memory_error(&what(), bytes, ""))?;
     }
-    #[allow(unsafe_code)]
+    #[allow(
+        unsafe_code,
+        reason = "numpy's C API: rust-numpy has no safe call for an uninitialised array"
+    )]
     // SAFETY: `dims` holds `shape.len()` extents; PyArray_Zeros/Empty steal the reference to the
     // descriptor `into_dtype_ptr` gives it, and returns a new reference or null with an
     // exception set. A non-null result is an array of element type `T` and rank `D`.

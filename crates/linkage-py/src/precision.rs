@@ -48,7 +48,10 @@ pub fn burmester_circle_point(
 /// The Burmester curves of four poses at free crank rotations `beta` (N,): the free pose's
 /// index, centre points (N, 2, 2) and circle points (N, 2, 2) for the two solutions at each
 /// (NaN where none), and the crank rotations to every pose (N, 2, 4).
-#[allow(clippy::type_complexity)]
+#[allow(
+    clippy::type_complexity,
+    reason = "the Python tuple returned, spelled out where it is built"
+)]
 #[pyfunction]
 pub fn burmester_curve<'py>(
     py: Python<'py>,

@@ -11,7 +11,10 @@ use crate::memory;
 /// absent) and the signed distance of `cg[k]` (N, 2) from its boundary. Returns (margin (N,)
 /// NaN where no point, hull (N, K + 1, 2) NaN-padded counter-clockwise, count (N,)).
 #[pyfunction]
-#[allow(clippy::type_complexity)]
+#[allow(
+    clippy::type_complexity,
+    reason = "the Python tuple returned, spelled out where it is built"
+)]
 pub fn support_margins<'py>(
     py: Python<'py>,
     points: PyReadonlyArray3<'py, f64>,

@@ -6,6 +6,19 @@ use nalgebra::RealField;
 use crate::scalar::{cross, lit, Vec2};
 
 /// A near-straight run of a sampled path.
+///
+/// ```
+/// use linkage_core::{straight_part, Vec2};
+/// // Five samples along y = 0, then a corner.
+/// let path = [(0.0_f64, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (4.0, 0.0), (4.0, 3.0)]
+///     .map(|(x, y)| Vec2::new(x, y));
+/// let part = straight_part(&path, 1e-9, false).unwrap();
+/// assert_eq!((part.start, part.count, part.max_deviation), (0, 5, 0.0));
+/// assert!((part.length - 4.0).abs() < 1e-12);
+/// assert!((part.direction - Vec2::new(1.0, 0.0)).norm() < 1e-15);
+/// // Fewer than three samples have no straight part.
+/// assert!(straight_part(&path[..2], 1e-9, false).is_none());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StraightPart<T> {
     /// Index of the run's first sample.
