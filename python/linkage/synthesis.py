@@ -209,8 +209,9 @@ class Candidate:
 
     ``error`` and ``rms`` are the largest and root-mean-square distance from the target points
     to the candidate's coupler curve (its circuit, traced whole), in the target's units;
-    ``back`` the largest distance from the curve back to the target polyline (closed targets:
-    the two together bound the Hausdorff distance). ``crank_range`` is the crank interval
+    ``back`` the largest distance from the curve back to the target polygon (closed targets:
+    the two together bound the Hausdorff distance; NaN for an open target, which matches a
+    part of the circuit only). ``crank_range`` is the crank interval
     (radians, absolute) that traces the matched part; ``through_limit`` whether tracing it takes
     the crank through one of its limits (it must reverse there; never for a full-turn crank).
     """
@@ -728,7 +729,7 @@ def _measure(
     ``None`` when its circuit does not assemble throughout or the tracker leaves it.
     """
     e, feet = _errors(x[None, :], np.array([crossed]), target, closed, samples=2048, exact=True)
-    if not np.all(np.isfinite(e)):
+    if not np.all(np.isfinite(e[:, :2])):  # (back is NaN for an open target)
         return None
     lo_s, hi_s = _arc(feet[0], closed)
     try:

@@ -61,9 +61,9 @@ pub struct PathError<T> {
     pub max: T,
     /// Root-mean-square distance from the target points to the curve.
     pub rms: T,
-    /// Largest distance from the curve (its polyline's vertices) back to the target polygon
-    /// (closed targets) or polyline (open ones). For a closed target `max(max, back)` bounds
-    /// the Hausdorff distance up to the polyline's chord error.
+    /// Largest distance from the curve (its polyline's vertices) back to the target polygon,
+    /// for a closed target (NaN for an open one, which matches only a part of the circuit):
+    /// `max(max, back)` bounds the Hausdorff distance up to the polyline's chord error.
     pub back: T,
 }
 
@@ -325,13 +325,18 @@ impl<T: RealField + Copy> CircuitPath<T> {
     /// When `m` points cannot be allocated: more bytes than `isize::MAX` panics (capacity
     /// overflow), like any `Vec` of that length.
     pub fn polyline(&self, m: usize) -> Vec<Vec2<T>> {
+        // Both assemblies' programs built once (what `point` does per call), the same bits.
+        let mechs = [self.linkage.mechanism(), self.other.mechanism()];
+        let nan = crate::scalar::nan::<T>();
+        let mut joints = [Vec2::zeros(); 5];
         (0..m)
             .map(|k| {
                 let s = T::two_pi() * lit::<T>(k as f64) / lit::<T>(m as f64);
-                self.point(s).unwrap_or(Vec2::new(
-                    crate::scalar::nan::<T>(),
-                    crate::scalar::nan::<T>(),
-                ))
+                let (theta, other) = self.theta(s);
+                match mechs[usize::from(other)].pose(theta, &mut joints) {
+                    Ok(_) => joints[FourBar::<T>::P],
+                    Err(_) => Vec2::new(nan, nan),
+                }
             })
             .collect()
     }
@@ -515,6 +520,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
         let m = poly.len();
         let step = T::two_pi() / lit::<T>(m as f64);
         let (mut worst, mut sum) = (T::zero(), T::zero());
+        let curve = Segments::closed(&poly);
         for (&q, foot) in targets.iter().zip(feet.iter_mut()) {
             let d = match search {
                 FootSearch::Exact => {
@@ -523,30 +529,26 @@ impl<T: RealField + Copy> CircuitPath<T> {
                     d
                 }
                 FootSearch::Polyline => {
-                    let mut best = (T::max_value().unwrap_or(T::one()), 0usize);
-                    for k in 0..m {
-                        let d = segment_distance(q, poly[k], poly[(k + 1) % m]);
-                        if d < best.0 {
-                            best = (d, k);
-                        }
-                    }
-                    *foot = step * lit::<T>(best.1 as f64);
-                    best.0
+                    let (d2, k) = curve.nearest(q);
+                    *foot = step * lit::<T>(k as f64);
+                    d2.sqrt()
                 }
             };
             worst = worst.max(d);
             sum += d * d;
         }
         let n = targets.len();
-        let segs = if closed { n } else { n - 1 };
-        let mut back = T::zero();
-        for &q in &poly {
-            let mut best = T::max_value().unwrap_or(T::one());
-            for k in 0..segs {
-                best = best.min(segment_distance(q, targets[k], targets[(k + 1) % n]));
-            }
-            back = back.max(best);
-        }
+        // The curve back to the target polygon: only for a closed target (an open one matches
+        // a part of the circuit, whose other parts are no error).
+        let back = if closed {
+            let target = Segments::closed(targets);
+            poly.iter()
+                .map(|&q| target.nearest(q).0)
+                .fold(T::zero(), |a, b| a.max(b))
+                .sqrt()
+        } else {
+            crate::scalar::nan::<T>()
+        };
         Some(PathError {
             max: worst,
             rms: (sum / lit::<T>(n as f64)).sqrt(),
@@ -579,6 +581,52 @@ impl<T: RealField + Copy> CircuitPath<T> {
             min_transmission: mu,
             through_limit,
         }
+    }
+}
+
+/// The segments of a closed polygon, each with the reciprocal of its squared length, for
+/// nearest-point queries (one division a segment, not one a query).
+struct Segments<T> {
+    a: Vec<Vec2<T>>,
+    ab: Vec<Vec2<T>>,
+    inv: Vec<T>,
+}
+
+impl<T: RealField + Copy> Segments<T> {
+    /// The polygon through `p` closed back to its first point.
+    fn closed(p: &[Vec2<T>]) -> Self {
+        let m = p.len();
+        let ab: Vec<Vec2<T>> = (0..m).map(|k| p[(k + 1) % m] - p[k]).collect();
+        let inv = ab
+            .iter()
+            .map(|d| {
+                let l2 = d.norm_squared();
+                if l2 > T::zero() {
+                    T::one() / l2
+                } else {
+                    T::zero()
+                }
+            })
+            .collect();
+        Segments {
+            a: p.to_vec(),
+            ab,
+            inv,
+        }
+    }
+
+    /// The least squared distance from `q` to a segment, and that segment's index.
+    fn nearest(&self, q: Vec2<T>) -> (T, usize) {
+        let mut best = (T::max_value().unwrap_or(T::one()), 0usize);
+        for (k, ((&a, &ab), &inv)) in self.a.iter().zip(&self.ab).zip(&self.inv).enumerate() {
+            let w = q - a;
+            let u = (w.dot(&ab) * inv).max(T::zero()).min(T::one());
+            let d2 = (w - ab * u).norm_squared();
+            if d2 < best.0 {
+                best = (d2, k);
+            }
+        }
+        best
     }
 }
 
