@@ -619,7 +619,14 @@ def path(
             bar.total += 2 * maxiter + 8  # generations of both assemblies, then refinements
         de = _de(target, closed, size, centre, seed, maxiter, nthreads, bar)
         found += _finish(
-            [(x, c, "global") for x, c in de], target, closed, size, bounds, len(de), nthreads, bar
+            [(x, c, "global") for x, c in de],
+            target,
+            closed,
+            size,
+            bounds,
+            min(refine, len(de)),
+            nthreads,
+            bar,
         )
     if bar is not None:
         bar.close()

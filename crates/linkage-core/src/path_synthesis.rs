@@ -23,6 +23,7 @@ use nalgebra::RealField;
 use crate::efd::{Efd, Normalisation};
 use crate::error::Error;
 use crate::fourbar::{Assembly, FourBar, InputRange};
+use crate::mechanism::Mechanism;
 use crate::scalar::{lit, to_f64, Vec2};
 use crate::tracker::{Rates, Tracker};
 
@@ -247,6 +248,14 @@ impl<T: RealField + Copy> CircuitPath<T> {
         }
     }
 
+    /// The two programs, for posing many points.
+    fn poser(&self) -> Poser<'_, T> {
+        Poser {
+            path: self,
+            mechs: [self.linkage.mechanism(), self.other.mechanism()],
+        }
+    }
+
     /// Coupler point at circuit parameter `s`; `None` where rounding at a limit leaves it
     /// unassembled.
     pub fn point(&self, s: T) -> Option<Vec2<T>> {
@@ -325,18 +334,12 @@ impl<T: RealField + Copy> CircuitPath<T> {
     /// When `m` points cannot be allocated: more bytes than `isize::MAX` panics (capacity
     /// overflow), like any `Vec` of that length.
     pub fn polyline(&self, m: usize) -> Vec<Vec2<T>> {
-        // Both assemblies' programs built once (what `point` does per call), the same bits.
-        let mechs = [self.linkage.mechanism(), self.other.mechanism()];
+        let poser = self.poser();
         let nan = crate::scalar::nan::<T>();
-        let mut joints = [Vec2::zeros(); 5];
         (0..m)
             .map(|k| {
                 let s = T::two_pi() * lit::<T>(k as f64) / lit::<T>(m as f64);
-                let (theta, other) = self.theta(s);
-                match mechs[usize::from(other)].pose(theta, &mut joints) {
-                    Ok(_) => joints[FourBar::<T>::P],
-                    Err(_) => Vec2::new(nan, nan),
-                }
+                poser.point(s).unwrap_or(Vec2::new(nan, nan))
             })
             .collect()
     }
@@ -368,6 +371,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
     /// nearest vertex may lie on the wrong pass, and two passes may lie within one step). `None` when `poly` has no finite point.
     pub fn foot(&self, target: Vec2<T>, poly: &[Vec2<T>]) -> Option<(T, T)> {
         let m = poly.len();
+        let poser = self.poser();
         let finite = |p: &Vec2<T>| p.x.is_finite() && p.y.is_finite();
         let big = T::max_value().unwrap_or(T::one());
         // Distance of each segment j → j+1 (the vertex's own where the next is not finite).
@@ -413,7 +417,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
             let (a, h) = (centre - step - step, step / lit::<T>(4.0));
             let mut dk = [big; FOOT_SCAN + 1];
             for (k, d) in dk.iter_mut().enumerate() {
-                if let Some(p) = self.point(a + h * lit::<T>(k as f64)) {
+                if let Some(p) = poser.point(a + h * lit::<T>(k as f64)) {
                     *d = (p - target).norm();
                 }
             }
@@ -424,7 +428,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
                     continue;
                 }
                 let mid = a + h * lit::<T>(k as f64);
-                let (dg, sg) = self.golden(target, mid - h, mid + h);
+                let (dg, sg) = Self::golden(&poser, target, mid - h, mid + h);
                 for (dc, sc) in [(dk[k], mid), (dg, sg)] {
                     if dc < best.0 {
                         best = (dc, sc);
@@ -436,9 +440,10 @@ impl<T: RealField + Copy> CircuitPath<T> {
     }
 
     /// Golden-section search of `|P(s) − target|` over `[a, b]`: `(distance, s)`.
-    fn golden(&self, target: Vec2<T>, mut a: T, mut b: T) -> (T, T) {
+    fn golden(poser: &Poser<'_, T>, target: Vec2<T>, mut a: T, mut b: T) -> (T, T) {
         let dist = |s: T| {
-            self.point(s)
+            poser
+                .point(s)
                 .map_or(T::max_value().unwrap_or(T::one()), |p| (p - target).norm())
         };
         let g = lit::<T>(0.618_033_988_749_894_8);
@@ -485,9 +490,9 @@ impl<T: RealField + Copy> CircuitPath<T> {
                 });
             }
         }
-        let nan = crate::scalar::nan::<T>();
+        let (nan, poser) = (crate::scalar::nan::<T>(), self.poser());
         for ((r, &t), &si) in out.iter_mut().zip(targets).zip(s) {
-            *r = self.point(si).map_or(Vec2::new(nan, nan), |q| q - t);
+            *r = poser.point(si).map_or(Vec2::new(nan, nan), |q| q - t);
         }
         Ok(())
     }
@@ -581,6 +586,25 @@ impl<T: RealField + Copy> CircuitPath<T> {
             min_transmission: mu,
             through_limit,
         }
+    }
+}
+
+/// A circuit's two programs built once, for many points ([`CircuitPath::point`] builds them per
+/// call): the same bits.
+struct Poser<'a, T: RealField + Copy> {
+    path: &'a CircuitPath<T>,
+    mechs: [Mechanism<T, 5>; 2],
+}
+
+impl<T: RealField + Copy> Poser<'_, T> {
+    /// [`CircuitPath::point`].
+    fn point(&self, s: T) -> Option<Vec2<T>> {
+        let (theta, other) = self.path.theta(s);
+        let mut joints = [Vec2::zeros(); 5];
+        self.mechs[usize::from(other)]
+            .pose(theta, &mut joints)
+            .ok()
+            .map(|_| joints[FourBar::<T>::P])
     }
 }
 
