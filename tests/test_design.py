@@ -350,3 +350,16 @@ def test_missing_optional_packages_give_a_clear_import_error(monkeypatch):
         monkeypatch.delitem(sys.modules, k)
     with pytest.raises(ImportError, match=r"pip install 'linkage-kinematics\[design\]'"):
         import linkage.design  # noqa: F401
+
+
+def test_guided_six_bar_family_searches_and_its_reference_walks_hoecken():
+    """The second six-bar family: its reference is Hoecken's foot path (figures equal to the
+    four-bar family's reference), and a small search over it runs and finds feasible legs."""
+    fam, four = design.family("guided"), design.family("fourbar")
+    g = fam.evaluate(np.array([fam.reference]), design.Settings())[0]
+    h = four.evaluate(np.array([four.reference]), design.Settings())[0]
+    for name in ("duty_factor", "stride", "lift", "straightness"):
+        k = design.FIGURES.index(name)
+        assert g[k] == pytest.approx(h[k], rel=1e-9, abs=1e-9), name
+    front = design.search(small(family="guided"))
+    assert front.evaluations == 64 and len(front.front) > 0

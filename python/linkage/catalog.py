@@ -220,6 +220,29 @@ def jansen() -> Mechanism:
     return _linkage("jansen")
 
 
+def hoecken_guided() -> Mechanism:
+    """Hoecken's four-bar with its coupler point guided by a hung dyad (Stephenson III six-bar).
+
+    The reference of :mod:`linkage.legs`' ``guided`` family (:data:`linkage.legs.GUIDED_REF`):
+    the foot ``F`` sits at the coupler point, so it draws thesis 1's Hoecken foot path, and the
+    guide link swings with it.
+
+    >>> import numpy as np
+    >>> m = hoecken_guided()
+    >>> th = np.linspace(0, 2 * np.pi, 13)
+    >>> bool(np.allclose(m.sweep(th).point, hoecken().sweep(th).point, atol=1e-12))
+    True
+
+    Returns
+    -------
+    Mechanism
+        A new linkage whose ``trace`` is the foot ``F``.
+    """
+    fam = family("guided")
+    m: Mechanism = fam.mechanism(fam.reference)
+    return m
+
+
 def klann() -> Mechanism:
     """Klann-type leg (Stephenson III six-bar), the reference of the ``klann`` leg family.
 

@@ -295,6 +295,36 @@ def _klann_joints(x: Sequence[float]) -> list[dict[str, Any]]:
     ]
 
 
+GUIDED_REF = (20.0, 0.0, 25.0, 25.0, 50.0, 0.0, 25.0, 90.0, 55.0, 25.0, 0.0, 0.0)
+"""The guided Hoecken leg's reference: thesis 1's Hoecken four-bar (ground 20, crank 10,
+coupler and rocker 25, coupler point P 50 along the coupler) with a guide link from P: a link
+of 25 from P to E, E hung 55 from a frame pivot G = (25, 90) above the crank, the foot F on
+P → E at P itself — so its foot path is thesis 1's, and the search moves the foot along the
+guided link and reshapes the guide."""
+
+
+def _guided_joints(x: Sequence[float]) -> list[dict[str, Any]]:
+    ground, angle, coupler, rocker, along, left, gx, gy, guide, link, f_along, f_left = (
+        float(v) for v in x
+    )
+    joints = _four_bar_joints((ground, angle, coupler, rocker, along, left))
+    joints[-1] = {**joints[-1], "name": "P"}
+    return [
+        *joints,
+        {"name": "G", "kind": "fixed", "at": [gx, gy]},
+        {
+            "name": "E",
+            "kind": "dyad",
+            "p1": "P",
+            "p2": "G",
+            "r1": link,
+            "r2": guide,
+            "side": "left",
+        },
+        {"name": "F", "kind": "point", "on": ["P", "E"], "along": f_along, "left": f_left},
+    ]
+
+
 def _around(ref: Sequence[float], rel: float) -> tuple[tuple[float, ...], tuple[float, ...]]:
     lo = tuple(v - rel * abs(v) if v else -1.0 for v in ref)
     hi = tuple(v + rel * abs(v) if v else 1.0 for v in ref)
@@ -356,6 +386,33 @@ FAMILIES: dict[str, Family] = {
         doc="Klann-type Stephenson III six-bar leg.",
         joints=_klann_joints,
         scale=150.0,
+    ),
+    "guided": Family(
+        name="guided",
+        params=(
+            "ground",
+            "ground_angle",
+            "coupler",
+            "rocker",
+            "along",
+            "left",
+            "guide_x",
+            "guide_y",
+            "guide",
+            "link",
+            "foot_along",
+            "foot_left",
+        ),
+        # A Stephenson III six-bar of another kind than Klann's: the Hoecken four-bar within
+        # ±15 % (tilt ±0.1 rad), its coupler point P guided by a dyad P–E–G hung from a frame
+        # pivot G anywhere above the crank, the foot anywhere within 30 of P on P → E.
+        lower=(17.0, -0.1, 21.25, 21.25, 42.5, -7.5, 0.0, 70.0, 40.0, 15.0, -30.0, -20.0),
+        upper=(23.0, 0.1, 28.75, 28.75, 57.5, 7.5, 50.0, 120.0, 70.0, 35.0, 30.0, 20.0),
+        reference=GUIDED_REF,
+        reference_name="Hoecken with a guided link (foot at the coupler point: thesis 1's path)",
+        doc="Hoecken four-bar whose coupler point is guided by a hung dyad (Stephenson III).",
+        joints=_guided_joints,
+        scale=50.0,
     ),
 }
 
