@@ -701,15 +701,8 @@ def _run_around(theta: np.ndarray, ok: np.ndarray, k: int) -> tuple[float, float
 
 def _longest_link(m: Mechanism, joints: np.ndarray) -> float:
     """Longest distance between two joints of one moving link, at the first valid sample."""
-    names = m.joint_names
     row = joints[np.flatnonzero(np.isfinite(joints[:, :, 0]).all(axis=1))[0]]
-    longest = 0.0
-    for members in m.link_members()[1:]:
-        idx = [names.index(j) for j in members]
-        for a in idx:
-            for b in idx:
-                longest = max(longest, float(np.linalg.norm(row[a] - row[b])))
-    return longest
+    return float(m._core.longest_link(np.ascontiguousarray(row, dtype=np.float64)))
 
 
 def quadruped_hoecken() -> Walker:

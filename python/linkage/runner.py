@@ -358,21 +358,12 @@ def _drive_label(scene: Scene, drive: Any) -> str:
 def _rigidity(mech: FourBar | Mechanism, s: Sweep) -> float:
     """Return the loop-closure residual: the largest change of a link's joint distances.
 
-    That is the largest change of any distance between two joints of one link over the sweep (zero
-    for exact kinematics).
+    That is the largest change of any distance between two joints of one link over the sweep
+    (zero for exact kinematics), computed by the core (``Bodies::closure_residual``).
     """
     m = mech.mechanism() if isinstance(mech, FourBar) else mech
-    names = s.joint_names
-    worst = 0.0
-    j = s.joints[s.valid]
-    for members in m.link_members()[1:]:
-        idx = [names.index(x) for x in members]
-        for a in range(len(idx)):
-            for b in range(a + 1, len(idx)):
-                dist = np.linalg.norm(j[:, idx[a]] - j[:, idx[b]], axis=1)
-                if len(dist):
-                    worst = max(worst, float(np.ptp(dist)))
-    return worst
+    joints = np.ascontiguousarray(s.joints, dtype=np.float64).reshape(-1, len(s.joint_names), 2)
+    return float(m._core.closure_residual(joints))
 
 
 def _ranges(s: Sweep) -> tuple[tuple[float, float], tuple[float, float]] | None:

@@ -3,6 +3,7 @@
 use nalgebra::RealField;
 
 use crate::mechanism::{Construction, LineDirection, Mechanism};
+use crate::scalar::Vec2;
 
 /// Index of the frame (ground) body.
 pub const GROUND: BodyId = BodyId {
@@ -277,6 +278,80 @@ impl<const N: usize> Bodies<N> {
             lower_pairs: lower,
             higher_pairs: 0,
         }
+    }
+}
+
+impl<const N: usize> Bodies<N> {
+    /// Pairs of joints that share a moving link (the ground's are fixed anyway), each once.
+    fn link_pairs(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.ids().filter(|&id| id != GROUND).flat_map(move |id| {
+            (0..self.len).flat_map(move |a| {
+                (a + 1..self.len)
+                    .filter(move |&b| self.contains(id, a) && self.contains(id, b))
+                    .map(move |b| (a, b))
+            })
+        })
+    }
+
+    /// The loop-closure residual of a sweep: the largest change, over the samples whose
+    /// joints are all finite, of a distance between two joints of one moving link (zero for
+    /// exact kinematics: links are rigid). `joints` holds rows of [`Bodies`]' joint count.
+    ///
+    /// ```
+    /// use linkage_core::{catalog, Bodies, Vec2};
+    /// let m = catalog::hoecken::<f64>().mechanism();
+    /// let mut rows = Vec::new();
+    /// for k in 0..8 {
+    ///     let mut j = [Vec2::zeros(); 5];
+    ///     m.pose(k as f64, &mut j).unwrap();
+    ///     rows.extend_from_slice(&j);
+    /// }
+    /// let b = Bodies::of(&m);
+    /// assert!(b.closure_residual(&rows) < 1e-13);
+    /// // The coupler point of one sample moved 0.5 further along its link: a residual of 0.5.
+    /// let (a, bb) = (rows[5 * 3 + 2], rows[5 * 3 + 3]);
+    /// rows[5 * 3 + 4] += (bb - a).normalize() * 0.5;
+    /// assert!((b.closure_residual(&rows) - 0.5).abs() < 1e-12);
+    /// ```
+    pub fn closure_residual<T: RealField + Copy>(&self, joints: &[Vec2<T>]) -> T {
+        let j = self.len.max(1);
+        let rows = || {
+            joints
+                .chunks_exact(j)
+                .filter(|r| r.iter().all(|p| p.x.is_finite() && p.y.is_finite()))
+        };
+        let mut worst = T::zero();
+        for (a, b) in self.link_pairs() {
+            let big = T::max_value().unwrap_or(T::one());
+            let (mut lo, mut hi) = (big, -big);
+            for r in rows() {
+                let d = crate::scalar::length(r[b] - r[a]);
+                lo = lo.min(d);
+                hi = hi.max(d);
+            }
+            if hi >= lo {
+                worst = worst.max(hi - lo);
+            }
+        }
+        worst
+    }
+
+    /// The longest distance between two joints of one moving link in the pose `joints` (one
+    /// row): the size a drawing of the linkage is scaled to.
+    ///
+    /// ```
+    /// use linkage_core::{catalog, Bodies, Vec2};
+    /// let m = catalog::hoecken::<f64>().mechanism();
+    /// let mut j = [Vec2::zeros(); 5];
+    /// m.pose(0.0, &mut j).unwrap();
+    /// // The coupler carries the foot 50 from A: its longest span.
+    /// assert!((Bodies::of(&m).longest_link(&j) - 50.0).abs() < 1e-12);
+    /// ```
+    pub fn longest_link<T: RealField + Copy>(&self, joints: &[Vec2<T>]) -> T {
+        self.link_pairs()
+            .filter(|&(_, b)| b < joints.len())
+            .map(|(a, b)| crate::scalar::length(joints[b] - joints[a]))
+            .fold(T::zero(), |acc, d| acc.max(d))
     }
 }
 

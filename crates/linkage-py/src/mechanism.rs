@@ -5,7 +5,10 @@ use linkage_core::{
     sweep_pairs, Bodies, Columns, LineDirection, Mechanism as CoreMechanism, Rate, Reach, Side,
     SweepOutputs, Vec2,
 };
-use numpy::{Ix1, Ix2, Ix3, PyArray, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray};
+use numpy::{
+    Ix1, Ix2, Ix3, PyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3,
+    PyReadwriteArray, PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -223,6 +226,32 @@ impl Mechanism {
         b.ids()
             .map(|id| (0..m.len()).filter(|&j| b.contains(id, j)).collect())
             .collect()
+    }
+
+    /// The loop-closure residual of swept joints `(n, j, 2)` (`linkage_core::Bodies::
+    /// closure_residual`): the largest change of a distance within one moving link.
+    fn closure_residual(&self, joints: PyReadonlyArray3<'_, f64>) -> PyResult<f64> {
+        let m = self.snapshot();
+        let rows = joint_rows("joints", &joints, m.len())?;
+        Ok(Bodies::of(&m).closure_residual(rows))
+    }
+
+    /// The longest distance between two joints of one moving link in a pose `(j, 2)`.
+    fn longest_link(&self, pose: PyReadonlyArray2<'_, f64>) -> PyResult<f64> {
+        let m = self.snapshot();
+        let flat = pose
+            .as_slice()
+            .map_err(|_| linkage_error("pose must be a C-contiguous float64 array"))?;
+        let rows: &[Vec2<f64>] = bytemuck::try_cast_slice(flat)
+            .map_err(|e| linkage_error(format!("pose must be an aligned float64 array ({e})")))?;
+        if rows.len() != m.len() {
+            return Err(linkage_error(format!(
+                "pose must have shape ({}, 2), got {} points",
+                m.len(),
+                rows.len()
+            )));
+        }
+        Ok(Bodies::of(&m).longest_link(rows))
     }
 
     /// Kutzbach–Gruebler count: (links, lower pairs, higher pairs, degrees of freedom).
@@ -493,6 +522,25 @@ pub(crate) fn as_slice<'a, T: numpy::Element, D: numpy::ndarray::Dimension>(
 ) -> PyResult<&'a mut [T]> {
     a.as_slice_mut()
         .map_err(|_| linkage_error("internal error: output not contiguous"))
+}
+
+/// Rows of `j` joints from a C-contiguous `(n, j, 2)` float64 array.
+fn joint_rows<'a>(
+    what: &str,
+    a: &'a PyReadonlyArray3<'_, f64>,
+    j: usize,
+) -> PyResult<&'a [Vec2<f64>]> {
+    let shape = a.shape();
+    if shape[1] != j || shape[2] != 2 {
+        return Err(linkage_error(format!(
+            "{what} must have shape (n, {j}, 2), got {shape:?}"
+        )));
+    }
+    let flat = a
+        .as_slice()
+        .map_err(|_| linkage_error(format!("{what} must be a C-contiguous float64 array")))?;
+    bytemuck::try_cast_slice(flat)
+        .map_err(|e| linkage_error(format!("{what} must be an aligned float64 array ({e})")))
 }
 
 /// An array this call has just allocated, as a mutable slice, without numpy's borrow
