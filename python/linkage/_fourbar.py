@@ -21,8 +21,10 @@ ArrayOrFloat = Union[float, NDArray[np.float64]]
 
 
 class FourBar:
-    """A four-bar linkage: crank ``O A`` about ground pivot ``O``, coupler ``A B``, rocker
-    ``C B`` about ground pivot ``C``, and a coupler point ``P``.
+    """A four-bar linkage with a coupler point.
+
+    Crank ``O A`` about ground pivot ``O``, coupler ``A B``, rocker ``C B`` about ground pivot
+    ``C``, and a coupler point ``P``.
 
     Parameters
     ----------
@@ -139,7 +141,7 @@ class FourBar:
 
     @property
     def assembly(self) -> str:
-        """ "open" or "crossed"."""
+        """Assembly: "open" or "crossed"."""
         return str(self._p()[9])
 
     def __repr__(self) -> str:
@@ -151,8 +153,14 @@ class FourBar:
 
     # -- analyses -------------------------------------------------------------------------
     def grashof(self) -> str:
-        """Grashof class: "crank-rocker", "double-crank", "rocker-crank", "double-rocker",
-        "change-point" (s + l = p + q) or "triple-rocker" (non-Grashof)."""
+        """Grashof class of the linkage.
+
+        Returns
+        -------
+        str
+            "crank-rocker", "double-crank", "rocker-crank", "double-rocker", "change-point"
+            (s + l = p + q) or "triple-rocker" (non-Grashof).
+        """
         return str(self._core.grashof())
 
     def input_ranges(self) -> list[tuple[float, float]]:
@@ -160,6 +168,11 @@ class FourBar:
 
         ``[(θ0, θ0 + 2π)]`` for a full-turn crank (θ0 the ground direction); one interval
         between toggle positions; two mirror intervals (separate circuits); ``[]`` if never.
+
+        Returns
+        -------
+        list of (float, float)
+            The intervals ``(lo, hi)``, radians: none, one or two.
         """
         r = self._core.input_range()
         if r is None:
@@ -180,6 +193,11 @@ class FourBar:
         accurate where ``acos`` of a cosine near ±1 would lose half the digits. For a linkage
         with two circuits, the counter-clockwise one (see :meth:`input_ranges`).
 
+        Returns
+        -------
+        (float, float) or None
+            The toggle angles ``(lo, hi)`` (radians), or None for a full-turn crank.
+
         Raises
         ------
         LinkageError
@@ -193,16 +211,37 @@ class FourBar:
         return ranges[0]
 
     def transmission_angle(self, theta: Any) -> ArrayOrFloat:
-        """Angle at ``B`` between coupler and rocker, in [0, π] (best at π/2, fails at 0 and π);
-        NaN where the linkage cannot be assembled. Scalar in, scalar out."""
+        """Angle at ``B`` between coupler and rocker, in [0, π].
+
+        Best at π/2, fails at 0 and π; NaN where the linkage cannot be assembled. Scalar in,
+        scalar out.
+
+        Parameters
+        ----------
+        theta : float or array_like of float
+            Crank angles (radians), finite, scalar or 1-D.
+
+        Returns
+        -------
+        float or (N,) float64
+            The transmission angle (radians) at each crank angle; a float for a scalar
+            ``theta``.
+        """
         th, scalar = as_angles(theta, "theta")
         mu = self._core.transmission_angle(th)
         return float(mu[0]) if scalar else mu
 
     # -- sweeping -------------------------------------------------------------------------
     def mechanism(self) -> Mechanism:
-        """The linkage as a :class:`Mechanism` with joints O, C, A, B, P and links ground,
-        crank, coupler, rocker."""
+        """Return the linkage as a :class:`Mechanism`.
+
+        Its joints are O, C, A, B, P and its links ground, crank, coupler, rocker.
+
+        Returns
+        -------
+        Mechanism
+            A new mechanism on each call, traced at ``P``.
+        """
         return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS)
 
     def sweep(
@@ -216,7 +255,19 @@ class FourBar:
         drive: Any = None,
     ) -> Sweep:
         """Solve at each crank angle, or at each time of a drive; see :meth:`Mechanism.sweep`.
-        ``s.point`` is the coupler point, ``s.joints`` holds O, C, A, B, P."""
+
+        ``s.point`` is the coupler point, ``s.joints`` holds O, C, A, B, P.
+
+        Parameters
+        ----------
+        theta, omega, alpha, outputs, time, drive
+            As for :meth:`Mechanism.sweep`.
+
+        Returns
+        -------
+        Sweep
+            The sweep, with links ground, crank, coupler, rocker.
+        """
         sweeper = self._sweeper
         if sweeper is None:
             # A private copy, never handed out (a Mechanism can be extended by its owner).
@@ -233,9 +284,10 @@ class FourBar:
         threads: int = 1,
         out: NDArray[np.float64] | None = None,
     ) -> NDArray[np.float64]:
-        """The fast path: coupler points ``(n, 2)`` at ``theta0 + k·dtheta``, on the declared
-        assembly (no branch tracking — for cranks that turn fully without a toggle), NaN where
-        it cannot assemble.
+        """Compute coupler points ``(n, 2)`` at ``theta0 + k·dtheta`` by the fast path.
+
+        The points are on the declared assembly (no branch tracking — for cranks that turn fully
+        without a toggle), NaN where it cannot assemble.
 
         ``mode`` makes the crank directions: ``"trig"`` (sin/cos of every angle), ``"table"``
         (exact anchors every ``block`` samples times a table of the step's multiples) or
@@ -244,6 +296,38 @@ class FourBar:
         C-contiguous float64 ``(n, 2)`` array, receives the points instead of a new array (and is
         returned): reusing one saves allocating (5–10 % of the time at 10⁶ samples, measured).
         On an error ``out`` is left as it was.
+
+        Parameters
+        ----------
+        theta0 : float
+            First crank angle (radians), finite.
+        dtheta : float
+            Step between crank angles (radians), finite.
+        n : int
+            Number of samples, at least 1.
+        mode : {"trig", "table", "recurrence"}, default "table"
+            How the crank directions are made (above).
+        block : int, default 64
+            Samples between exact anchors in the "table" and "recurrence" modes, at least 1
+            (at most 256 for "table").
+        threads : int, default 1
+            Threads the samples are split over, at least 1.
+        out : (n, 2) float64 ndarray, optional
+            Writeable C-contiguous array that receives the points.
+
+        Returns
+        -------
+        (n, 2) float64 ndarray
+            The coupler points: ``out`` itself when given.
+
+        Raises
+        ------
+        LinkageError
+            For an unknown ``mode``, a count out of range, an ``out`` of the wrong shape or
+            layout or not writeable, or when the path crosses a flat position of a change-point
+            linkage (where the motion would switch assembly).
+        TypeError
+            For arguments of the wrong type, or an ``out`` that is not a float64 numpy array.
         """
         n, block, threads = (
             as_count(v, k) for k, v in (("n", n), ("block", block), ("threads", threads))
@@ -268,19 +352,34 @@ class FourBar:
 
     @staticmethod
     def uniform_sweep_isa() -> str:
-        """The instruction set :meth:`uniform_sweep` runs on this CPU: ``"avx512"``, ``"avx2"``
-        (builds of the same kernel chosen at run time, same bits) or ``"portable"`` — also when
-        the environment sets ``LINKAGE_PORTABLE=1``."""
+        """Return the instruction set :meth:`uniform_sweep` runs on this CPU.
+
+        Returns
+        -------
+        str
+            ``"avx512"``, ``"avx2"`` (builds of the same kernel chosen at run time, same bits)
+            or ``"portable"`` — also when the environment sets ``LINKAGE_PORTABLE=1``.
+        """
         return str(_core.sweep_simd())
 
     def circuit(self, n: int = 721) -> Sweep:
-        """The whole coupler curve of the circuit in ``n`` samples.
+        """Trace the whole coupler curve of the circuit in ``n`` samples.
 
         A full-turn crank sweeps one turn on its assembly; a limited crank goes from limit to
         limit on its assembly and back on the other, both halves including the toggle
         positions, so the curve closes (the last sample repeats the first). Limited ranges are
         spaced as ``(1 − cos πs)/2`` so the square-root motion at the toggles is evenly sampled.
         ``s.theta`` holds the angles used; ``s.velocity`` is per unit crank angle (ω = 1).
+
+        Parameters
+        ----------
+        n : int, default 721
+            Number of samples, at least 2.
+
+        Returns
+        -------
+        Sweep
+            The circuit, with outputs "point", "joints" and "velocity" (joints O, C, A, B, P).
         """
         theta, joints, velocity = self._core.circuit(as_count(n, "n"))
         valid = np.isfinite(joints[:, 4, 0])

@@ -18,7 +18,7 @@ DEFAULT_OUTPUTS = ("point", "joints")
 
 @functools.lru_cache(maxsize=64)
 def _asked(out: tuple[str, ...]) -> dict[str, bool]:
-    """The extension's keywords for the outputs ``out`` (computed once per set of outputs)."""
+    """Return the extension's keywords for ``out`` (computed once per set of outputs)."""
     return dict(
         velocity="velocity" in out,
         acceleration="acceleration" in out,
@@ -60,11 +60,12 @@ def _check_outputs(outputs: Iterable[str], has_omega: bool) -> tuple[str, ...]:
 
 
 class Mechanism:
-    """A planar linkage built as an ordered program of constructions, each placing one named
-    joint from joints placed before it, in closed form.
+    r"""A planar linkage built as an ordered program of constructions.
 
-    Constructions: :meth:`fixed` joints, one :meth:`crank` (the driver), RRR :meth:`dyad`\\ s,
-    RRP :meth:`slider`\\ s and :meth:`point`\\ s carried by links. A sweep tracks each dyad's
+    Each construction places one named joint from joints placed before it, in closed form.
+
+    Constructions: :meth:`fixed` joints, one :meth:`crank` (the driver), RRR :meth:`dyad`\ s,
+    RRP :meth:`slider`\ s and :meth:`point`\ s carried by links. A sweep tracks each dyad's
     assembly branch by continuity (see :meth:`sweep`).
 
     Examples
@@ -135,8 +136,15 @@ class Mechanism:
         return tuple(names)
 
     def link_members(self) -> tuple[tuple[str, ...], ...]:
-        """The joints of each link in :attr:`links`, by name (the ground's are its fixed
-        joints)."""
+        """Return the joints of each link in :attr:`links`, by name.
+
+        The ground's are its fixed joints.
+
+        Returns
+        -------
+        tuple of tuple of str
+            One tuple of joint names per link, in the order of :attr:`links`.
+        """
         return tuple(tuple(self._names[j] for j in ms) for ms in self._core.bodies())
 
     def mobility(self) -> Mobility:
@@ -145,6 +153,11 @@ class Mechanism:
         Every construction program with one crank and rigid carried points has one degree of
         freedom, the number of drivers the constructive solver needs; a point framed by joints
         of two different links is counted as a new link pinned to both (over-constrained).
+
+        Returns
+        -------
+        Mobility
+            The counts of links and pairs, and the ``degrees_of_freedom``.
         """
         links, lower, higher, _ = self._core.mobility()
         return mobility(links, lower, higher)
@@ -184,20 +197,53 @@ class Mechanism:
         self._names.append(name)
 
     def fixed(self, name: str, at: Sequence[float]) -> None:
-        """Add a joint fixed to the frame at ``at = (x, y)``."""
+        """Add a joint fixed to the frame at ``at = (x, y)``.
+
+        Parameters
+        ----------
+        name : str
+            Name of the new joint (non-empty, not already defined).
+        at : (x, y)
+            Its finite position.
+        """
         x, y = as_point(at, "at")
         self._add(name, lambda: self._core.fixed(x, y))
 
     def crank(self, name: str, centre: str, radius: float, phase: float = 0.0) -> None:
-        """Add the driven crank: ``centre + radius·(cos(θ+phase), sin(θ+phase))``."""
+        """Add the driven crank: ``centre + radius·(cos(θ+phase), sin(θ+phase))``.
+
+        Parameters
+        ----------
+        name : str
+            Name of the new joint, the crank pin.
+        centre : str
+            Centre of the crank's circle, a joint defined before.
+        radius : float
+            Crank length, positive and finite.
+        phase : float, default 0.0
+            Angle added to the crank angle ``θ`` of a sweep (radians).
+        """
         c = self._index(centre, "centre")
         r = as_length(radius, "radius")
         ph = as_finite(phase, "phase")
         self._add(name, lambda: self._core.crank(c, r, ph))
 
     def dyad(self, name: str, p1: str, p2: str, r1: float, r2: float, side: str = "left") -> None:
-        """Add an RRR dyad: the joint at ``r1`` from ``p1`` and ``r2`` from ``p2``, initially on
-        ``side`` ("left" or "right") of the directed line ``p1 → p2``."""
+        """Add an RRR dyad: the joint at ``r1`` from ``p1`` and ``r2`` from ``p2``.
+
+        It is initially on ``side`` ("left" or "right") of the directed line ``p1 → p2``.
+
+        Parameters
+        ----------
+        name : str
+            Name of the new joint.
+        p1, p2 : str
+            Two different joints, defined before.
+        r1, r2 : float
+            Distances from ``p1`` and ``p2`` (the two links' lengths), positive and finite.
+        side : {"left", "right"}, default "left"
+            Side of the directed line ``p1 → p2`` the joint starts on.
+        """
         i, j = self._index(p1, "p1"), self._index(p2, "p2")
         a, b = as_length(r1, "r1"), as_length(r2, "r2")
         side = _choice(side, "side", ("left", "right"))
@@ -214,9 +260,32 @@ class Mechanism:
         angle: float = 0.0,
         reach: str = "ahead",
     ) -> None:
-        """Add an RRP slider dyad: the joint at ``r`` from ``pivot`` on the line through
-        ``origin``, with a fixed ``direction`` (dx, dy) or carried by ``link = (from, to)`` turned
-        by ``angle``; ``reach`` "ahead"/"behind" picks the intersection along the direction."""
+        """Add an RRP slider dyad: the joint at ``r`` from ``pivot`` on a line through ``origin``.
+
+        The line has a fixed ``direction`` (dx, dy) or is carried by ``link = (from, to)`` turned
+        by ``angle``; ``reach`` "ahead"/"behind" picks the intersection along the direction.
+
+        Parameters
+        ----------
+        name : str
+            Name of the new joint.
+        pivot : str
+            Joint at distance ``r`` from the new one, defined before.
+        r : float
+            Distance from ``pivot``, positive and finite.
+        origin : str
+            Joint the line passes through, defined before.
+        direction : (dx, dy), optional
+            Fixed direction of the line (not zero). Give exactly one of ``direction`` and
+            ``link``.
+        link : (from, to), optional
+            Two different joints: the line has the direction ``from → to`` turned by ``angle``.
+        angle : float, default 0.0
+            Angle (radians, counter-clockwise) from ``from → to`` to the line; used with
+            ``link``.
+        reach : {"ahead", "behind"}, default "ahead"
+            Which intersection of the circle about ``pivot`` with the line, along its direction.
+        """
         p, o = self._index(pivot, "pivot"), self._index(origin, "origin")
         length = as_length(r, "r")
         reach = _choice(reach, "reach", ("ahead", "behind"))
@@ -234,8 +303,19 @@ class Mechanism:
             self._add(name, lambda: self._core.slider_on_link(p, length, o, f, t, ang, reach))
 
     def point(self, name: str, on: tuple[str, str], at: Sequence[float]) -> None:
-        """Add a point carried by the link ``on = (from, to)`` at ``at = (along, left)``:
-        ``along`` the direction from → to (length units) and ``left`` of it."""
+        """Add a point carried by the link ``on = (from, to)`` at ``at = (along, left)``.
+
+        The point is ``along`` the direction from → to (length units) and ``left`` of it.
+
+        Parameters
+        ----------
+        name : str
+            Name of the new joint.
+        on : (from, to)
+            Two different joints, defined before, that frame the carrying link.
+        at : (along, left)
+            Finite coordinates of the point in that frame.
+        """
         if isinstance(on, str) or len(on) != 2:
             raise LinkageError("on must be a pair of joint names (from, to)")
         f, t = self._index(on[0], "on[0]"), self._index(on[1], "on[1]")
@@ -249,6 +329,21 @@ class Mechanism:
         "phase_deg"?}``, ``{"kind": "dyad", "name", "p1", "p2", "r1", "r2", "side"?}`` or
         ``{"kind": "point", "name", "on", "along", "left"?}``.
 
+        Parameters
+        ----------
+        joint : mapping
+            One joint table of the forms above (``?`` marks an optional key); ``phase_deg`` is
+            in degrees, ``side`` defaults to "left" and ``left`` to 0.
+
+        Raises
+        ------
+        LinkageError
+            For an unknown ``"kind"``, or as the building method of that kind raises.
+        KeyError
+            When a required key is missing.
+
+        Examples
+        --------
         >>> m = Mechanism()
         >>> m.add_joint({"kind": "fixed", "name": "O", "at": (0, 0)})
         >>> m.add_joint({"kind": "crank", "name": "A", "centre": "O", "radius": 1, "phase_deg": 90})
@@ -277,7 +372,20 @@ class Mechanism:
     def from_joints(
         cls, joints: Iterable[Mapping[str, Any]], trace: str | None = None
     ) -> Mechanism:
-        """A mechanism from joint tables (:meth:`add_joint`), traced at ``trace`` if given."""
+        """Build a mechanism from joint tables (:meth:`add_joint`), traced at ``trace`` if given.
+
+        Parameters
+        ----------
+        joints : iterable of mapping
+            Joint tables, in program order.
+        trace : str, optional
+            Joint reported as ``Sweep.point`` (default: the last joint).
+
+        Returns
+        -------
+        Mechanism
+            The new mechanism.
+        """
         m = cls()
         for j in joints:
             m.add_joint(j)
@@ -314,6 +422,44 @@ class Mechanism:
 
         In time: ``sweep(time=t, drive=d)`` takes ``θ, ω, α`` from a drive
         (:mod:`linkage.drive`) at the times ``t``; ``s.time`` keeps them.
+
+        Parameters
+        ----------
+        theta : float or array_like of float, optional
+            Crank angles (radians), scalar or 1-D; needed unless ``time`` and ``drive`` are
+            given.
+        omega : float or array_like of float, optional
+            Crank speed (rad/s), scalar or one per angle; needed for ``"velocity"`` and
+            ``"acceleration"``.
+        alpha : float or array_like of float, optional
+            Crank angular acceleration (rad/s²), scalar or one per angle; default 0.
+        outputs : iterable of str, default ("point", "joints")
+            Names from ``OUTPUTS``: "point", "joints", "velocity", "acceleration",
+            "instant_centres", "curvature". Without "joints", every joint and the ``margin``,
+            ``gap`` and ``regular`` flags are computed on first use.
+        time : float or array_like of float, optional
+            Times of the samples (keyword only), scalar or 1-D; given with ``drive``, instead of
+            ``theta``, ``omega`` and ``alpha``.
+        drive : object, optional
+            An object whose ``angles(t)`` method returns ``θ, ω, α`` at the times ``t`` (keyword
+            only; see :mod:`linkage.drive`).
+
+        Returns
+        -------
+        Sweep
+            One sample per angle (or time), in the order given; for a scalar ``theta`` the
+            arrays have no sample axis.
+
+        Raises
+        ------
+        LinkageError
+            For a mechanism without joints, an unknown output, ``"velocity"`` or
+            ``"acceleration"`` without ``omega``, angles or rates of the wrong shape or not
+            finite, or ``time`` and ``drive`` given alone or with ``theta``, ``omega`` or
+            ``alpha``.
+        TypeError
+            When neither ``theta`` nor ``time`` and ``drive`` are given, for a ``drive``
+            without an ``angles`` method, or for arguments of the wrong type.
         """
         if not self._names:
             raise LinkageError("the mechanism has no joints")

@@ -22,7 +22,7 @@ RATE_MARGIN = 32.0 * float(np.sqrt(np.finfo(np.float64).eps))
 
 @functools.lru_cache(maxsize=256)
 def _pairs(links: tuple[str, ...]) -> tuple[tuple[str, str], ...]:
-    """The pairs ``(links[k], links[m])``, ``k < m`` (one per mechanism, not per sweep)."""
+    """Return the pairs ``(links[k], links[m])``, ``k < m`` (one per mechanism, not per sweep)."""
     return tuple((links[k], links[m]) for k in range(len(links)) for m in range(k + 1, len(links)))
 
 
@@ -105,8 +105,11 @@ class Sweep:
         return self._trace if self._full else 0
 
     def _get_raw(self, key: str, full: bool) -> Any:
-        """``raw[key]``, after computing every joint and the flags when ``full`` is asked of a
-        point-only sweep or the key is missing (the same positions, bit for bit)."""
+        """Return ``raw[key]``, completing a point-only sweep first when needed.
+
+        Every joint and the flags are computed first when ``full`` is asked of a point-only
+        sweep or the key is missing (the same positions, bit for bit).
+        """
         if (full and not self._full) or key not in self._raw:
             if self._complete is None:
                 raise AttributeError(f"{key} was not computed")
@@ -117,8 +120,10 @@ class Sweep:
 
     @property
     def joints(self) -> NDArray[np.float64]:
-        """Every joint, shape (N, J, 2), in ``joint_names`` order (computed on first use when
-        the sweep asked for the point only)."""
+        """Every joint, shape (N, J, 2), in ``joint_names`` order.
+
+        Computed on first use when the sweep asked for the point only.
+        """
         arr: NDArray[np.float64] = self._get_raw("joints", True)
         return arr
 
@@ -155,9 +160,30 @@ class Sweep:
         return f"<Sweep {n} samples ({ok} valid), joints {joints}; outputs {self.outputs}>"
 
     def near_toggle(self, threshold: float = 1e-6) -> NDArray[np.bool_]:
-        """Samples whose dyad margin is below ``threshold``: the rate equations' Jacobian is
-        near singular there, and velocities and accelerations carry relative errors of order
-        ``ε/margin²`` (measured: within a factor 5 of that down to margins of 2e-6)."""
+        """Flag the samples whose dyad margin is below ``threshold``.
+
+        The rate equations' Jacobian is near singular there, and velocities and accelerations
+        carry relative errors of order ``ε/margin²`` (measured: within a factor 5 of that down
+        to margins of 2e-6).
+
+        Parameters
+        ----------
+        threshold : float, default 1e-6
+            Dyad margin below which a valid sample is flagged.
+
+        Returns
+        -------
+        (N,) bool
+            True where the sample is valid and its margin is below ``threshold``; False at
+            invalid samples.
+
+        Raises
+        ------
+        LinkageError
+            When ``threshold`` is NaN.
+        TypeError
+            When ``threshold`` is not a real number.
+        """
         t = as_real(threshold, "threshold")
         if np.isnan(t):
             raise LinkageError("threshold must be a number, got nan")
@@ -165,7 +191,26 @@ class Sweep:
         return flags
 
     def joint(self, name: str) -> NDArray[np.float64]:
-        """Positions of one joint by name, shape (N, 2)."""
+        """Positions of one joint by name, shape (N, 2).
+
+        Parameters
+        ----------
+        name : str
+            One of ``joint_names``.
+
+        Returns
+        -------
+        (N, 2) float64
+            The joint's positions (every joint is computed on first use when the sweep asked
+            for the point only).
+
+        Raises
+        ------
+        LinkageError
+            When there is no joint ``name`` (an ``UnknownNameError``, also a ``KeyError``).
+        TypeError
+            When ``name`` is not a str.
+        """
         if not isinstance(name, str):
             raise TypeError(f"name must be a joint name (str), got {type(name).__name__}")
         try:
@@ -214,7 +259,29 @@ class Sweep:
         return at_inf
 
     def instant_centre(self, a: str, b: str) -> NDArray[np.float64]:
-        """Instant centre of links ``a`` and ``b`` (by name), shape (N, 2)."""
+        """Instant centre of links ``a`` and ``b`` (by name), shape (N, 2).
+
+        Parameters
+        ----------
+        a, b : str
+            Two different names of ``links``, in either order.
+
+        Returns
+        -------
+        (N, 2) float64
+            The finite instant centre of the pair; NaN where it is at infinity or undefined
+            (see ``instant_centre_directions``).
+
+        Raises
+        ------
+        LinkageError
+            When ``(a, b)`` is not a pair of ``link_pairs`` in either order (an
+            ``UnknownNameError``, also a ``KeyError``).
+        TypeError
+            When ``a`` or ``b`` is not a str.
+        AttributeError
+            When the sweep was not asked for ``"instant_centres"``.
+        """
         if not isinstance(a, str) or not isinstance(b, str):
             raise TypeError(
                 f"links must be named by str, got {type(a).__name__}, {type(b).__name__}"
@@ -246,8 +313,10 @@ class Sweep:
 
     @property
     def curvature_radius(self) -> NDArray[np.float64]:
-        """Radius of curvature of the trace point's path, ``1/|curvature|`` (inf at an
-        inflection), shape (N,)."""
+        """Radius of curvature of the trace point's path, ``1/|curvature|``, shape (N,).
+
+        Infinite at an inflection.
+        """
         with np.errstate(divide="ignore"):
             r: NDArray[np.float64] = 1.0 / np.abs(self.curvature)
         return r
