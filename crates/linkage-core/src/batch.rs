@@ -374,11 +374,15 @@ impl<'a, T: RealField + Copy> FourBarBatch<'a, T> {
                     *v = p.x.is_finite() && p.y.is_finite();
                 }
                 if any_near {
+                    // The program built once for the block's near samples (FourBar::pose
+                    // builds it per call): the same bits.
+                    let mech = fb.mechanism();
+                    let mut joints = [Vec2::zeros(); 5];
                     for (j, (p, v)) in out.iter_mut().zip(ok.iter_mut()).enumerate() {
                         if near[j] {
                             work.exact += 1;
-                            (*p, *v) = match fb.pose(theta[start + j]) {
-                                Ok(pose) => (pose.coupler_point, true),
+                            (*p, *v) = match mech.pose(theta[start + j], &mut joints) {
+                                Ok(_) => (joints[FourBar::<T>::P], true),
                                 Err(_) => (Vec2::new(nan(), nan()), false),
                             };
                         }
