@@ -449,7 +449,8 @@ impl<T: RealField + Copy> CircuitPath<T> {
         let g = lit::<T>(0.618_033_988_749_894_8);
         let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
         let (mut f1, mut f2) = (dist(x1), dist(x2));
-        for _ in 0..64 {
+        // 48 golden steps shrink the bracket (half a polyline step) by 0.618⁴⁸ ≈ 1e-10.
+        for _ in 0..48 {
             if f1 < f2 {
                 b = x2;
                 (x2, f2) = (x1, f1);
