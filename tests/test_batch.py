@@ -210,3 +210,34 @@ def test_out_arrays_are_filled_and_returned() -> None:
     frozen[0].flags.writeable = False
     with pytest.raises(LinkageError, match="writeable"):
         sweep_fourbars(20, 10, 25, 25, (0, 0), 0.0, out=frozen)
+
+
+def test_sweep_mechanisms_equals_each_sweep_for_any_thread_count():
+    """A batch of mechanisms is each one's own sweep, bit for bit, on any number of threads;
+    mixed joint counts, non-mechanisms and bad angles are refused."""
+    from linkage.batch import sweep_mechanisms
+
+    rng = np.random.default_rng(3)
+    legs = [
+        linkage.FourBar(
+            ground=20, crank=10, coupler=float(c), rocker=float(r), point=(50, 5)
+        ).mechanism()
+        for c, r in rng.uniform(18, 32, (7, 2))
+    ]
+    theta = rng.uniform(-4, 10, 300)
+    one, ok1 = sweep_mechanisms(legs, theta, threads=1)
+    three, ok3 = sweep_mechanisms(legs, theta, threads=3)
+    np.testing.assert_array_equal(one, three)
+    np.testing.assert_array_equal(ok1, ok3)
+    for k, m in enumerate(legs):
+        s = m.sweep(theta, outputs=("joints",))
+        np.testing.assert_array_equal(one[k], s.joints)
+        np.testing.assert_array_equal(ok1[k], s.valid)
+    with pytest.raises(linkage.LinkageError, match="must have length 5, got 8"):
+        sweep_mechanisms([*legs, linkage.catalog.jansen()], theta)
+    with pytest.raises(TypeError, match=r"mechanisms\[0\] must be a Mechanism"):
+        sweep_mechanisms([linkage.catalog.hoecken()], theta)
+    with pytest.raises(linkage.LinkageError, match="theta must be finite"):
+        sweep_mechanisms(legs, [0.0, float("nan")])
+    empty, ok = sweep_mechanisms([], theta)
+    assert empty.shape == (0, 300, 0, 2) and ok.shape == (0, 300)

@@ -754,6 +754,22 @@ def test_catalogue_figures(rel_tol, samples):
         assert len(rows) == len(catalog.names())
 
 
+@FAST
+@given(
+    theta=HOSTILE,
+    threads=st.one_of(st.integers(-2, 4), ODD),
+    which=st.lists(st.sampled_from(["hoecken", "jansen", "x"]), max_size=3),
+)
+def test_batch_sweep_mechanisms(theta, threads, which):
+    made = {"hoecken": HOECKEN.mechanism(), "jansen": catalog.jansen(), "x": "x"}
+    ms = [made[w] for w in which]
+    r = call(lambda: linkage.batch.sweep_mechanisms(ms, theta, threads))
+    if r is not None:
+        joints, valid = r
+        assert joints.shape[:2] == valid.shape and joints.shape[-1] == 2
+        assert np.isfinite(joints[valid]).all()
+
+
 # -- synthesis --------------------------------------------------------------------------------
 SMALL_ATLAS = linkage.synthesis.Atlas.build(600, threads=1)
 TARGET = np.c_[np.cos(np.linspace(0, 6, 12)), 0.5 * np.sin(np.linspace(0, 6, 12))]

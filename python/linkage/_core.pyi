@@ -40,6 +40,7 @@ __all__ = [
     "stance_schedule",
     "straight_run",
     "support_margins",
+    "sweep_mechanisms",
     "sweep_simd",
     "synth_atlas_build",
     "synth_atlas_nearest",
@@ -138,6 +139,9 @@ class FourBar:
     ): ...
 
 def sweep_simd() -> str: ...
+def sweep_mechanisms(
+    mechanisms: list[Mechanism], theta: NDArray[np.float64], threads: int = 1
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]: ...
 def batch_sweep(
     o: NDArray[np.float64],
     c: NDArray[np.float64],

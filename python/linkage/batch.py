@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -17,6 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 from linkage import _core
 from linkage._arrays import as_angles, as_count, as_real_array
 from linkage._core import LinkageError
+from linkage._mechanism import Mechanism
 
 _ASSEMBLIES = ("open", "crossed")
 
@@ -191,6 +193,63 @@ def sweep_fourbars(
     return points, valid
 
 
+def sweep_mechanisms(
+    mechanisms: Sequence[Mechanism], theta: ArrayLike, threads: int = 1
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Every joint of ``M`` mechanisms of one joint count at ``N`` shared crank angles.
+
+    Each row is what ``mechanisms[i].sweep(theta, outputs=("joints",))`` gives (the same
+    branch tracking, the same bits); the mechanisms are split over ``threads`` threads, with the
+    same bits for any count. The batch evaluator for families of multi-loop legs: build one
+    :class:`~linkage.Mechanism` per parameter vector, sweep them all in one call.
+
+    Parameters
+    ----------
+    mechanisms : sequence of Mechanism
+        Mechanisms with the same number of joints (the same program with other numbers).
+    theta : array_like
+        Crank angles in radians, scalar or shape ``(N,)``, finite.
+    threads : int
+        Threads the mechanisms are split over (at most 256 are started).
+
+    Returns
+    -------
+    joints : ndarray, shape (M, N, J, 2)
+        Every joint, NaN where a sample does not assemble.
+    valid : ndarray of bool, shape (M, N)
+        Whether each sample assembled.
+
+    Raises
+    ------
+    TypeError
+        If an element of ``mechanisms`` is not a Mechanism.
+    LinkageError
+        For mechanisms of different joint counts, one without a crank, or non-finite angles.
+
+    Examples
+    --------
+    >>> import numpy as np, linkage
+    >>> from linkage.batch import sweep_mechanisms
+    >>> legs = [linkage.FourBar(ground=20, crank=10, coupler=c, rocker=25).mechanism()
+    ...         for c in (25, 28)]
+    >>> joints, valid = sweep_mechanisms(legs, np.radians([0, 90]))
+    >>> joints.shape, valid.tolist()
+    ((2, 2, 5, 2), [[True, True], [True, True]])
+    >>> sweep_mechanisms(legs + [linkage.catalog.jansen()], [0.0])
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: joints of every mechanism of a batch must have length 5, got 8
+    """
+    ms = list(mechanisms)
+    for k, m in enumerate(ms):
+        if not isinstance(m, Mechanism):
+            raise TypeError(f"mechanisms[{k}] must be a Mechanism, got {type(m).__name__}")
+    th, _ = as_angles(theta, "theta")
+    n = as_count(threads, "threads")
+    joints, valid = _core.sweep_mechanisms([m._core for m in ms], th, n)
+    return joints, valid
+
+
 def _real(value: Any, name: str) -> NDArray[np.float64]:
     arr = np.asarray(as_real_array(value, name), dtype=np.float64)
     if arr.ndim > 1:
@@ -242,4 +301,4 @@ def _check_finite(arr: NDArray[np.float64], name: str) -> None:
         raise LinkageError(f"{name}[{k}] must be finite, got {arr[k].tolist()}")
 
 
-__all__ = ["sweep_fourbars"]
+__all__ = ["sweep_fourbars", "sweep_mechanisms"]

@@ -153,6 +153,8 @@ pub use schedule::{ScheduleTable, StanceSchedule};
 pub use slider::{Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
 pub use support::{convex_hull, stability_margin, support_margins};
+#[cfg(feature = "std")]
+pub use sweep::sweep_mechanisms;
 pub use sweep::{
     sweep, sweep_pairs, sweep_planned, Columns, Plan, Rate, SweepOutputs, Swept, SWEEP_CHUNK,
     SWEEP_WORK_CHUNK,

@@ -865,3 +865,67 @@ pub fn sweep_planned<T: RealField + Copy, const N: usize>(
     }
     engine.tracked(&mut tracker, theta, (omega, alpha), &mut out, go_on)
 }
+
+/// Sweeps `M` mechanisms of one joint count over the same driver angles, positions only, on
+/// `threads` threads (feature `std`): mechanism `i`'s [`sweep`] into `joints[i·n·j ..]` and
+/// `valid[i·n ..]` (`n` angles, `j` joints). Each is its own sweep, so the bits do not depend on
+/// the number of threads. The batch evaluator of design searches over multi-loop legs.
+///
+/// ```
+/// use linkage_core::{catalog, sweep_mechanisms, Vec2};
+/// let (a, b) = (catalog::hoecken::<f64>(), catalog::chebyshev::<f64>());
+/// let mechs = [a.mechanism(), b.mechanism()];
+/// let theta = [0.0, 1.0, 2.0];
+/// let (mut joints, mut valid) = (vec![Vec2::zeros(); 2 * 3 * 5], vec![false; 6]);
+/// sweep_mechanisms(&mechs, &theta, 2, &mut joints, &mut valid).unwrap();
+/// assert!(valid.iter().all(|&v| v));
+/// // Row (1, 2) is Chebyshev's pose at θ = 2.
+/// let mut one = [Vec2::zeros(); 5];
+/// mechs[1].pose(2.0, &mut one).unwrap();
+/// assert!((joints[(3 + 2) * 5 + 4] - one[4]).norm() < 1e-12);
+/// ```
+///
+/// # Errors
+/// [`Error::BufferLength`] when the mechanisms' joint counts differ or a slice has the wrong
+/// length; a mechanism's own [`sweep`] error (no crank), with nothing of the batch kept.
+#[cfg(feature = "std")]
+pub fn sweep_mechanisms<T: RealField + Copy, const N: usize>(
+    mechs: &[Mechanism<T, N>],
+    theta: &[T],
+    threads: usize,
+    joints: &mut [Vec2<T>],
+    valid: &mut [bool],
+) -> Result<(), Error> {
+    let n = theta.len();
+    let j = mechs.first().map_or(0, |m| m.len());
+    if let Some(m) = mechs.iter().find(|m| m.len() != j) {
+        return Err(Error::BufferLength {
+            what: "joints of every mechanism of a batch",
+            expected: j,
+            got: m.len(),
+        });
+    }
+    let rows = n.saturating_mul(j);
+    check_len("joints", mechs.len().saturating_mul(rows), joints.len())?;
+    check_len("valid", mechs.len().saturating_mul(n), valid.len())?;
+    let parts = crate::parallel::map_parts(mechs.len(), threads, |i| {
+        let mut p = alloc::vec![Vec2::zeros(); rows];
+        let mut v = alloc::vec![false; n];
+        let out = SweepOutputs::positions(&mut p, &mut v);
+        sweep(
+            &mechs[i],
+            theta,
+            Rate::Scalar(T::zero()),
+            Rate::Scalar(T::zero()),
+            out,
+            &mut || true,
+        )
+        .map(|_| (p, v))
+    });
+    for (i, part) in parts.into_iter().enumerate() {
+        let (p, v) = part?;
+        joints[i * rows..(i + 1) * rows].copy_from_slice(&p);
+        valid[i * n..(i + 1) * n].copy_from_slice(&v);
+    }
+    Ok(())
+}

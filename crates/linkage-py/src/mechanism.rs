@@ -417,6 +417,45 @@ impl Mechanism {
     }
 }
 
+/// Joints of a batch of sweeps, `(M, N, J, 2)`.
+type Joints4<'py> = Bound<'py, PyArray<f64, numpy::ndarray::Ix4>>;
+
+/// Sweeps mechanisms of one joint count over shared angles, positions only
+/// (`linkage_core::sweep_mechanisms`): `(joints (M, N, J, 2), valid (M, N))`, the same bits for
+/// any thread count.
+#[pyfunction]
+#[pyo3(signature = (mechanisms, theta, threads=1))]
+pub fn sweep_mechanisms<'py>(
+    py: Python<'py>,
+    mechanisms: Vec<PyRef<'py, Mechanism>>,
+    theta: PyReadonlyArray1<'py, f64>,
+    threads: usize,
+) -> PyResult<(Joints4<'py>, Bound<'py, PyArray<bool, Ix2>>)> {
+    let th = theta
+        .as_slice()
+        .map_err(|_| linkage_error("theta must be a contiguous float64 array"))?;
+    finite("theta", th)?;
+    let mechs: Vec<CoreMechanism<f64, CAPACITY>> =
+        mechanisms.iter().map(|m| m.snapshot()).collect();
+    let (m, n) = (mechs.len(), th.len());
+    let j = mechs.first().map_or(0, |x| x.len());
+    let what = || format!("sweep of {m} mechanisms × {n} angles");
+    let floats = (m as u128) * (n as u128) * (j as u128) * 2;
+    memory::check(
+        &what,
+        memory::bytes_of::<f64>(floats) * 2 + (m as u128) * (n as u128),
+    )?;
+    let joints = memory::uninit::<f64, numpy::ndarray::Ix4>(py, &what, &[m, n, j, 2])?;
+    let valid = memory::uninit::<bool, Ix2>(py, &what, &[m, n])?;
+    {
+        let (jw, vw) = (fresh_points(&joints)?, fresh(&valid)?);
+        let threads = threads.clamp(1, 256);
+        py.detach(|| linkage_core::sweep_mechanisms(&mechs, th, threads, jw, vw))
+            .map_err(to_py)?;
+    }
+    Ok((joints, valid))
+}
+
 /// [`linkage_core::sweep`] compiled again for AVX-512 and for AVX2 + FMA and chosen at run time
 /// (as the fast uniform sweep, see `fourbar.rs`): the core poses blocks of samples with a
 /// branch-free kernel (`held.rs`) that these builds vectorise wider. The arithmetic is the
