@@ -872,14 +872,15 @@ pub fn sweep_planned<T: RealField + Copy, const N: usize>(
 /// the number of threads. The batch evaluator of design searches over multi-loop legs.
 ///
 /// ```
-/// use linkage_core::{catalog, sweep_mechanisms, Vec2};
-/// let (a, b) = (catalog::hoecken::<f64>(), catalog::chebyshev::<f64>());
-/// let mechs = [a.mechanism(), b.mechanism()];
+/// use linkage_core::{sweep_mechanisms, Assembly, FourBar, Vec2};
+/// // Two crank-rockers (ground 20, crank 10; coupler 25 and 28, rocker 25).
+/// let leg = |c: f64| FourBar::new(20.0, 10.0, c, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
+/// let mechs = [leg(25.0).mechanism(), leg(28.0).mechanism()];
 /// let theta = [0.0, 1.0, 2.0];
 /// let (mut joints, mut valid) = (vec![Vec2::zeros(); 2 * 3 * 5], vec![false; 6]);
 /// sweep_mechanisms(&mechs, &theta, 2, &mut joints, &mut valid).unwrap();
 /// assert!(valid.iter().all(|&v| v));
-/// // Row (1, 2) is Chebyshev's pose at θ = 2.
+/// // Row (1, 2) is the second leg's pose at θ = 2.
 /// let mut one = [Vec2::zeros(); 5];
 /// mechs[1].pose(2.0, &mut one).unwrap();
 /// assert!((joints[(3 + 2) * 5 + 4] - one[4]).norm() < 1e-12);
