@@ -126,6 +126,24 @@ fn sorted_desc<T: RealField + Copy>(a: T, b: T, c: T) -> (T, T, T) {
     (a, b, c)
 }
 
+/// The sides `(hi, mid, lo)` of a triangle with one varying side `d` and two fixed ones whose
+/// longer is `rmax` and shorter `rmin`: `hi = max(d, rmax)`, `lo = min(d, rmin)`, `mid` the
+/// other — the values [`sorted_desc`]'s compare-swaps give, as selects, so the vectorised
+/// kernels (the held pass, the batch, the uniform sweep) sort by the same rule.
+#[inline(always)]
+pub(crate) fn sorted_with<T: RealField + Copy>(d: T, rmin: T, rmax: T) -> (T, T, T) {
+    let hi = if d > rmax { d } else { rmax };
+    let lo = if d < rmin { d } else { rmin };
+    let mid = if d < rmin {
+        rmin
+    } else if d > rmax {
+        rmax
+    } else {
+        d
+    };
+    (hi, mid, lo)
+}
+
 /// [`triangle_area`] with its vanishing factor `f2 = (b + c) − a` (`a` the longest side) given,
 /// formed by the caller without cancellation.
 fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> Result<T, T> {

@@ -239,15 +239,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                 * (d + r1 + r2 + ax[k].abs().max(ay[k].abs()) + bx[k].abs().max(by[k].abs()));
             // Kahan's sides sorted: with r1, r2 fixed, hi = max(d, rmax), lo = min(d, rmin),
             // mid the other (the compare-swaps of `sorted_desc` give the same values).
-            let hi = if d > rmax { d } else { rmax };
-            let lo = if d < rmin { d } else { rmin };
-            let mid = if d < rmin {
-                rmin
-            } else if d > rmax {
-                rmax
-            } else {
-                d
-            };
+            let (hi, mid, lo) = crate::dyad::sorted_with(d, rmin, rmax);
             let amb = hi - mid;
             let f2 = if use_base[k] { given[k] } else { lo - amb };
             let flat = f2 < T::zero() || (use_base[k] && !f2.is_finite());

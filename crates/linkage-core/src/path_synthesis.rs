@@ -259,9 +259,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
     /// Coupler point at circuit parameter `s`; `None` where rounding at a limit leaves it
     /// unassembled.
     pub fn point(&self, s: T) -> Option<Vec2<T>> {
-        let (theta, other) = self.theta(s);
-        let fb = if other { &self.other } else { &self.linkage };
-        fb.pose(theta).ok().map(|p| p.coupler_point)
+        self.poser().point(s)
     }
 
     /// Transmission angle's distance from a toggle, `min(μ, π − μ)`, at `s` (`None` where it
@@ -295,6 +293,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
         let size = self.size();
         let tol = lit::<T>(1e-9) * size;
         let mut flipped = false;
+        let poser = self.poser();
         for k in 0..n {
             let s = T::two_pi() * lit::<T>(k as f64) / lit::<T>(n as f64);
             let (theta, other) = self.theta(s);
@@ -304,7 +303,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
                 flipped = true;
             }
             tracker.step(theta, None, &mut joints, Rates::none())?;
-            let want = self.point(s).ok_or(Error::CannotAssemble {
+            let want = poser.point(s).ok_or(Error::CannotAssemble {
                 joint: FourBar::<T>::B,
                 gap: 0.0,
             })?;

@@ -227,15 +227,7 @@ impl<T: RealField + Copy> FourBar<T> {
             let d = (dx * dx + dy * dy).sqrt();
             // Kahan's area of the triangle (d, r1, r2): with r1, r2 fixed the sorted sides are
             // hi = max(d, rmax), lo = min(d, rmin), mid = clamp(d, rmin, rmax) — exact.
-            let hi = if d > rmax { d } else { rmax };
-            let lo = if d < rmin { d } else { rmin };
-            let mid = if d < rmin {
-                rmin
-            } else if d > rmax {
-                rmax
-            } else {
-                d
-            };
+            let (hi, mid, lo) = crate::dyad::sorted_with(d, rmin, rmax);
             let f2 = lo - (hi - mid);
             let f2 = if f2 < T::zero() && f2 >= -tol {
                 T::zero()
