@@ -41,7 +41,7 @@ impl<T: RealField + Copy> Centre<T> {
 }
 
 /// Tolerance multiple of ε below which a rate difference counts as zero.
-const ZERO_RATE: f64 = 64.0;
+pub(crate) const ZERO_RATE: f64 = 64.0;
 
 /// Circumcentre of three points (the first source's three-point estimate of a centre of
 /// curvature, thesis 1 §2.1.1).

@@ -156,6 +156,13 @@ fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> 
     Ok(prod.sqrt() * lit::<T>(0.25))
 }
 
+/// Whether `x ≥ 0` is a size at which [`pow2_scale`] is 1: within `[2⁻³², 2³²]`.
+#[inline(always)]
+pub(crate) fn unit_scale<T: RealField + Copy>(x: T) -> bool {
+    let step = lit::<T>(4_294_967_296.0); // 2³²
+    x <= step && x * step >= T::one()
+}
+
 /// A power of two `s` for rescaling by `x` without rounding: `1` for `x` in `[2⁻³², 2³²]`
 /// (ordinary sizes keep their bits), otherwise one with `x / s` in `[1, 2)` (for a positive
 /// finite `x`; within `2³²` of `x` for zero or infinity, `1` for NaN). Dividing by it is exact.
@@ -166,10 +173,10 @@ fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> 
 /// the rates of a linkage at 1e−300 lost digits to subnormal right-hand sides that way.
 #[inline]
 pub(crate) fn pow2_scale<T: RealField + Copy>(x: T) -> T {
-    let step = lit::<T>(4_294_967_296.0); // 2³²
-    if x <= step && x * step >= T::one() {
+    if unit_scale(x) {
         return T::one();
     }
+    let step = lit::<T>(4_294_967_296.0); // 2³²
     let mut s = T::one();
     while x / s > step && (s * step).is_finite() {
         s *= step;

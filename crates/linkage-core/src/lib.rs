@@ -71,6 +71,7 @@ mod freudenstein;
 mod gait;
 mod gear_train;
 mod held;
+mod held_centres;
 mod inflection;
 #[cfg(feature = "alloc")]
 mod kinetostatics;

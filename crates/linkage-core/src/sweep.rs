@@ -14,6 +14,7 @@ use crate::bodies::{Bodies, BodyId, GROUND};
 use crate::centres::{path_curvature, relative_centre, BodyMotion, Centre};
 use crate::error::Error;
 use crate::held::{BlockPoses, BlockRates, BLOCK};
+use crate::held_centres::BlockCentres;
 use crate::mechanism::{CrankRates, Mechanism};
 use crate::motion::rate_margin;
 use crate::scalar::{lit, nan, Vec2};
@@ -581,6 +582,39 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         true
     }
 
+    /// Writes the instant centres and curvatures asked for of the `m` samples of a block
+    /// that [`Self::block_write`] wrote (from sample `k0` on), from unit-drive rates: what
+    /// [`Self::valid`] writes, a block at a time. Returns false, having written some of them,
+    /// when a sample needs the scalar code (see [`BlockCentres`]): the block must be redone.
+    #[inline(always)]
+    fn block_centres(
+        &self,
+        blk: &BlockPoses<T, N>,
+        unit: &mut BlockRates<T, N>,
+        cen: &mut BlockCentres<T, N>,
+        (k0, m): (usize, usize),
+        out: &mut SweepOutputs<'_, T>,
+    ) -> bool {
+        unit.rates(self.mech, blk, &[T::one(); BLOCK], &[T::zero(); BLOCK]);
+        cen.start();
+        if self.wants_centres {
+            cen.bodies(&self.bodies, blk, unit);
+            let (c, d) = (
+                out.centres.as_deref_mut(),
+                out.centre_directions.as_deref_mut(),
+            );
+            cen.centres(&self.bodies, blk, unit, (k0, m, self.np), c, d);
+        }
+        if self.wants_curvature {
+            let (kappa, c) = (
+                out.curvature.as_deref_mut(),
+                out.curvature_centres.as_deref_mut(),
+            );
+            cen.curvature(blk, unit, self.columns, (k0, m, self.j), kappa, c);
+        }
+        !(unit.scalar[..m].iter().any(|&s| s) || cen.scalar[..m].iter().any(|&s| s))
+    }
+
     /// The held pass: every sample posed on the declared orientations, no walk (valid only
     /// after [`Tracker::holds_everywhere`]), a block of samples at a time where the block
     /// kernel applies ([`BlockPoses`]: the same bits as one pose). Returns `None`, having
@@ -602,6 +636,9 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let mut blk = BlockPoses::<T, N>::new();
         blk.prepare(self.mech);
         let mut rts = BlockRates::<T, N>::new();
+        // Unit-drive rates and body turns, for centres and curvatures.
+        let mut unit = BlockRates::<T, N>::new();
+        let mut cen = BlockCentres::<T, N>::new(&self.bodies);
         // Margins are needed for the watched dyads always, for the others only when written
         // (margin, regular) or used (centres condition on them; rates by the sample path).
         blk.margins = out.margin.is_some()
@@ -623,22 +660,23 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
             let k1 = (k0 + BLOCK).min(n);
             if blocks {
                 blk.pose(self.mech, &theta[k0..k1], watched);
-                if !(self.wants_centres || self.wants_curvature) {
-                    let done = if self.rates {
-                        let (mut w, mut a) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
-                        for b in 0..k1 - k0 {
-                            (w[b], a[b]) = (omega.at(k0 + b), alpha.at(k0 + b));
-                        }
-                        rts.rates(self.mech, &blk, &w, &a);
-                        let r = Some((&rts, &w, &a));
-                        self.block_write(&blk, r, toggle_margin, &theta[k0..k1], k0, out)
-                    } else {
-                        self.block_write(&blk, None, toggle_margin, &theta[k0..k1], k0, out)
-                    };
-                    if done {
-                        k0 = k1;
-                        continue;
+                let mut done = if self.rates {
+                    let (mut w, mut a) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
+                    for b in 0..k1 - k0 {
+                        (w[b], a[b]) = (omega.at(k0 + b), alpha.at(k0 + b));
                     }
+                    rts.rates(self.mech, &blk, &w, &a);
+                    let r = Some((&rts, &w, &a));
+                    self.block_write(&blk, r, toggle_margin, &theta[k0..k1], k0, out)
+                } else {
+                    self.block_write(&blk, None, toggle_margin, &theta[k0..k1], k0, out)
+                };
+                if done && (self.wants_centres || self.wants_curvature) {
+                    done = self.block_centres(&blk, &mut unit, &mut cen, (k0, k1 - k0), out);
+                }
+                if done {
+                    k0 = k1;
+                    continue;
                 }
             }
             for (b, &th) in theta[k0..k1].iter().enumerate() {

@@ -162,10 +162,11 @@ fn block_case<const N: usize>(
     omega: &[f64],
     rates: bool,
     one: bool,
+    centres: bool,
 ) -> Result<(), TestCaseError> {
     let (n, j) = (theta.len(), m.len());
     let w = if one { 1 } else { j };
-    let mut got = buffers(n, w, 0);
+    let mut got = buffers(n, w, sweep_pairs(m));
     let mut out = SweepOutputs::positions(&mut got.joints, &mut got.valid);
     out.columns = if one {
         Columns::One(j - 1)
@@ -178,6 +179,12 @@ fn block_case<const N: usize>(
     if rates {
         out.velocity = Some(&mut got.velocity);
         out.acceleration = Some(&mut got.acceleration);
+    }
+    if centres {
+        out.centres = Some(&mut got.centres);
+        out.centre_directions = Some(&mut got.directions);
+        out.curvature = Some(&mut got.curvature);
+        out.curvature_centres = Some(&mut got.curvature_centres);
     }
     let plan = Plan::Held;
     sweep_planned(
@@ -206,6 +213,30 @@ fn block_case<const N: usize>(
         prop_assert!(same_points(&got.velocity, &col(&want.velocity)));
         prop_assert!(same_points(&got.acceleration, &col(&want.acceleration)));
         prop_assert_eq!(&got.regular, &want.regular);
+    }
+    if centres {
+        // The sample-by-sample engine's centres and curvatures (they do not depend on the drive).
+        let (tracked, _) = engine_with(
+            Plan::Tracked,
+            m,
+            theta,
+            Rate::PerSample(omega),
+            Rate::Scalar(0.5),
+        );
+        prop_assert!(same_points(&got.centres, &tracked.centres));
+        prop_assert!(same_points(&got.directions, &tracked.directions));
+        let colf = |v: &[f64]| -> Vec<f64> {
+            if one {
+                (0..n).map(|k| v[k * j + j - 1]).collect()
+            } else {
+                v.to_vec()
+            }
+        };
+        prop_assert!(same_floats(&got.curvature, &colf(&tracked.curvature)));
+        prop_assert!(same_points(
+            &got.curvature_centres,
+            &col(&tracked.curvature_centres)
+        ));
     }
     Ok(())
 }
@@ -340,7 +371,7 @@ proptest! {
     }
 
     /// The held pass's block paths (positions only; positions and rates; the trace point
-    /// alone) give the tracker's bits: every sample's row, flag and margin, on four-bars and
+    /// alone; with or without instant centres and curvatures) give the tracker's bits: every sample's row, flag and margin, on four-bars and
     /// on the catalogue's multi-loop linkages.
     #[test]
     fn block_paths_equal_the_tracker(
@@ -350,14 +381,15 @@ proptest! {
         which in 0usize..5,
         rates in any::<bool>(),
         one in any::<bool>(),
+        centres in any::<bool>(),
     ) {
         let omega: Vec<f64> = (0..theta.len()).map(|k| w + 0.1 * k as f64).collect();
         if which == 4 {
-            block_case(&fb.mechanism(), &theta, &omega, rates, one)?;
+            block_case(&fb.mechanism(), &theta, &omega, rates, one, centres)?;
         } else {
             let name = catalog::MULTI_LOOP[which];
             let m = catalog::linkage_by_name::<f64>(name).unwrap().mechanism;
-            block_case(&m, &theta, &omega, rates, one)?;
+            block_case(&m, &theta, &omega, rates, one, centres)?;
         }
     }
 

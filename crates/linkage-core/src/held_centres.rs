@@ -1,0 +1,348 @@
+//! The held pass's instant centres and path curvatures, a block of samples at a time: the
+//! formulas of [`BodyMotion::of`](crate::centres::BodyMotion::of),
+//! [`instant_centre`](crate::centres::instant_centre) and
+//! [`path_curvature`](crate::centres::path_curvature) term for term, over [`BLOCK`] posed
+//! samples in straight loops the compiler vectorises — so each sample gets the bits that the
+//! sample-by-sample sweep gives it.
+//!
+//! Rates are per unit crank angle (a [`BlockRates`] for the drive `ω = 1, α = 0`). Which pair
+//! of bodies shares a joint is looked up once a block, not once a sample.
+//!
+//! # What a block does not do itself
+//! The scalar code rescales by powers of two where a length, speed or acceleration is outside
+//! `[2⁻³², 2³²]` (or its square is not a normal number); a sample that reaches such a branch is
+//! marked in [`BlockCentres::scalar`] and its block is redone one sample at a time.
+
+use nalgebra::RealField;
+
+use crate::bodies::{Bodies, BodyFrame, BodyId, GROUND};
+use crate::centres::ZERO_RATE;
+use crate::dyad::unit_scale;
+use crate::held::{BlockPoses, BlockRates, BLOCK};
+use crate::scalar::{eps, lit, nan, tiny_square, Vec2};
+use crate::sweep::Columns;
+
+/// `length` of `(x, y)` as the scalar code forms it in the common case, `√(x² + y²)`, and
+/// whether the scalar code takes another branch whose result may differ (a square sum that is
+/// not a normal number, for a vector that is not zero).
+#[inline(always)]
+fn length<T: RealField + Copy>(x: T, y: T, tiny: T) -> (T, bool) {
+    let n2 = x * x + y * y;
+    let plain = (n2.is_finite() && n2 > tiny) || (x == T::zero() && y == T::zero());
+    (n2.sqrt(), !plain)
+}
+
+/// The unit-drive angular velocity of every body over a block, with its zero tolerance
+/// conditioned on the sample's margin ([`BodyMotion::conditioned`](crate::centres::BodyMotion::conditioned)).
+pub(crate) struct BlockCentres<T, const N: usize> {
+    /// `ω` of body `(joint, slot)` per sample.
+    w: [[[T; BLOCK]; 2]; N],
+    /// Its tolerance for "no relative turn".
+    tol: [[[T; BLOCK]; 2]; N],
+    /// The ground's everything.
+    zero: [T; BLOCK],
+    /// Samples the kernel cannot vouch for (see the module): redo them one by one.
+    pub(crate) scalar: [bool; BLOCK],
+    /// The joint each of the first [`PAIRS`] pairs of bodies shares ([`NO_PIN`] if none),
+    /// looked up once a sweep.
+    pins: [u16; PAIRS],
+}
+
+/// Pairs of bodies whose shared joint is looked up once a sweep (further ones once a block).
+const PAIRS: usize = 256;
+/// A pair of bodies that shares no joint.
+const NO_PIN: u16 = u16::MAX;
+/// A pair whose joint is looked up once a block (an index that does not fit).
+const UNKNOWN: u16 = u16::MAX - 1;
+
+/// One body's motion over a block, borrowed: origin, velocity there, `ω`, tolerance.
+struct Body<'a, T> {
+    ox: &'a [T; BLOCK],
+    oy: &'a [T; BLOCK],
+    vx: &'a [T; BLOCK],
+    vy: &'a [T; BLOCK],
+    w: &'a [T; BLOCK],
+    tol: &'a [T; BLOCK],
+}
+
+impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
+    /// An empty block for the bodies `bodies`.
+    pub(crate) fn new(bodies: &Bodies<N>) -> Self {
+        let z = [[[T::zero(); BLOCK]; 2]; N];
+        let mut pins = [NO_PIN; PAIRS];
+        let mut q = 0;
+        for (a, ka) in bodies.ids().enumerate() {
+            for kb in bodies.ids().skip(a + 1) {
+                if q == PAIRS {
+                    break;
+                }
+                pins[q] = match bodies.shared_joint(ka, kb) {
+                    None => NO_PIN,
+                    Some(j) => u16::try_from(j)
+                        .ok()
+                        .filter(|&j| j < UNKNOWN)
+                        .unwrap_or(UNKNOWN),
+                };
+                q += 1;
+            }
+        }
+        BlockCentres {
+            w: z,
+            tol: z,
+            zero: [T::zero(); BLOCK],
+            scalar: [false; BLOCK],
+            pins,
+        }
+    }
+
+    /// The joint bodies `ka` and `kb`, pair `q`, share.
+    fn pin(&self, bodies: &Bodies<N>, q: usize, (ka, kb): (BodyId, BodyId)) -> Option<usize> {
+        match self.pins.get(q) {
+            Some(&NO_PIN) => None,
+            Some(&j) if j != UNKNOWN => Some(usize::from(j)),
+            _ => bodies.shared_joint(ka, kb),
+        }
+    }
+
+    /// Angular velocities and tolerances of every body of the posed block `pos` from its
+    /// unit-drive rates `unit` (a block holds no slider: every body but the ground is a link).
+    /// Call [`Self::start`] first.
+    #[inline(always)]
+    pub(crate) fn bodies(
+        &mut self,
+        bodies: &Bodies<N>,
+        pos: &BlockPoses<T, N>,
+        unit: &BlockRates<T, N>,
+    ) {
+        let tiny = tiny_square::<T>();
+        let (one, e) = (T::one(), eps::<T>());
+        let zr = lit::<T>(ZERO_RATE) * e;
+        for id in bodies.ids() {
+            let BodyFrame::Link {
+                origin: o,
+                toward: t,
+            } = bodies.frame(id)
+            else {
+                // The ground (a block frame would mean a slider, which blocks never hold).
+                if id != GROUND {
+                    self.scalar = [true; BLOCK];
+                }
+                continue;
+            };
+            let (mut w, mut tol, mut scalar) =
+                ([T::zero(); BLOCK], [T::zero(); BLOCK], self.scalar);
+            let (xo, yo, xt, yt) = (&pos.x[o], &pos.y[o], &pos.x[t], &pos.y[t]);
+            let (vxo, vyo, vxt, vyt) = (&unit.vx[o], &unit.vy[o], &unit.vx[t], &unit.vy[t]);
+            for k in 0..BLOCK {
+                // direction_rates(d, d1, 0, 0) at unit scale: ω = (d × d1)/|d|².
+                let (dx, dy) = (xt[k] - xo[k], yt[k] - yo[k]);
+                let (d1x, d1y) = (vxt[k] - vxo[k], vyt[k] - vyo[k]);
+                let l2 = dx * dx + dy * dy;
+                let wk = (dx * d1y - dy * d1x) / l2;
+                let (lo, bo) = length(vxo[k], vyo[k], tiny);
+                let (lt, bt) = length(vxt[k], vyt[k], tiny);
+                let (ld, bd) = length(dx, dy, tiny);
+                scalar[k] |= !unit_scale(dx.abs().max(dy.abs())) | bo | bt | bd;
+                let scale = (lo + lt) / ld;
+                // conditioned(margin): the tolerance over m², m = margin within [ε, 1].
+                let m = pos.margin[k].min(one).max(e);
+                tol[k] = zr * (wk.abs() + scale) / (m * m);
+                w[k] = wk;
+            }
+            let s = usize::from(id.slot);
+            (self.w[id.joint][s], self.tol[id.joint][s], self.scalar) = (w, tol, scalar);
+        }
+    }
+
+    /// Clears the marks of the block before.
+    pub(crate) fn start(&mut self) {
+        self.scalar = [false; BLOCK];
+    }
+
+    /// The motion of body `id` (after [`Self::bodies`]).
+    fn body<'a>(
+        &'a self,
+        bodies: &Bodies<N>,
+        id: BodyId,
+        pos: &'a BlockPoses<T, N>,
+        unit: &'a BlockRates<T, N>,
+    ) -> Body<'a, T> {
+        match bodies.frame(id) {
+            BodyFrame::Link { origin, .. } if id != GROUND => Body {
+                ox: &pos.x[origin],
+                oy: &pos.y[origin],
+                vx: &unit.vx[origin],
+                vy: &unit.vy[origin],
+                w: &self.w[id.joint][usize::from(id.slot)],
+                tol: &self.tol[id.joint][usize::from(id.slot)],
+            },
+            _ => Body {
+                ox: &self.zero,
+                oy: &self.zero,
+                vx: &self.zero,
+                vy: &self.zero,
+                w: &self.zero,
+                tol: &self.zero,
+            },
+        }
+    }
+
+    /// Writes the instant centres of every pair of bodies (in [`Bodies::ids`] order, `np` a
+    /// sample) of the block's first `m` samples, from sample `k0` on: finite ones into
+    /// `centres`, directions of those at infinity into `directions`, NaN otherwise.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the block, its bodies and where the centres go"
+    )]
+    #[inline(always)]
+    pub(crate) fn centres(
+        &mut self,
+        bodies: &Bodies<N>,
+        pos: &BlockPoses<T, N>,
+        unit: &BlockRates<T, N>,
+        (k0, m, np): (usize, usize, usize),
+        mut centres: Option<&mut [Vec2<T>]>,
+        mut directions: Option<&mut [Vec2<T>]>,
+    ) {
+        let nan_t = nan::<T>();
+        let nan2 = Vec2::new(nan_t, nan_t);
+        let tiny = tiny_square::<T>();
+        let zr = lit::<T>(ZERO_RATE) * eps::<T>();
+        let mut scalar = self.scalar;
+        let mut q = 0;
+        for (a, ka) in bodies.ids().enumerate() {
+            for kb in bodies.ids().skip(a + 1) {
+                let rows = (0..m).map(|b| (k0 + b) * np + q);
+                if let Some(jt) = self.pin(bodies, q, (ka, kb)) {
+                    // A pin: the centre is the joint.
+                    if let Some(c) = centres.as_deref_mut() {
+                        for (b, r) in rows.clone().enumerate() {
+                            c[r] = Vec2::new(pos.x[jt][b], pos.y[jt][b]);
+                        }
+                    }
+                    if let Some(d) = directions.as_deref_mut() {
+                        rows.for_each(|r| d[r] = nan2);
+                    }
+                    q += 1;
+                    continue;
+                }
+                let (k, l) = (
+                    self.body(bodies, ka, pos, unit),
+                    self.body(bodies, kb, pos, unit),
+                );
+                let (mut cx, mut cy) = ([nan_t; BLOCK], [nan_t; BLOCK]);
+                let (mut ex, mut ey) = ([nan_t; BLOCK], [nan_t; BLOCK]);
+                for b in 0..BLOCK {
+                    // instant_centre(k, l) at p = k's origin.
+                    let (px, py) = (k.ox[b], k.oy[b]);
+                    let (rx, ry) = (px - k.ox[b], py - k.oy[b]);
+                    let (kvx, kvy) = (k.vx[b] + -ry * k.w[b], k.vy[b] + rx * k.w[b]);
+                    let (sx, sy) = (px - l.ox[b], py - l.oy[b]);
+                    let (lvx, lvy) = (l.vx[b] + -sy * l.w[b], l.vy[b] + sx * l.w[b]);
+                    let (dvx, dvy) = (kvx - lvx, kvy - lvy);
+                    let dw = k.w[b] - l.w[b];
+                    let finite = dvx.is_finite() & dvy.is_finite() & dw.is_finite();
+                    let parallel = dw.abs() <= k.tol[b] + l.tol[b];
+                    let (n, bn) = length(dvx, dvy, tiny);
+                    let (lk, bk) = length(k.vx[b], k.vy[b], tiny);
+                    let (ll, bl) = length(l.vx[b], l.vy[b], tiny);
+                    scalar[b] |= finite & parallel & (bn | bk | bl);
+                    let still = n <= zr * (lk + ll) || n == T::zero();
+                    let at_infinity = finite & parallel & !still;
+                    let at = finite & !parallel;
+                    (cx[b], cy[b]) = if at {
+                        (px + -dvy / dw, py + dvx / dw)
+                    } else {
+                        (nan_t, nan_t)
+                    };
+                    (ex[b], ey[b]) = if at_infinity {
+                        (-dvy / n, dvx / n)
+                    } else {
+                        (nan_t, nan_t)
+                    };
+                }
+                if let Some(c) = centres.as_deref_mut() {
+                    for (b, r) in rows.clone().enumerate() {
+                        c[r] = Vec2::new(cx[b], cy[b]);
+                    }
+                }
+                if let Some(d) = directions.as_deref_mut() {
+                    for (b, r) in rows.enumerate() {
+                        d[r] = Vec2::new(ex[b], ey[b]);
+                    }
+                }
+                q += 1;
+            }
+        }
+        self.scalar = scalar;
+    }
+
+    /// Writes the path curvature (into `kappa`) and centre of curvature (into `centres`) of
+    /// the joints `columns` names, for the block's first `m` samples from sample `k0` on (`j`
+    /// joints a sample for [`Columns::All`]).
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the block, which joints, and where the curvatures go"
+    )]
+    #[inline(always)]
+    pub(crate) fn curvature(
+        &mut self,
+        pos: &BlockPoses<T, N>,
+        unit: &BlockRates<T, N>,
+        columns: Columns,
+        (k0, m, j): (usize, usize, usize),
+        mut kappa: Option<&mut [T]>,
+        mut centres: Option<&mut [Vec2<T>]>,
+    ) {
+        let nan_t = nan::<T>();
+        let sixteen_eps = lit::<T>(16.0) * eps::<T>();
+        let (first, last, width) = match columns {
+            Columns::All => (0, j, j),
+            Columns::One(t) => (t, t + 1, 1),
+        };
+        let mut scalar = self.scalar;
+        for i in first..last {
+            let (px, py, vx, vy) = (&pos.x[i], &pos.y[i], &unit.vx[i], &unit.vy[i]);
+            let (ax, ay) = (&unit.ax[i], &unit.ay[i]);
+            let (mut kap, mut cx, mut cy) = ([nan_t; BLOCK], [nan_t; BLOCK], [nan_t; BLOCK]);
+            for b in 0..BLOCK {
+                let finite = px[b].is_finite()
+                    & py[b].is_finite()
+                    & vx[b].is_finite()
+                    & vy[b].is_finite()
+                    & ax[b].is_finite()
+                    & ay[b].is_finite();
+                let moving = finite & !(vx[b] == T::zero() && vy[b] == T::zero());
+                let ordinary = unit_scale(vx[b].abs().max(vy[b].abs()))
+                    & unit_scale(ax[b].abs().max(ay[b].abs()));
+                scalar[b] |= moving & !ordinary;
+                let v2 = vx[b] * vx[b] + vy[b] * vy[b];
+                let c = vx[b] * ay[b] - vy[b] * ax[b];
+                let speed = v2.sqrt();
+                let k = c / (v2 * speed);
+                let a_norm = (ax[b] * ax[b] + ay[b] * ay[b]).sqrt();
+                let straight = c.abs() <= sixteen_eps * speed * a_norm;
+                let f = v2 / c;
+                let (x, y) = (px[b] + -vy[b] * f, py[b] + vx[b] * f);
+                let round = moving & !straight;
+                kap[b] = if round {
+                    k
+                } else if moving {
+                    T::zero()
+                } else {
+                    nan_t
+                };
+                let here = round & x.is_finite() & y.is_finite();
+                (cx[b], cy[b]) = if here { (x, y) } else { (nan_t, nan_t) };
+            }
+            let e = |b: usize| (k0 + b) * width + (i - first);
+            if let Some(out) = kappa.as_deref_mut() {
+                (0..m).for_each(|b| out[e(b)] = kap[b]);
+            }
+            if let Some(out) = centres.as_deref_mut() {
+                (0..m).for_each(|b| out[e(b)] = Vec2::new(cx[b], cy[b]));
+            }
+        }
+        self.scalar = scalar;
+    }
+}
