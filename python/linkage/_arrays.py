@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage import _core
 from linkage._core import LinkageError
 
 Float1D = NDArray[np.float64]
@@ -141,6 +142,28 @@ def as_flag(value: Any, name: str) -> bool:
     if isinstance(value, (int, np.integer)) and int(value) in (0, 1):
         return bool(value)
     raise TypeError(f"{name} must be True or False, got {_short(value)}")
+
+
+def choices(kind: str) -> tuple[str, ...]:
+    """Return the names of one of the core's string choices, in the core's order.
+
+    ``kind`` is ``"assembly"``, ``"side"``, ``"reach"`` or ``"mode"``: the names are defined once,
+    by the core's enums (``Assembly::NAMES`` …), and mirrored by the extension.
+
+    >>> choices("assembly")
+    ('open', 'crossed')
+    """
+    return tuple(_core.CHOICES[kind])
+
+
+def one_of(kind: str) -> str:
+    """Return the names of a string choice as a message says them.
+
+    >>> one_of("mode")
+    "'trig', 'table' or 'recurrence'"
+    """
+    names = [repr(n) for n in choices(kind)]
+    return f"{', '.join(names[:-1])} or {names[-1]}" if len(names) > 1 else names[0]
 
 
 def as_choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:

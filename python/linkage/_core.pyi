@@ -8,6 +8,7 @@ from typing_extensions import final
 
 __all__ = [
     "CAPACITY",
+    "CHOICES",
     "AssemblyError",
     "FourBar",
     "LinkageError",
@@ -52,6 +53,7 @@ __all__ = [
 ]
 
 CAPACITY: int
+CHOICES: dict[str, list[str]]
 
 class LinkageError(ValueError): ...
 class AssemblyError(LinkageError): ...

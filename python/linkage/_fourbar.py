@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point
+from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
 from linkage._core import LinkageError
 from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
 from linkage._sweep import Sweep
@@ -80,8 +80,8 @@ class FourBar:
                 actual = math.hypot(cx - ox, cy - oy)
                 if abs(actual - g) > 1e-12 * max(g, actual):
                     raise LinkageError(f"ground {g} contradicts |c - o| = {actual}")
-        if not isinstance(assembly, str) or assembly not in ("open", "crossed"):
-            raise LinkageError(f"assembly must be 'open' or 'crossed', got {assembly!r}")
+        if not isinstance(assembly, str) or assembly not in choices("assembly"):
+            raise LinkageError(f"assembly must be {one_of('assembly')}, got {assembly!r}")
         r = as_length(crank, "crank")
         b = as_length(coupler, "coupler")
         k = as_length(rocker, "rocker")

@@ -8,7 +8,15 @@ from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 from linkage import _core
-from linkage._arrays import as_angles, as_finite, as_length, as_point, as_rate
+from linkage._arrays import (
+    as_angles,
+    as_choice,
+    as_finite,
+    as_length,
+    as_point,
+    as_rate,
+    choices,
+)
 from linkage._core import LinkageError
 from linkage._mobility import Mobility, mobility
 from linkage._sweep import OUTPUTS, Sweep
@@ -246,7 +254,7 @@ class Mechanism:
         """
         i, j = self._index(p1, "p1"), self._index(p2, "p2")
         a, b = as_length(r1, "r1"), as_length(r2, "r2")
-        side = _choice(side, "side", ("left", "right"))
+        side = as_choice(side, "side", choices("side"))
         self._add(name, lambda: self._core.dyad(i, j, a, b, side))
 
     def slider(
@@ -288,7 +296,7 @@ class Mechanism:
         """
         p, o = self._index(pivot, "pivot"), self._index(origin, "origin")
         length = as_length(r, "r")
-        reach = _choice(reach, "reach", ("ahead", "behind"))
+        reach = as_choice(reach, "reach", choices("reach"))
         if (direction is None) == (link is None):
             raise LinkageError("slider needs exactly one of direction=(dx, dy) or link=(from, to)")
         if direction is not None:
@@ -499,14 +507,6 @@ class Mechanism:
         )
         s.time = times
         return s
-
-
-def _choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:
-    if not isinstance(value, str):
-        raise TypeError(f"{name} must be one of {allowed}, got {type(value).__name__}")
-    if value not in allowed:
-        raise LinkageError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
-    return value
 
 
 __all__ = ["Mechanism", "check_outputs"]

@@ -16,11 +16,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_real_array
+from linkage._arrays import as_angles, as_count, as_real_array, choices, one_of
 from linkage._core import LinkageError
 from linkage._mechanism import Mechanism
 
-_ASSEMBLIES = ("open", "crossed")
+_ASSEMBLIES = choices("assembly")
 
 
 def sweep_fourbars(
@@ -272,7 +272,7 @@ def _assembly(value: Any) -> NDArray[np.bool_]:
         values = np.asarray(value)
         if values.ndim > 1 or values.dtype.kind not in "U":
             raise TypeError(
-                f"assembly must be 'open', 'crossed' or a 1-D array of them, got {values.dtype}"
+                f"assembly must be {one_of('assembly')} or a 1-D array of them, got {values.dtype}"
                 f" {values.shape}"
             )
         shape = values.shape
@@ -281,7 +281,7 @@ def _assembly(value: Any) -> NDArray[np.bool_]:
         k = int(np.flatnonzero(bad)[0])
         where = "" if isinstance(value, str) else f"[{k}]"
         raise LinkageError(
-            f"assembly{where} must be 'open' or 'crossed', got {str(values.reshape(-1)[k])!r}"
+            f"assembly{where} must be {one_of('assembly')}, got {str(values.reshape(-1)[k])!r}"
         )
     crossed: NDArray[np.bool_] = np.asarray(values == "crossed", dtype=np.bool_).reshape(shape)
     return crossed

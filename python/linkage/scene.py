@@ -40,6 +40,7 @@ from pathlib import Path
 from typing import Any
 
 from linkage import catalog
+from linkage._arrays import choices, one_of
 from linkage._core import LinkageError
 from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
 from linkage.drive import LAWS
@@ -561,9 +562,9 @@ def _mechanism(m: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
                 raise scene.error(
                     sec, k, "missing (a four-bar needs ground, crank, coupler, rocker)"
                 )
-        if m.get("assembly", "open") not in ("open", "crossed"):
+        if m.get("assembly", "open") not in choices("assembly"):
             raise scene.error(
-                sec, "assembly", f"must be 'open' or 'crossed', got {m['assembly']!r}"
+                sec, "assembly", f"must be {one_of('assembly')}, got {m['assembly']!r}"
             )
     else:
         _joints(m["joints"], m.get("trace"), scene)
@@ -615,8 +616,8 @@ def _joints(joints: Sequence[Mapping[str, Any]], trace: Any, scene: Scene) -> No
         if kind == "dyad":
             if j["p1"] == j["p2"]:
                 raise scene.error(jp, "p2", f"must differ from p1 (both {j['p1']!r})")
-            if j.get("side", "left") not in ("left", "right"):
-                raise scene.error(jp, "side", f"must be 'left' or 'right', got {j['side']!r}")
+            if j.get("side", "left") not in choices("side"):
+                raise scene.error(jp, "side", f"must be {one_of('side')}, got {j['side']!r}")
         if kind == "point":
             on = j["on"]
             if len(on) != 2 or not all(isinstance(v, str) for v in on):

@@ -52,6 +52,9 @@ impl Side {
         }
     }
 
+    /// Every name [`Side::from_str`](core::str::FromStr::from_str) takes, in declaration order.
+    pub const NAMES: [&'static str; 2] = ["left", "right"];
+
     /// The name users write: `"left"` or `"right"`.
     pub fn name(self) -> &'static str {
         match self {

@@ -50,6 +50,10 @@ impl Assembly {
         }
     }
 
+    /// Every name [`Assembly::from_str`](core::str::FromStr::from_str) takes, in declaration
+    /// order.
+    pub const NAMES: [&'static str; 2] = ["open", "crossed"];
+
     /// The name users write: `"open"` or `"crossed"`.
     pub fn name(self) -> &'static str {
         match self {

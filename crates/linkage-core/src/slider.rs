@@ -3,6 +3,7 @@
 use nalgebra::RealField;
 
 use crate::dyad::DyadFailure;
+use crate::error::Error;
 use crate::scalar::{cross, eps, lit, perp, Vec2};
 
 /// Which of the two intersections of a circle and a line.
@@ -32,6 +33,53 @@ impl Reach {
             Reach::Ahead => T::one(),
             Reach::Behind => -T::one(),
         }
+    }
+
+    /// Every name [`Reach::from_str`](core::str::FromStr::from_str) takes, in declaration order.
+    pub const NAMES: [&'static str; 2] = ["ahead", "behind"];
+
+    /// The name users write: `"ahead"` or `"behind"`.
+    ///
+    /// ```
+    /// use linkage_core::{Error, Reach};
+    /// assert_eq!("behind".parse::<Reach>(), Ok(Reach::Behind));
+    /// assert_eq!(Reach::Ahead.name(), "ahead");
+    /// assert_eq!(
+    ///     "back".parse::<Reach>(),
+    ///     Err(Error::InvalidChoice { what: "reach", choices: "'ahead' or 'behind'" })
+    /// );
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            Reach::Ahead => "ahead",
+            Reach::Behind => "behind",
+        }
+    }
+}
+
+impl core::str::FromStr for Reach {
+    type Err = Error;
+
+    /// The reach named `"ahead"` or `"behind"` (exactly; see [`Reach::name`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidChoice`] for any other name.
+    fn from_str(name: &str) -> Result<Self, Error> {
+        match name {
+            "ahead" => Ok(Reach::Ahead),
+            "behind" => Ok(Reach::Behind),
+            _ => Err(Error::InvalidChoice {
+                what: "reach",
+                choices: "'ahead' or 'behind'",
+            }),
+        }
+    }
+}
+
+impl core::fmt::Display for Reach {
+    /// [`Reach::name`].
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
     }
 }
 

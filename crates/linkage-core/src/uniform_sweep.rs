@@ -44,6 +44,47 @@ pub enum AngleMode {
     },
 }
 
+impl AngleMode {
+    /// Every name [`AngleMode::named`] takes, in declaration order.
+    pub const NAMES: [&'static str; 3] = ["trig", "table", "recurrence"];
+
+    /// The mode named `"trig"`, `"table"` or `"recurrence"`, with `block` samples per anchor
+    /// for the last two (checked when sweeping: see [`MAX_TABLE`]).
+    ///
+    /// ```
+    /// use linkage_core::{AngleMode, Error};
+    /// assert_eq!(AngleMode::named("table", 64), Ok(AngleMode::Table { block: 64 }));
+    /// assert_eq!(AngleMode::Recurrence { block: 8 }.name(), "recurrence");
+    /// assert_eq!(
+    ///     AngleMode::named("fast", 64),
+    ///     Err(Error::InvalidChoice { what: "mode", choices: "'trig', 'table' or 'recurrence'" })
+    /// );
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidChoice`] for any other name.
+    pub fn named(name: &str, block: usize) -> Result<Self, Error> {
+        match name {
+            "trig" => Ok(AngleMode::Trig),
+            "table" => Ok(AngleMode::Table { block }),
+            "recurrence" => Ok(AngleMode::Recurrence { block }),
+            _ => Err(Error::InvalidChoice {
+                what: "mode",
+                choices: "'trig', 'table' or 'recurrence'",
+            }),
+        }
+    }
+
+    /// The name users write: `"trig"`, `"table"` or `"recurrence"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            AngleMode::Trig => "trig",
+            AngleMode::Table { .. } => "table",
+            AngleMode::Recurrence { .. } => "recurrence",
+        }
+    }
+}
+
 /// Longest small table of the [`AngleMode::Table`] mode (it lives on the stack).
 pub const MAX_TABLE: usize = 256;
 

@@ -310,16 +310,8 @@ impl FourBar {
         out: Option<Bound<'py, PyArrayDyn<f64>>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let (theta0, dtheta) = (theta0.0, dtheta.0);
-        let mode = match mode {
-            "trig" => AngleMode::Trig,
-            "table" => AngleMode::Table { block },
-            "recurrence" => AngleMode::Recurrence { block },
-            other => {
-                return Err(linkage_error(format!(
-                    "mode must be 'trig', 'table' or 'recurrence', got {other:?}"
-                )))
-            }
-        };
+        let mode = AngleMode::named(mode, block)
+            .map_err(|e| linkage_error(format!("{e}, got {mode:?}")))?;
         if threads == 0 {
             return Err(linkage_error("threads must be at least 1"));
         }

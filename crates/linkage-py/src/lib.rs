@@ -39,6 +39,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LinkageError", py.get_type::<error::LinkageError>())?;
     m.add("AssemblyError", py.get_type::<error::AssemblyError>())?;
     m.add("CAPACITY", CAPACITY)?;
+    // The names of the core's string choices, so that Python checks them against one list.
+    let choices = pyo3::types::PyDict::new(py);
+    choices.set_item("assembly", linkage_core::Assembly::NAMES.to_vec())?;
+    choices.set_item("side", linkage_core::Side::NAMES.to_vec())?;
+    choices.set_item("reach", linkage_core::Reach::NAMES.to_vec())?;
+    choices.set_item("mode", linkage_core::AngleMode::NAMES.to_vec())?;
+    m.add("CHOICES", choices)?;
     m.add_class::<mechanism::Mechanism>()?;
     m.add_class::<fourbar::FourBar>()?;
     m.add_function(wrap_pyfunction!(catalog::catalog_four_bar, m)?)?;

@@ -64,17 +64,6 @@ fn finite(name: &str, values: &[f64]) -> PyResult<()> {
     }
 }
 
-/// Parses `"ahead"` / `"behind"`.
-fn parse_reach(reach: &str) -> PyResult<Reach> {
-    match reach {
-        "ahead" => Ok(Reach::Ahead),
-        "behind" => Ok(Reach::Behind),
-        other => Err(linkage_error(format!(
-            "reach must be 'ahead' or 'behind', got {other:?}"
-        ))),
-    }
-}
-
 /// A mechanism program of up to `CAPACITY` joints, addressed by index (the `linkage.Mechanism`
 /// class adds names).
 ///
@@ -163,7 +152,7 @@ impl Mechanism {
         dy: Real,
         reach: &str,
     ) -> PyResult<usize> {
-        let reach = parse_reach(reach)?;
+        let reach: Reach = choice(reach)?;
         let direction = LineDirection::Fixed(Vec2::new(dx.0, dy.0));
         self.lock()
             .slider(pivot, r.0, origin, direction, reach)
@@ -186,7 +175,7 @@ impl Mechanism {
         angle: Real,
         reach: &str,
     ) -> PyResult<usize> {
-        let reach = parse_reach(reach)?;
+        let reach: Reach = choice(reach)?;
         let direction = LineDirection::Link {
             from: from_,
             to,
