@@ -5,12 +5,13 @@ nothing written. Every example scene must still pass ``check``."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
 
 from linkage import OUTPUTS as SWEEP_OUTPUTS
-from linkage import build, runner, scene
+from linkage import _schema, build, runner, scene
 from linkage.cli import main
 
 ROOT = Path(__file__).parent.parent
@@ -125,15 +126,18 @@ def test_memory_estimate_grows_with_samples_and_outputs():
     assert build.estimate_memory(plain, mech, 10**6) < big
 
 
+# Watt's linkage assembles only for |θ| < 46.6°; a dwell at 180° never reaches it: a scene the
+# schema accepts and only building the study refuses.
+NEVER_ASSEMBLES = (
+    'outputs = ["trajectory"]\n[mechanism]\ncatalog = "watt"\n'
+    '[drive]\nkind = "program"\nstart_deg = 180.0\nsegments = [{ duration = 1.0 }]\n'
+)
+
+
 def test_no_assembled_sample_under_a_samples_override_is_an_error():
-    # The linkage assembles only for |θ| < 46.6°; a dwell at 180° never reaches it. The scene
-    # is refused by validation; run() refuses it too when called on a hand-made Scene.
-    text = (
-        'outputs = ["trajectory"]\n[mechanism]\ncatalog = "watt"\n'
-        '[drive]\nkind = "program"\nstart_deg = 180.0\nsegments = [{ duration = 1.0 }]\n'
-    )
+    # The scene is refused by validation; run() refuses it too when called on a hand-made Scene.
     with pytest.raises(scene.SceneError, match="no sample assembles"):
-        scene.parse(text)
+        scene.parse(NEVER_ASSEMBLES)
     sc = scene.Scene(
         name="s",
         path=None,
@@ -143,6 +147,22 @@ def test_no_assembled_sample_under_a_samples_override_is_an_error():
     )
     with pytest.raises(scene.SceneError, match=r"^\[drive\] start_deg: no sample assembles"):
         runner.run(sc, samples=64)
+
+
+def test_parse_and_load_build_the_scene_once_the_schema_parser_never(tmp_path, monkeypatch):
+    assert _schema.parse_only(NEVER_ASSEMBLES).mechanism == {"catalog": "watt"}
+    path = tmp_path / "never.toml"
+    path.write_text(NEVER_ASSEMBLES, encoding="utf-8")
+    where = re.escape(f"{path}:6: [drive] start_deg: no sample assembles")
+    with pytest.raises(scene.SceneError, match=f"^{where}"):
+        scene.load(path)
+    built: list[scene.Scene] = []
+    monkeypatch.setattr(build, "validate", built.append)
+    hoecken = ROOT / "examples" / "hoecken.toml"
+    sc = scene.load(hoecken)
+    assert built == [sc]
+    assert _schema.parse_only(hoecken.read_text(), hoecken) == sc and built == [sc]
+    assert scene.parse(hoecken.read_text(), hoecken) == sc and built == [sc, sc]
 
 
 def test_a_walker_with_feet_off_the_ground_reports_no_support_not_minus_infinity():

@@ -26,6 +26,18 @@ from linkage import catalog, synthesis
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage._schema import (
+    CYCLES_MAX,
+    MEMORY_CAP,
+    POINTS_MAX,
+    SAMPLES_MAX,
+    SPEED_RANGE,
+    TIME_RANGE,
+    Scene,
+    SceneError,
+    _did_you_mean,
+    base_folder,
+)
 from linkage.cam import DiscCam
 from linkage.drive import (
     ConstantSpeed,
@@ -39,18 +51,6 @@ from linkage.drive import (
 )
 from linkage.figures import check_counts
 from linkage.forces import LinkMass, PointLoad, joint_forces
-from linkage.scene import (
-    CYCLES_MAX,
-    MEMORY_CAP,
-    POINTS_MAX,
-    SAMPLES_MAX,
-    SPEED_RANGE,
-    TIME_RANGE,
-    Scene,
-    SceneError,
-    _did_you_mean,
-    base_folder,
-)
 from linkage.walker import Leg, Walker, gait_phases
 
 Array = NDArray[np.float64]

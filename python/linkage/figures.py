@@ -16,14 +16,12 @@ from numpy.typing import NDArray
 
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage._schema import Scene
 from linkage._sweep import Sweep
 from linkage.cam import CamProfile
 from linkage.drive import Drive
 from linkage.forces import Forces
 from linkage.geometry import StraightPart
-from linkage.scene import (
-    Scene,
-)
 from linkage.synthesis import Candidate
 from linkage.walker import Simulation, Walker
 

@@ -20,6 +20,7 @@ from linkage import synthesis
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage._schema import Scene
 from linkage._sweep import Sweep
 from linkage.build import (
     ARITHMETIC,
@@ -60,7 +61,6 @@ from linkage.figures import (
 )
 from linkage.forces import Forces, joint_forces
 from linkage.geometry import StraightPart, straightness, three_point_centres
-from linkage.scene import Scene
 from linkage.walker import Simulation, Walker
 
 Array = NDArray[np.float64]
