@@ -105,9 +105,16 @@ def test_the_package_has_no_import_cycle_at_import_time():
 
 
 def test_no_import_cycle_runs_through_the_scene_modules_even_inside_functions():
-    # Other modules break their cycles with a documented lazy import (walker and gait_search,
-    # catalog and the package's __version__); the scene modules need none.
+    # The scene modules need no lazy import to avoid a cycle.
     assert [c for c in cycles(graph(with_lazy=True)) if c & SCENE_MODULES] == []
+
+
+def test_the_one_lazy_cycle_is_the_walker_and_its_searches():
+    # Counting imports inside functions, one cycle is left, on purpose: Walker.search_phases
+    # (and the old names linkage.walker.search_*) call linkage.gait_search, which takes a Walker.
+    # The package's version lives in linkage._version, so catalog and the report writers no
+    # longer import the package's __init__.
+    assert cycles(graph(with_lazy=True)) == [{"linkage.walker", "linkage.gait_search"}]
 
 
 def test_the_schema_imports_neither_build_nor_the_facade():

@@ -8,6 +8,8 @@ import numpy as np
 import pytest
 
 import linkage
+from linkage import _schema, build, scene
+from linkage._mechanism import JOINT_KINDS
 
 
 def slider_crank(r=2.0, rod=5.0):
@@ -191,3 +193,14 @@ def test_jansen_leg():
     assert 60 < width < 75 and 18 < height < 26
     part = linkage.straightness(s.point[:-1], 0.5, closed=True)
     assert part is not None and part.length > 30
+
+
+def test_one_registry_of_joint_kinds() -> None:
+    """The schema, the builder and the build's error blame read one table of joint kinds."""
+    assert scene.JOINT_KINDS is JOINT_KINDS and _schema.JOINT_KINDS is JOINT_KINDS
+    assert build.JOINT_KINDS is JOINT_KINDS
+    for kind, k in JOINT_KINDS.items():
+        assert k.blame in k.required, kind
+        assert not set(k.required) & set(k.optional), kind
+    with pytest.raises(linkage.LinkageError, match=r"\(fixed, crank, dyad, point\)"):
+        linkage.Mechanism().add_joint({"kind": "gear", "name": "G"})

@@ -39,7 +39,11 @@ def test_quadruped_moves_diagonal_pairs():
     assert set(np.unique(down)) == {2, 4}
     pairs = {frozenset(legs[row]) for row in sim.stance[down == 2]}
     assert pairs == {frozenset({"A", "D"}), frozenset({"B", "C"})}
-    np.testing.assert_allclose(sim.pr_ratio, (1 - sim.duty_factor) / sim.duty_factor)
+    # p/r (from the core's duty-factor figure) against a count of the samples of the stance
+    # mask (swing over stance), and the Hoecken stance's ~210° of the turn.
+    swing, stance = (~sim.stance).sum(axis=0), sim.stance.sum(axis=0)
+    np.testing.assert_allclose(sim.pr_ratio, swing / stance, rtol=1e-12)
+    assert np.all((sim.pr_ratio > 0.6) & (sim.pr_ratio < 0.8)), sim.pr_ratio
     assert sim.stride == pytest.approx(np.full(4, 44.376), abs=0.01)
     # The Hoecken swing rises 2√600 − 40 = 8.99 mm above the stance line (exact points).
     np.testing.assert_allclose(sim.lift_height, 2 * math.sqrt(600) - 40, atol=1e-9)

@@ -11,8 +11,6 @@ Conventions: angles in radians, counter-clockwise positive; lengths in any consi
 
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError, version
-
 from linkage import (
     batch,
     cam,
@@ -28,6 +26,7 @@ from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._sweep import OUTPUTS, Sweep
+from linkage._version import __version__
 from linkage.gait_search import search_duty_factor
 from linkage.geometry import (
     ball_point,  # deprecated (0.2.0): inflection_circle
@@ -40,11 +39,6 @@ from linkage.geometry import (
     three_point_centres,
 )
 from linkage.walker import Leg, Walker, gait_phases
-
-try:
-    __version__ = version("linkage-kinematics")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0+unknown"
 
 __all__ = [
     "OUTPUTS",

@@ -4,16 +4,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from typing import Any, Union
+from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
 from linkage._core import LinkageError
 from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
 from linkage._sweep import Sweep
+
+if TYPE_CHECKING:  # drive.py imports this module
+    from linkage.drive import Drive
 
 JOINTS = ("O", "C", "A", "B", "P")
 LINKS = ("ground", "crank", "coupler", "rocker")
@@ -210,7 +213,7 @@ class FourBar:
             return None
         return ranges[0]
 
-    def transmission_angle(self, theta: Any) -> ArrayOrFloat:
+    def transmission_angle(self, theta: ArrayLike) -> ArrayOrFloat:
         """Angle at ``B`` between coupler and rocker, in [0, π].
 
         Best at π/2, fails at 0 and π; NaN where the linkage cannot be assembled. Scalar in,
@@ -246,13 +249,13 @@ class FourBar:
 
     def sweep(
         self,
-        theta: Any = None,
-        omega: Any = None,
-        alpha: Any = None,
+        theta: ArrayLike | None = None,
+        omega: ArrayLike | None = None,
+        alpha: ArrayLike | None = None,
         outputs: Iterable[str] = DEFAULT_OUTPUTS,
         *,
-        time: Any = None,
-        drive: Any = None,
+        time: ArrayLike | None = None,
+        drive: Drive | None = None,
     ) -> Sweep:
         """Solve at each crank angle, or at each time of a drive; see :meth:`Mechanism.sweep`.
 

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Iterable, Mapping, Sequence
-from typing import Any
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from numpy.typing import ArrayLike
 
 from linkage import _core
 from linkage._arrays import (
@@ -20,6 +23,9 @@ from linkage._arrays import (
 from linkage._core import LinkageError
 from linkage._mobility import Mobility, mobility
 from linkage._sweep import OUTPUTS, Sweep
+
+if TYPE_CHECKING:  # drive.py imports this module
+    from linkage.drive import Drive
 
 DEFAULT_OUTPUTS = ("point", "joints")
 
@@ -363,18 +369,9 @@ class Mechanism:
         linkage.LinkageError: unknown joint kind 'slider' (fixed, crank, dyad, point)
         """
         kind = joint.get("kind")
-        if kind == "fixed":
-            self.fixed(joint["name"], joint["at"])
-        elif kind == "crank":
-            phase = math.radians(as_finite(joint.get("phase_deg", 0.0), "phase_deg"))
-            self.crank(joint["name"], joint["centre"], joint["radius"], phase)
-        elif kind == "dyad":
-            side = joint.get("side", "left")
-            self.dyad(joint["name"], joint["p1"], joint["p2"], joint["r1"], joint["r2"], side)
-        elif kind == "point":
-            self.point(joint["name"], tuple(joint["on"]), (joint["along"], joint.get("left", 0.0)))
-        else:
-            raise LinkageError(f"unknown joint kind {kind!r} (fixed, crank, dyad, point)")
+        if not isinstance(kind, str) or kind not in JOINT_KINDS:
+            raise LinkageError(f"unknown joint kind {kind!r} ({', '.join(JOINT_KINDS)})")
+        JOINT_KINDS[kind].add(self, joint)
 
     @classmethod
     def from_joints(
@@ -404,13 +401,13 @@ class Mechanism:
     # -- solving --------------------------------------------------------------------------
     def sweep(
         self,
-        theta: Any = None,
-        omega: Any = None,
-        alpha: Any = None,
+        theta: ArrayLike | None = None,
+        omega: ArrayLike | None = None,
+        alpha: ArrayLike | None = None,
         outputs: Iterable[str] = DEFAULT_OUTPUTS,
         *,
-        time: Any = None,
-        drive: Any = None,
+        time: ArrayLike | None = None,
+        drive: Drive | None = None,
     ) -> Sweep:
         """Solve the mechanism at each crank angle of ``theta`` (radians, scalar or 1-D).
 
@@ -509,4 +506,45 @@ class Mechanism:
         return s
 
 
-__all__ = ["Mechanism", "check_outputs"]
+@dataclass(frozen=True)
+class JointKind:
+    """One kind of joint of a scene's joint table: its keys and how it is added.
+
+    The one registry of joint kinds (:data:`JOINT_KINDS`): the scene schema checks keys against
+    it, :meth:`Mechanism.add_joint` adds through it, and a failed build blames its ``blame`` key.
+    """
+
+    required: tuple[str, ...]
+    """Keys a joint of this kind must have (besides ``name`` and ``kind``)."""
+    optional: tuple[str, ...]
+    """Keys it may have."""
+    blame: str
+    """The key a scene's error names when building the joint fails."""
+    add: Callable[[Mechanism, Mapping[str, Any]], None]
+    """Adds the joint to a mechanism."""
+
+
+def _add_crank(m: Mechanism, j: Mapping[str, Any]) -> None:
+    phase = math.radians(as_finite(j.get("phase_deg", 0.0), "phase_deg"))
+    m.crank(j["name"], j["centre"], j["radius"], phase)
+
+
+JOINT_KINDS: dict[str, JointKind] = {
+    "fixed": JointKind(("at",), (), "at", lambda m, j: m.fixed(j["name"], j["at"])),
+    "crank": JointKind(("centre", "radius"), ("phase_deg",), "radius", _add_crank),
+    "dyad": JointKind(
+        ("p1", "p2", "r1", "r2"),
+        ("side",),
+        "r2",
+        lambda m, j: m.dyad(j["name"], j["p1"], j["p2"], j["r1"], j["r2"], j.get("side", "left")),
+    ),
+    "point": JointKind(
+        ("on", "along"),
+        ("left",),
+        "on",
+        lambda m, j: m.point(j["name"], tuple(j["on"]), (j["along"], j.get("left", 0.0))),
+    ),
+}
+"""Every joint kind of a scene's joint table, by name (see :class:`JointKind`)."""
+
+__all__ = ["JOINT_KINDS", "JointKind", "Mechanism", "check_outputs"]

@@ -26,6 +26,7 @@ from typing import Any
 from linkage import catalog
 from linkage._arrays import choices, one_of
 from linkage._core import LinkageError
+from linkage._mechanism import JOINT_KINDS as _JOINT_KINDS
 from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
 from linkage.drive import LAWS
 from linkage.walker import GAITS
@@ -241,13 +242,9 @@ JOINT = {
     "along": "coord",
     "left": "coord",
 }
-JOINT_KINDS = {
-    "fixed": (("at",), ()),
-    "crank": (("centre", "radius"), ("phase_deg",)),
-    "dyad": (("p1", "p2", "r1", "r2"), ("side",)),
-    "point": (("on", "along"), ("left",)),
-}
-"""Each joint kind's required and optional keys (besides name and kind)."""
+JOINT_KINDS = _JOINT_KINDS
+"""Each joint kind's required and optional keys (besides name and kind): the mechanism's one
+registry (:class:`linkage._mechanism.JointKind`)."""
 WALKER = {
     "model": "str",
     "legs": "tables",
@@ -574,7 +571,7 @@ def _joints(joints: Sequence[Mapping[str, Any]], trace: Any, scene: Scene) -> No
             raise scene.error(
                 jp, "kind", f"unknown kind {kind!r}{_did_you_mean(kind, JOINT_KINDS)}"
             )
-        need, optional = JOINT_KINDS[kind]
+        need, optional = JOINT_KINDS[kind].required, JOINT_KINDS[kind].optional
         for req in need:
             if req not in j:
                 raise scene.error(jp, req, f"missing (a {kind} needs {', '.join(need)})")

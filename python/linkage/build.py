@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 from linkage import catalog, synthesis
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
+from linkage._mechanism import JOINT_KINDS, Mechanism
 from linkage._schema import (
     CYCLES_MAX,
     MEMORY_CAP,
@@ -109,16 +109,12 @@ def build_mechanism(scene: Scene) -> FourBar | Mechanism:
             )
     mech = Mechanism()
     for idx, j in enumerate(m["joints"]):
-        with _blame(scene, ("mechanism", "joints", idx), JOINT_KEY[j["kind"]]):
+        with _blame(scene, ("mechanism", "joints", idx), JOINT_KINDS[j["kind"]].blame):
             mech.add_joint(j)
     if "trace" in m:
         with _blame(scene, sec, "trace"):
             mech.trace = m["trace"]
     return mech
-
-
-JOINT_KEY = {"fixed": "at", "crank": "radius", "dyad": "r2", "point": "on"}
-"""The key blamed when building a joint of each kind fails."""
 
 
 def _scaled(fb: FourBar, k: float) -> FourBar:
@@ -545,7 +541,7 @@ def no_assembly(
                 )
             return scene.error(
                 ("mechanism", "joints", idx),
-                JOINT_KEY[j["kind"]],
+                JOINT_KINDS[j["kind"]].blame,
                 f"no sample assembles: joint {j['name']!r} cannot be placed at the first sample",
             )
     return scene.error(

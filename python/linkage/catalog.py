@@ -34,6 +34,7 @@ from linkage._arrays import as_count, as_finite, check_memory
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage._version import __version__
 from linkage.cam import leg_lift
 from linkage.geometry import straightness
 from linkage.legs import family
@@ -512,8 +513,6 @@ def _cache_key(rel_tol: float, samples: int, check: int) -> str:
     That is the package version and the compiled core (size and modification time), the parameters
     and the catalogue's names.
     """
-    from linkage import __version__  # noqa: PLC0415 (linkage/__init__ imports this module)
-
     try:
         st = os.stat(_core.__file__ or "")
         core = [st.st_size, st.st_mtime_ns]

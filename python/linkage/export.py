@@ -46,9 +46,9 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage import __version__
 from linkage._core import LinkageError
 from linkage._mechanism import Mechanism
+from linkage._version import __version__
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.figures import Result, Row, length_unit, torque_unit
 from linkage.synthesis import Candidate

@@ -36,8 +36,8 @@ from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
-from linkage import __version__
 from linkage._core import LinkageError
+from linkage._version import __version__
 
 MARKER = ".linkage-report"
 """Name of the marker file that makes a folder a report linkage wrote (and may replace)."""
