@@ -232,6 +232,7 @@ def test_mechanism_shared_between_threads_never_reports_a_borrow() -> None:
                     pass  # the mechanism is full: expected
                 len(m)
                 m.describe()
+                m.constructions()
         except BaseException as e:
             errors.append(e)
 

@@ -94,6 +94,20 @@ def test_slider_is_a_block_on_its_guide():
     assert [d.joint_names[j] for j in d.pivots] == ["O"]
 
 
+def test_slider_on_a_link_slides_along_the_turned_link():
+    m = linkage.Mechanism()
+    m.fixed("O", (0, 0))
+    m.fixed("C", (3, 0))
+    m.crank("A", "O", radius=1.0)
+    m.slider("S", "C", 4.0, "O", link=("O", "A"), angle=0.3)
+    d = mechanism_drawing(m, m.sweep(THETA))
+    (sl,) = d.sliders
+    assert d.joint_names[sl.joint] == "S" and d.joint_names[sl.origin] == "O"
+    # The crank O→A points at θ: the guide at θ + 0.3, sample by sample.
+    phi = THETA + 0.3
+    np.testing.assert_allclose(sl.direction, np.c_[np.cos(phi), np.sin(phi)], rtol=0, atol=1e-15)
+
+
 def test_sweep_of_another_mechanism_is_refused():
     fb = linkage.catalog.hoecken()
     with pytest.raises(linkage.LinkageError, match="not the mechanism's"):

@@ -204,3 +204,69 @@ def test_one_registry_of_joint_kinds() -> None:
         assert not set(k.required) & set(k.optional), kind
     with pytest.raises(linkage.LinkageError, match=r"\(fixed, crank, dyad, point\)"):
         linkage.Mechanism().add_joint({"kind": "gear", "name": "G"})
+
+
+def test_constructions_are_the_program_as_values() -> None:
+    """The extension describes each joint's construction by kind and fields (not Debug text)."""
+    m = slider_on_link()
+    m.fixed("G", (0, -5))
+    m.slider("B", "A", 30, "G", direction=(2, 0), reach="behind")
+    m.dyad("D", "A", "C", 2.0, 3.0, side="right")
+    assert m._core.constructions() == [
+        {"kind": "fixed", "at": (0.0, 0.0)},
+        {"kind": "fixed", "at": (3.0, 0.0)},
+        {"kind": "crank", "centre": 0, "radius": 1.0, "phase": 0.0},
+        {
+            "kind": "slider",
+            "pivot": 1,
+            "r": 4.0,
+            "origin": 0,
+            "direction": ("link", 0, 2, 0.3),
+            "reach": "ahead",
+        },
+        {"kind": "point", "from": 1, "to": 3, "along": 2.0, "left": 0.5},
+        {"kind": "fixed", "at": (0.0, -5.0)},
+        # A fixed direction is stored as a unit vector.
+        {
+            "kind": "slider",
+            "pivot": 2,
+            "r": 30.0,
+            "origin": 5,
+            "direction": ("fixed", 1.0, 0.0),
+            "reach": "behind",
+        },
+        {"kind": "dyad", "p1": 2, "p2": 1, "r1": 2.0, "r2": 3.0, "side": "right"},
+    ]
+
+
+def test_line_directions_are_the_carrying_link_turned() -> None:
+    """The core's slider line directions over a sweep, against the crank angle + 0.3 by arctan2;
+    NaN where the sweep did not assemble; bad joints and shapes are LinkageErrors."""
+    m = slider_on_link()
+    m.slider("T", "C", 2.5, "O", link=("O", "A"), angle=1.1, reach="ahead")  # fails in places
+    s = m.sweep(np.linspace(0, 2 * np.pi, 181))
+    assert 0 < s.valid.sum() < len(s.valid)
+    a = s.joint("A") - s.joint("O")
+    for joint, turn in ((3, 0.3), (5, 1.1)):
+        u = m._core.line_directions(joint, s.joints)
+        assert u.shape == (181, 2) and u.dtype == np.float64
+        phi = np.arctan2(a[:, 1], a[:, 0]) + turn
+        np.testing.assert_allclose(u, np.c_[np.cos(phi), np.sin(phi)], rtol=0, atol=1e-15)
+        assert np.array_equal(np.isnan(u).any(axis=1), np.isnan(a).any(axis=1))
+    assert m._core.line_directions(3, s.joints[:0]).shape == (0, 2)
+    with pytest.raises(linkage.LinkageError, match="joint 2 is not a slider"):
+        m._core.line_directions(2, s.joints)
+    with pytest.raises(linkage.LinkageError, match="joint 99 is not a slider"):
+        m._core.line_directions(99, s.joints)
+    with pytest.raises(linkage.LinkageError, match="joint must be ≥ 0"):
+        m._core.line_directions(-1, s.joints)
+    with pytest.raises(linkage.LinkageError, match=r"shape \(n, 6, 2\)"):
+        m._core.line_directions(3, s.joints[:, :5].copy())
+
+
+def test_rate_margin_is_the_cores() -> None:
+    """One rate margin, the core's ``32·√ε`` (2⁻²¹ for float64), read by ``Sweep.regular``."""
+    from linkage import _sweep
+
+    assert linkage._core.RATE_MARGIN == 32 * math.sqrt(np.finfo(np.float64).eps) == 2.0**-21
+    assert _sweep.RATE_MARGIN is linkage._core.RATE_MARGIN

@@ -10,14 +10,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage._arrays import UnknownNameError, as_real
-from linkage._core import LinkageError
+from linkage._core import RATE_MARGIN, LinkageError
 
 OUTPUTS = ("point", "joints", "velocity", "acceleration", "instant_centres", "curvature")
 """Names accepted by ``outputs=``: the trace point, every joint, their rates, the instant centres
 of every pair of links, and the path curvature of every joint."""
-
-RATE_MARGIN = 32.0 * float(np.sqrt(np.finfo(np.float64).eps))
-"""The core's rate margin (``linkage_core::rate_margin``): below it rates are NaN."""
 
 
 @functools.lru_cache(maxsize=256)

@@ -62,7 +62,6 @@ rocker bar C-B
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Literal
@@ -212,18 +211,22 @@ def clip_to(points: Array, bounds: Bounds) -> Array:
 
 @dataclass(frozen=True)
 class _Structure:
+    mechanism: Mechanism
+    """The program (a FourBar's as a Mechanism)."""
     names: tuple[str, ...]
     links: tuple[LinkShape, ...]
     pivots: tuple[int, ...]
-    sliders: tuple[tuple[int, int, tuple[Any, ...]], ...]
-    """(joint, origin, ("fixed", dx, dy) or ("link", from, to, angle)) per slider."""
+    sliders: tuple[tuple[int, int], ...]
+    """(joint, origin) per slider."""
     trace: int
 
+    def slider_directions(self, positions: Array) -> list[Array]:
+        """Return each slider's unit line direction (N, 2) at joint positions (N, J, 2).
 
-_SLIDER = re.compile(
-    r"Slider \{ pivot: \d+, origin: (\d+), direction: (?:Fixed\(\[\[([^,\]]+), ([^\]]+)\]\]\)"
-    r"|Link \{ from: (\d+), to: (\d+), angle: ([^ }]+) \})"
-)
+        The core computes them (``Mechanism::line_directions``): NaN where undetermined.
+        """
+        rows = np.ascontiguousarray(positions, dtype=np.float64)
+        return [self.mechanism._core.line_directions(j, rows) for j, _ in self.sliders]
 
 
 def _structure(mech: FourBar | Mechanism, reference: Array) -> _Structure:
@@ -251,19 +254,13 @@ def _structure(mech: FourBar | Mechanism, reference: Array) -> _Structure:
         links.append(LinkShape(name, order, kind))
     ground = links[0].joints if links and links[0].kind == "ground" else ()
     pivots = tuple(j for j in ground if j in moving)
-    sliders = []
-    for k, text in enumerate(m._core.describe()):
-        hit = _SLIDER.match(text)
-        if hit is None:
-            continue
-        origin = int(hit.group(1))
-        if hit.group(2) is not None:
-            how: tuple[Any, ...] = ("fixed", float(hit.group(2)), float(hit.group(3)))
-        else:
-            how = ("link", int(hit.group(4)), int(hit.group(5)), float(hit.group(6)))
-        sliders.append((k, origin, how))
+    sliders = tuple(
+        (k, int(c["origin"]))
+        for k, c in enumerate(m._core.constructions())
+        if c["kind"] == "slider"
+    )
     trace = index[m.trace] if m.trace is not None else len(names) - 1
-    return _Structure(names, tuple(links), pivots, tuple(sliders), trace)
+    return _Structure(m, names, tuple(links), pivots, sliders, trace)
 
 
 def _shape(idx: tuple[int, ...], ref: Array) -> tuple[LinkKind, tuple[int, ...]]:
@@ -297,21 +294,6 @@ def _first_valid(positions: Array) -> Array:
     return row
 
 
-def _slider_directions(how: tuple[Any, ...], positions: Array) -> Array:
-    n = positions.shape[0]
-    if how[0] == "fixed":
-        v = np.array([how[1], how[2]], dtype=float)
-        out: Array = np.tile(v / max(float(np.hypot(*v)), 1e-300), (n, 1))
-        return out
-    _, f, t, angle = how
-    d = positions[:, t] - positions[:, f]
-    c, s = math.cos(angle), math.sin(angle)
-    d = np.c_[c * d[:, 0] - s * d[:, 1], s * d[:, 0] + c * d[:, 1]]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        u: Array = d / np.hypot(d[:, 0], d[:, 1])[:, None]
-    return u
-
-
 def mechanism_drawing(mech: FourBar | Mechanism, sweep: Sweep, units: str = "") -> Drawing:
     """Draw ``mech`` at every sample of ``sweep`` (``mech.sweep(theta)``).
 
@@ -335,7 +317,9 @@ def mechanism_drawing(mech: FourBar | Mechanism, sweep: Sweep, units: str = "") 
         raise LinkageError(
             f"the sweep's joints {sweep.joint_names} are not the mechanism's {st.names}"
         )
-    sliders = tuple(SliderShape(j, o, _slider_directions(how, pos)) for j, o, how in st.sliders)
+    sliders = tuple(
+        SliderShape(j, o, d) for (j, o), d in zip(st.sliders, st.slider_directions(pos))
+    )
     trace = st.names.index(sweep.trace)
     return Drawing(
         joint_names=st.names,
@@ -428,8 +412,7 @@ def walker_drawing(
         if (leg.plane == "sagittal") == (view == "side"):
             # The ground symbol only where the leg's plane faces the viewer.
             pivots += [base + j for j in st.pivots]
-        for j, o, how in st.sliders:
-            d = _slider_directions(how, p2)
+        for (j, o), d in zip(st.sliders, st.slider_directions(p2)):
             d3 = _to_body(leg, d[:, None], vector=True)[:, 0][:, axes]
             sliders.append(SliderShape(base + j, base + o, d3, li))
     pos = np.concatenate(blocks, axis=1)

@@ -2,8 +2,9 @@
 
 use nalgebra::RealField;
 
-use crate::mechanism::{Construction, LineDirection, Mechanism};
+use crate::mechanism::{Construction, Mechanism};
 use crate::scalar::Vec2;
+use crate::slider::LineDirection;
 
 /// Index of the frame (ground) body.
 pub const GROUND: BodyId = BodyId {

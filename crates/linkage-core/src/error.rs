@@ -50,6 +50,12 @@ pub enum Error {
         /// Index of the joint whose construction is undetermined.
         joint: usize,
     },
+    /// A joint that is not a slider was given where a slider's joint is needed (e.g. for its
+    /// line's direction, [`crate::Mechanism::line_directions`]).
+    NotASlider {
+        /// The joint given.
+        joint: usize,
+    },
     /// A construction refers to a joint that is not (yet) defined.
     UnknownJoint {
         /// Index of the construction being added.
@@ -178,6 +184,7 @@ impl fmt::Display for Error {
                 f,
                 "joint {joint} is undetermined: the joints it is built on coincide"
             ),
+            Error::NotASlider { joint } => write!(f, "joint {joint} is not a slider"),
             Error::UnknownJoint { joint, refers_to } => write!(
                 f,
                 "construction {joint} refers to joint {refers_to}, which is not defined before it"

@@ -345,8 +345,7 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
         let i = b.joint;
         match self.mech.constructions()[i] {
             Construction::Slider { direction, .. } => {
-                let u = Mechanism::<T, N>::line_direction(direction, pos)
-                    .unwrap_or(Vec2::new(T::one(), T::zero()));
+                let u = direction.at(pos).unwrap_or(Vec2::new(T::one(), T::zero()));
                 perp(u)
             }
             _ => Vec2::new(T::zero(), T::one()),

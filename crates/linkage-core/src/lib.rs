@@ -146,12 +146,12 @@ pub use kinetostatics::{Dynamics, ForceSolution, ForceSweep, Inertia, Load, Load
     reason = "the old name of CrankRates, kept for one release"
 )]
 pub use mechanism::Motion;
-pub use mechanism::{Construction, CrankRates, LineDirection, Mechanism};
+pub use mechanism::{Construction, CrankRates, Mechanism};
 pub use motion::rate_margin;
 pub use motion_law::{Derivatives, Discontinuity, MotionLaw, Program, Segment};
 pub use scalar::Vec2;
 pub use schedule::{ScheduleTable, StanceSchedule};
-pub use slider::{Reach, SliderDyad, SliderPose};
+pub use slider::{LineDirection, Reach, SliderDyad, SliderPose};
 pub use straightness::{straight_part, StraightPart};
 pub use support::{convex_hull, stability_margin, support_margins};
 #[cfg(feature = "std")]

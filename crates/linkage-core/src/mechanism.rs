@@ -5,44 +5,7 @@ use nalgebra::RealField;
 use crate::dyad::{Dyad, DyadFailure, Side};
 use crate::error::{check_finite, check_length, Error};
 use crate::scalar::{lit, perp, Vec2};
-use crate::slider::{Reach, SliderDyad};
-
-/// Direction of a slider's line.
-///
-/// ```
-/// use linkage_core::{Construction, Error, LineDirection, Mechanism, Reach, Vec2};
-/// // Slider-crank: crank 2 about O, rod 5, the slider on the x axis through O.
-/// let mut m = Mechanism::<f64, 4>::new();
-/// let o = m.fixed(Vec2::zeros()).unwrap();
-/// let a = m.crank(o, 2.0, 0.0).unwrap();
-/// let b = m.slider(a, 5.0, o, LineDirection::Fixed(Vec2::new(3.0, 0.0)), Reach::Ahead).unwrap();
-/// // A fixed direction is stored as a unit vector.
-/// let Construction::Slider { direction, .. } = m.constructions()[b] else { unreachable!() };
-/// assert_eq!(direction, LineDirection::Fixed(Vec2::new(1.0, 0.0)));
-/// let mut j = [Vec2::zeros(); 3];
-/// m.pose(core::f64::consts::FRAC_PI_2, &mut j).unwrap();
-/// assert!((j[b] - Vec2::new(21.0_f64.sqrt(), 0.0)).norm() < 1e-12);
-/// // A zero direction names no line.
-/// assert_eq!(
-///     m.slider(a, 5.0, o, LineDirection::Fixed(Vec2::zeros()), Reach::Ahead),
-///     Err(Error::InvalidLength { what: "slider direction", value: 0.0 })
-/// );
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LineDirection<T> {
-    /// A fixed direction (stored as a unit vector).
-    Fixed(Vec2<T>),
-    /// The direction of the link `from → to`, turned counter-clockwise by `angle`: the line is
-    /// carried by that link.
-    Link {
-        /// First joint of the carrying link.
-        from: usize,
-        /// Second joint of the carrying link.
-        to: usize,
-        /// Angle from `from → to` to the line direction (radians).
-        angle: T,
-    },
-}
+use crate::slider::{LineDirection, Reach, SliderDyad};
 
 /// One step of a mechanism's program: it places one joint from joints placed before it.
 ///
@@ -473,26 +436,6 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         })
     }
 
-    /// Unit direction of a slider line at the positions `pos`: the fixed direction, or the
-    /// carrying link's `from → to` turned by its angle. `None` when the carrying link's joints
-    /// coincide or its length is not finite (the direction is undetermined).
-    #[inline]
-    pub(crate) fn line_direction(dir: LineDirection<T>, pos: &[Vec2<T>]) -> Option<Vec2<T>> {
-        match dir {
-            LineDirection::Fixed(u) => Some(u),
-            LineDirection::Link { from, to, angle } => {
-                let d = pos[to] - pos[from];
-                let n = crate::scalar::length(d);
-                if n == T::zero() || !n.is_finite() {
-                    return None;
-                }
-                let (s, c) = angle.sin_cos();
-                let e = d / n;
-                Some(Vec2::new(c * e.x - s * e.y, s * e.x + c * e.y))
-            }
-        }
-    }
-
     /// For a dyad on a crank pin `A` and a fixed joint `Q` (the crank turning about a fixed
     /// joint `O`), the base vector `p2 − p1` and Kahan's vanishing factor for it without
     /// cancellation (see [`Dyad::solve_with_base`]): `(d² − Δ²)/(d + Δ)` folded,
@@ -775,8 +718,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                 slider,
                 ..
             } => {
-                let u =
-                    Self::line_direction(direction, pos).ok_or(Error::Coincident { joint: i })?;
+                let u = direction.at(pos).ok_or(Error::Coincident { joint: i })?;
                 let s = slider
                     .solve(pos[pivot], pos[origin], u, slack)
                     .map_err(fail)?;

@@ -4,8 +4,9 @@ use nalgebra::RealField;
 
 use crate::dyad::solve_rows;
 use crate::error::Error;
-use crate::mechanism::{Construction, CrankRates, LineDirection, Mechanism};
+use crate::mechanism::{Construction, CrankRates, Mechanism};
 use crate::scalar::{cross, eps, lit, nan, perp, Vec2};
+use crate::slider::LineDirection;
 
 /// The smallest assembly margin at which rates are computed: `m* = 32·√ε` (4.8e-7 for `f64`,
 /// 0.011 for `f32`).
@@ -187,7 +188,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                     slider,
                     ..
                 } => {
-                    let u = Self::line_direction(direction, pos).unwrap_or(bad);
+                    let u = direction.at(pos).unwrap_or(bad);
                     let toggle = (p - pos[pivot]).dot(&u).abs() < m_star * slider.r;
                     let turn = match direction {
                         LineDirection::Fixed(_) => (T::zero(), T::zero(), T::zero()),

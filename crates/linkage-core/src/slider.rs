@@ -1,10 +1,12 @@
-//! The RRP slider dyad: a joint on a line, at a given distance from a known joint.
+//! The RRP slider dyad: a joint on a line, at a given distance from a known joint; the line's
+//! direction, fixed or carried by a link.
 
 use nalgebra::RealField;
 
 use crate::dyad::DyadFailure;
 use crate::error::Error;
-use crate::scalar::{cross, eps, lit, perp, Vec2};
+use crate::mechanism::{Construction, Mechanism};
+use crate::scalar::{cross, eps, lit, nan, perp, Vec2};
 
 /// Which of the two intersections of a circle and a line.
 ///
@@ -80,6 +82,146 @@ impl core::fmt::Display for Reach {
     /// [`Reach::name`].
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+/// Direction of a slider's line.
+///
+/// ```
+/// use linkage_core::{Construction, Error, LineDirection, Mechanism, Reach, Vec2};
+/// // Slider-crank: crank 2 about O, rod 5, the slider on the x axis through O.
+/// let mut m = Mechanism::<f64, 4>::new();
+/// let o = m.fixed(Vec2::zeros()).unwrap();
+/// let a = m.crank(o, 2.0, 0.0).unwrap();
+/// let b = m.slider(a, 5.0, o, LineDirection::Fixed(Vec2::new(3.0, 0.0)), Reach::Ahead).unwrap();
+/// // A fixed direction is stored as a unit vector.
+/// let Construction::Slider { direction, .. } = m.constructions()[b] else { unreachable!() };
+/// assert_eq!(direction, LineDirection::Fixed(Vec2::new(1.0, 0.0)));
+/// let mut j = [Vec2::zeros(); 3];
+/// m.pose(core::f64::consts::FRAC_PI_2, &mut j).unwrap();
+/// assert!((j[b] - Vec2::new(21.0_f64.sqrt(), 0.0)).norm() < 1e-12);
+/// // A zero direction names no line.
+/// assert_eq!(
+///     m.slider(a, 5.0, o, LineDirection::Fixed(Vec2::zeros()), Reach::Ahead),
+///     Err(Error::InvalidLength { what: "slider direction", value: 0.0 })
+/// );
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LineDirection<T> {
+    /// A fixed direction (stored as a unit vector).
+    Fixed(Vec2<T>),
+    /// The direction of the link `from → to`, turned counter-clockwise by `angle`: the line is
+    /// carried by that link.
+    Link {
+        /// First joint of the carrying link.
+        from: usize,
+        /// Second joint of the carrying link.
+        to: usize,
+        /// Angle from `from → to` to the line direction (radians).
+        angle: T,
+    },
+}
+
+impl<T: RealField + Copy> LineDirection<T> {
+    /// The line's direction at the joint positions `pos`.
+    ///
+    /// A [`LineDirection::Fixed`] direction is returned as it is: a [`Mechanism`] stores it as a
+    /// unit vector ([`Mechanism::push`]), whatever `pos`. A [`LineDirection::Link`] direction is
+    /// the unit vector `ê = (pos[to] − pos[from]) / |pos[to] − pos[from]|` turned
+    /// counter-clockwise by `angle`: `(c·ê.x − s·ê.y, s·ê.x + c·ê.y)` with `(s, c)` the sine and
+    /// cosine of `angle`.
+    ///
+    /// `None` when a carried direction is undetermined: the link's two joints coincide, or its
+    /// length is not finite (a joint of it is NaN, as in a sample that did not assemble, or
+    /// infinite).
+    ///
+    /// ```
+    /// use linkage_core::{LineDirection, Vec2};
+    /// // The link 0 → 1 points along +y; turned by −90° the line points along +x.
+    /// let pos = [Vec2::new(1.0_f64, 1.0), Vec2::new(1.0, 3.0)];
+    /// let carried = LineDirection::Link { from: 0, to: 1, angle: -core::f64::consts::FRAC_PI_2 };
+    /// assert!((carried.at(&pos).unwrap() - Vec2::new(1.0, 0.0)).norm() < 1e-15);
+    /// // Coincident or NaN joints carry no direction; a fixed one needs no joints.
+    /// assert_eq!(carried.at(&[pos[0], pos[0]]), None);
+    /// assert_eq!(carried.at(&[pos[0], Vec2::new(f64::NAN, 0.0)]), None);
+    /// let fixed = LineDirection::Fixed(Vec2::new(0.0_f64, 1.0));
+    /// assert_eq!(fixed.at(&[]), Some(Vec2::new(0.0, 1.0)));
+    /// ```
+    ///
+    /// # Panics
+    /// If `pos` does not hold the joints `from` and `to` of a [`LineDirection::Link`] (a
+    /// mechanism's constructions refer only to joints placed before them, so `pos` of a
+    /// mechanism's joints always does).
+    #[inline]
+    pub fn at(self, pos: &[Vec2<T>]) -> Option<Vec2<T>> {
+        match self {
+            LineDirection::Fixed(u) => Some(u),
+            LineDirection::Link { from, to, angle } => {
+                let d = pos[to] - pos[from];
+                let n = crate::scalar::length(d);
+                if n == T::zero() || !n.is_finite() {
+                    return None;
+                }
+                let (s, c) = angle.sin_cos();
+                let e = d / n;
+                Some(Vec2::new(c * e.x - s * e.y, s * e.x + c * e.y))
+            }
+        }
+    }
+}
+
+impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
+    /// The unit direction of the line the slider `joint` slides on, in each sample of `joints`
+    /// (rows of [`Mechanism::len`] joint positions, as a sweep writes them), into `out` (one per
+    /// row): [`LineDirection::at`] of the slider's line, NaN where it is undetermined (the
+    /// carrying link's joints coincide or are NaN: a sample that did not assemble).
+    ///
+    /// ```
+    /// use linkage_core::{Error, LineDirection, Mechanism, Reach, Vec2};
+    /// // A slider through O on a line carried by the crank O → A, turned by 0.3 rad.
+    /// let mut m = Mechanism::<f64, 4>::new();
+    /// let o = m.fixed(Vec2::zeros()).unwrap();
+    /// let c = m.fixed(Vec2::new(3.0, 0.0)).unwrap();
+    /// let a = m.crank(o, 1.0, 0.0).unwrap();
+    /// let line = LineDirection::Link { from: o, to: a, angle: 0.3 };
+    /// let s = m.slider(c, 4.0, o, line, Reach::Ahead).unwrap();
+    /// // Two samples: the crank along +x, then a sample that did not assemble (NaN).
+    /// let mut joints = [Vec2::new(f64::NAN, f64::NAN); 8];
+    /// m.pose(0.0, &mut joints[..4]).unwrap();
+    /// let mut u = [Vec2::zeros(); 2];
+    /// m.line_directions(s, &joints, &mut u).unwrap();
+    /// assert!((u[0] - Vec2::new(0.3_f64.cos(), 0.3_f64.sin())).norm() < 1e-15);
+    /// assert!(u[1].x.is_nan() && u[1].y.is_nan());
+    /// // The crank pin is not a slider.
+    /// assert_eq!(m.line_directions(a, &joints, &mut u), Err(Error::NotASlider { joint: a }));
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NotASlider`] when `joint` is not a slider joint of this mechanism;
+    /// [`Error::BufferLength`] when `joints` does not hold `out.len()` rows of
+    /// [`Mechanism::len`] joints.
+    pub fn line_directions(
+        &self,
+        joint: usize,
+        joints: &[Vec2<T>],
+        out: &mut [Vec2<T>],
+    ) -> Result<(), Error> {
+        let Some(&Construction::Slider { direction, .. }) = self.constructions().get(joint) else {
+            return Err(Error::NotASlider { joint });
+        };
+        let j = self.len();
+        if joints.len() / j != out.len() || !joints.len().is_multiple_of(j) {
+            return Err(Error::BufferLength {
+                what: "joints",
+                expected: out.len().saturating_mul(j),
+                got: joints.len(),
+            });
+        }
+        let undetermined = Vec2::new(nan::<T>(), nan::<T>());
+        for (u, row) in out.iter_mut().zip(joints.chunks_exact(j)) {
+            *u = direction.at(row).unwrap_or(undetermined);
+        }
+        Ok(())
     }
 }
 
@@ -270,5 +412,84 @@ mod tests {
         let (_, v) = SliderDyad::velocity(a, va, q, Vec2::zeros(), u, 0.0, p).unwrap();
         let xdot = -r * th.sin() * w - r * r * th.sin() * th.cos() * w / root;
         assert!((v.x - xdot).abs() < 1e-13 && v.y.abs() < 1e-15);
+    }
+
+    /// A slider through O on a line carried by the crank O → A turned by 1.1 rad, at 3 from
+    /// C = (3, 0) with a rod of 2.5: it assembles only while the line passes within 2.5 of C.
+    fn carried_slider() -> (Mechanism<f64, 4>, usize) {
+        let mut m = Mechanism::new();
+        let o = m.fixed(Vec2::zeros()).unwrap();
+        let c = m.fixed(Vec2::new(3.0, 0.0)).unwrap();
+        let a = m.crank(o, 1.0, 0.0).unwrap();
+        let line = LineDirection::Link {
+            from: o,
+            to: a,
+            angle: 1.1,
+        };
+        let s = m.slider(c, 2.5, o, line, Reach::Ahead).unwrap();
+        (m, s)
+    }
+
+    #[test]
+    fn line_directions_are_the_crank_angle_plus_the_turn() {
+        // Independently of `at`: the crank O → A points at θ, so the line points at θ + 1.1,
+        // (cos, sin) of that; NaN where the pose fails.
+        let (m, s) = carried_slider();
+        const K: usize = 64;
+        let mut joints = [Vec2::zeros(); 4 * K];
+        let mut failed = 0;
+        for (k, row) in joints.chunks_exact_mut(4).enumerate() {
+            let theta = 2.0 * core::f64::consts::PI * k as f64 / K as f64;
+            if m.pose(theta, row).is_err() {
+                row.fill(Vec2::new(f64::NAN, f64::NAN));
+                failed += 1;
+            }
+        }
+        assert!(
+            failed > 0 && failed < K,
+            "some samples assemble, some not: {failed}"
+        );
+        let mut u = [Vec2::zeros(); K];
+        m.line_directions(s, &joints, &mut u).unwrap();
+        for (k, (u, row)) in u.iter().zip(joints.chunks_exact(4)).enumerate() {
+            if row[2].x.is_nan() {
+                assert!(u.x.is_nan() && u.y.is_nan(), "sample {k}: {u:?}");
+                continue;
+            }
+            let phi = (row[2].y - row[0].y).atan2(row[2].x - row[0].x) + 1.1;
+            let want = Vec2::new(phi.cos(), phi.sin());
+            // A few ulp: rounding of θ + 1.1 and of the trigonometric functions.
+            assert!(
+                (u - want).norm() < 1e-15,
+                "sample {k}: {u:?} against {want:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn line_directions_refuse_other_joints_and_short_buffers() {
+        let (m, s) = carried_slider();
+        let joints = [Vec2::zeros(); 8];
+        let mut u = [Vec2::zeros(); 2];
+        for joint in [0, 2, 4, usize::MAX] {
+            assert_eq!(
+                m.line_directions(joint, &joints, &mut u),
+                Err(Error::NotASlider { joint })
+            );
+        }
+        // 8 positions are 2 rows of 4 joints: not 7 positions, nor one row.
+        let short = Error::BufferLength {
+            what: "joints",
+            expected: 8,
+            got: 7,
+        };
+        assert_eq!(m.line_directions(s, &joints[..7], &mut u), Err(short));
+        let one = Error::BufferLength {
+            what: "joints",
+            expected: 4,
+            got: 8,
+        };
+        assert_eq!(m.line_directions(s, &joints, &mut u[..1]), Err(one));
+        assert_eq!(m.line_directions(s, &joints, &mut u), Ok(()));
     }
 }

@@ -150,6 +150,7 @@ pub mod named {
         origin = "origin";
         from_ = "from_";
         to = "to";
+        joint = "joint";
     }
 }
 

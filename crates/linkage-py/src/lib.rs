@@ -39,6 +39,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LinkageError", py.get_type::<error::LinkageError>())?;
     m.add("AssemblyError", py.get_type::<error::AssemblyError>())?;
     m.add("CAPACITY", CAPACITY)?;
+    // Below this assembly margin rates are NaN (`linkage_core::rate_margin`): one value, the
+    // core's, for the Python checks too.
+    m.add("RATE_MARGIN", linkage_core::rate_margin::<f64>())?;
     // The names of the core's string choices, so that Python checks them against one list.
     let choices = pyo3::types::PyDict::new(py);
     choices.set_item("assembly", linkage_core::Assembly::NAMES.to_vec())?;

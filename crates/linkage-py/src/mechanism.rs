@@ -2,15 +2,15 @@
 //! the sweep over numpy arrays (checked and allocated here, computed by the core).
 
 use linkage_core::{
-    sweep_pairs, Bodies, Columns, LineDirection, Mechanism as CoreMechanism, Rate, Reach, Side,
-    SweepOutputs, Vec2,
+    sweep_pairs, Bodies, Columns, Construction, LineDirection, Mechanism as CoreMechanism, Rate,
+    Reach, Side, SweepOutputs, Vec2,
 };
 use numpy::{
     Ix1, Ix2, Ix3, PyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3,
     PyReadwriteArray, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 
 use std::sync::{Mutex, MutexGuard};
 
@@ -199,13 +199,50 @@ impl Mechanism {
 
     /// Constructions as strings, one per joint in program order: each the core
     /// `Construction`'s `Debug` form, e.g. `Crank { centre: 0, radius: 10.0, phase: 0.0 }`
-    /// (for display and debugging; `linkage.drawing` reads slider lines from it).
+    /// (for display and debugging only: `constructions` gives the same as values).
     fn describe(&self) -> Vec<String> {
         self.snapshot()
             .constructions()
             .iter()
             .map(|c| format!("{c:?}"))
             .collect()
+    }
+
+    /// Constructions as dicts, one per joint in program order: `kind` (`"fixed"`, `"crank"`,
+    /// `"dyad"`, `"slider"`, `"point"`) and the core `Construction`'s fields: `at` (x, y);
+    /// `centre`, `radius`, `phase`; `p1`, `p2`, `r1`, `r2`, `side`; `pivot`, `r`, `origin`,
+    /// `direction` (`("fixed", dx, dy)`, a unit vector, or `("link", from, to, angle)`),
+    /// `reach`; `from`, `to`, `along`, `left`.
+    fn constructions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let m = self.snapshot();
+        let out = PyList::empty(py);
+        for c in m.constructions() {
+            out.append(construction(py, c)?)?;
+        }
+        Ok(out)
+    }
+
+    /// The unit direction of the line of slider `joint` in each sample of swept joints
+    /// `(n, j, 2)` (`linkage_core::Mechanism::line_directions`): `(n, 2)`, NaN where it is
+    /// undetermined (a sample that did not assemble).
+    fn line_directions<'py>(
+        &self,
+        py: Python<'py>,
+        #[pyo3(from_py_with = named::joint)] joint: usize,
+        joints: PyReadonlyArray3<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray<f64, Ix2>>> {
+        let m = self.snapshot();
+        let rows = joint_rows("joints", &joints, m.len())?;
+        let n = joints.shape()[0];
+        let what = || format!("line directions of {n} samples");
+        memory::check(&what, memory::bytes_of::<f64>(n as u128 * 2))?;
+        let out = memory::uninit::<f64, Ix2>(py, &what, &[n, 2])?;
+        {
+            let u = fresh_points(&out)?;
+            py.detach(|| m.line_directions(joint, rows, u))
+                .map_err(to_py)?;
+        }
+        Ok(out)
     }
 
     /// Body (link) members as joint index lists, the ground first.
@@ -550,6 +587,67 @@ pub(crate) fn as_slice<'a, T: numpy::Element, D: numpy::ndarray::Dimension>(
 ) -> PyResult<&'a mut [T]> {
     a.as_slice_mut()
         .map_err(|_| linkage_error("internal error: output not contiguous"))
+}
+
+/// One construction as the dict `Mechanism.constructions` describes.
+fn construction<'py>(py: Python<'py>, c: &Construction<f64>) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    match *c {
+        Construction::Fixed { at } => {
+            d.set_item("kind", "fixed")?;
+            d.set_item("at", (at.x, at.y))?;
+        }
+        Construction::Crank {
+            centre,
+            radius,
+            phase,
+        } => {
+            d.set_item("kind", "crank")?;
+            d.set_item("centre", centre)?;
+            d.set_item("radius", radius)?;
+            d.set_item("phase", phase)?;
+        }
+        Construction::Dyad { p1, p2, dyad, side } => {
+            d.set_item("kind", "dyad")?;
+            d.set_item("p1", p1)?;
+            d.set_item("p2", p2)?;
+            d.set_item("r1", dyad.r1)?;
+            d.set_item("r2", dyad.r2)?;
+            d.set_item("side", side.name())?;
+        }
+        Construction::Slider {
+            pivot,
+            origin,
+            direction,
+            slider,
+            reach,
+        } => {
+            d.set_item("kind", "slider")?;
+            d.set_item("pivot", pivot)?;
+            d.set_item("r", slider.r)?;
+            d.set_item("origin", origin)?;
+            match direction {
+                LineDirection::Fixed(u) => d.set_item("direction", ("fixed", u.x, u.y))?,
+                LineDirection::Link { from, to, angle } => {
+                    d.set_item("direction", ("link", from, to, angle))?
+                }
+            }
+            d.set_item("reach", reach.name())?;
+        }
+        Construction::Point {
+            from,
+            to,
+            along,
+            left,
+        } => {
+            d.set_item("kind", "point")?;
+            d.set_item("from", from)?;
+            d.set_item("to", to)?;
+            d.set_item("along", along)?;
+            d.set_item("left", left)?;
+        }
+    }
+    Ok(d)
 }
 
 /// Rows of `j` joints from a C-contiguous `(n, j, 2)` float64 array.
