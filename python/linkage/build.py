@@ -738,31 +738,11 @@ def synthesis_target(scene: Scene) -> Array:
     closed = bool(s.get("closed", True))
     if len(points) > POINTS_MAX:
         raise scene.error(sec, "points", f"{name}: at most {POINTS_MAX} points, got {len(points)}")
-    # As linkage.synthesis.path cleans them: repeated neighbours (and a closed target's
-    # repeated first point) count once.
-    keep = np.ones(len(points), dtype=bool)
-    keep[1:] = np.any(points[1:] != points[:-1], axis=1)
-    distinct = points[keep]
-    if closed and len(distinct) > 1 and np.array_equal(distinct[0], distinct[-1]):
-        distinct = distinct[:-1]
-    if len(distinct) < synthesis.MIN_POINTS:
-        raise scene.error(
-            sec,
-            "points",
-            f"{name}: path synthesis needs at least {synthesis.MIN_POINTS} distinct points, "
-            f"got {len(distinct)}",
-        )
-    centred = distinct - distinct.mean(axis=0)
-    sv = np.linalg.svd(centred, compute_uv=False)
-    if sv[0] == 0:
-        raise scene.error(sec, "points", f"{name}: the points all coincide")
-    if closed and sv[1] <= 1e-12 * sv[0]:
-        raise scene.error(
-            sec,
-            "points",
-            f"{name}: the points all lie on one line: a closed curve through them encloses "
-            "nothing (closed = false for an open path)",
-        )
+    # As linkage.synthesis.path cleans them (one function).
+    try:
+        synthesis.clean_target(points, closed)
+    except LinkageError as exc:
+        raise scene.error(sec, "points", f"{name}: {exc}") from None
     return points
 
 

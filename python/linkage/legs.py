@@ -48,7 +48,9 @@ FIGURES: tuple[str, ...] = (
 )
 """Columns of a family's figures: ``full_turn`` (1/0), ``min_transmission`` (degrees),
 ``duty_factor``, ``stride``, ``lift``, ``straightness``, ``peak_torque`` (length units:
-torque per unit foot force), ``speed_variation`` (ratio), ``stance_runs`` (count) and
+torque per unit foot force), ``speed_variation`` (``(max − min)/|mean|`` of ``dx/dθ`` over the
+stance: not :attr:`linkage.geometry.StraightPart.speed_variation`, which is over the straight
+part only), ``stance_runs`` (count) and
 ``hip_depth`` (how far the ground lies below the crank pivot, the hip, foot bar included)."""
 
 OBJECTIVES: dict[str, int] = {

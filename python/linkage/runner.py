@@ -252,8 +252,7 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
         )
     circuits = [c.linkage.circuit(n) for c in found]
     curves = [np.asarray(c.point, dtype=np.float64) for c in circuits]
-    centred = target - target.mean(axis=0)
-    size = float(np.sqrt(np.mean(np.sum(centred**2, axis=1))))
+    size = synthesis.target_size(target)
     empty = np.zeros(0)
     res = Result(scene=scene, time=empty, theta=empty)
     res.synthesis = SynthesisRun(target, closed, found, curves, size, circuits[0])

@@ -282,10 +282,30 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
     return np.ascontiguousarray(arr)
 
 
-def _clean(points: Float2D, closed: bool) -> Float2D:
+def clean_target(points: Float2D, closed: bool) -> Float2D:
     """Drop repeated consecutive points (and a closing repeat of the first), and check the rest.
 
-    There must be enough points, and a closed target must enclose something.
+    There must be enough points, and a closed target must enclose something. The one cleaning
+    of a target, for :func:`path` and for ``[synthesis]`` scenes.
+
+    Raises
+    ------
+    LinkageError
+        For fewer than :data:`MIN_POINTS` distinct points, points that all coincide, or a closed
+        target whose points are all collinear.
+
+    Examples
+    --------
+    >>> clean_target(np.array([[0, 0], [1, 0], [1, 0], [1, 1], [0, 1], [0.5, 2], [0, 0.0]]), True)
+    array([[0. , 0. ],
+           [1. , 0. ],
+           [1. , 1. ],
+           [0. , 1. ],
+           [0.5, 2. ]])
+    >>> clean_target(np.c_[np.arange(6.0), np.arange(6.0)], True)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: the points are all collinear: ... (an open path: closed = false)
     """
     keep = np.ones(len(points), dtype=bool)
     keep[1:] = np.any(points[1:] != points[:-1], axis=1)
@@ -298,13 +318,26 @@ def _clean(points: Float2D, closed: bool) -> Float2D:
         )
     centred = pts - pts.mean(axis=0)
     sv = np.linalg.svd(centred, compute_uv=False)
-    if sv[0] == 0 or (closed and sv[1] <= 1e-12 * sv[0]):
+    if sv[0] == 0:
+        raise LinkageError("the points all coincide")
+    if closed and sv[1] <= 1e-12 * sv[0]:
         raise LinkageError(
-            "the target points are all collinear: a closed curve through them encloses nothing"
-            if closed
-            else "the target points all coincide"
+            "the points are all collinear: a closed curve through them encloses nothing "
+            "(an open path: closed = false)"
         )
     return np.ascontiguousarray(pts)
+
+
+def target_size(points: Float2D) -> float:
+    """Return the size of a target: the RMS distance of its points from their centroid.
+
+    Errors of candidates are reported against it.
+
+    >>> target_size(np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]]))
+    1.0
+    """
+    centred = points - points.mean(axis=0)
+    return float(np.sqrt(np.mean(np.sum(centred**2, axis=1))))
 
 
 # -- the search -----------------------------------------------------------------------------
@@ -570,10 +603,10 @@ def path(
         if isinstance(pivots, (str, bytes)) or np.ndim(pivots) == 0 or len(pivots) != 2:
             raise TypeError("pivots must be ((xmin, ymin), (xmax, ymax))")
         pivots = (as_point(pivots[0], "pivots[0]"), as_point(pivots[1], "pivots[1]"))
-    target = _clean(read_points(points), closed)
+    target = clean_target(read_points(points), closed)
     nthreads = _threads(threads)
     centre = target.mean(axis=0)
-    size = float(np.sqrt(np.mean(np.sum((target - centre) ** 2, axis=1))))
+    size = target_size(target)
     bounds = _bounds(lengths, pivots, size)
     bar = _bar(progress, refine)
     pool: list[tuple[NDArray[np.float64], bool, str]] = []
