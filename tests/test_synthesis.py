@@ -11,7 +11,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import linkage
-from linkage import synthesis
+from linkage import export, synthesis
 from linkage.synthesis import Atlas
 
 
@@ -278,3 +278,55 @@ def test_progress_is_reported_on_stderr(atlas: Atlas, capsys) -> None:  # type: 
     synthesis.path(pts, top=1, atlas=atlas, refine=2, global_search=False, progress=True)
     err = capsys.readouterr().err
     assert "synthesis: [" in err and "/2" in err, err
+
+
+def _placed_reference(entry, frame_t, frame_c, flip):  # type: ignore[no-untyped-def]
+    """The similarity placement written out in numpy (the former Python implementation)."""
+    k = frame_t[2] / frame_c[2]
+    phi = frame_t[3] - frame_c[3] + (math.pi if flip else 0.0)
+    rot = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+    o, c = (frame_t[:2] + k * rot @ (np.asarray(p) - frame_c[:2]) for p in ((0, 0), (1, 0)))
+    return np.array([o[0], o[1], c[0], c[1], *(k * np.asarray(entry[:5]))])
+
+
+def _arc_reference(feet):  # type: ignore[no-untyped-def]
+    s = np.sort(np.mod(feet, 2 * math.pi))
+    gaps = np.diff(np.concatenate([s, [s[0] + 2 * math.pi]]))
+    g = int(np.argmax(gaps))
+    start, end = s[(g + 1) % len(s)], s[g]
+    return start, end + 2 * math.pi if end < start else end
+
+
+def _distance_reference(points, path):  # type: ignore[no-untyped-def]
+    a, ab = path[:-1], np.diff(path, axis=0)
+    rel = points[:, None, :] - a[None]
+    u = np.clip(np.sum(rel * ab, 2) / np.sum(ab * ab, 1), 0.0, 1.0)
+    gap = rel - u[..., None] * ab[None]
+    return float(np.max(np.min(np.hypot(gap[..., 0], gap[..., 1]), axis=1)))
+
+
+def test_placement_arc_and_polyline_distance_from_the_core_match_numpy() -> None:
+    """The core's placement of atlas entries, covering arc and polyline distance against numpy
+    versions written out here, and a NaN sample breaking the polyline."""
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        entry = rng.uniform(0.2, 3.0, 6)
+        ft = np.array([*rng.normal(size=2) * 10, rng.uniform(0.1, 5), rng.uniform(-4, 4)])
+        fc = np.array([*rng.normal(size=2), rng.uniform(0.1, 5), rng.uniform(-4, 4)])
+        for flip in (False, True):
+            got, want = (
+                synthesis._placed(entry, ft, fc, flip),
+                _placed_reference(entry, ft, fc, flip),
+            )
+            np.testing.assert_allclose(got, want, rtol=0, atol=1e-12 * np.abs(want).max())
+        feet = rng.uniform(-10.0, 20.0, int(rng.integers(1, 30)))
+        np.testing.assert_allclose(synthesis._arc(feet, False), _arc_reference(feet), atol=1e-12)
+        path, pts = rng.normal(size=(40, 2)), rng.normal(size=(15, 2)) * 2
+        assert export._distance_to(pts, path) == pytest.approx(
+            _distance_reference(pts, path), 1e-12
+        )
+    assert synthesis._arc(np.array([0.3, 1.0]), True) == (0.0, 2 * math.pi)
+    # A NaN sample breaks the polyline: no segment across the gap (the old code drew one).
+    path = np.array([[0.0, 0.0], [2.0, 0.0], [np.nan, np.nan], [2.0, 2.0]])
+    assert export._distance_to(np.array([[2.0, 1.5]]), path) == pytest.approx(0.5)
+    assert export._distance_to(np.array([[0.0, 1.0]]), np.full((3, 2), np.nan)) == math.inf

@@ -36,6 +36,7 @@ __all__ = [
     "motion_candidates",
     "motion_law_eval",
     "motion_law_names",
+    "polyline_distance",
     "program_discontinuities",
     "program_eval",
     "schedule_eval",
@@ -44,12 +45,14 @@ __all__ = [
     "support_margins",
     "sweep_mechanisms",
     "sweep_simd",
+    "synth_arc",
     "synth_atlas_build",
     "synth_atlas_nearest",
     "synth_descriptors",
     "synth_errors",
     "synth_frame",
     "synth_info",
+    "synth_place",
     "synth_residuals",
 ]
 
@@ -273,6 +276,16 @@ def synth_descriptors(
 ) -> tuple[NDArray[np.float32], NDArray[np.float64]]: ...
 def synth_frame(
     params: NDArray[np.float64], crossed: bool, harmonics: int, samples: int
+) -> NDArray[np.float64]: ...
+def synth_place(
+    entry: NDArray[np.float64],
+    curve: NDArray[np.float64],
+    target: NDArray[np.float64],
+    flip: bool,
+) -> NDArray[np.float64]: ...
+def synth_arc(feet: NDArray[np.float64]) -> tuple[float, float] | None: ...
+def polyline_distance(
+    points: NDArray[np.float64], path: NDArray[np.float64]
 ) -> NDArray[np.float64]: ...
 def synth_residuals(
     params: NDArray[np.float64],

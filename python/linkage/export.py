@@ -46,6 +46,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage import _core
 from linkage._core import LinkageError
 from linkage._mechanism import Mechanism
 from linkage._version import __version__
@@ -615,15 +616,11 @@ def _mechanism_of(c: Candidate, side: str, phase: float) -> Mechanism:
 
 
 def _distance_to(points: Array, path: Array) -> float:
-    """Largest distance from ``points`` (n, 2) to the polyline ``path`` (its finite points)."""
-    path = path[np.isfinite(path).all(axis=1)]
-    if len(path) < 2:
-        return math.inf
-    a, ab = path[:-1], np.diff(path, axis=0)
-    rel = points[:, None, :] - a[None]
-    u = np.clip(np.sum(rel * ab, 2) / np.maximum(np.sum(ab * ab, 1), 1e-300), 0.0, 1.0)
-    gap = rel - u[..., None] * ab[None]
-    return float(np.max(np.min(np.hypot(gap[..., 0], gap[..., 1]), axis=1)))
+    """Largest distance from ``points`` (n, 2) to the polyline ``path``, broken where not finite."""
+    d = _core.polyline_distance(
+        np.ascontiguousarray(points, dtype=np.float64), np.ascontiguousarray(path, dtype=np.float64)
+    )
+    return float(d.max()) if len(d) else 0.0
 
 
 CANDIDATE_RPM = 60.0

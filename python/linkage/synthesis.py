@@ -21,7 +21,7 @@ import json
 import math
 import os
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeVar
@@ -351,19 +351,15 @@ def _placed(
 ) -> NDArray[np.float64]:
     """Move an atlas entry's linkage by the similarity taking its curve's frame onto the target's.
 
-    The frames are the curves' normalisation frames; ``flip`` takes the other end of the major axis.
+    The frames are the curves' normalisation frames; ``flip`` takes the other end of the major axis
+    (``linkage_core::place_entry``).
     """
-    k = frame_t[2] / frame_c[2]
-    phi = frame_t[3] - frame_c[3] + (math.pi if flip else 0.0)
-    rot = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
-
-    def move(p: Sequence[float]) -> NDArray[np.float64]:
-        out: NDArray[np.float64] = frame_t[:2] + k * rot @ (np.asarray(p) - frame_c[:2])
-        return out
-
-    o, c = move((0.0, 0.0)), move((1.0, 0.0))
-    r, b, rk, along, left = (float(x) for x in entry[:5])
-    return np.array([o[0], o[1], c[0], c[1], k * r, k * b, k * rk, k * along, k * left])
+    return _core.synth_place(
+        np.ascontiguousarray(entry, dtype=np.float64),
+        np.ascontiguousarray(frame_c, dtype=np.float64),
+        np.ascontiguousarray(frame_t, dtype=np.float64),
+        flip,
+    )
 
 
 def _errors(
@@ -459,18 +455,13 @@ def _refine(
 def _arc(feet: NDArray[np.float64], closed: bool) -> tuple[float, float]:
     """Return the circuit-parameter arc that holds every foot.
 
-    The whole circuit for a closed target, else the complement of the largest gap between feet.
+    The whole circuit for a closed target, else the complement of the largest gap between feet
+    (``linkage_core::covering_arc``).
     """
     if closed:
         return (0.0, 2 * math.pi)
-    s = np.sort(np.mod(feet, 2 * math.pi))
-    gaps = np.diff(np.concatenate([s, [s[0] + 2 * math.pi]]))
-    g = int(np.argmax(gaps))
-    start = s[(g + 1) % len(s)]
-    end = s[g]
-    if end < start:
-        end += 2 * math.pi
-    return (float(start), float(end))
+    arc = _core.synth_arc(np.ascontiguousarray(feet, dtype=np.float64))
+    return arc if arc is not None else (math.nan, math.nan)
 
 
 def _de(

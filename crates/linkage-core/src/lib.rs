@@ -105,8 +105,8 @@ pub use efd::{
 };
 #[cfg(feature = "synthesis")]
 pub use path_synthesis::{
-    path_errors, path_residuals, ArcFigures, CircuitPath, FootSearch, PathError, FOOT_STARTS,
-    PLACED_PARAMS,
+    covering_arc, path_errors, path_residuals, place_entry, polyline_distances, ArcFigures,
+    CircuitPath, FootSearch, PathError, FOOT_STARTS, PLACED_PARAMS,
 };
 
 /// The repository README's Rust examples, compiled and run as doc tests.

@@ -666,6 +666,156 @@ fn segment_distance<T: RealField + Copy>(p: Vec2<T>, a: Vec2<T>, b: Vec2<T>) -> 
     (a + ab * u - p).norm()
 }
 
+/// Places an atlas entry in a target's frame: the entry's linkage (ground pivots `(0, 0)` and
+/// `(1, 0)`; `entry` its `[crank, coupler, rocker, along, left]`) moved by the similarity that
+/// takes its curve's normalisation frame `curve` onto the target's `target` — scaled by
+/// `target.scale / curve.scale`, turned by `target.rotation − curve.rotation` (plus `π` with
+/// `flip`: the other end of the first harmonic's major axis), `curve.centre` onto
+/// `target.centre`. Returns the [`PLACED_PARAMS`] numbers of [`CircuitPath::placed`].
+///
+/// ```
+/// use linkage_core::{place_entry, Normalisation, Vec2};
+/// let frame = |cx, cy, scale, rotation| Normalisation {
+///     centre: Vec2::new(cx, cy),
+///     scale,
+///     rotation,
+///     start: 0.0,
+/// };
+/// // The curve's frame at the origin, unit size; the target's twice as large, turned a quarter
+/// // turn, centred at (5, 0): pivot (1, 0) lands at (5, 2), every length doubles.
+/// let entry = [0.5, 2.0, 1.5, 1.0, 0.25];
+/// let (curve, target) = (frame(0.0, 0.0, 1.0, 0.0), frame(5.0, 0.0, 2.0, std::f64::consts::FRAC_PI_2));
+/// let p = place_entry(&entry, &curve, &target, false);
+/// let want = [5.0, 0.0, 5.0, 2.0, 1.0, 4.0, 3.0, 2.0, 0.5];
+/// assert!(p.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-15));
+/// ```
+pub fn place_entry<T: RealField + Copy>(
+    entry: &[T; 5],
+    curve: &Normalisation<T>,
+    target: &Normalisation<T>,
+    flip: bool,
+) -> [T; PLACED_PARAMS] {
+    let k = target.scale / curve.scale;
+    let turn = target.rotation - curve.rotation + if flip { T::pi() } else { T::zero() };
+    let (s, c) = turn.sin_cos();
+    let moved = |p: Vec2<T>| {
+        let d = p - curve.centre;
+        target.centre + Vec2::new(c * d.x - s * d.y, s * d.x + c * d.y) * k
+    };
+    let (o, g) = (moved(Vec2::zeros()), moved(Vec2::new(T::one(), T::zero())));
+    let [r, b, rk, along, left] = *entry;
+    [
+        o.x,
+        o.y,
+        g.x,
+        g.y,
+        k * r,
+        k * b,
+        k * rk,
+        k * along,
+        k * left,
+    ]
+}
+
+/// The distance from each of `points` to the polyline through `path` into `out`: a sample
+/// that is not finite breaks the polyline (no segment is drawn across it), and a finite sample
+/// between two that are not counts as a point. Infinity where `path` has no finite sample.
+///
+/// ```
+/// use linkage_core::{polyline_distances, Vec2};
+/// let nan = f64::NAN;
+/// let path = [Vec2::new(0.0, 0.0), Vec2::new(2.0, 0.0), Vec2::new(nan, nan), Vec2::new(2.0, 2.0)];
+/// let points = [Vec2::new(1.0, 1.0), Vec2::new(2.0, 1.5), Vec2::new(-3.0, 4.0)];
+/// let mut d = [0.0; 3];
+/// polyline_distances(&points, &path, &mut d).unwrap();
+/// // (1, 1) is 1 above the first segment; (2, 1.5) is nearest the lone point (2, 2), not a
+/// // segment across the gap; (−3, 4) is 5 from (0, 0).
+/// assert_eq!(d, [1.0, 0.5, 5.0]);
+/// ```
+///
+/// # Errors
+/// [`Error::BufferLength`] when `out` is not as long as `points`.
+pub fn polyline_distances<T: RealField + Copy>(
+    points: &[Vec2<T>],
+    path: &[Vec2<T>],
+    out: &mut [T],
+) -> Result<(), Error> {
+    if out.len() != points.len() {
+        return Err(Error::BufferLength {
+            what: "polyline distances",
+            expected: points.len(),
+            got: out.len(),
+        });
+    }
+    let finite = |p: &Vec2<T>| p.x.is_finite() && p.y.is_finite();
+    for (q, d) in points.iter().zip(out.iter_mut()) {
+        let mut best = T::max_value().unwrap_or(T::one());
+        let mut any = false;
+        for (k, &a) in path.iter().enumerate() {
+            if !finite(&a) {
+                continue;
+            }
+            any = true;
+            // The segment to the next sample when it is finite, else the point itself.
+            let b = path.get(k + 1).filter(|b| finite(b)).copied().unwrap_or(a);
+            best = best.min(segment_distance(*q, a, b));
+        }
+        *d = if any {
+            best
+        } else {
+            T::max_value().map_or(T::one() / T::zero(), |m| m * lit::<T>(2.0))
+        };
+    }
+    Ok(())
+}
+
+/// The circuit-parameter arc `(start, end)` (`end` in `[start, start + 2π)`) that holds every
+/// finite one of `feet` (circuit parameters, any turn): the complement of the largest gap
+/// between them around the circle. `None` when none is finite.
+///
+/// ```
+/// use linkage_core::covering_arc;
+/// // Feet at 6.0, 0.1 and 0.5: the arc runs from 6.0 across 2π to 0.5 (+ 2π).
+/// let (start, end) = covering_arc(&[0.1, 6.0, 0.5 + 4.0 * std::f64::consts::PI]).unwrap();
+/// assert!((start - 6.0).abs() < 1e-12 && (end - (0.5 + std::f64::consts::TAU)).abs() < 1e-12);
+/// assert_eq!(covering_arc(&[f64::NAN]), None);
+/// ```
+pub fn covering_arc<T: RealField + Copy>(feet: &[T]) -> Option<(T, T)> {
+    let tau = T::two_pi();
+    let wrap = |s: T| {
+        let r = s % tau;
+        if r < T::zero() {
+            r + tau
+        } else {
+            r
+        }
+    };
+    // The largest gap between neighbours on the circle, the feet sorted once.
+    let mut s: Vec<T> = feet
+        .iter()
+        .copied()
+        .filter(|f| f.is_finite())
+        .map(wrap)
+        .collect();
+    if s.is_empty() {
+        return None;
+    }
+    s.sort_by(|a, b| a.partial_cmp(b).unwrap_or(core::cmp::Ordering::Equal));
+    let n = s.len();
+    let (mut gap, mut at) = (s[0] + tau - s[n - 1], n - 1);
+    for k in 0..n - 1 {
+        if s[k + 1] - s[k] > gap {
+            (gap, at) = (s[k + 1] - s[k], k);
+        }
+    }
+    let start = s[(at + 1) % n];
+    let mut end = s[at];
+    if end < start {
+        end += tau;
+    }
+    Some((start, end))
+}
+
 /// Checks `M` placed four-bars: `params` rows of [`PLACED_PARAMS`], one `crossed` flag each.
 fn placed_rows(params: &[f64], crossed: &[bool]) -> Result<usize, Error> {
     let m = crossed.len();

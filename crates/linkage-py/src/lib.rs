@@ -85,6 +85,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(synthesis::synth_atlas_nearest, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_descriptors, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_frame, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_place, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_arc, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::polyline_distance, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_residuals, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_errors, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_info, m)?)?;

@@ -3,8 +3,9 @@
 //! allocates outputs with numpy, releases the GIL and calls the core.
 
 use linkage_core::{
-    descriptor_len, nearest, path_errors, path_residuals, query_descriptors, Atlas, AtlasSpec,
-    CircuitPath, FootSearch, PathError, Vec2, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS,
+    covering_arc, descriptor_len, nearest, path_errors, path_residuals, place_entry,
+    polyline_distances, query_descriptors, Atlas, AtlasSpec, CircuitPath, FootSearch,
+    Normalisation, PathError, Vec2, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS,
 };
 use numpy::ndarray::{Ix2, Ix3};
 use numpy::{
@@ -271,4 +272,78 @@ pub fn synth_info(
         arc.min_transmission,
         arc.through_limit,
     ))
+}
+
+/// A frame `[cx, cy, scale, rotation]` as the core's normalisation.
+fn frame_of(what: &str, f: &PyReadonlyArray1<'_, f64>) -> PyResult<Normalisation<f64>> {
+    match f.as_slice() {
+        Ok(&[cx, cy, scale, rotation]) => Ok(Normalisation {
+            centre: Vec2::new(cx, cy),
+            scale,
+            rotation,
+            start: 0.0,
+        }),
+        _ => Err(linkage_error(format!(
+            "{what} must be a contiguous [cx, cy, scale, rotation]"
+        ))),
+    }
+}
+
+/// An atlas entry `[crank, coupler, rocker, along, left, ...]` placed by the similarity taking
+/// its curve's frame `curve` onto the target's `target` (`flip`: the other end of the major
+/// axis): the 9 placed parameters (`linkage_core::place_entry`).
+#[pyfunction]
+#[pyo3(signature = (entry, curve, target, flip))]
+pub fn synth_place<'py>(
+    py: Python<'py>,
+    entry: PyReadonlyArray1<'py, f64>,
+    curve: PyReadonlyArray1<'py, f64>,
+    target: PyReadonlyArray1<'py, f64>,
+    flip: bool,
+) -> PyResult<Arr1<'py, f64>> {
+    let e: [f64; 5] = entry
+        .as_slice()
+        .ok()
+        .and_then(|e| e.get(..5))
+        .and_then(|e| e.try_into().ok())
+        .ok_or_else(|| linkage_error("entry must hold at least 5 numbers, contiguous"))?;
+    let (c, t) = (frame_of("curve", &curve)?, frame_of("target", &target)?);
+    Ok(place_entry(&e, &c, &t, flip).to_vec().into_pyarray(py))
+}
+
+/// Distance `(n,)` from each of `points (n, 2)` to the polyline through `path (m, 2)`, broken
+/// at samples that are not finite (`linkage_core::polyline_distances`).
+#[pyfunction]
+#[pyo3(signature = (points, path))]
+pub fn polyline_distance<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray2<'py, f64>,
+    path: PyReadonlyArray2<'py, f64>,
+) -> PyResult<Arr1<'py, f64>> {
+    let (q, p) = (
+        self::points("points", &points)?,
+        self::points("path", &path)?,
+    );
+    let n = q.len();
+    let what = || format!("distances of {n} points");
+    let out = memory::zeros::<f64, numpy::ndarray::Ix1>(py, &what, &[n])?;
+    {
+        let mut w = out.readwrite();
+        let o = w
+            .as_slice_mut()
+            .map_err(|_| linkage_error("internal: output not contiguous"))?;
+        py.detach(|| polyline_distances(q, p, o)).map_err(to_py)?;
+    }
+    Ok(out)
+}
+
+/// The circuit-parameter arc `(start, end)` holding every finite foot, or None
+/// (`linkage_core::covering_arc`).
+#[pyfunction]
+#[pyo3(signature = (feet))]
+pub fn synth_arc(feet: PyReadonlyArray1<'_, f64>) -> PyResult<Option<(f64, f64)>> {
+    let f = feet
+        .as_slice()
+        .map_err(|_| linkage_error("feet must be a contiguous float64 array"))?;
+    Ok(covering_arc(f))
 }
