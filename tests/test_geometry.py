@@ -289,3 +289,28 @@ def test_outputs_not_asked_are_not_there(hoecken):
         _ = s.instant_centres
     with pytest.raises(AttributeError, match="curvature was not computed"):
         _ = s.curvature_centre
+
+
+def test_straight_part_speed_and_lift_from_the_core_match_numpy() -> None:
+    """The core's speed figures and swing lift of a straight run against numpy written out here,
+    on the Hoecken foot path (a wrapping run) and on a path reaching a toggle."""
+    fb = linkage.catalog.hoecken()
+    theta = np.linspace(0.0, 2 * np.pi, 720, endpoint=False) + 4.0  # the run wraps past the end
+    s = fb.sweep(theta, omega=1.0, outputs=("point", "velocity"))
+    fp = g.foot_path(s.point, 0.025, velocity=s.velocity)
+    idx = fp.stance.indices
+    assert idx[0] > idx[-1]  # wraps
+    speed = np.hypot(*s.velocity[idx].T)
+    assert fp.stance.mean_speed == pytest.approx(speed.mean(), rel=1e-13)
+    want = (speed.max() - speed.min()) / speed.mean()
+    assert fp.stance.speed_variation == pytest.approx(want, rel=1e-12)
+    d = np.asarray(fp.stance.direction)
+    offsets = (s.point - np.asarray(fp.stance.point)) @ np.array([-d[1], d[0]])
+    side = np.sign(np.mean(np.delete(offsets, idx)))
+    assert fp.lift_height == pytest.approx(np.max(side * offsets), rel=1e-13)
+    assert fp.lift_height == pytest.approx(2 * math.sqrt(600) - 40, abs=0.01)
+    # A speed that is not finite on the run: both figures infinite.
+    v = s.velocity.copy()
+    v[idx[3]] = np.nan
+    part = g.straightness(s.point, 0.025, closed=True, velocity=v)
+    assert part is not None and part.mean_speed == part.speed_variation == math.inf

@@ -200,6 +200,9 @@ class StraightPart:
     min)/|mean|`` of ``dx/dθ`` over the whole stance, the samples within their tolerance of the
     ground (``linkage_core::LegGait``; :data:`linkage.legs.FIGURES`). For the Hoecken leg the
     first is 4 % over its 16 mm straight part, the second 0.53 over its 44.5 mm stance."""
+    lift: float | None = None
+    """On a closed path: its largest distance from the line on the side the rest of the path
+    lies on (0 when the run is the whole path); None on an open path."""
 
     @property
     def count(self) -> int:
@@ -263,25 +266,20 @@ def straightness(
     t = as_finite(tol, "tol")
     if t < 0:
         raise LinkageError(f"tol must be non-negative, got {t}")
-    run = _core.straight_run(np.ascontiguousarray(p), t, as_flag(closed, "closed"))
-    if run is None:
-        return None
-    idx = (run["start"] + np.arange(run["count"])) % len(p)
-    mean = var = None
+    v = None
     if velocity is not None:
         v = _points(velocity, "velocity")
         if v.shape != p.shape:
             raise LinkageError(f"velocity must have the shape of path {p.shape}, got {v.shape}")
-        speed = np.hypot(v[idx, 0], v[idx, 1])  # no overflow for speeds up to the float max
-        if np.isfinite(speed).all():
-            top = float(speed.max())
-            # Mean and spread relative to the largest speed: no overflow summing huge speeds.
-            rel = speed / top if top > 0 else speed
-            mean = float(rel.mean()) * top if top > 0 else 0.0
-            var = float((1.0 - rel.min()) / rel.mean()) if top > 0 else float("nan")
-        else:
-            # The run reaches a toggle, where the speed at constant crank speed is unbounded.
-            mean = var = float("inf")
+        v = np.ascontiguousarray(v)
+    closed = as_flag(closed, "closed")
+    # The run, and its speed figures from the velocities (linkage_core::StraightPart::speed).
+    run = _core.straight_run(np.ascontiguousarray(p), t, closed, v)
+    if run is None:
+        return None
+    idx = (run["start"] + np.arange(run["count"])) % len(p)
+    mean = None if v is None else float(run["mean_speed"])
+    var = None if v is None else float(run["speed_variation"])
     return StraightPart(
         indices=idx,
         length=float(run["length"]),
@@ -290,6 +288,7 @@ def straightness(
         direction=tuple(run["direction"]),
         mean_speed=mean,
         speed_variation=var,
+        lift=run.get("lift"),
     )
 
 
@@ -364,11 +363,8 @@ def foot_path(path: ArrayLike, tol: float, velocity: ArrayLike | None = None) ->
     mask = np.ones(n, dtype=bool)
     mask[stance.indices] = False
     swing = np.flatnonzero(mask)
-    d = np.asarray(stance.direction)
-    normal = np.array([-d[1], d[0]])
-    offsets = (p - np.asarray(stance.point)) @ normal
-    side = np.sign(np.nanmean(offsets[swing])) if len(swing) else 1.0
-    lift = float(np.nanmax(side * offsets)) if len(swing) else 0.0
+    # The swing's height above the stance line (linkage_core::StraightPart::lift).
+    lift = stance.lift if stance.lift is not None else 0.0
     return FootPath(
         stance=stance,
         swing=swing,

@@ -88,17 +88,40 @@ pub fn circumcentres<'py>(
 }
 
 /// The longest near-straight run of a path (see `linkage_core::straight_part`), as a dict, or
-/// None.
+/// None; with `lift` (`StraightPart::lift`) for a closed path, and `mean_speed`,
+/// `speed_variation` (`StraightPart::speed`) when the path's `velocity` is given.
 #[pyfunction]
+#[pyo3(signature = (path, tol, closed, velocity=None))]
 pub fn straight_run<'py>(
     py: Python<'py>,
     path: PyReadonlyArray2<'py, f64>,
     tol: Real,
     closed: bool,
+    velocity: Option<PyReadonlyArray2<'py, f64>>,
 ) -> PyResult<Option<Bound<'py, PyDict>>> {
     let tol = tol.0;
     let p = points("path", &path)?;
-    let Some(s) = py.detach(|| straight_part(&p, tol, closed)) else {
+    let v = velocity
+        .as_ref()
+        .map(|v| points("velocity", v))
+        .transpose()?;
+    if let Some(v) = &v {
+        if v.len() != p.len() {
+            return Err(linkage_error(format!(
+                "velocity must have the shape of path ({}, 2), got ({}, 2)",
+                p.len(),
+                v.len()
+            )));
+        }
+    }
+    let found = py.detach(|| {
+        straight_part(&p, tol, closed).map(|s| {
+            let lift = closed.then(|| s.lift(&p));
+            let speed = v.as_ref().and_then(|v| s.speed(v));
+            (s, lift, speed)
+        })
+    });
+    let Some((s, lift, speed)) = found else {
         return Ok(None);
     };
     let d = PyDict::new(py);
@@ -108,5 +131,12 @@ pub fn straight_run<'py>(
     d.set_item("direction", (s.direction.x, s.direction.y))?;
     d.set_item("max_deviation", s.max_deviation)?;
     d.set_item("length", s.length)?;
+    if let Some(lift) = lift {
+        d.set_item("lift", lift)?;
+    }
+    if let Some((mean, variation)) = speed {
+        d.set_item("mean_speed", mean)?;
+        d.set_item("speed_variation", variation)?;
+    }
     Ok(Some(d))
 }

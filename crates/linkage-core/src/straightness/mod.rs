@@ -35,6 +35,94 @@ pub struct StraightPart<T> {
     pub length: T,
 }
 
+impl<T: RealField + Copy> StraightPart<T> {
+    /// The run's sample indices into a path of `n` samples (wrapping past its end).
+    pub fn indices(&self, n: usize) -> impl Iterator<Item = usize> {
+        let start = self.start;
+        (0..self.count).map(move |k| (start + k) % n.max(1))
+    }
+
+    /// The speed along the run from the path's velocities `velocity` (one a sample of the
+    /// path the run was found on): `(mean, (max − min)/mean)`, both formed relative to the
+    /// largest speed so that huge speeds do not overflow the sum. `(∞, ∞)` when a speed on the
+    /// run is not finite (the run reaches a toggle, where the speed at constant crank speed is
+    /// unbounded); `(0, NaN)` for a run at rest; `None` when `velocity` is too short.
+    ///
+    /// ```
+    /// use linkage_core::{straight_part, Vec2};
+    /// // Along y = 0 at speeds 1, 2, 3, 2: mean 2, variation (3 − 1)/2 = 1.
+    /// let path = [0.0, 1.0, 3.0, 6.0].map(|x| Vec2::new(x, 0.0_f64));
+    /// let velocity = [1.0, 2.0, 3.0, 2.0].map(|v| Vec2::new(v, 0.0));
+    /// let part = straight_part(&path, 1e-9, false).unwrap();
+    /// let (mean, variation) = part.speed(&velocity).unwrap();
+    /// assert!((mean - 2.0).abs() < 1e-15 && (variation - 1.0).abs() < 1e-15);
+    /// ```
+    pub fn speed(&self, velocity: &[Vec2<T>]) -> Option<(T, T)> {
+        let n = velocity.len();
+        if self.start >= n || self.count > n || self.count == 0 {
+            return None;
+        }
+        let speed = |k: usize| crate::scalar::length(velocity[k]);
+        let mut top = T::zero();
+        for k in self.indices(n) {
+            let v = speed(k);
+            if !v.is_finite() {
+                let inf = T::max_value().map_or(T::one() / T::zero(), |m| m * lit::<T>(2.0));
+                return Some((inf, inf));
+            }
+            top = top.max(v);
+        }
+        if top == T::zero() {
+            return Some((T::zero(), crate::scalar::nan()));
+        }
+        let (mut sum, mut least) = (T::zero(), T::one());
+        for k in self.indices(n) {
+            let rel = speed(k) / top;
+            sum += rel;
+            least = least.min(rel);
+        }
+        let mean = sum / lit::<T>(self.count as f64);
+        Some((mean * top, (T::one() - least) / mean))
+    }
+
+    /// The largest distance of `path` (the closed path the run was found on) from the run's
+    /// line on the side the rest of the path lies on: how high the swing of a foot whose
+    /// stance is the run lifts — the obstacle it can step over. Samples that are not finite
+    /// are skipped; 0 when the run is the whole path.
+    ///
+    /// ```
+    /// use linkage_core::{straight_part, Vec2};
+    /// // A flat bottom from (0, 0) to (4, 0), then up to (2, 1.5) and back.
+    /// let path = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (4.0, 0.0), (2.0, 1.5)]
+    ///     .map(|(x, y)| Vec2::new(x, y));
+    /// let part = straight_part(&path, 1e-9, true).unwrap();
+    /// assert_eq!(part.lift(&path), 1.5);
+    /// ```
+    pub fn lift(&self, path: &[Vec2<T>]) -> T {
+        let n = path.len();
+        let normal = Vec2::new(-self.direction.y, self.direction.x);
+        let offset = |p: Vec2<T>| (p - self.point).dot(&normal);
+        let finite = |p: &Vec2<T>| p.x.is_finite() && p.y.is_finite();
+        let in_run = |k: usize| (k + n - self.start % n.max(1)) % n.max(1) < self.count;
+        // The swing's side: the sign of its mean offset.
+        let (mut sum, mut swing) = (T::zero(), 0usize);
+        for (k, &p) in path.iter().enumerate() {
+            if !in_run(k) && finite(&p) {
+                sum += offset(p);
+                swing += 1;
+            }
+        }
+        if swing == 0 {
+            return T::zero();
+        }
+        let side = if sum < T::zero() { -T::one() } else { T::one() };
+        path.iter()
+            .filter(|p| finite(p))
+            .map(|&p| side * offset(p))
+            .fold(T::zero(), |a, b| a.max(b))
+    }
+}
+
 /// Total-least-squares line through `pts`: centroid, unit direction (first → last), largest
 /// deviation and extent along the line. Coordinates are taken relative to the first point so
 /// that paths far from the origin keep their digits.
