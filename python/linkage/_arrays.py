@@ -156,6 +156,17 @@ def choices(kind: str) -> tuple[str, ...]:
     return tuple(_core.CHOICES[kind])
 
 
+def side_of(assembly: str) -> str:
+    """Return the dyad side (``"left"``/``"right"``) a four-bar's ``assembly`` puts ``B`` on.
+
+    The core's rule (``Assembly::side``), mirrored by the extension.
+
+    >>> side_of("open"), side_of("crossed")
+    ('left', 'right')
+    """
+    return _core.ASSEMBLY_SIDES[assembly]
+
+
 def one_of(kind: str) -> str:
     """Return the names of a string choice as a message says them.
 

@@ -7,6 +7,7 @@ from numpy.typing import NDArray
 from typing_extensions import final
 
 __all__ = [
+    "ASSEMBLY_SIDES",
     "CAPACITY",
     "CHOICES",
     "RATE_MARGIN",
@@ -58,6 +59,7 @@ __all__ = [
 
 CAPACITY: int
 CHOICES: dict[str, list[str]]
+ASSEMBLY_SIDES: dict[str, str]
 RATE_MARGIN: float
 
 class LinkageError(ValueError): ...

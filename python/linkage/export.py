@@ -47,6 +47,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
+from linkage._arrays import choices, side_of
 from linkage._core import LinkageError
 from linkage._mechanism import Mechanism
 from linkage._version import __version__
@@ -646,16 +647,16 @@ def candidate_side(c: Candidate, target: Array) -> str:
     The candidate's assembly (``open`` is ``left``), except for a crank that rocks within its limits
     over a part of the curve traced on the other assembly, where the other side draws the target.
     """
-    side = "left" if c.linkage.assembly == "open" else "right"
+    side = side_of(c.linkage.assembly)
     if c.full_turn or c.through_limit:
         return side
     phase, duration = candidate_drive(c)
     theta = np.linspace(0.0, duration * CANDIDATE_RPM * 2 * math.pi / 60, 721)
     gaps = {}
-    for sd in ("left", "right"):
+    for sd in choices("side"):
         s = _mechanism_of(c, sd, phase).sweep(theta, outputs=("point",))
         gaps[sd] = _distance_to(np.asarray(target, dtype=float), s.point)
-    return min(("left", "right"), key=lambda sd: (gaps[sd], sd != side))
+    return min(choices("side"), key=lambda sd: (gaps[sd], sd != side))
 
 
 def candidate_scene(res: Result, k: int) -> str:
@@ -695,7 +696,7 @@ def candidate_scene(res: Result, k: int) -> str:
                 f" on the {fb.assembly} assembly; the rest of the curve is traced back on the "
                 "other assembly, after the linkage passes the toggle at the limit"
             )
-    dyad = "left" if fb.assembly == "open" else "right"
+    dyad = side_of(fb.assembly)
     header = [
         f"Candidate {k} of the synthesis scene {scene.name!r} (linkage {__version__}).",
         f"Coupler point P passes within {c.error:.3g} {u} of the target's {len(run.target)} "

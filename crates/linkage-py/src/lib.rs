@@ -49,6 +49,15 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     choices.set_item("reach", linkage_core::Reach::NAMES.to_vec())?;
     choices.set_item("mode", linkage_core::AngleMode::NAMES.to_vec())?;
     m.add("CHOICES", choices)?;
+    // The dyad side each assembly puts the coupler–rocker joint on (the core's Assembly::side).
+    let sides = pyo3::types::PyDict::new(py);
+    for a in [
+        linkage_core::Assembly::Open,
+        linkage_core::Assembly::Crossed,
+    ] {
+        sides.set_item(a.name(), a.side().name())?;
+    }
+    m.add("ASSEMBLY_SIDES", sides)?;
     m.add_class::<mechanism::Mechanism>()?;
     m.add_class::<fourbar::FourBar>()?;
     m.add_function(wrap_pyfunction!(catalog::catalog_four_bar, m)?)?;
