@@ -170,7 +170,7 @@ proptest! {
         let th = angles(&fbs, start, &random, specials);
         let (p, v, work) = run(&fbs, &th);
         if !th.is_empty() {
-            prop_assert_eq!(work.fast + work.tracked, fbs.len());
+            prop_assert_eq!(work.fast + work.tracked, fbs.len(), "fast + tracked rows vs linkages: {:?}", work);
         }
         let n = th.len();
         for (i, fb) in fbs.iter().enumerate() {
@@ -202,8 +202,8 @@ proptest! {
         let cut = cut.min(fbs.len());
         let (a, va, _) = run(&fbs[..cut], &random);
         let (b, vb, _) = run(&fbs[cut..], &random);
-        prop_assert_eq!(bits(&whole), bits(&[a, b].concat()));
-        prop_assert_eq!(vw, [va, vb].concat());
+        prop_assert_eq!(bits(&whole), bits(&[a, b].concat()), "points differ with the batch cut at {}", cut);
+        prop_assert_eq!(vw, [va, vb].concat(), "validity differs with the batch cut at {}", cut);
     }
 }
 
@@ -211,18 +211,34 @@ proptest! {
 fn crank_rockers_take_the_fast_path_and_change_points_over_a_flat_the_tracker() {
     let hoecken = FourBar::new(20.0, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
     let parallelogram = FourBar::new(3.0, 1.0, 3.0, 1.0, (1.5, 0.5), Assembly::Open).unwrap();
-    assert_eq!(hoecken.grashof(), GrashofClass::CrankRocker);
+    assert_eq!(
+        hoecken.grashof(),
+        GrashofClass::CrankRocker,
+        "Hoecken's Grashof class"
+    );
     let th: Vec<f64> = (0..360).map(|k| (k as f64).to_radians()).collect();
     let (_, v, work) = run(&[hoecken, parallelogram], &th);
-    assert_eq!((work.fast, work.tracked), (1, 1));
+    assert_eq!(
+        (work.fast, work.tracked),
+        (1, 1),
+        "fast and tracked rows: {work:?}"
+    );
     assert_eq!(
         work.exact, 0,
         "Hoecken's transmission angle stays far from a toggle"
     );
-    assert!(v.iter().all(|&ok| ok));
+    assert!(
+        v.iter().all(|&ok| ok),
+        "invalid samples (360 a row): {:?}",
+        (0..v.len()).filter(|&k| !v[k]).collect::<Vec<_>>()
+    );
     // Between its flat positions the parallelogram is on its declared assembly: fast.
     let (_, _, work) = run(&[parallelogram], &[0.5, 1.0, 2.0]);
-    assert_eq!((work.fast, work.tracked), (1, 0));
+    assert_eq!(
+        (work.fast, work.tracked),
+        (1, 0),
+        "parallelogram between its flats: {work:?}"
+    );
     // Through the flat position at π the parallelogram stays a parallelogram (B = A + (3, 0)).
     let (p, _, _) = run(&[parallelogram], &[2.0, 3.0, 4.0, 5.0]);
     for (k, t) in [2.0f64, 3.0, 4.0, 5.0].iter().enumerate() {
@@ -265,10 +281,10 @@ fn extreme_sizes_go_through_the_tracker() {
     .unwrap();
     let th = [0.0, 1.0, 2.0];
     let (p, v, work) = run(&[fb], &th);
-    assert_eq!(work.tracked, 1);
+    assert_eq!(work.tracked, 1, "a linkage 1e-29 in size: {work:?}");
     for (k, want) in tracked(&fb, &th).iter().enumerate() {
-        assert_eq!(Some(p[k]), *want);
-        assert!(v[k]);
+        assert_eq!(Some(p[k]), *want, "θ = {}", th[k]);
+        assert!(v[k], "θ = {}: invalid", th[k]);
     }
 }
 
@@ -285,7 +301,8 @@ fn bad_input_is_a_typed_error() {
         Err(Error::InvalidLength {
             what: "crank",
             value: -1.0
-        })
+        }),
+        "crank −1 in row 1"
     );
     assert_eq!(
         batch.first_invalid(),
@@ -295,20 +312,23 @@ fn bad_input_is_a_typed_error() {
                 what: "crank",
                 value: -1.0
             }
-        ))
+        )),
+        "first invalid row"
     );
     let batch = batch_of(&[fb, fb], &mut store);
-    assert!(matches!(
-        batch.sweep(&[0.0, f64::NAN], &mut p, &mut v),
-        Err(Error::NotFinite { what: "theta", .. })
-    ));
+    let r = batch.sweep(&[0.0, f64::NAN], &mut p, &mut v);
+    assert!(
+        matches!(r, Err(Error::NotFinite { what: "theta", .. })),
+        "θ = NaN: {r:?}"
+    );
     assert_eq!(
         batch.sweep(&[0.0], &mut p, &mut v),
         Err(Error::BufferLength {
             what: "points",
             expected: 2,
             got: 4
-        })
+        }),
+        "a 4-point buffer for 2 linkages × 1 sample"
     );
     assert!(p.iter().all(|q| *q == Vec2::zeros()), "nothing written");
 }
@@ -329,8 +349,8 @@ fn go_on_stops_a_sweep_within_bounded_work() {
             calls < 3
         })
         .unwrap();
-    assert!(work.stopped);
-    assert_eq!(calls, 3);
+    assert!(work.stopped, "go_on said stop, the sweep went on: {work:?}");
+    assert_eq!(calls, 3, "go_on calls, the third saying stop");
     // Without stopping it runs to the end, every sample on the parallelogram, asking go_on at
     // least once per GO_ON_EVERY tracked samples.
     let mut calls = 0;
@@ -340,7 +360,14 @@ fn go_on_stops_a_sweep_within_bounded_work() {
             true
         })
         .unwrap();
-    assert!(!work.stopped && work.tracked == 2);
-    assert!(v.iter().all(|&ok| ok));
+    assert!(
+        !work.stopped && work.tracked == 2,
+        "sweep never told to stop, two parallelograms: {work:?}"
+    );
+    assert!(
+        v.iter().all(|&ok| ok),
+        "invalid samples: {:?}",
+        (0..v.len()).filter(|&k| !v[k]).collect::<Vec<_>>()
+    );
     assert!(calls >= 2 * 3000 / linkage_core::GO_ON_EVERY, "{calls}");
 }

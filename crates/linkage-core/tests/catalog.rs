@@ -25,7 +25,7 @@ fn trace(l: &Linkage<f64>, lo: f64, hi: f64, n: usize) -> Vec<Vec2<f64>> {
 fn peaucellier_traces_exact_line() {
     let pts = trace(&catalog::peaucellier(), -1.68, 1.68, 2001);
     // Valid while 20 ≤ |DA| = 30|cos(θ/2)| ≤ 60, i.e. |θ| ≤ 2 acos(2/3) = 1.6821 rad.
-    assert_eq!(pts.len(), 2001);
+    assert_eq!(pts.len(), 2001, "{} of 2001 samples assembled", pts.len());
     let dev = pts.iter().map(|p| (p.x - 40.0).abs()).fold(0.0, f64::max);
     let span = pts.iter().map(|p| p.y).fold(f64::MIN, f64::max)
         - pts.iter().map(|p| p.y).fold(f64::MAX, f64::min);
@@ -53,8 +53,12 @@ fn hart_traces_exact_line() {
 #[test]
 fn hoecken_foot_golden_points() {
     let fb = catalog::hoecken::<f64>();
-    assert_eq!(fb.grashof(), GrashofClass::CrankRocker);
-    assert_eq!(fb.input_range(), InputRange::Full);
+    assert_eq!(
+        fb.grashof(),
+        GrashofClass::CrankRocker,
+        "Hoecken's Grashof class"
+    );
+    assert_eq!(fb.input_range(), InputRange::Full, "Hoecken's input range");
     for (deg, x, y) in [
         (90.0, 40.0, 40.0),
         (180.0, 20.0, 40.0),
@@ -89,7 +93,11 @@ fn hoecken_foot_golden_points() {
         v[FourBar::<f64>::P].x
     };
     let (mut lo, mut hi) = (arg - 1e-3, arg + 1e-3);
-    assert!(vx(lo) > 0.0 && vx(hi) < 0.0);
+    let (v_lo, v_hi) = (vx(lo), vx(hi));
+    assert!(
+        v_lo > 0.0 && v_hi < 0.0,
+        "P's x velocity keeps its sign about θ = {arg}: {v_lo} at {lo}, {v_hi} at {hi}"
+    );
     for _ in 0..60 {
         let mid = 0.5 * (lo + hi);
         if vx(mid) > 0.0 {
@@ -102,7 +110,10 @@ fn hoecken_foot_golden_points() {
     // The sampled maximum is below the true one by at most ½|P''|(Δθ/2)² ≈ 1e-6 mm.
     assert!(x_root >= xmax && x_root - xmax < 1e-6, "{x_root} vs {xmax}");
     assert!((xmin + xmax - 40.0).abs() < 1e-9, "symmetric about x = 20");
-    assert!((ymax - 2.0 * 600f64.sqrt()).abs() < 1e-9);
+    assert!(
+        (ymax - 2.0 * 600f64.sqrt()).abs() < 1e-9,
+        "ymax {ymax} vs 2√600"
+    );
     // The path touches y = 40 at the three golden points and never dips below it.
     assert!((ymin - 40.0).abs() < 1e-12, "ymin {ymin}");
     // Between them (θ in 90°…270°) it bulges slightly above: the straight part's deviation.
@@ -157,6 +168,12 @@ fn pantograph_scales_the_foot_path() {
             j[l.trace]
         );
     }
-    assert!(catalog::hoecken_pantograph(1.0).is_err());
-    assert!(catalog::hoecken_pantograph(f64::NAN).is_err());
+    assert!(
+        catalog::hoecken_pantograph(1.0).is_err(),
+        "a pantograph of scale 1 was accepted"
+    );
+    assert!(
+        catalog::hoecken_pantograph(f64::NAN).is_err(),
+        "a pantograph of scale NaN was accepted"
+    );
 }

@@ -102,7 +102,7 @@ proptest! {
         let (p, v, a, j) = rates(&m, th).unwrap();
         let bodies = Bodies::of(&m);
         let ids: Vec<_> = bodies.ids().collect();
-        prop_assert_eq!(ids.len(), 4);
+        prop_assert_eq!(ids.len(), 4, "bodies of a four-bar");
         let motions: Vec<_> = ids.iter().map(|&id| BodyMotion::of(&bodies, id, &p, &v, &a, &j)).collect();
         let ic = |k: usize, l: usize| instant_centre(&motions[k], &motions[l]);
         for (k, l, n) in [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)] {
@@ -129,7 +129,7 @@ proptest! {
             for joint in [2usize, 3, 4] {
                 let r = p[joint] - i13;
                 let scale = r.norm() * v[joint].norm();
-                prop_assert!(r.dot(&v[joint]).abs() <= 1e-9 * scale.max(1e-300));
+                prop_assert!(r.dot(&v[joint]).abs() <= 1e-9 * scale.max(1e-300), "joint {joint}: velocity {:?} not perpendicular to its offset {r:?} from I13", v[joint]);
             }
         }
     }
@@ -191,7 +191,7 @@ fn kennedy_on_multi_loop_linkages() {
                 }
             }
         }
-        assert!(triples >= 20);
+        assert!(triples >= 20, "{}: only {triples} triples of links", l.name);
     }
 }
 
@@ -201,7 +201,11 @@ fn parallelogram_centre_at_infinity() {
     let fb = FourBar::new(3.0, 1.0, 3.0, 1.0, (1.0, 0.0), Assembly::Open).unwrap();
     let th = 1.1;
     let geometric = fb.instant_centres(th).unwrap();
-    assert!(matches!(geometric[1], Centre::AtInfinity(_)));
+    assert!(
+        matches!(geometric[1], Centre::AtInfinity(_)),
+        "I13 of a parallelogram: {:?}",
+        geometric[1]
+    );
     let m = fb.mechanism();
     let (p, v, a, j) = rates(&m, th).unwrap();
     let bodies = Bodies::of(&m);
@@ -212,7 +216,10 @@ fn parallelogram_centre_at_infinity() {
         Centre::AtInfinity(d) => {
             // Perpendicular to the coupler's velocity, i.e. along the crank.
             let crank = (p[2] - p[0]).normalize();
-            assert!((d.x * crank.y - d.y * crank.x).abs() < 1e-12);
+            assert!(
+                (d.x * crank.y - d.y * crank.x).abs() < 1e-12,
+                "I13 direction {d:?} not along the crank {crank:?}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -226,8 +233,17 @@ fn crank_pin_curvature_is_the_crank() {
     for k in 0..36 {
         let (p, v, a, _) = rates(&m, k as f64 * 0.17).unwrap();
         let (kappa, centre) = path_curvature(p[2], v[2], a[2]);
-        assert!((1.0 / kappa - 10.0).abs() < 1e-12);
-        assert!(centre.finite().unwrap().norm() < 1e-12);
+        assert!(
+            (1.0 / kappa - 10.0).abs() < 1e-12,
+            "θ = {}: radius of curvature {} vs crank 10",
+            k as f64 * 0.17,
+            1.0 / kappa
+        );
+        assert!(
+            centre.finite().unwrap().norm() < 1e-12,
+            "θ = {}: centre of curvature {centre:?}, not O",
+            k as f64 * 0.17
+        );
     }
 }
 
@@ -239,8 +255,19 @@ fn ball_point_has_stationary_zero_curvature() {
     for th0 in [0.4, 1.3, 2.5, 4.0] {
         let inf = base.coupler_inflection(th0).unwrap();
         let ball = inf.ball_point.finite().unwrap();
-        assert!(((ball - inf.centre).norm() - inf.radius).abs() < 1e-9 * inf.radius);
-        assert!(((inf.pole - inf.centre).norm() - inf.radius).abs() < 1e-9 * inf.radius);
+        assert!(
+            ((ball - inf.centre).norm() - inf.radius).abs() < 1e-9 * inf.radius,
+            "θ = {th0}: Ball point {ball:?} is {} from the inflection circle's centre, radius {}",
+            (ball - inf.centre).norm(),
+            inf.radius
+        );
+        assert!(
+            ((inf.pole - inf.centre).norm() - inf.radius).abs() < 1e-9 * inf.radius,
+            "θ = {th0}: pole {:?} is {} from the inflection circle's centre, radius {}",
+            inf.pole,
+            (inf.pole - inf.centre).norm(),
+            inf.radius
+        );
         // The Ball point in coupler coordinates at th0.
         let pose = base.pose(th0).unwrap();
         let u = (pose.b - pose.a).normalize();
@@ -264,7 +291,11 @@ fn ball_point_has_stationary_zero_curvature() {
             let (p, v, a, _) = rates(&m2, t).unwrap();
             path_curvature(p[4], v[4], a[4]).0
         };
-        assert!(k2(th0).abs() < 1e-9 * scale);
+        let k0 = k2(th0);
+        assert!(
+            k0.abs() < 1e-9 * scale,
+            "θ = {th0}: inflection pole's path has κ = {k0}"
+        );
         let generic = ((k2(th0 + 1e-4) - k2(th0 - 1e-4)) / 2e-4).abs();
         assert!(generic > 1e-3 * scale, "generic dκ/dθ {generic:e}");
         // At the Ball point dκ/dθ by central differences vanishes like h² (pure truncation):

@@ -89,7 +89,10 @@ fn static_parallelogram_against_hand_calculation() {
             .filter(|r| r.joint == 0 || r.joint == 1)
             .map(|r| r.force.y)
             .sum();
-        assert!((ground_pins - w).abs() < 1e-12);
+        assert!(
+            (ground_pins - w).abs() < 1e-12,
+            "{th}: ground pins carry {ground_pins}, load {w}"
+        );
     }
 }
 
@@ -200,7 +203,11 @@ fn work_energy_balance() {
 fn wrong_inertia_count_is_an_error() {
     let (fb, inertia) = thesis_two();
     let m = fb.mechanism();
-    assert!(Dynamics::new(&m, &inertia[..3], Vec2::zeros()).is_err());
+    assert!(
+        Dynamics::new(&m, &inertia[..3], Vec2::zeros()).is_err(),
+        "3 of {} inertias accepted",
+        inertia.len()
+    );
 }
 
 /// The sweep gives, sample for sample, what `solve` and `power_torque` give on the posed
@@ -275,8 +282,18 @@ fn sweep_equals_the_per_sample_solve() {
         couples: &mut co,
     };
     de.sweep(&th, &[1.0; 3], &[0.0; 3], &[], out).unwrap();
-    assert_eq!(ok, [true, false, true]);
-    assert!(tq[1].is_nan() && pw[1].is_nan() && re[nre].x.is_nan());
+    assert_eq!(
+        ok,
+        [true, false, true],
+        "valid flags at θ = {th:?} (Evans C limits ±75.5°)"
+    );
+    assert!(
+        tq[1].is_nan() && pw[1].is_nan() && re[nre].x.is_nan(),
+        "past the limit: torque {}, power torque {}, reaction {:?}",
+        tq[1],
+        pw[1],
+        re[nre]
+    );
     // One omega short: an error naming the slice, nothing solved.
     let out = ForceSweep {
         torque: &mut tq,

@@ -353,7 +353,7 @@ proptest! {
             let _ = g.output_speed(t);
         }
         if let Ok(g) = GearTrain::compound(&stages) {
-            prop_assert!(g.ratio() > 0.0 && g.ratio().is_finite());
+            prop_assert!(g.ratio() > 0.0 && g.ratio().is_finite(), "ratio {} of {} stages", g.ratio(), stages.len());
             let _ = g.output_speed(t);
         }
         let th: Vec<f64> = segs.iter().map(|s| s.0).collect();
@@ -381,9 +381,9 @@ proptest! {
         let mut out = vec![Vec2::zeros(); room];
         match convex_hull(&mut work, &mut out) {
             Ok(h) => {
-                prop_assert!(h <= out.len());
+                prop_assert!(h <= out.len(), "hull of {h} points in a buffer of {}", out.len());
                 let hull = &out[..h];
-                prop_assert!(hull.iter().all(|p| p.x.is_finite() && p.y.is_finite()));
+                prop_assert!(hull.iter().all(|p| p.x.is_finite() && p.y.is_finite()), "hull of {pts:?} has a non-finite point: {hull:?}");
                 let _ = stability_margin(cg, hull);
             }
             Err(e) => prop_assert!(matches!(e, Error::BufferLength { .. }), "{e:?}"),
@@ -457,8 +457,16 @@ fn input_range_does_not_depend_on_scale() {
             "scale {s}: {lo} {hi}"
         );
     }
-    assert_eq!(hoecken(1e306).input_range(), InputRange::Full);
-    assert_eq!(hoecken(1e306).grashof(), hoecken(1.0).grashof());
+    assert_eq!(
+        hoecken(1e306).input_range(),
+        InputRange::Full,
+        "Hoecken at scale 1e306: input range"
+    );
+    assert_eq!(
+        hoecken(1e306).grashof(),
+        hoecken(1.0).grashof(),
+        "Hoecken at scale 1e306: Grashof class"
+    );
 }
 
 #[test]
@@ -473,12 +481,13 @@ fn program_with_overflowing_period_evaluates_where_asked() {
         segments: &segs,
     };
     let at = |t: f64| p.eval(t)[0];
-    assert_eq!(at(0.0), 10.0);
+    assert_eq!(at(0.0), 10.0, "value at the start, t = 0");
     assert!((at(0.5e308) - 10.5).abs() < 1e-12, "{}", at(0.5e308));
     assert!((at(1.5e308) - 11.5).abs() < 1e-12, "{}", at(1.5e308));
     // Before the start: the end of the previous period, 0.5e308 before its end.
     assert!((at(-0.5e308) - 9.5).abs() < 1e-12, "{}", at(-0.5e308));
-    assert!(p.eval(f64::NAN).iter().all(|v| v.is_nan()));
+    let at_nan = p.eval(f64::NAN);
+    assert!(at_nan.iter().all(|v| v.is_nan()), "at t = NaN: {at_nan:?}");
 }
 
 #[test]
@@ -486,30 +495,43 @@ fn segment_rates_at_tiny_durations_are_not_nan() {
     // d² and d³ underflow to 0 for d = 1e-200: a zero acceleration must stay 0, not 0/0.
     let s = Segment::new(1e-200_f64, 1.0, Some(MotionLaw::ConstantVelocity)).unwrap();
     let [y, v, a, j] = s.eval(0.5e-200);
-    assert!((y - 0.5).abs() < 1e-15);
-    assert!((v - 1e200).abs() < 1e185);
-    assert_eq!((a, j), (0.0, 0.0));
+    assert!((y - 0.5).abs() < 1e-15, "position at mid-segment: {y}");
+    assert!(
+        (v - 1e200).abs() < 1e185,
+        "velocity {v:e} vs rise / duration = 1e200"
+    );
+    assert_eq!(
+        (a, j),
+        (0.0, 0.0),
+        "acceleration and jerk of constant velocity at duration 1e-200"
+    );
 }
 
 #[test]
 fn gear_ratio_underflow_is_an_error() {
     let stages = [(1u32, 4_000_000_000u32); 40];
-    assert!(matches!(
-        GearTrain::compound(&stages),
-        Err(Error::NotRepresentable { .. })
-    ));
+    let r = GearTrain::compound(&stages);
+    assert!(
+        matches!(r, Err(Error::NotRepresentable { .. })),
+        "40 stages of 1:4e9: {r:?}"
+    );
 }
 
 #[test]
 fn pantograph_at_huge_scale_is_an_error_not_a_panic() {
     // 30·scale overflows: the arms cannot be built.
     for scale in [1e308, f64::MAX] {
-        assert!(matches!(
-            catalog::hoecken_pantograph::<f64>(scale),
-            Err(Error::InvalidLength { .. })
-        ));
+        let r = catalog::hoecken_pantograph::<f64>(scale);
+        assert!(
+            matches!(r, Err(Error::InvalidLength { .. })),
+            "scale {scale:e}: {:?}",
+            r.as_ref().map(|l| l.name)
+        );
     }
-    assert!(catalog::hoecken_pantograph::<f32>(1e38).is_err());
+    assert!(
+        catalog::hoecken_pantograph::<f32>(1e38).is_err(),
+        "an f32 pantograph at scale 1e38 was accepted"
+    );
 }
 
 #[test]
@@ -525,25 +547,27 @@ fn hull_of_huge_coordinates_is_right() {
     ];
     let mut out = [Vec2::zeros(); 7];
     let h = convex_hull(&mut pts, &mut out).unwrap();
-    assert_eq!(h, 4);
+    assert_eq!(h, 4, "hull {:?}", &out[..h]);
     let m = stability_margin(Vec2::new(0.0, 0.0), &out[..h]).unwrap();
-    assert_eq!(m, 1e308);
+    assert_eq!(m, 1e308, "margin of the origin in the hull {:?}", &out[..h]);
     let m = stability_margin(Vec2::new(-1e308, 0.0), &out[..h]).unwrap();
-    assert_eq!(m, 0.0);
+    assert_eq!(m, 0.0, "margin of (−1e308, 0) in the hull {:?}", &out[..h]);
     // Too small an output buffer is an error, not a write past its end.
-    assert!(matches!(
-        convex_hull(&mut pts, &mut out[..3]),
-        Err(Error::BufferLength { .. })
-    ));
+    let r = convex_hull(&mut pts, &mut out[..3]);
+    assert!(
+        matches!(r, Err(Error::BufferLength { .. })),
+        "a 4-point hull into 3 slots: {r:?}"
+    );
 }
 
 #[test]
 fn sweep_index_overflow_is_an_error() {
     let mut out = [Vec2::zeros(); 4];
-    assert!(matches!(
-        hoecken(1.0).uniform_sweep(0.0, 0.1, usize::MAX - 1, AngleMode::Trig, &mut out),
-        Err(Error::CountOverflow { .. })
-    ));
+    let r = hoecken(1.0).uniform_sweep(0.0, 0.1, usize::MAX - 1, AngleMode::Trig, &mut out);
+    assert!(
+        matches!(r, Err(Error::CountOverflow { .. })),
+        "4 samples from index usize::MAX − 1: {r:?}"
+    );
     // Indices that end just below `usize::MAX`: the last anchor block would end past it (a
     // debug-build overflow before). The angles are ~1e18 rad, so the points are only finite.
     for mode in [
@@ -562,25 +586,41 @@ fn sweep_index_overflow_is_an_error() {
 #[test]
 fn string_choices_round_trip() {
     for a in [Assembly::Open, Assembly::Crossed] {
-        assert_eq!(a.name().parse::<Assembly>(), Ok(a));
-        assert_eq!(a.to_string(), a.name());
+        assert_eq!(
+            a.name().parse::<Assembly>(),
+            Ok(a),
+            "{a:?} parsed from its name"
+        );
+        assert_eq!(a.to_string(), a.name(), "{a:?}: Display vs name");
     }
     for s in [Side::Left, Side::Right] {
-        assert_eq!(s.name().parse::<Side>(), Ok(s));
-        assert_eq!(s.to_string(), s.name());
+        assert_eq!(
+            s.name().parse::<Side>(),
+            Ok(s),
+            "{s:?} parsed from its name"
+        );
+        assert_eq!(s.to_string(), s.name(), "{s:?}: Display vs name");
     }
     // Exact names only: no case folding, no trimming.
     for bad in ["Open", " open", "", "left"] {
-        assert!(matches!(
-            bad.parse::<Assembly>(),
-            Err(Error::InvalidChoice {
-                what: "assembly",
-                ..
-            })
-        ));
+        let r = bad.parse::<Assembly>();
+        assert!(
+            matches!(
+                r,
+                Err(Error::InvalidChoice {
+                    what: "assembly",
+                    ..
+                })
+            ),
+            "{bad:?}: {r:?}"
+        );
     }
     let e = "up".parse::<Side>().unwrap_err();
-    assert_eq!(e.to_string(), "side must be 'left' or 'right'");
+    assert_eq!(
+        e.to_string(),
+        "side must be 'left' or 'right'",
+        "message of an invalid side"
+    );
 }
 
 #[test]
@@ -593,7 +633,11 @@ fn periodic_drives_at_huge_times_keep_the_time_within_the_period() {
     let local = t % 0.2;
     let (_, w, a) = table.at(t);
     let (_, w0, a0) = table.at(local);
-    assert_eq!((w, a), (w0, a0));
+    assert_eq!(
+        (w, a),
+        (w0, a0),
+        "rates at t = 1e17 vs at local time {local}"
+    );
     // Beyond the float range the angle overflows (±∞), but the rates stay those of local time.
     let (th, w, a) = table.at(1e308);
     let (_, w0, a0) = table.at(1e308 % 0.2);
@@ -609,7 +653,7 @@ fn periodic_drives_at_huge_times_keep_the_time_within_the_period() {
     };
     let [_, v, _, _] = p.eval(3e15 + 1.5);
     let [_, v0, _, _] = p.eval(1.5);
-    assert_eq!(v, v0);
+    assert_eq!(v, v0, "velocity at t = 3e15 + 1.5 vs at 1.5");
 }
 
 #[test]
@@ -709,7 +753,16 @@ fn inflection_circle_beyond_the_float_range_is_none() {
     // D12: a subnormal crank made the inflection pole and radius infinite.
     let fb = FourBar::new(1.0_f64, 5e-324, 1.0, 1.0, (0.0, 0.0), Assembly::Open).unwrap();
     if let Some(i) = fb.coupler_inflection(0.0) {
-        assert!(i.radius.is_finite() && i.centre.x.is_finite() && i.inflection_pole.y.is_finite());
+        assert!(
+            i.radius.is_finite() && i.centre.x.is_finite() && i.inflection_pole.y.is_finite(),
+            "subnormal crank: radius {}, centre {:?}, inflection pole {:?}",
+            i.radius,
+            i.centre,
+            i.inflection_pole
+        );
     }
-    assert!(hoecken(1.0).coupler_inflection(0.3).is_some());
+    assert!(
+        hoecken(1.0).coupler_inflection(0.3).is_some(),
+        "Hoecken at θ = 0.3 has no inflection circle"
+    );
 }

@@ -7,6 +7,8 @@
 
 #![cfg(all(not(target_os = "none"), feature = "synthesis"))]
 
+mod common;
+
 use core::f64::consts::{PI, TAU};
 
 use linkage_core::{
@@ -65,13 +67,17 @@ fn same_four_bar(a: &FourBar<f64>, b: &FourBar<f64>, tol: f64) {
     ] {
         assert!((x - y).abs() <= tol, "{a:?} vs {b:?}");
     }
-    assert_eq!(a.assembly, b.assembly);
+    assert_eq!(a.assembly, b.assembly, "assembly of {a:?} vs {b:?}");
 }
 
 #[test]
 fn three_poses_recover_a_known_four_bar() {
     let fb = crank_rocker();
-    assert_eq!(fb.grashof(), GrashofClass::CrankRocker);
+    assert_eq!(
+        fb.grashof(),
+        GrashofClass::CrankRocker,
+        "Grashof class of crank_rocker()"
+    );
     let thetas = [0.4, 1.3, 2.5];
     let mut poses = Vec::new();
     let mut a = Vec::new();
@@ -95,23 +101,44 @@ fn three_poses_recover_a_known_four_bar() {
     // Two dyads → the four-bar, swept through the poses on one circuit, in order.
     let cand = MotionCandidate::new(&poses, crank, rocker).unwrap();
     same_four_bar(&cand.four_bar, &fb, 1e-12);
-    assert_eq!(cand.check.defect, None);
-    assert_eq!(cand.check.direction, 1.0);
+    assert_eq!(cand.check.defect, None, "three poses: {:?}", cand.check);
+    assert_eq!(cand.check.direction, 1.0, "three poses: {:?}", cand.check);
     assert!(cand.check.position_error <= 1e-12, "{:?}", cand.check);
     assert!(cand.check.angle_error <= 1e-12, "{:?}", cand.check);
-    assert_eq!(cand.check.grashof, GrashofClass::CrankRocker);
+    assert_eq!(
+        cand.check.grashof,
+        GrashofClass::CrankRocker,
+        "three poses: {:?}",
+        cand.check
+    );
     for (k, &t) in thetas.iter().enumerate() {
-        assert!((cand.check.crank_angles[k] - t).abs() < 1e-12);
+        assert!(
+            (cand.check.crank_angles[k] - t).abs() < 1e-12,
+            "pose {k}: crank angle {} vs {t}",
+            cand.check.crank_angles[k]
+        );
     }
-    assert!(cand.check.crank_angles[3].is_nan());
+    assert!(
+        cand.check.crank_angles[3].is_nan(),
+        "crank angle of an absent fourth pose: {}",
+        cand.check.crank_angles[3]
+    );
     // Transmission angle: the smallest over the travel is at most that at any pose.
     let mu_fold = |t: f64| {
         let m = fb.transmission_angle(t).unwrap();
         m.min(PI - m)
     };
     let at_poses = thetas.iter().map(|&t| mu_fold(t)).fold(f64::MAX, f64::min);
-    assert!(cand.check.min_transmission <= at_poses + 1e-12);
-    assert!(cand.check.min_transmission > 0.0);
+    assert!(
+        cand.check.min_transmission <= at_poses + 1e-12,
+        "min transmission {} above {at_poses}, the least at the poses",
+        cand.check.min_transmission
+    );
+    assert!(
+        cand.check.min_transmission > 0.0,
+        "min transmission {}",
+        cand.check.min_transmission
+    );
 }
 
 #[test]
@@ -129,8 +156,16 @@ fn clockwise_order_is_found() {
         centre_point(&p3, b0).unwrap(),
     )
     .unwrap();
-    assert_eq!(cand.check.defect, None);
-    assert_eq!(cand.check.direction, -1.0);
+    assert_eq!(
+        cand.check.defect, None,
+        "poses in clockwise order: {:?}",
+        cand.check
+    );
+    assert_eq!(
+        cand.check.direction, -1.0,
+        "poses in clockwise order: {:?}",
+        cand.check
+    );
 }
 
 /// The real form of the four-pose condition: a centre point `g` has a circle point iff the
@@ -218,8 +253,12 @@ fn four_poses_recover_both_dyads_on_the_burmester_curves() {
     };
     let cand = MotionCandidate::new(&poses, crank, rocker).unwrap();
     same_four_bar(&cand.four_bar, &fb, 1e-12);
-    assert_eq!(cand.check.defect, None);
-    assert!(cand.check.position_error <= 1e-12 && cand.check.angle_error <= 1e-12);
+    assert_eq!(cand.check.defect, None, "four poses: {:?}", cand.check);
+    assert!(
+        cand.check.position_error <= 1e-12 && cand.check.angle_error <= 1e-12,
+        "four poses: {:?}",
+        cand.check
+    );
 }
 
 #[test]
@@ -264,7 +303,8 @@ fn burmester_curve_samples_are_exact_dyads_on_the_cubic() {
         }
     }
     // A point off the curve is not on the cubic (the test can fail).
-    assert!(bilinear_det(&poses, Vec2::new(5.0, -3.0)).abs() > 1e-3);
+    let off = bilinear_det(&poses, Vec2::new(5.0, -3.0));
+    assert!(off.abs() > 1e-3, "(5, −3) is on the cubic: det {off:e}");
 }
 
 #[test]
@@ -281,7 +321,7 @@ fn pure_translation_between_two_poses_is_fine() {
         .flat_map(|i| curve.dyads(TAU * i as f64 / 360.0))
         .flatten()
         .count();
-    assert!(n > 100);
+    assert!(n > 100, "only {n} real dyads over 360 samples");
 }
 
 #[test]
@@ -291,17 +331,19 @@ fn bad_input_gets_specific_errors() {
         angle: a,
     };
     // NaN.
-    assert!(matches!(
-        BodyPose::new(f64::NAN, 0.0, 0.0),
-        Err(Error::NotFinite { what: "pose x", .. })
-    ));
-    assert!(matches!(
-        centre_point(
-            &[p(0.0, 0.0, 0.0), p(1.0, 0.0, f64::NAN), p(0.0, 1.0, 0.0)],
-            Vec2::zeros()
-        ),
-        Err(Error::NotFinite { .. })
-    ));
+    let r = BodyPose::new(f64::NAN, 0.0, 0.0);
+    assert!(
+        matches!(r, Err(Error::NotFinite { what: "pose x", .. })),
+        "pose x NaN: {r:?}"
+    );
+    let r = centre_point(
+        &[p(0.0, 0.0, 0.0), p(1.0, 0.0, f64::NAN), p(0.0, 1.0, 0.0)],
+        Vec2::zeros(),
+    );
+    assert!(
+        matches!(r, Err(Error::NotFinite { .. })),
+        "a NaN pose angle: {r:?}"
+    );
     // Coincident poses.
     let three = [p(0.0, 0.0, 0.1), p(1.0, 0.5, 0.4), p(0.0, 0.0, 0.1)];
     assert_eq!(
@@ -309,7 +351,8 @@ fn bad_input_gets_specific_errors() {
         Err(Error::CoincidentPositions {
             first: 0,
             second: 2
-        })
+        }),
+        "poses 0 and 2 coincide"
     );
     let four = [
         p(0.0, 0.0, 0.1),
@@ -322,21 +365,24 @@ fn bad_input_gets_specific_errors() {
         Err(Error::CoincidentPositions {
             first: 1,
             second: 3
-        })
+        }),
+        "poses 1 and 3 coincide"
     );
     // Three translations along a line: every circle point moves on a line (centre at infinity).
     let line = [p(0.0, 0.0, 0.5), p(1.0, 1.0, 0.5), p(3.0, 3.0, 0.5)];
-    assert!(matches!(
-        centre_point(&line, Vec2::new(0.2, -0.7)),
-        Err(Error::Degenerate { .. })
-    ));
+    let r = centre_point(&line, Vec2::new(0.2, -0.7));
+    assert!(
+        matches!(r, Err(Error::Degenerate { .. })),
+        "translations along a line: {r:?}"
+    );
     // A circle point at the pole of poses 0 and 1: its centre is not unique.
     let three = [p(0.0, 0.0, 0.0), p(2.0, 0.0, PI / 2.0), p(0.5, 2.0, 1.0)];
     let p01 = pole(&three[0], &three[1]).finite().unwrap();
-    assert!(matches!(
-        centre_point(&three, p01),
-        Err(Error::Degenerate { .. })
-    ));
+    let r = centre_point(&three, p01);
+    assert!(
+        matches!(r, Err(Error::Degenerate { .. })),
+        "circle point at the pole P01 {p01:?}: {r:?}"
+    );
     // Four pure translations: no Burmester curve.
     let four = [
         p(0.0, 0.0, 0.2),
@@ -344,10 +390,11 @@ fn bad_input_gets_specific_errors() {
         p(1.0, 1.0, 0.2),
         p(0.0, 2.0, 0.2),
     ];
-    assert!(matches!(
-        BurmesterCurve::new(&four),
-        Err(Error::Degenerate { .. })
-    ));
+    let r = BurmesterCurve::new(&four);
+    assert!(
+        matches!(r, Err(Error::Degenerate { .. })),
+        "four pure translations: {r:?}"
+    );
     // Fewer than three poses; too many.
     let d = BurmesterPair {
         centre: Vec2::zeros(),
@@ -363,7 +410,8 @@ fn bad_input_gets_specific_errors() {
             what: "poses",
             needed: 3,
             got: 2
-        })
+        }),
+        "two poses"
     );
     let five = [
         p(0.0, 0.0, 0.0),
@@ -372,20 +420,22 @@ fn bad_input_gets_specific_errors() {
         p(3.0, 0.0, 0.3),
         p(4.0, 0.0, 0.4),
     ];
-    assert!(matches!(
-        MotionCandidate::new(&five, d, e),
-        Err(Error::BufferLength { .. })
-    ));
+    let r = MotionCandidate::new(&five, d, e);
+    assert!(
+        matches!(r, Err(Error::BufferLength { .. })),
+        "five poses: {r:?}"
+    );
     // Dyads that make no four-bar: a circle point on its centre (zero crank).
     let z = BurmesterPair {
         centre: Vec2::zeros(),
         circle: Vec2::zeros(),
     };
     let ok3 = [p(0.0, 0.0, 0.0), p(1.0, 0.0, 0.1), p(2.0, 0.5, 0.2)];
-    assert!(matches!(
-        MotionCandidate::new(&ok3, z, e),
-        Err(Error::InvalidLength { .. })
-    ));
+    let r = MotionCandidate::new(&ok3, z, e);
+    assert!(
+        matches!(r, Err(Error::InvalidLength { .. })),
+        "a zero crank: {r:?}"
+    );
     // Freudenstein: too few points, coincident points, a singular system, no real coupler.
     assert_eq!(
         Freudenstein::fit(&[0.1, 0.2], &[1.0, 1.1]),
@@ -393,41 +443,44 @@ fn bad_input_gets_specific_errors() {
             what: "precision points",
             needed: 3,
             got: 2
-        })
+        }),
+        "Freudenstein fit of two points"
     );
     assert_eq!(
         Freudenstein::fit(&[0.1, 0.2, 0.1], &[1.0, 1.1, 1.0]),
         Err(Error::CoincidentPositions {
             first: 0,
             second: 2
-        })
+        }),
+        "Freudenstein fit with points 0 and 2 coinciding"
     );
-    assert!(matches!(
-        Freudenstein::fit(&[0.1, 0.1, 0.1], &[1.0, 1.1, 1.2]),
-        Err(Error::Degenerate { .. })
-    ));
-    assert!(matches!(
-        Freudenstein::fit(&[0.1, f64::NAN, 0.3], &[1.0, 1.1, 1.2]),
-        Err(Error::NotFinite { .. })
-    ));
+    let r = Freudenstein::fit(&[0.1, 0.1, 0.1], &[1.0, 1.1, 1.2]);
+    assert!(
+        matches!(r, Err(Error::Degenerate { .. })),
+        "three equal input angles: {r:?}"
+    );
+    let r = Freudenstein::fit(&[0.1, f64::NAN, 0.3], &[1.0, 1.1, 1.2]);
+    assert!(
+        matches!(r, Err(Error::NotFinite { .. })),
+        "a NaN input angle: {r:?}"
+    );
     let k = Freudenstein {
         k1: 1.0,
         k2: 1.0,
         k3: 10.0,
     };
-    assert!(matches!(
-        FunctionGenerator::new(k, 1.0, 0.0, 0.0),
-        Err(Error::NoSolution { .. })
-    ));
+    let r = FunctionGenerator::new(k, 1.0, 0.0, 0.0);
+    assert!(
+        matches!(r, Err(Error::NoSolution { .. })),
+        "K3 = 10, no real coupler: {r:?}"
+    );
     let k = Freudenstein {
         k1: 0.0,
         k2: 1.0,
         k3: 1.0,
     };
-    assert!(matches!(
-        FunctionGenerator::new(k, 1.0, 0.0, 0.0),
-        Err(Error::Degenerate { .. })
-    ));
+    let r = FunctionGenerator::new(k, 1.0, 0.0, 0.0);
+    assert!(matches!(r, Err(Error::Degenerate { .. })), "K1 = 0: {r:?}");
 }
 
 #[test]
@@ -441,9 +494,21 @@ fn circuit_defect_is_flagged() {
     let poses = [p0, p1, p2];
     let crank = centre_point(&poses, a0).unwrap();
     let rocker = centre_point(&poses, b0).unwrap();
-    assert!(near(crank.centre, fb.o, 1e-12) && near(rocker.centre, fb.c, 1e-12));
+    assert!(
+        near(crank.centre, fb.o, 1e-12) && near(rocker.centre, fb.c, 1e-12),
+        "crank centre {:?} vs O {:?}, rocker centre {:?} vs C {:?}",
+        crank.centre,
+        fb.o,
+        rocker.centre,
+        fb.c
+    );
     let cand = MotionCandidate::new(&poses, crank, rocker).unwrap();
-    assert_eq!(cand.check.defect, Some(Defect::Branch { pose: 2 }));
+    assert_eq!(
+        cand.check.defect,
+        Some(Defect::Branch { pose: 2 }),
+        "pose 2 on the crossed circuit: {:?}",
+        cand.check
+    );
 }
 
 #[test]
@@ -462,7 +527,12 @@ fn order_defect_is_flagged() {
         },
     )
     .unwrap();
-    assert_eq!(cand.check.defect, Some(Defect::Order));
+    assert_eq!(
+        cand.check.defect,
+        Some(Defect::Order),
+        "poses out of crank order: {:?}",
+        cand.check
+    );
 }
 
 #[test]
@@ -470,7 +540,11 @@ fn toggle_defect_is_flagged() {
     // A triple-rocker (one circuit through both assemblies): going from pose 1 back to pose 2
     // on the other assembly needs the crank to pass its limit and reverse.
     let fb = FourBar::new(2.0, 1.0, 1.2, 1.1, (0.5, 0.3), Assembly::Open).unwrap();
-    assert_eq!(fb.grashof(), GrashofClass::TripleRocker);
+    assert_eq!(
+        fb.grashof(),
+        GrashofClass::TripleRocker,
+        "Grashof class of (2, 1, 1.2, 1.1)"
+    );
     let (p0, a0, b0) = coupler_pose(&fb, 0.2, Assembly::Open);
     let (p1, ..) = coupler_pose(&fb, 0.5, Assembly::Open);
     let (p2, ..) = coupler_pose(&fb, 0.3, Assembly::Crossed);
@@ -495,7 +569,8 @@ fn chebyshev_spacing_formula() {
     let h = 3.0_f64.sqrt() / 4.0;
     let want = [0.5 - h, 0.5, 0.5 + h];
     for (j, w) in want.iter().enumerate() {
-        assert!((chebyshev_spacing(0.0, 1.0, 3, j) - w).abs() < 1e-15);
+        let x = chebyshev_spacing(0.0, 1.0, 3, j);
+        assert!((x - w).abs() < 1e-15, "j = {j}: {x} vs {w}");
     }
     // Symmetric about the middle; inside the interval; n = 1 is the midpoint; j ≥ n is NaN.
     for n in 1..9 {
@@ -504,11 +579,15 @@ fn chebyshev_spacing_formula() {
                 chebyshev_spacing(2.0_f64, 5.0, n, j),
                 chebyshev_spacing(2.0, 5.0, n, n - 1 - j),
             );
-            assert!((x + y - 7.0).abs() < 1e-14 && x > 2.0 && x < 5.0);
+            assert!(
+                (x + y - 7.0).abs() < 1e-14 && x > 2.0 && x < 5.0,
+                "n = {n} j = {j}: {x} and its mirror {y} on [2, 5]"
+            );
         }
     }
-    assert_eq!(chebyshev_spacing(2.0, 5.0, 1, 0), 3.5);
-    assert!(chebyshev_spacing(2.0_f64, 5.0, 3, 3).is_nan());
+    assert_eq!(chebyshev_spacing(2.0, 5.0, 1, 0), 3.5, "n = 1 on [2, 5]");
+    let beyond = chebyshev_spacing(2.0_f64, 5.0, 3, 3);
+    assert!(beyond.is_nan(), "j = n = 3: {beyond}");
 }
 
 /// The output angle of `fb` (from the ground line) at crank angle `theta`.
@@ -522,13 +601,14 @@ fn freudenstein_recovers_a_known_linkage() {
     let (d, a, b, c) = (1.0, 0.45, 1.1, 0.8);
     let fb = FourBar::new(d, a, b, c, (0.0, 0.0), Assembly::Open).unwrap();
     let k = Freudenstein::of_lengths(d, a, b, c).unwrap();
-    assert_eq!(k.k1, d / a);
-    assert_eq!(k.k2, d / c);
+    assert_eq!(k.k1, d / a, "K1 = d/a");
+    assert_eq!(k.k2, d / c, "K2 = d/c");
     let (lo, hi) = (0.5, 2.2);
     let phi: Vec<f64> = (0..3).map(|j| chebyshev_spacing(lo, hi, 3, j)).collect();
     let psi: Vec<f64> = phi.iter().map(|&t| rocker_angle(&fb, t)).collect();
     for (&f, &s) in phi.iter().zip(&psi) {
-        assert!(k.residual(f, s).abs() < 1e-14);
+        let r = k.residual(f, s);
+        assert!(r.abs() < 1e-14, "φ = {f}, ψ = {s}: residual {r:e}");
     }
     let fit = Freudenstein::fit(&phi, &psi).unwrap();
     for (x, y) in [(fit.k1, k.k1), (fit.k2, k.k2), (fit.k3, k.k3)] {
@@ -536,15 +616,23 @@ fn freudenstein_recovers_a_known_linkage() {
     }
     let gen = FunctionGenerator::synthesise(&phi, &psi, d).unwrap();
     same_four_bar(&gen.four_bar, &fb, 1e-12);
-    assert_eq!((gen.input_offset, gen.output_offset), (0.0, 0.0));
+    assert_eq!(
+        (gen.input_offset, gen.output_offset),
+        (0.0, 0.0),
+        "input and output offsets"
+    );
     // The linkage generates its own function exactly: zero structural error over the range.
     let xs: Vec<f64> = (0..201)
         .map(|i| lo + (hi - lo) * i as f64 / 200.0)
         .collect();
     let mut out = vec![0.0; xs.len()];
     let check = gen.sweep(&xs, &mut out, &phi, &psi).unwrap();
-    assert_eq!(check.defect, None);
-    assert!(check.precision_error < 1e-12);
+    assert_eq!(check.defect, None, "{check:?}");
+    assert!(
+        check.precision_error < 1e-12,
+        "precision error {:e}",
+        check.precision_error
+    );
     let worst = xs
         .iter()
         .zip(&out)
@@ -568,11 +656,16 @@ fn freudenstein_negative_link_is_a_half_turn_offset() {
     let phi: Vec<f64> = theta.iter().map(|t| t - PI).collect();
     let psi: Vec<f64> = theta.iter().map(|&t| rocker_angle(&fb, t)).collect();
     let gen = FunctionGenerator::synthesise(&phi, &psi, d).unwrap();
-    assert!(gen.freudenstein.k1 < 0.0);
-    assert_eq!(gen.input_offset, PI);
+    assert!(
+        gen.freudenstein.k1 < 0.0,
+        "K1 = {} for φ = θ − π",
+        gen.freudenstein.k1
+    );
+    assert_eq!(gen.input_offset, PI, "input offset for φ = θ − π");
     same_four_bar(&gen.four_bar, &fb, 1e-12);
     for (&f, &s) in phi.iter().zip(&psi) {
-        assert!((gen.output(f).unwrap() - s).abs() < 1e-12);
+        let out = gen.output(f).unwrap();
+        assert!((out - s).abs() < 1e-12, "φ = {f}: output {out} vs ψ = {s}");
     }
 }
 
@@ -597,11 +690,18 @@ fn structural_error_of_an_approximate_generator() {
     let mut out = vec![0.0; grid.len()];
     let check = gen.sweep(&gphi, &mut out, &phi, &psi).unwrap();
     assert_eq!(check.defect, None, "{check:?}");
-    assert!(check.precision_error < 1e-12);
+    assert!(
+        check.precision_error < 1e-12,
+        "precision error {:e}",
+        check.precision_error
+    );
     let mut worst: f64 = 0.0;
     for ((&x, &f), &o) in grid.iter().zip(&gphi).zip(&out) {
         let untracked = gen.output(f).unwrap();
-        assert!(((untracked - o + PI).rem_euclid(TAU) - PI).abs() < 1e-12);
+        assert!(
+            ((untracked - o + PI).rem_euclid(TAU) - PI).abs() < 1e-12,
+            "x = {x}: untracked {untracked} vs tracked {o}"
+        );
         worst = worst.max((o - psi_of(x)).abs());
     }
     // An approximation: a real, small error (less than a degree over a 90° output swing).
@@ -640,7 +740,7 @@ fn independently_reaches(cand: &MotionCandidate<f64>, poses: &[BodyPose<f64>]) -
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
+    #![proptest_config(common::config("proptest-regressions/precision.txt"))]
 
     /// Poses of a random four-bar, each on a random assembly, synthesised back from the
     /// pivots: the result either passes every pose on one circuit (checked independently) or
@@ -687,16 +787,16 @@ proptest! {
         let Ok(cand) = MotionCandidate::new(&poses, crank, rocker) else { return Ok(()) };
         if cand.check.defect.is_none() {
             prop_assert!(independently_reaches(&cand, &poses), "{:?}", cand.check);
-            prop_assert!(cand.check.position_error < 1e-9);
+            prop_assert!(cand.check.position_error < 1e-9, "position error {:e}: {:?}", cand.check.position_error, cand.check);
         }
         let same = asm[..n].iter().all(|&x| x == asm[0]);
         let total: f64 = steps[..n - 1].iter().sum();
         if fb.grashof() == GrashofClass::CrankRocker && total < TAU - 0.01 {
             if same {
-                prop_assert_eq!(cand.check.defect, None);
+                prop_assert_eq!(cand.check.defect, None, "poses on one assembly of a crank-rocker: {:?}", cand.check);
             } else {
                 // Two assemblies of a crank-rocker are two circuits.
-                prop_assert!(cand.check.defect.is_some());
+                prop_assert!(cand.check.defect.is_some(), "assemblies {:?} of a crank-rocker not flagged: {:?}", &asm[..n], cand.check);
             }
         }
     }
@@ -749,10 +849,21 @@ fn generic_over_f32() {
     let p3: [BodyPose<f32>; 3] = poses.clone().try_into().unwrap();
     let crank = centre_point(&p3, pins[0].0).unwrap();
     let rocker = centre_point(&p3, pins[0].1).unwrap();
-    assert!((crank.centre - fb.o).norm() < 1e-4 && (rocker.centre - fb.c).norm() < 1e-4);
+    assert!(
+        (crank.centre - fb.o).norm() < 1e-4 && (rocker.centre - fb.c).norm() < 1e-4,
+        "f32: crank centre {:?} vs O {:?}, rocker centre {:?} vs C {:?}",
+        crank.centre,
+        fb.o,
+        rocker.centre,
+        fb.c
+    );
     let cand = MotionCandidate::new(&poses, crank, rocker).unwrap();
-    assert_eq!(cand.check.defect, None);
-    assert!(cand.check.position_error < 1e-4);
+    assert_eq!(cand.check.defect, None, "f32: {:?}", cand.check);
+    assert!(
+        cand.check.position_error < 1e-4,
+        "f32: position error {:e}",
+        cand.check.position_error
+    );
     let f = FourBar::<f32>::new(1.0, 0.45, 1.1, 0.8, (0.0, 0.0), Assembly::Open).unwrap();
     let phi = [0.6_f32, 1.3, 2.0];
     let psi = phi.map(|t| {
@@ -760,5 +871,10 @@ fn generic_over_f32() {
         b.y.atan2(b.x)
     });
     let gen = FunctionGenerator::synthesise(&phi, &psi, 1.0).unwrap();
-    assert!((gen.four_bar.crank - 0.45).abs() < 1e-4 && (gen.four_bar.rocker - 0.8).abs() < 1e-4);
+    assert!(
+        (gen.four_bar.crank - 0.45).abs() < 1e-4 && (gen.four_bar.rocker - 0.8).abs() < 1e-4,
+        "f32 Freudenstein: crank {} vs 0.45, rocker {} vs 0.8",
+        gen.four_bar.crank,
+        gen.four_bar.rocker
+    );
 }

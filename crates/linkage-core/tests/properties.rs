@@ -106,13 +106,13 @@ proptest! {
         let th: Vec<f64> = (0..=2 * steps).map(|k| start + 2.0 * PI * k as f64 / steps as f64).collect();
         let poses = sweep(&fb, &th);
         for j in &poses {
-            prop_assert_eq!(orientation(j.as_ref().unwrap()), want);
+            prop_assert_eq!(orientation(j.as_ref().unwrap()), want, "{:?} branch changed orientation: joints {:?}", fb.assembly, j);
         }
         for k in 0..steps {
             let (a, b) = (poses[k].unwrap(), poses[k + steps].unwrap());
             for i in 0..5 {
                 let scale = case.size.max(a[i].amax());
-                prop_assert!((a[i] - b[i]).norm() <= 1e-11 * scale);
+                prop_assert!((a[i] - b[i]).norm() <= 1e-11 * scale, "joint {i} not 2π-periodic from θ = {}: {:?} vs {:?}", th[k], a[i], b[i]);
             }
         }
     }
@@ -161,17 +161,17 @@ proptest! {
         let class = fb.grashof();
         prop_assume!(class != GrashofClass::ChangePoint);
         let turns = matches!(class, GrashofClass::CrankRocker | GrashofClass::DoubleCrank);
-        prop_assert_eq!(matches!(fb.input_range(), InputRange::Full), turns);
+        prop_assert_eq!(matches!(fb.input_range(), InputRange::Full), turns, "{:?} vs input range {:?}", class, fb.input_range());
         let m = fb.mechanism();
         let mut j = [Vec2::zeros(); 5];
         let all = (0..720).all(|i| m.pose(2.0 * PI * i as f64 / 720.0, &mut j).is_ok());
         if turns {
-            prop_assert!(all);
+            prop_assert!(all, "{class:?} failed to assemble within a sampled turn");
         } else if all {
             // A sampled full turn can slip between toggle limits only if the unreachable arc is
             // narrower than the sampling; then the limits must be that close.
             match fb.input_range() {
-                InputRange::Between { lo, hi } => prop_assert!(2.0 * PI - (hi - lo) < 2.0 * PI / 720.0),
+                InputRange::Between { lo, hi } => prop_assert!(2.0 * PI - (hi - lo) < 2.0 * PI / 720.0, "every sample assembled, yet limits {lo}…{hi} leave a gap of {}", 2.0 * PI - (hi - lo)),
                 InputRange::TwoIntervals { .. } | InputRange::Never => prop_assert!(false, "{:?}", fb.input_range()),
                 InputRange::Full => unreachable!(),
             }
@@ -200,7 +200,10 @@ fn f32_agrees_with_f64() {
     // rounding (θ to f32 is 2.4e-7 rad, times the foot's lever ~ 100 mm).
     assert!(worst < 1e-4, "worst f32 error {worst:e} mm");
     println!("f32 against f64, Hoecken over a turn: largest difference {worst:.2e} mm");
-    assert!(worst > 0.0);
+    assert!(
+        worst > 0.0,
+        "f32 sweep identical to f64 (worst {worst:e}): not computed in f32?"
+    );
 }
 
 /// The general mechanism's tracker with rates: velocity of the crank pin is ω × r.
@@ -218,8 +221,20 @@ fn tracker_rates_of_crank_pin() {
             Rates::acceleration(&mut v, &mut a),
         )
         .unwrap();
-    assert!(s.regular);
+    assert!(s.regular, "θ = 0.3 not regular: margin {:e}", s.margin);
     let r = j[2];
-    assert!((v[2] - Vec2::new(-r.y, r.x) * 2.0).norm() < 1e-13);
-    assert!((a[2] - (Vec2::new(-r.y, r.x) * 0.5 - r * 4.0)).norm() < 1e-12);
+    let (v_want, a_want) = (
+        Vec2::new(-r.y, r.x) * 2.0,
+        Vec2::new(-r.y, r.x) * 0.5 - r * 4.0,
+    );
+    assert!(
+        (v[2] - v_want).norm() < 1e-13,
+        "crank pin velocity {:?} vs ω × r = {v_want:?}",
+        v[2]
+    );
+    assert!(
+        (a[2] - a_want).norm() < 1e-12,
+        "crank pin acceleration {:?} vs α × r − ω²r = {a_want:?}",
+        a[2]
+    );
 }

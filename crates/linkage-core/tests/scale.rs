@@ -189,7 +189,10 @@ fn check<const N: usize>(what: &str, m: &Mechanism<f64, N>) {
     }
     for k in [1e-300_f64, 1e300, 1e-200, 1e200, 3.7e-301, 7.1e299] {
         let base = k / 2f64.powi(k.log2().floor() as i32);
-        assert!((1.0..2.0).contains(&base));
+        assert!(
+            (1.0..2.0).contains(&base),
+            "mantissa {base} of {k:e} not in [1, 2)"
+        );
         let rel = worst(m, base, k);
         println!("{what} k = {k:e} (against {base}): {rel:?}");
         assert!(rel.iter().all(|&r| r <= tol), "{what} k = {k:e}: {rel:?}");

@@ -205,14 +205,44 @@ fn block_case<const N: usize>(
             v.to_vec()
         }
     };
-    prop_assert!(same_points(&got.joints, &col(&want.joints)));
-    prop_assert_eq!(&got.valid, &want.valid);
-    prop_assert!(same_floats(&got.margin, &want.margin));
-    prop_assert!(same_floats(&got.gap, &want.gap));
+    prop_assert!(
+        same_points(&got.joints, &col(&want.joints)),
+        "joints: {}",
+        point_difference(&got.joints, &col(&want.joints))
+    );
+    prop_assert_eq!(
+        &got.valid,
+        &want.valid,
+        "validity: {}",
+        flag_difference(&got.valid, &want.valid)
+    );
+    prop_assert!(
+        same_floats(&got.margin, &want.margin),
+        "margins: {}",
+        float_difference(&got.margin, &want.margin)
+    );
+    prop_assert!(
+        same_floats(&got.gap, &want.gap),
+        "gaps: {}",
+        float_difference(&got.gap, &want.gap)
+    );
     if rates {
-        prop_assert!(same_points(&got.velocity, &col(&want.velocity)));
-        prop_assert!(same_points(&got.acceleration, &col(&want.acceleration)));
-        prop_assert_eq!(&got.regular, &want.regular);
+        prop_assert!(
+            same_points(&got.velocity, &col(&want.velocity)),
+            "velocities: {}",
+            point_difference(&got.velocity, &col(&want.velocity))
+        );
+        prop_assert!(
+            same_points(&got.acceleration, &col(&want.acceleration)),
+            "accelerations: {}",
+            point_difference(&got.acceleration, &col(&want.acceleration))
+        );
+        prop_assert_eq!(
+            &got.regular,
+            &want.regular,
+            "regular flags: {}",
+            flag_difference(&got.regular, &want.regular)
+        );
     }
     if centres {
         // The sample-by-sample engine's centres and curvatures (they do not depend on the drive).
@@ -223,8 +253,16 @@ fn block_case<const N: usize>(
             Rate::PerSample(omega),
             Rate::Scalar(0.5),
         );
-        prop_assert!(same_points(&got.centres, &tracked.centres));
-        prop_assert!(same_points(&got.directions, &tracked.directions));
+        prop_assert!(
+            same_points(&got.centres, &tracked.centres),
+            "centres vs the tracked plan: {}",
+            point_difference(&got.centres, &tracked.centres)
+        );
+        prop_assert!(
+            same_points(&got.directions, &tracked.directions),
+            "centre directions vs the tracked plan: {}",
+            point_difference(&got.directions, &tracked.directions)
+        );
         let colf = |v: &[f64]| -> Vec<f64> {
             if one {
                 (0..n).map(|k| v[k * j + j - 1]).collect()
@@ -232,11 +270,16 @@ fn block_case<const N: usize>(
                 v.to_vec()
             }
         };
-        prop_assert!(same_floats(&got.curvature, &colf(&tracked.curvature)));
-        prop_assert!(same_points(
-            &got.curvature_centres,
-            &col(&tracked.curvature_centres)
-        ));
+        prop_assert!(
+            same_floats(&got.curvature, &colf(&tracked.curvature)),
+            "curvatures vs the tracked plan: {}",
+            float_difference(&got.curvature, &colf(&tracked.curvature))
+        );
+        prop_assert!(
+            same_points(&got.curvature_centres, &col(&tracked.curvature_centres)),
+            "curvature centres vs the tracked plan: {}",
+            point_difference(&got.curvature_centres, &col(&tracked.curvature_centres))
+        );
     }
     Ok(())
 }
@@ -255,6 +298,34 @@ fn same_points(a: &[Vec2<f64>], b: &[Vec2<f64>]) -> bool {
 
 fn same_floats(a: &[f64], b: &[f64]) -> bool {
     a.len() == b.len() && a.iter().zip(b).all(|(&p, &q)| same(p, q))
+}
+
+/// Where `a` and `b` first differ by `same`, with both values there (or their lengths): what a
+/// failure message shows instead of two whole outputs.
+fn first_difference<T: Copy + std::fmt::Debug>(
+    a: &[T],
+    b: &[T],
+    same: impl Fn(T, T) -> bool,
+) -> String {
+    if a.len() != b.len() {
+        return format!("lengths {} vs {}", a.len(), b.len());
+    }
+    match (0..a.len()).find(|&k| !same(a[k], b[k])) {
+        Some(k) => format!("first at [{k}]: {:?} vs {:?}", a[k], b[k]),
+        None => String::from("none"),
+    }
+}
+
+fn point_difference(a: &[Vec2<f64>], b: &[Vec2<f64>]) -> String {
+    first_difference(a, b, |p, q| same_points(&[p], &[q]))
+}
+
+fn float_difference(a: &[f64], b: &[f64]) -> String {
+    first_difference(a, b, same)
+}
+
+fn flag_difference(a: &[bool], b: &[bool]) -> String {
+    first_difference(a, b, |p, q| p == q)
 }
 
 /// A four-bar of one of the toggle classes: 0 parallelogram, 1 kite, 2 deltoid, 3 general
@@ -341,15 +412,15 @@ proptest! {
         let omega: Vec<f64> = (0..theta.len()).map(|k| w + 0.1 * k as f64).collect();
         let plan = if held { Plan::Held } else { Plan::Tracked };
         let (got, took) = engine_with(plan, &m, &theta, Rate::PerSample(&omega), Rate::Scalar(0.5));
-        prop_assert!(held || !took);
+        prop_assert!(held || !took, "the held pass ran on Plan::Tracked");
         let want = reference(&m, &theta, &omega, 0.5);
-        prop_assert!(same_points(&got.joints, &want.joints));
-        prop_assert!(same_points(&got.velocity, &want.velocity));
-        prop_assert!(same_points(&got.acceleration, &want.acceleration));
-        prop_assert_eq!(&got.valid, &want.valid);
-        prop_assert_eq!(&got.regular, &want.regular);
-        prop_assert!(same_floats(&got.margin, &want.margin));
-        prop_assert!(same_floats(&got.gap, &want.gap));
+        prop_assert!(same_points(&got.joints, &want.joints), "joints: {}", point_difference(&got.joints, &want.joints));
+        prop_assert!(same_points(&got.velocity, &want.velocity), "velocities: {}", point_difference(&got.velocity, &want.velocity));
+        prop_assert!(same_points(&got.acceleration, &want.acceleration), "accelerations: {}", point_difference(&got.acceleration, &want.acceleration));
+        prop_assert_eq!(&got.valid, &want.valid, "validity: {}", flag_difference(&got.valid, &want.valid));
+        prop_assert_eq!(&got.regular, &want.regular, "regular flags: {}", flag_difference(&got.regular, &want.regular));
+        prop_assert!(same_floats(&got.margin, &want.margin), "margins: {}", float_difference(&got.margin, &want.margin));
+        prop_assert!(same_floats(&got.gap, &want.gap), "gaps: {}", float_difference(&got.gap, &want.gap));
         // Invalid samples: NaN in every row; valid ones: no sentinel left anywhere.
         let (j, p) = (m.len(), sweep_pairs(&m));
         for k in 0..theta.len() {
@@ -360,13 +431,13 @@ proptest! {
                 &got.directions[k * p..(k + 1) * p],
             ];
             for row in rows {
-                prop_assert!(row.iter().all(|q| q.x != -12345.0));
+                prop_assert!(row.iter().all(|q| q.x != -12345.0), "sample {k}: sentinel left in {row:?}");
                 if !got.valid[k] {
-                    prop_assert!(row.iter().all(|q| q.x.is_nan() && q.y.is_nan()));
+                    prop_assert!(row.iter().all(|q| q.x.is_nan() && q.y.is_nan()), "invalid sample {k}: a row not NaN: {row:?}");
                 }
             }
-            prop_assert!(got.curvature[k * j..(k + 1) * j].iter().all(|&c| c != -12345.0));
-            prop_assert!(got.margin[k] != -12345.0 && got.gap[k] != -12345.0);
+            prop_assert!(got.curvature[k * j..(k + 1) * j].iter().all(|&c| c != -12345.0), "sample {k}: sentinel left in curvatures {:?}", &got.curvature[k * j..(k + 1) * j]);
+            prop_assert!(got.margin[k] != -12345.0 && got.gap[k] != -12345.0, "sample {k}: sentinel left: margin {}, gap {}", got.margin[k], got.gap[k]);
         }
     }
 
@@ -414,12 +485,12 @@ proptest! {
             curvature: Some(&mut b.curvature),
         };
         sweep(&m, &theta, Rate::Scalar(1.3), Rate::Scalar(-0.2), out, &mut || true).unwrap();
-        prop_assert!(same_points(&b.joints, &all.joints));
-        prop_assert!(same_points(&b.centres, &all.centres));
-        prop_assert!(same_floats(&b.curvature, &all.curvature));
-        prop_assert!(same_floats(&b.margin, &all.margin));
+        prop_assert!(same_points(&b.joints, &all.joints), "joints with fewer outputs asked: {}", point_difference(&b.joints, &all.joints));
+        prop_assert!(same_points(&b.centres, &all.centres), "centres with fewer outputs asked: {}", point_difference(&b.centres, &all.centres));
+        prop_assert!(same_floats(&b.curvature, &all.curvature), "curvatures with fewer outputs asked: {}", float_difference(&b.curvature, &all.curvature));
+        prop_assert!(same_floats(&b.margin, &all.margin), "margins with fewer outputs asked: {}", float_difference(&b.margin, &all.margin));
         // Untouched outputs stay untouched.
-        prop_assert!(b.velocity.iter().all(|q| q.x == -12345.0));
+        prop_assert!(b.velocity.iter().all(|q| q.x == -12345.0), "velocity written though not asked for: {:?}", b.velocity.iter().find(|q| q.x != -12345.0));
     }
 }
 
@@ -462,8 +533,17 @@ fn equals_the_tracker_on_the_catalogue() {
     }
     // The held pass applies to the full-turn ones (so the comparison above tests it):
     // Jansen's crank-pin dyads have no flat position, and its others stay clear of toggles.
-    assert_eq!(catalog::MULTI_LOOP[2..], ["hoecken_pantograph", "jansen"]);
-    assert_eq!(held, [false, false, true, true]);
+    assert_eq!(
+        catalog::MULTI_LOOP[2..],
+        ["hoecken_pantograph", "jansen"],
+        "order of the multi-loop catalogue"
+    );
+    assert_eq!(
+        held,
+        [false, false, true, true],
+        "held pass per linkage of {:?}",
+        catalog::MULTI_LOOP
+    );
 }
 
 /// 10⁵ angles in arbitrary order on linkages clear of toggles: the held pass sweeps them
@@ -482,17 +562,38 @@ fn held_pass_on_arbitrary_angles() {
     let hoecken = catalog::hoecken::<f64>().mechanism();
     let omega = Rate::Scalar(2.0);
     let (got, held) = engine_with(Plan::Auto, &hoecken, &theta, omega, Rate::Scalar(0.0));
-    assert!(held);
+    assert!(held, "Hoecken over arbitrary angles not held");
     let want = reference(&hoecken, &theta, &[2.0; 100_000], 0.0);
-    assert!(same_points(&got.joints, &want.joints));
-    assert!(same_points(&got.velocity, &want.velocity));
-    assert!(same_points(&got.acceleration, &want.acceleration));
-    assert!(same_floats(&got.margin, &want.margin));
-    assert_eq!(got.regular, want.regular);
+    assert!(
+        same_points(&got.joints, &want.joints),
+        "joints: {}",
+        point_difference(&got.joints, &want.joints)
+    );
+    assert!(
+        same_points(&got.velocity, &want.velocity),
+        "velocities: {}",
+        point_difference(&got.velocity, &want.velocity)
+    );
+    assert!(
+        same_points(&got.acceleration, &want.acceleration),
+        "accelerations: {}",
+        point_difference(&got.acceleration, &want.acceleration)
+    );
+    assert!(
+        same_floats(&got.margin, &want.margin),
+        "margins: {}",
+        float_difference(&got.margin, &want.margin)
+    );
+    assert_eq!(
+        got.regular,
+        want.regular,
+        "regular flags: {}",
+        flag_difference(&got.regular, &want.regular)
+    );
     // A parallelogram passes flat positions: never held.
     let par = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.5, 0.0), Assembly::Open).unwrap();
     let (_, held) = engine_with(Plan::Held, &par.mechanism(), &theta[..10], omega, omega);
-    assert!(!held);
+    assert!(!held, "a parallelogram through flat positions was held");
 }
 
 /// Intersection of the lines through `a`, `b` and through `c`, `d`.
@@ -510,7 +611,7 @@ fn meet(a: Vec2<f64>, b: Vec2<f64>, c: Vec2<f64>, d: Vec2<f64>) -> Vec2<f64> {
 fn centres_curvature_and_rates_match_closed_forms() {
     let fb = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 8.0), Assembly::Open).unwrap();
     let m = fb.mechanism();
-    assert_eq!(sweep_pairs(&m), 6);
+    assert_eq!(sweep_pairs(&m), 6, "body pairs of a four-bar");
     let h = 1e-4;
     let mut theta = Vec::new();
     for k in 0..40 {
@@ -521,7 +622,13 @@ fn centres_curvature_and_rates_match_closed_forms() {
     let got = engine(&m, &theta, Rate::Scalar(w), Rate::Scalar(al));
     let j = m.len();
     for k in (1..theta.len()).step_by(3) {
-        assert!(got.valid[k] && got.regular[k]);
+        assert!(
+            got.valid[k] && got.regular[k],
+            "θ = {}: valid {}, regular {}",
+            theta[k],
+            got.valid[k],
+            got.regular[k]
+        );
         let p = |s: usize, i: usize| got.joints[s * j + i];
         let (o, c, a, b) = (p(k, 0), p(k, 1), p(k, 2), p(k, 3));
         let row = &got.centres[k * 6..k * 6 + 6];
@@ -534,9 +641,14 @@ fn centres_curvature_and_rates_match_closed_forms() {
                 "{got} {want}"
             );
         }
-        assert!(got.directions[k * 6..k * 6 + 6]
-            .iter()
-            .all(|d| d.x.is_nan()));
+        assert!(
+            got.directions[k * 6..k * 6 + 6]
+                .iter()
+                .all(|d| d.x.is_nan()),
+            "θ = {}: a centre at infinity, directions {:?}",
+            theta[k],
+            &got.directions[k * 6..k * 6 + 6]
+        );
         for i in 0..j {
             let (pm, p0, pp) = (p(k - 1, i), p(k, i), p(k + 1, i));
             let d1 = (pp - pm) / (2.0 * h);
@@ -555,7 +667,11 @@ fn centres_curvature_and_rates_match_closed_forms() {
             let kappa = got.curvature[k * j + i];
             if d1.norm() < 1e-9 {
                 // O and C are at rest: no curvature.
-                assert!(kappa.is_nan() || kappa == 0.0 || i < 2);
+                assert!(
+                    kappa.is_nan() || kappa == 0.0 || i < 2,
+                    "joint {i} at rest at θ = {}: κ = {kappa}",
+                    theta[k]
+                );
                 continue;
             }
             let fd = (d1.x * d2.y - d1.y * d2.x) / d1.norm().powi(3);
@@ -583,9 +699,13 @@ fn parallelogram_centre_at_infinity() {
     let theta = [0.7, 1.9, 4.0];
     let got = engine(&m, &theta, Rate::Scalar(1.0), Rate::Scalar(0.0));
     for (k, &t) in theta.iter().enumerate() {
-        assert!(got.valid[k]);
+        assert!(got.valid[k], "θ = {t}: invalid");
         // (ground, coupler) is pair 1.
-        assert!(got.centres[k * 6 + 1].x.is_nan());
+        assert!(
+            got.centres[k * 6 + 1].x.is_nan(),
+            "θ = {t}: I13 finite at {:?}",
+            got.centres[k * 6 + 1]
+        );
         let d = got.directions[k * 6 + 1];
         let crank = Vec2::new(t.cos(), t.sin());
         assert!(d.dot(&crank).abs() > 1.0 - 1e-9, "{d} {crank}");
@@ -600,12 +720,34 @@ fn unassemblable_samples_are_nan_with_their_gap() {
     let m = fb.mechanism();
     let theta = [0.0, 3.0, 0.5];
     let got = engine(&m, &theta, Rate::Scalar(1.0), Rate::Scalar(0.0));
-    assert_eq!(got.valid, [true, false, true]);
-    assert!(got.gap[1] > 0.0 && got.gap[0] == 0.0);
-    assert!(got.margin[1].is_nan() && !got.regular[1]);
-    assert!(got.joints[5..10].iter().all(|p| p.x.is_nan()));
-    assert!(got.velocity[5..10].iter().all(|p| p.x.is_nan()));
-    assert!(got.curvature[5..10].iter().all(|c| c.is_nan()));
+    assert_eq!(got.valid, [true, false, true], "validity at θ = {theta:?}");
+    assert!(
+        got.gap[1] > 0.0 && got.gap[0] == 0.0,
+        "gap {} at θ = 3 (locked), {} at θ = 0",
+        got.gap[1],
+        got.gap[0]
+    );
+    assert!(
+        got.margin[1].is_nan() && !got.regular[1],
+        "locked sample: margin {}, regular {}",
+        got.margin[1],
+        got.regular[1]
+    );
+    assert!(
+        got.joints[5..10].iter().all(|p| p.x.is_nan()),
+        "locked sample's joints {:?}",
+        &got.joints[5..10]
+    );
+    assert!(
+        got.velocity[5..10].iter().all(|p| p.x.is_nan()),
+        "locked sample's velocities {:?}",
+        &got.velocity[5..10]
+    );
+    assert!(
+        got.curvature[5..10].iter().all(|c| c.is_nan()),
+        "locked sample's curvatures {:?}",
+        &got.curvature[5..10]
+    );
 }
 
 #[test]
@@ -642,11 +784,28 @@ fn go_on_stops_between_chunks() {
         },
     )
     .unwrap();
-    assert_eq!(calls, 2);
-    assert_eq!(done.samples, 2 * SWEEP_CHUNK);
-    assert!(b.valid[..done.samples].iter().all(|&v| v));
+    assert_eq!(calls, 2, "go_on calls, the second saying stop");
+    assert_eq!(
+        done.samples,
+        2 * SWEEP_CHUNK,
+        "samples swept before the stop"
+    );
+    assert!(
+        b.valid[..done.samples].iter().all(|&v| v),
+        "invalid samples before the stop: {:?}",
+        (0..done.samples)
+            .filter(|&k| !b.valid[k])
+            .collect::<Vec<_>>()
+    );
     // Rows after the stop are left as they were.
-    assert!(b.joints[done.samples * 5..].iter().all(|p| p.x == -12345.0));
+    assert!(
+        b.joints[done.samples * 5..].iter().all(|p| p.x == -12345.0),
+        "rows after the stop at sample {} written, first at {:?}",
+        done.samples,
+        b.joints[done.samples * 5..]
+            .iter()
+            .position(|p| p.x != -12345.0)
+    );
 }
 
 #[test]
@@ -681,8 +840,16 @@ fn wrong_slices_are_errors_and_nothing_is_written() {
         };
         let e = sweep(&m, &theta, w, Rate::Scalar(0.0), out, &mut || true).unwrap_err();
         assert!(matches!(e, Error::BufferLength { .. }), "{e:?}");
-        assert!(b.joints.iter().all(|p| p.x == -12345.0));
-        assert!(b.valid.iter().all(|&v| v));
+        assert!(
+            b.joints.iter().all(|p| p.x == -12345.0),
+            "case {case}: joints written, first at {:?}",
+            b.joints.iter().position(|p| p.x != -12345.0)
+        );
+        assert!(
+            b.valid.iter().all(|&v| v),
+            "case {case}: validity written: {:?}",
+            b.valid
+        );
     }
     let none = Mechanism::<f64, 2>::new();
     let mut b = buffers(0, 0, 0);
@@ -708,7 +875,7 @@ fn wrong_slices_are_errors_and_nothing_is_written() {
         out,
         &mut || true,
     );
-    assert_eq!(r, Err(Error::NoDriver));
+    assert_eq!(r, Err(Error::NoDriver), "a mechanism without a driver");
 }
 
 /// The same engine in `f32`: positions and velocities agree with `f64` to `f32` precision.
@@ -747,14 +914,20 @@ fn runs_in_f32() {
         &mut || true,
     )
     .unwrap();
-    assert_eq!(done.samples, n);
+    assert_eq!(done.samples, n, "f32 samples swept");
     for k in 0..n * j {
         let (p, q) = (joints[k], got.joints[k]);
-        assert!(((p.x as f64) - q.x).abs() < 1e-3 && ((p.y as f64) - q.y).abs() < 1e-3);
+        assert!(
+            ((p.x as f64) - q.x).abs() < 1e-3 && ((p.y as f64) - q.y).abs() < 1e-3,
+            "f32 vs f64 joint [{k}]: {p:?} vs {q:?}"
+        );
         let (v, u) = (vel[k], got.velocity[k]);
-        assert!(((v.x as f64) - u.x).abs() < 1e-2 * (1.0 + u.x.abs()));
+        assert!(
+            ((v.x as f64) - u.x).abs() < 1e-2 * (1.0 + u.x.abs()),
+            "f32 vs f64 velocity [{k}]: {v:?} vs {u:?}"
+        );
     }
-    assert_eq!(valid, got.valid);
+    assert_eq!(valid, got.valid, "validity f32 vs f64");
 }
 
 /// A program copied to a smaller capacity sweeps to the same bits; too small is an error.
@@ -762,17 +935,38 @@ fn runs_in_f32() {
 fn resized_mechanism_sweeps_the_same() {
     let big = catalog::jansen::<f64>().mechanism;
     let small = big.resized::<8>().unwrap();
-    assert_eq!(small.constructions(), big.constructions());
-    assert_eq!(small.driver(), big.driver());
+    assert_eq!(
+        small.constructions(),
+        big.constructions(),
+        "constructions at capacity 8"
+    );
+    assert_eq!(small.driver(), big.driver(), "driver at capacity 8");
     assert_eq!(
         big.resized::<4>().unwrap_err(),
-        Error::CapacityExceeded { capacity: 4 }
+        Error::CapacityExceeded { capacity: 4 },
+        "Jansen at capacity 4"
     );
     let theta: Vec<f64> = (0..3000).map(|k| 0.37 * k as f64).collect();
     let a = engine(&big, &theta, Rate::Scalar(1.0), Rate::Scalar(0.1));
     let b = engine(&small, &theta, Rate::Scalar(1.0), Rate::Scalar(0.1));
-    assert!(same_points(&a.joints, &b.joints));
-    assert!(same_points(&a.acceleration, &b.acceleration));
-    assert!(same_points(&a.centres, &b.centres));
-    assert!(same_floats(&a.curvature, &b.curvature));
+    assert!(
+        same_points(&a.joints, &b.joints),
+        "joints, capacity 8 vs the original: {}",
+        point_difference(&a.joints, &b.joints)
+    );
+    assert!(
+        same_points(&a.acceleration, &b.acceleration),
+        "accelerations, capacity 8 vs the original: {}",
+        point_difference(&a.acceleration, &b.acceleration)
+    );
+    assert!(
+        same_points(&a.centres, &b.centres),
+        "centres, capacity 8 vs the original: {}",
+        point_difference(&a.centres, &b.centres)
+    );
+    assert!(
+        same_floats(&a.curvature, &b.curvature),
+        "curvatures, capacity 8 vs the original: {}",
+        float_difference(&a.curvature, &b.curvature)
+    );
 }

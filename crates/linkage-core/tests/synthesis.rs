@@ -45,7 +45,7 @@ proptest! {
         let n = 301;
         let mut theta = vec![0.0; n];
         let mut joints = vec![Vec2::zeros(); 5 * n];
-        prop_assert_eq!(fb.circuit(&mut theta, &mut joints, None).unwrap(), n);
+        prop_assert_eq!(fb.circuit(&mut theta, &mut joints, None).unwrap(), n, "circuit samples of {} for {:?}", n, fb);
         let poly = path.polyline(2048);
         let size = path.size();
         for k in (0..n).step_by(7) {
@@ -101,14 +101,14 @@ proptest! {
         let mut feet2 = [0.0; 6];
         let params: Vec<f64> = p.iter().chain(p.iter()).copied().collect();
         path_errors(&params, &[crossed, crossed], &on, 256, FootSearch::Exact, true, 2, &mut errs, &mut feet2).unwrap();
-        prop_assert_eq!(errs[0], one);
-        prop_assert_eq!(errs[1], one);
-        prop_assert_eq!(&feet2[3..], &feet[..]);
+        prop_assert_eq!(errs[0], one, "batched errors of linkage 0 vs path.errors");
+        prop_assert_eq!(errs[1], one, "batched errors of linkage 1 vs path.errors");
+        prop_assert_eq!(&feet2[3..], &feet[..], "batched feet of linkage 1 vs path.errors");
         let mut res = [Vec2::zeros(); 3];
         path_residuals(&p, &[crossed], &on, &feet, &mut res).unwrap();
         let size = path.size();
         prop_assert!(res[0].norm() <= 1e-9 * size && res[1].norm() <= 1e-9 * size, "{res:?}");
-        prop_assert!((res[2].norm() - one.max).abs() <= 1e-9 * size);
+        prop_assert!((res[2].norm() - one.max).abs() <= 1e-9 * size, "off-curve point {:?}: residual {} vs error {}", on[2], res[2].norm(), one.max);
     }
 }
 
@@ -125,9 +125,12 @@ fn atlas_query_finds_each_entry() {
             2,
         )
         .unwrap();
-        assert_eq!(hits[0].0, e);
+        assert_eq!(hits[0].0, e, "entry {e}'s nearest: {:?}", hits[0]);
     }
-    assert!(nearest(&atlas.descriptors, 0, &[], 1, 1).is_err());
+    assert!(
+        nearest(&atlas.descriptors, 0, &[], 1, 1).is_err(),
+        "nearest with dim 0 accepted"
+    );
 }
 
 /// Counts whose arithmetic or allocation would overflow are typed errors, not panics.
@@ -138,19 +141,27 @@ fn absurd_counts_are_errors() {
     for harmonics in [usize::MAX, usize::MAX / 8] {
         assert_eq!(
             Efd::closed(&square, harmonics),
-            Err(Error::CountOverflow { what: "harmonics" })
+            Err(Error::CountOverflow { what: "harmonics" }),
+            "Efd::closed with {harmonics} harmonics"
         );
     }
-    assert_eq!(descriptor_len(usize::MAX), usize::MAX);
-    assert!(matches!(
-        query_descriptors(&square, usize::MAX, true, &mut [0.0; 4]),
-        Err(Error::BufferLength { .. })
-    ));
+    assert_eq!(
+        descriptor_len(usize::MAX),
+        usize::MAX,
+        "descriptor_len(usize::MAX) does not saturate"
+    );
+    let r = query_descriptors(&square, usize::MAX, true, &mut [0.0; 4]);
+    assert!(
+        matches!(r, Err(Error::BufferLength { .. })),
+        "query_descriptors with usize::MAX harmonics: {r:?}"
+    );
     let spec = AtlasSpec::default();
-    assert!(matches!(
-        Atlas::build(usize::MAX, spec, 1),
-        Err(Error::CountOverflow { .. })
-    ));
+    let r = Atlas::build(usize::MAX, spec, 1);
+    assert!(
+        matches!(r, Err(Error::CountOverflow { .. })),
+        "Atlas::build of usize::MAX entries: {:?}",
+        r.as_ref().map(Atlas::len)
+    );
     for bad in [
         AtlasSpec {
             harmonics: usize::MAX,
@@ -161,12 +172,18 @@ fn absurd_counts_are_errors() {
             ..spec
         },
     ] {
-        assert!(matches!(
-            Atlas::build(1, bad, 1),
-            Err(Error::CountOverflow { .. })
-        ));
+        let r = Atlas::build(1, bad, 1);
+        assert!(
+            matches!(r, Err(Error::CountOverflow { .. })),
+            "Atlas::build with {bad:?}: {:?}",
+            r.as_ref().map(Atlas::len)
+        );
     }
     // A `k` beyond every pair of entry and target asks for them all, not for memory.
     let rows = [0.0f32, 1.0, 2.0];
-    assert_eq!(nearest(&rows, 1, &[0.0], usize::MAX, 1).unwrap().len(), 3);
+    assert_eq!(
+        nearest(&rows, 1, &[0.0], usize::MAX, 1).unwrap().len(),
+        3,
+        "nearest with k = usize::MAX over 3 rows"
+    );
 }

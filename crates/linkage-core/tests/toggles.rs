@@ -297,7 +297,7 @@ proptest! {
                 let fd = (p[2][i] - p[0][i]) / (2.0 * h);
                 let vmax = 1e3 * case.size;
                 if s.regular {
-                    prop_assert!(v[i].x.is_finite() && v[i].y.is_finite() && a[i].x.is_finite());
+                    prop_assert!(v[i].x.is_finite() && v[i].y.is_finite() && a[i].x.is_finite(), "joint {i} θ = {th}: regular but rates not finite: {:?} {:?}", v[i], a[i]);
                     prop_assert!(v[i].norm() < vmax && a[i].norm() < 1e3 * vmax, "{:?} {:?}", v[i], a[i]);
                     let scale = fd.norm().max(case.fb.crank);
                     let cond = 16.0 * f64::EPSILON / (s.margin * s.margin);
@@ -305,8 +305,8 @@ proptest! {
                     let tol = (1e-6 + cond) * scale + 1e-10 * case.size;
                     prop_assert!((v[i] - fd).norm() <= tol, "joint {} θ = {} margin {:e}: {:?} vs {:?}", i, th, s.margin, v[i], fd);
                 } else {
-                    prop_assert!(s.margin < rate_margin::<f64>());
-                    prop_assert!(v[3].x.is_nan() && a[3].x.is_nan() && v[4].x.is_nan());
+                    prop_assert!(s.margin < rate_margin::<f64>(), "θ = {th} flagged, margin {:e} not below rate_margin", s.margin);
+                    prop_assert!(v[3].x.is_nan() && a[3].x.is_nan() && v[4].x.is_nan(), "θ = {th} flagged (margin {:e}) but rates not NaN: v3 {:?} a3 {:?} v4 {:?}", s.margin, v[3], a[3], v[4]);
                 }
             }
         }
