@@ -677,22 +677,34 @@ def _synthesis(res: Result) -> Any:
 
 def _walker_trajectory(res: Result, views: list[tuple[Drawing, bool]]) -> Any:
     """Foot paths in the side and top views, with the legs drawn at the first sample."""
-    fig, axes = _drawing_figure(views, 6.4, bottom=0.9)
+    fig, axes = _drawing_figure(views, 6.4, bottom=1.25)
     handles: list[Any] = []
+    t0 = float(res.time[0]) if len(res.time) else 0.0
     for ax, (d, equal) in zip(axes, views):
         lines = _static(ax, d)
         handles = handles or lines
         _Pose(ax, d, animated=False, faint=True).update(0)
         _view(ax, d, equal)
         what = "side view" if d.axes[1] == "z" else "top view"
-        ax.set_title(f"{res.scene.name}: foot paths, {what} (body frame)", fontsize=10)
+        ax.set_title(
+            f"{res.scene.name}: foot paths, {what} (body frame; legs at t = {t0:g} s)",
+            fontsize=10,
+        )
     d0 = views[0][0]
     labels = leg_legend(d0.legs, d0.leg_labels)
+    # The symbols of the drawing (body, ground, feet in stance and in swing, support polygon,
+    # centre of gravity), each once, after the legs' colours.
+    legs = {*labels, *d0.legs, *(d0.leg_labels or ())}
+    symbols: dict[str, Any] = {}
+    for ax in axes:
+        for h, name in zip(*ax.get_legend_handles_labels()):
+            if not name.startswith("_") and name not in legs:
+                symbols.setdefault(name, h)
     fig.legend(
-        handles,
-        labels,
+        [*handles, *symbols.values()],
+        [*labels, *symbols],
         loc="lower center",
-        ncol=min(6, len(labels)),
+        ncol=min(6, max(len(labels), len(symbols))),
         fontsize=7,
         frameon=False,
     )
