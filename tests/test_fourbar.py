@@ -348,3 +348,15 @@ def test_fast_sweep_into_out_array(hoecken):
     with pytest.raises(linkage.LinkageError, match="dtheta"):
         hoecken.uniform_sweep(0.3, np.nan, n, out=keep)
     assert (keep == 7.0).all()
+
+
+def test_none_among_angles_is_named_not_reported_as_nan() -> None:
+    """A None in the angles is a TypeError naming its index (it used to read as NaN), and a
+    circuit needs two samples whichever count is refused."""
+    fb = linkage.catalog.hoecken()
+    for bad in ([0.5, None], np.array([1.0, None], dtype=object)):
+        with pytest.raises(TypeError, match=r"got None at theta\[1\]"):
+            fb.sweep(bad)
+    for n in (0, 1):
+        with pytest.raises(linkage.LinkageError, match="n must be an int ≥ 2"):
+            fb.circuit(n)

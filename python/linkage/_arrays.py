@@ -256,6 +256,12 @@ def _as_real_array(value: Any, name: str) -> NDArray[Any]:
     except (ValueError, TypeError, OverflowError) as exc:  # ragged nested sequences and the like
         raise LinkageError(f"{name} could not be read as an array: {exc}") from None
     if arr.dtype.kind == "O":
+        # None inside an object array would become NaN: name it rather than report a NaN.
+        flat = arr.reshape(-1)
+        missing = [k for k in range(flat.size) if flat[k] is None]
+        if missing:
+            where = "" if arr.ndim == 0 else f"[{missing[0]}]"
+            raise TypeError(f"{name} must hold real numbers, got None at {name}{where}")
         # Python ints beyond 64 bits and the like: convert, or say why not.
         try:
             arr = arr.astype(np.float64)

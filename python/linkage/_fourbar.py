@@ -390,7 +390,7 @@ class FourBar:
         Sweep
             The circuit, with outputs "point", "joints" and "velocity" (joints O, C, A, B, P).
         """
-        theta, joints, velocity = self._core.circuit(as_count(n, "n"))
+        theta, joints, velocity = self._core.circuit(as_count(n, "n", 2))
         valid = np.isfinite(joints[:, 4, 0])
         # The dyad margin of a four-bar is |sin| of the transmission angle at B.
         ba, bc = joints[:, 2] - joints[:, 3], joints[:, 1] - joints[:, 3]
