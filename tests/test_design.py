@@ -230,6 +230,57 @@ def test_real_scheduler_with_two_workers(tmp_path):
     same(design.search(small()), got)
 
 
+def dominates(a, b):
+    """Whether ``a`` dominates ``b`` (objectives minimised), row by row, broadcasting."""
+    return np.all(a <= b, axis=-1) & np.any(a < b, axis=-1)
+
+
+@pytest.mark.parametrize(
+    "study",
+    [
+        small(),
+        # The example study's constraints: no design of 200 000 drawn uniformly over the box
+        # meets duty factor >= 0.4, so a search from the box alone finds nothing in 4 generations.
+        small(
+            objectives=("stride", "straightness", "speed_variation", "duty_factor"),
+            constraints=design.Constraints(foot_below_hip=20.0, min_lift=4.0, min_duty=0.4),
+        ),
+    ],
+    ids=["min-duty-0", "example-constraints"],
+)
+def test_front_holds_the_reference_or_designs_dominating_it(study):
+    res = design.search(study)
+    ref = design.reference_figures(study)
+    f_ref, g_ref = design.objectives_and_constraints(study, ref[None, :])
+    assert (g_ref <= 0).all()
+    f, g = design.objectives_and_constraints(study, res.front_figures())
+    assert (g <= 0).all()
+    assert not dominates(f_ref[0], f).any()
+    assert (f == f_ref[0]).all(axis=1).any() or dominates(f, f_ref[0]).any()
+    place = design.placement(study, res)
+    assert place["feasible"] and place["dominates"] == []
+    assert len(place["dominated_by"]) == int(dominates(f, f_ref[0]).sum())
+    ref_x = design.family("fourbar").reference
+    assert place["on_front"] == bool((res.front_x() == ref_x).all(axis=1).any())
+
+
+def test_first_population_is_the_reference_its_neighbours_and_the_box():
+    study = small(population=32)
+    x = design.initial_population(study)
+    xl, xu = study.box()
+    ref = np.array(design.family("fourbar").reference)
+    assert x.shape == (32, 6) and ((xl <= x) & (x <= xu)).all()
+    np.testing.assert_array_equal(x[0], ref)
+    near = np.abs(x[1:5] - ref) <= 0.02 * (xu - xl)
+    assert near.all() and not (np.abs(x[5:] - ref) <= 0.02 * (xu - xl)).all(axis=1).any()
+    np.testing.assert_array_equal(x, design.initial_population(study))
+    assert not np.array_equal(x, design.initial_population(small(population=32, seed=8)))
+    np.testing.assert_array_equal(design.search(study).x[:32], x)
+    # A reference outside the study's bounds is left out, and so are its neighbours.
+    away = design.initial_population(small(bounds={"ground": (30.0, 40.0)}))
+    assert (away[:, 0] >= 30.0).all() and not (away == ref).all(axis=1).any()
+
+
 def test_stopped_search_resumes_to_the_same_front(tmp_path):
     ck = tmp_path / "run.checkpoint"
     whole = design.search(small())
@@ -292,6 +343,11 @@ def test_report_files_and_safety(tmp_path):
     from linkage import scene
 
     scene.load(out / "design-1.toml")
+    import json
+
+    ref = json.loads((out / "summary.json").read_text())["reference"]
+    assert ref["dominates_count"] == 0 == len(ref["dominates"])
+    assert ref["dominated_by_count"] == len(ref["dominated_by"])
     with pytest.raises(linkage.LinkageError, match="earlier report"):
         design.write_report(res, out)
     design.write_report(res, out, force=True)

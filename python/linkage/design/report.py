@@ -26,7 +26,7 @@ from linkage.design.search import (
     search,
 )
 from linkage.design.study_file import load_study
-from linkage.legs import FIGURES, UNITS, family
+from linkage.legs import FIGURES, OBJECTIVES, UNITS, family
 
 Array = NDArray[np.float64]
 
@@ -98,9 +98,11 @@ def write_report(
     """Write the search's report to ``folder`` (safely: see :mod:`linkage.report_folder`).
 
     The report holds every candidate (``candidates.parquet`` with pyarrow, else ``candidates.csv``),
-    ``front.csv``, ``pareto.png`` (objectives pairwise, with units, the reference design marked),
+    ``front.csv``, ``pareto.png`` (objectives pairwise, with units and which way is better, the
+    reference design marked),
     ``designs.png`` (the chosen designs' foot paths and linkages), one scene per chosen design
-    (``design-<k>.toml``) and ``summary.json`` (the reference's placement).
+    (``design-<k>.toml``) and ``summary.json`` (the reference's placement: how many front designs
+    dominate it and how many it dominates).
     """
     out = Path(os.path.expanduser(str(folder)))
     return report_folder.write_folder(
@@ -165,6 +167,9 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
     def unit(name: str) -> str:
         return UNITS[name].replace("length", fam.units)
 
+    def better(name: str) -> str:
+        return "(higher is better)" if OBJECTIVES[name] > 0 else "(lower is better)"
+
     for ax, (a, b) in zip(axes.flat, pairs):
         fa, fb = result.figures[:, col[a]], result.figures[:, col[b]]
         ax.scatter(fa[feas], fb[feas], s=4, c="0.75", label="feasible candidates")
@@ -177,8 +182,8 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
             c="C3",
             label=fam.reference_name.split(" (")[0],
         )
-        ax.set_xlabel(f"{a} ({unit(a)})")
-        ax.set_ylabel(f"{b} ({unit(b)})")
+        ax.set_xlabel(f"{a} ({unit(a)})\n{better(a)}")
+        ax.set_ylabel(f"{b} ({unit(b)})\n{better(b)}")
         ax.grid(alpha=0.3)
     axes[0][0].legend(fontsize=7)
     fig.suptitle(f"{study.name}: {fam.doc} {result.evaluations} legs, seed {study.seed}")
@@ -238,7 +243,12 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
         "generations": result.generations,
         "front_size": len(result.front),
         "seconds": result.seconds,
-        "reference": {"name": fam.reference_name, **place},
+        "reference": {
+            "name": fam.reference_name,
+            **place,
+            "dominated_by_count": len(place["dominated_by"]),
+            "dominates_count": len(place["dominates"]),
+        },
         "chosen": [
             {
                 "parameters": dict(zip(fam.params, map(float, result.x[i]))),
@@ -267,8 +277,10 @@ def main_design(
         print(
             f"{sf.study.name}: {result.evaluations} legs in {result.seconds:.1f} s, "
             f"front of {len(result.front)}; reference "
-            f"{'feasible' if place['feasible'] else 'infeasible'}, dominated by "
-            f"{len(place['dominated_by'])} front designs; ranks {place['rank']}"
+            f"{'feasible' if place['feasible'] else 'infeasible'}"
+            f"{', on the front' if place['on_front'] else ''}, dominated by "
+            f"{len(place['dominated_by'])} front designs, dominating "
+            f"{len(place['dominates'])}; ranks {place['rank']}"
         )
         print(f"report: {folder}/ ({', '.join(sorted(p.name for p in files))})")
     return 0

@@ -33,6 +33,12 @@ Array = NDArray[np.float64]
 
 # -- the study ----------------------------------------------------------------------------
 
+INITIAL_POPULATION = "reference, neighbours within 2 % of the box, uniform"
+"""How the first population is drawn (part of a checkpoint's fingerprint)."""
+
+NEIGHBOUR_SPREAD = 0.02
+"""Half-width of the reference's neighbourhood, as a fraction of each parameter's bounds."""
+
 
 @dataclass(frozen=True)
 class Constraints:
@@ -117,6 +123,7 @@ class Study:
             "settings": self.settings.__dict__,
             "population": self.population,
             "seed": self.seed,
+            "start": INITIAL_POPULATION,
         }
         return hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:16]
 
@@ -210,6 +217,33 @@ class Evaluator:
 # -- the search ---------------------------------------------------------------------------
 
 
+def initial_population(study: Study) -> Array:
+    """Return the first population ``(population, params)``, deterministic for the seed.
+
+    Row 0 is the family's reference design, then ``population // 8`` designs drawn uniformly
+    within ±2 % of each parameter's bounds around it (clipped to the box), then designs drawn
+    uniformly over the box. The reference is a candidate so that the front, the non-dominated
+    set of every candidate, holds it or designs dominating it: the four-bar family's feasible
+    set is a sliver of the box (no design of 200 000 drawn uniformly meets the example study's
+    duty factor ≥ 0.4), and a search started from the box alone converges on the first feasible
+    pocket it reaches. A reference outside the study's bounds is left out (and so are its
+    neighbours): the search then covers only the box.
+    """
+    fam = family(study.family)
+    xl, xu = study.box()
+    rng = np.random.default_rng(study.seed)
+    ref = np.asarray(fam.reference, dtype=float)
+    rows: list[Array] = []
+    if np.all((xl <= ref) & (ref <= xu)):
+        rows.append(ref[None, :])
+        n = study.population // 8
+        half = NEIGHBOUR_SPREAD * (xu - xl)
+        rows.append(np.clip(ref + rng.uniform(-1.0, 1.0, (n, len(ref))) * half, xl, xu))
+    n = study.population - sum(len(r) for r in rows)
+    rows.append(xl + rng.random((n, len(xl))) * (xu - xl))
+    return np.concatenate(rows)
+
+
 class _Box(Problem):  # type: ignore[misc]
     """The search space for pymoo: evaluation is done outside (ask/tell), so it pickles."""
 
@@ -273,7 +307,8 @@ def _load_checkpoint(path: Path, study: Study) -> dict[str, Any] | None:
     if state.get("fingerprint") != study.fingerprint():
         raise LinkageError(
             f"{path} is the checkpoint of a different study (family, bounds, objectives, "
-            f"constraints, population or seed changed); remove it or choose another --checkpoint"
+            f"constraints, population or seed changed, or an earlier version's first "
+            f"population); remove it or choose another --checkpoint"
         )
     return state
 
@@ -285,6 +320,10 @@ def search(
     stop_after: int | None = None,
 ) -> Front:
     """Run NSGA-II over the study's family; returns the :class:`Front`.
+
+    The first population holds the family's reference design and designs around it
+    (:func:`initial_population`), so the front, the non-dominated set of every candidate, holds
+    the reference or designs that dominate it, and none that it dominates.
 
     With ``checkpoint`` the state is saved atomically after every generation and a search
     started again with the same study resumes from it (to the same front: the optimiser's
@@ -301,7 +340,7 @@ def search(
     t0 = time.perf_counter()
     if state is None:
         problem = _Box(len(fam.params), len(study.objectives), n_con, xl, xu)
-        algorithm = NSGA2(pop_size=study.population)
+        algorithm = NSGA2(pop_size=study.population, sampling=initial_population(study))
         algorithm.setup(problem, termination=("n_gen", study.generations), seed=study.seed)
         xs: list[Array] = []
         figs: list[Array] = []
@@ -381,21 +420,25 @@ def reference_figures(study: Study) -> Array:
 def placement(study: Study, result: Front) -> dict[str, Any]:
     """Place the reference design relative to the front.
 
-    Returns whether it is feasible, which front designs dominate it (indices into ``result.x``) and,
-    per objective, its rank among the front's values (0 = better than every front design).
+    Returns whether it is feasible, whether it is on the front (a candidate with its exact
+    parameters is), which front designs dominate it and which it dominates (indices into
+    ``result.x``; the latter is empty when the reference was a feasible candidate of the search)
+    and, per objective, its rank among the front's values (0 = better than every front design).
     """
     ref = reference_figures(study)
     f_ref, g_ref = objectives_and_constraints(study, ref[None, :])
     f_front, _ = objectives_and_constraints(study, result.front_figures())
-    dom = [
-        int(result.front[i])
-        for i in range(len(f_front))
-        if np.all(f_front[i] <= f_ref[0]) and np.any(f_front[i] < f_ref[0])
-    ]
-    ranks = {o: int(np.sum(f_front[:, k] < f_ref[0, k])) for k, o in enumerate(study.objectives)}
+    a = f_ref[0]
+    dominated_by = np.all(f_front <= a, axis=1) & np.any(f_front < a, axis=1)
+    dominates = np.all(a <= f_front, axis=1) & np.any(a < f_front, axis=1)
+    feasible = bool((g_ref <= 0).all())
+    ref_x = np.asarray(family(study.family).reference, dtype=float)
+    ranks = {o: int(np.sum(f_front[:, k] < a[k])) for k, o in enumerate(study.objectives)}
     return {
-        "feasible": bool((g_ref <= 0).all()),
-        "dominated_by": dom,
+        "feasible": feasible,
+        "on_front": bool(np.any(np.all(result.front_x() == ref_x, axis=1))),
+        "dominated_by": [int(i) for i in result.front[dominated_by]],
+        "dominates": [int(i) for i in result.front[dominates]] if feasible else [],
         "rank": ranks,
         "figures": {n: float(v) for n, v in zip(FIGURES, ref)},
     }
