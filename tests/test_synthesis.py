@@ -330,3 +330,61 @@ def test_placement_arc_and_polyline_distance_from_the_core_match_numpy() -> None
     path = np.array([[0.0, 0.0], [2.0, 0.0], [np.nan, np.nan], [2.0, 2.0]])
     assert export._distance_to(np.array([[2.0, 1.5]]), path) == pytest.approx(0.5)
     assert export._distance_to(np.array([[0.0, 1.0]]), np.full((3, 2), np.nan)) == math.inf
+
+
+def evans_b_target() -> np.ndarray:
+    fb = linkage.catalog.evans_b()
+    assert isinstance(fb, linkage.FourBar)
+    return np.ascontiguousarray(fb.circuit(41).point[:-1])
+
+
+def test_candidates_draw_different_curves(atlas: Atlas) -> None:
+    # On the foot path the same crossed linkage came twice, once driven from each pivot
+    # (#2 and #3 of `linkage synth examples/foot_path.csv`), and on Evans B's curve three
+    # fits differing only in a coupler of 29,000 … 64,000 (errors 0.2567 ×3).
+    for pts in (synthesis.read_points("examples/foot_path.csv"), evans_b_target()):
+        target = synthesis.clean_target(pts, True)
+        size = synthesis.target_size(target)
+        found = synthesis.path(pts, top=5, atlas=atlas)
+        assert len(found) >= 3
+        curves = [synthesis._matched_curve(c, target, True) for c in found]
+        for i in range(len(found)):
+            for j in range(i):
+                a, b = found[i], found[j]
+                pivots_a = {a.linkage.o, a.linkage.c}
+                pivots_b = {b.linkage.o, b.linkage.c}
+                assert pivots_a != pivots_b
+                gap = max(
+                    synthesis._distance(curves[i], curves[j]),
+                    synthesis._distance(curves[j], curves[i]),
+                )
+                assert gap > max(1e-6 * size, min(a.error, b.error) / 20), (i, j)
+
+
+def test_a_link_running_off_ranks_last(atlas: Atlas) -> None:
+    # Evans B's curve (size 8.9): the least error found was a coupler of 64,200 (7,000 sizes),
+    # passing a toggle. It ranks after buildable fits by default; max_link=None returns it.
+    pts = evans_b_target()
+    size = synthesis.target_size(pts)
+    found = synthesis.path(pts, top=50, atlas=atlas)
+    longest = [synthesis._longest(c) / size for c in found]
+    assert longest[0] <= synthesis.LONG_LINK
+    assert longest == sorted(longest, key=lambda v: v > synthesis.LONG_LINK)
+    by_error = synthesis.path(pts, top=1, atlas=atlas, max_link=None)[0]
+    assert synthesis._longest(by_error) > synthesis.LONG_LINK * size
+    assert by_error.error < found[0].error
+    with pytest.raises(linkage.LinkageError, match="max_link"):
+        synthesis.path(pts, max_link=0.0, atlas=atlas)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="the core atlas's R-sequence constant (atlas.rs PHI, the root of x^5 = x + 1, not "
+    "x^6 = x + 1) puts every entry's coupler point on along + left = coupler/2: Evans B's "
+    "(along = 1.25 coupler, left = 0) curve is not covered, and the global search misses it "
+    "from seed 0",
+)
+def test_evans_b_is_recovered_exactly(atlas: Atlas) -> None:
+    pts = evans_b_target()
+    found = synthesis.path(pts, top=1, atlas=atlas)
+    assert found[0].error <= 1e-6 * synthesis.target_size(pts)

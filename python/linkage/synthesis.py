@@ -72,6 +72,10 @@ DEFAULT_ENTRIES = 200_000
 ATLAS_FORMAT = 2
 """Bumped whenever the stored atlas's content or meaning changes."""
 
+LONG_LINK = 20.0
+"""Default ``max_link`` of :func:`path`: candidates with a link longer than this many target
+sizes rank after all others (a 25 mm curve drawn with links of metres is no design)."""
+
 Float2D = NDArray[np.float64]
 
 
@@ -540,6 +544,7 @@ def path(
     min_transmission: float = 0.0,
     lengths: tuple[float, float] | None = None,
     pivots: tuple[tuple[float, float], tuple[float, float]] | None = None,
+    max_link: float | None = LONG_LINK,
     tol: float = 1e-3,
     maxiter: int = 150,
     seed: int = 0,
@@ -568,6 +573,24 @@ def path(
         Constraints: a crank that turns fully, a transmission angle at least this far from a
         toggle (radians) over the matched part, every link length within ``lengths``, both
         ground pivots inside the box ``pivots = ((xmin, ymin), (xmax, ymax))``.
+    max_link : float or None
+        Candidates with a link (or coupler-triangle side) longer than ``max_link`` times the
+        target's size (:func:`target_size`) are ranked after every other, whatever their error:
+        a fit that runs a link off towards infinity (a coupler of 64,000 for a curve of size 9)
+        can beat every buildable one by a hair. They are not removed: they fill the list when
+        fewer than ``top`` others are found, and ``max_link=None`` ranks by error alone. Ignored
+        when ``lengths`` is given (that bound filters instead).
+
+    Returns
+    -------
+    list of Candidate
+        At most ``top``, ranked by ``error`` then ``rms`` (after ``max_link``), drawing
+        different curves: two candidates whose matched parts lie within
+        ``max(1e-6·size, error/20)`` of each other both ways are one design and only the better
+        is kept, so mirror images of a symmetric curve, the same linkage driven from its other
+        pivot, and fits that differ only by a link drifting to a toggle appear once. Roberts
+        cognates are the exception: they draw the same curve with different links and pivots
+        (another choice of where to put the frame), so each cognate found is kept.
 
     Raises
     ------
@@ -588,6 +611,10 @@ def path(
     progress = as_flag(progress, "progress")
     if global_search is not None:
         global_search = as_flag(global_search, "global_search")
+    if max_link is not None:
+        max_link = as_finite(max_link, "max_link")
+        if max_link <= 0:
+            raise LinkageError(f"max_link must be positive, got {max_link}")
     if lengths is not None:
         lengths = _pair(lengths, "lengths")
     if pivots is not None:
@@ -655,12 +682,82 @@ def path(
     if bar is not None:
         bar.close()
     ok = [c for c in found if _meets(c, full_turn, min_transmission, lengths, pivots)]
-    ok.sort(key=lambda c: (c.error, c.rms))
-    unique: list[Candidate] = []
-    for c in ok:
-        if all(np.max(np.abs(c.params - u.params)) > 1e-6 * size for u in unique):
-            unique.append(c)
-    return unique[:top]
+    limit = math.inf if lengths is not None or max_link is None else max_link * size
+    ok.sort(key=lambda c: (_longest(c) > limit, c.error, c.rms))
+    return _distinct(ok, target, closed, size, top)
+
+
+def _longest(c: Candidate) -> float:
+    fb = c.linkage
+    along, left = fb.point
+    arms = (math.hypot(along, left), math.hypot(fb.coupler - along, left))
+    return max(fb.ground, fb.crank, fb.coupler, fb.rocker, *arms)
+
+
+def _matched_curve(c: Candidate, target: Float2D, closed: bool, samples: int = 512) -> Float2D:
+    """Sample the part of ``c``'s circuit that the target points fall on (closed: all of it)."""
+    crossed = np.array([c.linkage.assembly == "crossed"])
+    _, feet = _errors(c.params[None, :], crossed, target, closed, samples=2048, exact=True)
+    lo, hi = _arc(feet[0], closed)
+    s = np.linspace(lo, hi, samples)[None, :]
+    # Residuals from the origin are the curve points themselves.
+    pts = _core.synth_residuals(
+        np.ascontiguousarray(c.params[None, :]), crossed, np.zeros((samples, 2)), s
+    )
+    return np.ascontiguousarray(pts[0])
+
+
+def _third_pivot(c: Candidate) -> complex:
+    """Roberts' third pivot ``D``: the triangle ``O C D`` is directly similar to ``A B P``."""
+    fb = c.linkage
+    o, cc = complex(*fb.o), complex(*fb.c)
+    return o + (cc - o) * complex(*fb.point) / fb.coupler
+
+
+def _cognates(a: Candidate, b: Candidate, tol: float) -> bool:
+    """Whether ``b``'s ground pivots are those of one of ``a``'s Roberts cognates."""
+    o, c, d = complex(*a.linkage.o), complex(*a.linkage.c), _third_pivot(a)
+    mine = (complex(*b.linkage.o), complex(*b.linkage.c))
+    for pair in ((o, d), (c, d)):
+        for p, q in (pair, pair[::-1]):
+            if abs(mine[0] - p) <= tol and abs(mine[1] - q) <= tol:
+                return True
+    return False
+
+
+def _distinct(
+    ranked: list[Candidate], target: Float2D, closed: bool, size: float, top: int
+) -> list[Candidate]:
+    """Return the first ``top`` of ``ranked`` drawing different curves (cognates kept).
+
+    Two candidates draw the same curve when each one's matched part lies within
+    ``max(1e-6 size, error / 20)`` of the other's (a difference the target cannot tell); the
+    later (worse-ranked) one is dropped unless it is a Roberts cognate of the earlier.
+    """
+    kept: list[tuple[Candidate, Float2D]] = []
+    for c in ranked:
+        if len(kept) >= top:
+            break
+        curve = _matched_curve(c, target, closed)
+        same = False
+        for u, ucurve in kept:
+            tol = max(1e-6 * size, min(c.error, u.error) / 20)
+            if (
+                _distance(curve, ucurve) <= tol
+                and _distance(ucurve, curve) <= tol
+                and not _cognates(u, c, max(1e-6 * size, 1e-3 * size))
+            ):
+                same = True
+                break
+        if not same:
+            kept.append((c, curve))
+    return [c for c, _ in kept]
+
+
+def _distance(points: Float2D, path: Float2D) -> float:
+    """Largest distance from ``points`` to the polyline ``path`` (a NaN sample breaks it)."""
+    d = _core.polyline_distance(points[np.all(np.isfinite(points), axis=1)], path)
+    return float(d.max()) if len(d) else math.inf
 
 
 def _pair(value: Any, name: str) -> tuple[float, float]:
