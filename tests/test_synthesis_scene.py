@@ -57,16 +57,23 @@ def test_the_example_writes_the_synthesis_report(report: Path) -> None:
     marker = json.loads((report / MARKER).read_text())
     assert set(marker["files"]) == files == {p.name for p in report.iterdir()} - {MARKER}
     assert s["outputs"] == ["synthesis", "cad"] and s["length_unit"] == "mm"
-    # The target is the Hoecken foot path 100 mm down: the best candidate is that linkage,
-    # to the file's rounding (1e-6 mm).
+    # The target is the Hoecken foot path 100 mm down: the best candidate draws it exactly (to
+    # the file's rounding, 1e-6 mm) with a full-turn crank — Hoecken's linkage or its Roberts
+    # cognate of the same class, on two of the pivots (0, −100), (20, −100), (40, −100) — and
+    # Hoecken's own linkage is among the candidates.
     best = cands[0]
     assert best["error"] < 1e-5 and best["rms"] <= best["error"]
     assert best["grashof"] == "crank-rocker" and best["full_turn"] is True
-    np.testing.assert_allclose(best["o"], [0.0, -100.0], atol=1e-5)
-    np.testing.assert_allclose(best["c"], [20.0, -100.0], atol=1e-5)
-    lengths = [best[k] for k in ("ground", "crank", "coupler", "rocker")]
-    np.testing.assert_allclose(lengths, [20.0, 10.0, 25.0, 25.0], atol=1e-5)
-    np.testing.assert_allclose(best["point"], [50.0, 0.0], atol=1e-5)
+    pivots = np.array([[0.0, -100.0], [20.0, -100.0], [40.0, -100.0]])
+    for p in (best["o"], best["c"]):
+        assert np.min(np.abs(pivots - p).max(axis=1)) < 1e-5, p
+
+    def is_hoecken(c: dict) -> bool:  # type: ignore[type-arg]
+        got = [*c["o"], *c["c"], *(c[k] for k in ("ground", "crank", "coupler", "rocker"))]
+        want = [0.0, -100.0, 20.0, -100.0, 20.0, 10.0, 25.0, 25.0]
+        return bool(np.allclose([*got, *c["point"]], [*want, 50.0, 0.0], atol=1e-5))
+
+    assert any(is_hoecken(c) for c in cands), [(c["o"], c["c"]) for c in cands]
     # Every candidate meets the example's constraints, best first.
     assert len(cands) >= 2
     for c in cands:
@@ -117,10 +124,12 @@ def test_the_plot_shows_the_target_and_the_curves(report: Path) -> None:
         assert im.width >= 600 and im.height >= 400
         rgb = np.asarray(im.convert("RGB"), dtype=int)
     assert rgb.std() > 5
-    # The best candidate's curve in the first line colour (tab:blue) and the second's (orange).
-    for colour in ((0x1F, 0x77, 0xB4), (0xFF, 0x7F, 0x0E)):
+    # The best candidate's curve in the first line colour (tab:blue) and the second's (orange):
+    # the second is a Roberts cognate drawing the same curve, under the best but for its edges
+    # and its legend line.
+    for colour, least in (((0x1F, 0x77, 0xB4), 60), ((0xFF, 0x7F, 0x0E), 20)):
         near = np.abs(rgb - np.array(colour)).sum(axis=2) < 40
-        assert near.sum() > 60, colour  # the second runs mostly under the best
+        assert near.sum() > least, colour
 
 
 def test_candidates_csv_has_units_and_every_candidate(report: Path) -> None:

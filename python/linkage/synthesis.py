@@ -69,7 +69,7 @@ MIN_POINTS = 5
 DEFAULT_ENTRIES = 200_000
 """Entries of the default atlas (built once into the cache folder)."""
 
-ATLAS_FORMAT = 2
+ATLAS_FORMAT = 3
 """Bumped whenever the stored atlas's content or meaning changes."""
 
 LONG_LINK = 20.0
@@ -683,8 +683,33 @@ def path(
         bar.close()
     ok = [c for c in found if _meets(c, full_turn, min_transmission, lengths, pivots)]
     limit = math.inf if lengths is not None or max_link is None else max_link * size
-    ok.sort(key=lambda c: (_longest(c) > limit, c.error, c.rms))
-    return _distinct(ok, target, closed, size, top)
+    return _distinct(_ranked(ok, size, limit), target, closed, size, top)
+
+
+EXACT = 1e-6
+"""Errors below this fraction of the target's size count as exact (a tie) when ranking."""
+
+
+def _ranked(found: list[Candidate], size: float, limit: float) -> list[Candidate]:
+    """Rank candidates: links longer than ``limit`` last, then by error.
+
+    Among exact fits (error ≤ :data:`EXACT` × size, where cognates and round-off differ by
+    nothing a designer can see) a crank that turns fully comes first, then the transmission
+    angle farthest from a toggle.
+    """
+
+    def key(c: Candidate) -> tuple[bool, float, bool, float, float, float]:
+        exact = c.error <= EXACT * size
+        return (
+            _longest(c) > limit,
+            0.0 if exact else c.error,
+            exact and not c.full_turn,
+            -c.min_transmission if exact else 0.0,
+            c.error,
+            c.rms,
+        )
+
+    return sorted(found, key=key)
 
 
 def _longest(c: Candidate) -> float:

@@ -303,18 +303,29 @@ fn circuit_points(
     }
 }
 
-/// Candidate `i` of the atlas's sequence (see the module); `None` for a change point or a
-/// linkage that never assembles.
-pub fn candidate(i: u64) -> Option<FourBar<f64>> {
-    // Roberts' R₅: φ the root of x⁶ = x + 1, αⱼ = φ^−j.
-    const PHI: f64 = 1.167_303_978_261_418_7;
+/// φ₅ = 1.134724138401519492605446…, the root of x⁶ = x + 1 (Roberts' generalised golden ratio
+/// in five dimensions). The root of x⁵ = x + 1 (1.1673…, φ₄), used before atlas format 3, makes
+/// α₄ + α₅ = 1: the last two coordinates of every point summed to an integer, and the atlas
+/// covered only a slice of its box (every coupler point on `u + v = ½`).
+const ROBERTS_PHI: f64 = 1.134_724_138_401_519_5;
+
+/// Point `i` of Roberts' five-dimensional low-discrepancy sequence in `[0, 1)⁵`:
+/// `frac(½ + i·αⱼ)`, `αⱼ = φ^−j` with `φ` the root of `x⁶ = x + 1`.
+fn sequence(i: u64) -> [f64; 5] {
     let mut u = [0.0f64; 5];
     let mut a = 1.0;
     for v in u.iter_mut() {
-        a /= PHI;
+        a /= ROBERTS_PHI;
         let x = 0.5 + (i as f64) * a;
         *v = x - x.floor();
     }
+    u
+}
+
+/// Candidate `i` of the atlas's sequence (see the module); `None` for a change point or a
+/// linkage that never assembles.
+pub fn candidate(i: u64) -> Option<FourBar<f64>> {
+    let u = sequence(i);
     let (lo, hi) = (LENGTH_RANGE.0.ln(), LENGTH_RANGE.1.ln());
     let len = |t: f64| (lo + (hi - lo) * t).exp();
     let (crank, coupler, rocker) = (len(u[0]), len(u[1]), len(u[2]));
@@ -431,6 +442,32 @@ fn squared_distance(a: &[f32], b: &[f32]) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The sequence's φ solves x⁶ = x + 1, and its points fill the five-dimensional box: each
+    /// coordinate has the mean of uniform points and every pair is uncorrelated to sampling
+    /// accuracy (with φ₄ instead, the last two coordinates were anti-correlated, `u + v = ½`).
+    #[test]
+    fn the_sequence_fills_its_box() {
+        let phi = ROBERTS_PHI;
+        let residual = phi.powi(6) - phi - 1.0;
+        assert!(residual.abs() < 1e-15, "φ⁶ − φ − 1 = {residual:e}");
+        let n = 20_000u64;
+        let pts: Vec<[f64; 5]> = (0..n).map(sequence).collect();
+        let mean = |a: usize| pts.iter().map(|p| p[a]).sum::<f64>() / n as f64;
+        for a in 0..5 {
+            assert!(
+                (mean(a) - 0.5).abs() < 0.01,
+                "coordinate {a}: mean {}",
+                mean(a)
+            );
+            for b in a + 1..5 {
+                let cov = pts.iter().map(|p| (p[a] - 0.5) * (p[b] - 0.5)).sum::<f64>() / n as f64;
+                // Correlation = covariance over the uniform variance 1/12.
+                let corr = 12.0 * cov;
+                assert!(corr.abs() < 0.1, "coordinates {a}, {b}: correlation {corr}");
+            }
+        }
+    }
 
     #[test]
     fn build_is_the_same_on_any_number_of_threads() {
