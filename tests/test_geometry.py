@@ -314,3 +314,14 @@ def test_straight_part_speed_and_lift_from_the_core_match_numpy() -> None:
     v[idx[3]] = np.nan
     part = g.straightness(s.point, 0.025, closed=True, velocity=v)
     assert part is not None and part.mean_speed == part.speed_variation == math.inf
+
+
+def test_messages_name_what_is_wrong() -> None:
+    """An unknown link is named alone; an all-NaN foot path says it has no finite sample."""
+    s = linkage.catalog.hoecken().mechanism().sweep([0.5], outputs=("instant_centres",))
+    with pytest.raises(linkage.LinkageError, match=r"^no link 'foo'; links are ground,"):
+        s.instant_centre("ground", "foo")
+    with pytest.raises(linkage.LinkageError, match="are one link"):
+        s.instant_centre("crank", "crank")
+    with pytest.raises(linkage.LinkageError, match="no finite sample"):
+        g.foot_path(np.full((10, 2), np.nan), 0.1)

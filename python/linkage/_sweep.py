@@ -287,9 +287,15 @@ class Sweep:
         try:
             q = self.link_pairs.index(pair)
         except ValueError:
-            raise UnknownNameError(
-                f"no links {a!r}, {b!r}; links are {', '.join(self.links)}"
-            ) from None
+            unknown = [n for n in (a, b) if n not in self.links]
+            what = (
+                f"no link {unknown[0]!r}"
+                if len(unknown) == 1
+                else f"no links {unknown[0]!r}, {unknown[1]!r}"
+                if unknown
+                else f"{a!r} and {b!r} are one link"
+            )
+            raise UnknownNameError(f"{what}; links are {', '.join(self.links)}") from None
         return self.instant_centres[..., q, :]
 
     @property

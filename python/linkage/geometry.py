@@ -356,6 +356,8 @@ def foot_path(path: ArrayLike, tol: float, velocity: ArrayLike | None = None) ->
     p = _points(path, "path")
     if p.ndim != 2:
         raise LinkageError(f"path must have shape (N, 2), got {p.shape}")
+    if not np.isfinite(p).all(axis=1).any():
+        raise LinkageError("the path has no finite sample (the linkage never assembled?)")
     stance = straightness(p, tol, closed=True, velocity=velocity)
     if stance is None:
         raise LinkageError(f"the path has no straight part within tol = {tol}")
