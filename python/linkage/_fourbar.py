@@ -36,13 +36,13 @@ class FourBar:
     point : (along, left)
         Coupler point in coupler coordinates: distance along ``A → B`` and to its left.
     assembly : {"open", "crossed"}
-        ``B`` left ("open") or right ("crossed") of the diagonal ``A → C`` at a sweep's first
-        sample; the sweep follows that branch. For a change-point linkage (``grashof()`` says
-        so: parallelograms, kites) the two circuits meet at the flat positions (crank along the
-        ground line) and the side of ``B`` flips along a circuit, so the branch depends on where
-        the sweep starts: a parallelogram whose first sample has the crank below the ground
-        line (or exactly on it) starts on the antiparallelogram. Start such sweeps with the
-        crank above the ground line for the open circuit.
+        ``B`` left ("open") or right ("crossed") of the diagonal ``A → C``; sweeps follow that
+        branch. For a change-point linkage (``grashof()`` says so: parallelograms, kites) the
+        two circuits meet at the flat positions (crank along the ground line) and the side of
+        ``B`` flips along a circuit: the assembly then names the branch with the crank up
+        (perpendicular to the ground line, to the left of ``O → C``), and a sweep reaches its
+        first sample from there — so an open parallelogram stays a parallelogram wherever and
+        in whichever order it is sampled.
     o, c : (x, y)
         Ground pivots; default ``o = (0, 0)``, ``c = o + (ground, 0)``.
 

@@ -414,6 +414,12 @@ fn fast_path<T: RealField + Copy>(fb: &FourBar<T>, lo: T, hi: T) -> bool {
     if at_zero.is_none() && at_pi.is_none() {
         return true;
     }
+    // A tracked sweep reaches its first sample from the mechanism's start angle (a change
+    // point's crank-up position): no flat position may lie between there and the samples.
+    let (lo, hi) = match fb.start_angle() {
+        Some(a0) => (lo.min(a0), hi.max(a0)),
+        None => (lo, hi),
+    };
     let pad = lit::<T>(FLAT_PAD);
     fb.check_fixed_assembly_path(lo - pad, hi + pad).is_ok()
 }

@@ -362,7 +362,28 @@ impl<T: RealField + Copy> FourBar<T> {
         // construction; the program is then shorter than 5 joints and every solve of it reports
         // `Error::BufferLength` instead of a position (no panic, no wrong value).
         let _ = steps;
+        m.set_start_angle(self.start_angle());
         m
+    }
+
+    /// For a change point, the crank-up angle (the ground direction `O → C` plus `π/2`) at which
+    /// the declared assembly names the branch: where the circuits cross (the flat positions,
+    /// crank along the ground line) the side of `B` flips along a circuit, so sweeps of
+    /// [`FourBar::mechanism`] reach their first sample from there
+    /// ([`Mechanism::set_start_angle`]). `None` otherwise (the side never flips).
+    ///
+    /// ```
+    /// use linkage_core::{Assembly, FourBar};
+    /// let parallelogram = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.0, 0.0), Assembly::Open).unwrap();
+    /// assert_eq!(parallelogram.start_angle(), Some(core::f64::consts::FRAC_PI_2));
+    /// let hoecken = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
+    /// assert_eq!(hoecken.start_angle(), None);
+    /// ```
+    pub fn start_angle(&self) -> Option<T> {
+        (self.grashof() == GrashofClass::ChangePoint).then(|| {
+            let d = self.c - self.o;
+            d.y.atan2(d.x) + T::frac_pi_2()
+        })
     }
 
     /// Position at crank angle `theta` on the declared assembly (no tracking).

@@ -210,6 +210,7 @@ pub struct Mechanism<T: RealField + Copy, const N: usize> {
     steps: [Construction<T>; N],
     len: usize,
     driver: Option<usize>,
+    start: Option<T>,
 }
 
 impl<T: RealField + Copy, const N: usize> Default for Mechanism<T, N> {
@@ -225,6 +226,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
             steps: [Construction::Fixed { at: Vec2::zeros() }; N],
             len: 0,
             driver: None,
+            start: None,
         }
     }
 
@@ -366,7 +368,41 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         m.steps[..self.len].copy_from_slice(self.constructions());
         m.len = self.len;
         m.driver = self.driver;
+        m.start = self.start;
         Ok(m)
+    }
+
+    /// The crank angle at which the declared sides name the branches, if set (see
+    /// [`Mechanism::set_start_angle`]).
+    #[inline]
+    pub fn start_angle(&self) -> Option<T> {
+        self.start
+    }
+
+    /// Sets the crank angle at which the constructions' declared sides name the branches: a
+    /// [`crate::Tracker`] then poses its first sample by walking there from this angle, so the
+    /// branch a sweep is on does not depend on where it starts. Without it (the default) the
+    /// first sample takes the declared sides. It matters where branches cross (a change-point
+    /// four-bar at its flat positions, where a dyad's side flips along its circuit);
+    /// [`crate::FourBar::mechanism`] sets it to the crank-up position for those. When the
+    /// mechanism cannot be assembled at `start`, or the motion cannot pass from there to the
+    /// first sample, the first sample takes the declared sides.
+    ///
+    /// ```
+    /// use linkage_core::{Assembly, FourBar, Tracker, Rates, Vec2};
+    /// // A parallelogram: started with the crank below the ground line it stays a
+    /// // parallelogram (the coupler parallel to the ground) instead of crossing.
+    /// let fb = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.0, 0.0), Assembly::Open).unwrap();
+    /// let m = fb.mechanism();
+    /// assert!(m.start_angle().is_some());
+    /// let mut t = Tracker::new(&m).unwrap();
+    /// let mut j = [Vec2::zeros(); 5];
+    /// t.step(3.5, None, &mut j, Rates::none()).unwrap();
+    /// let ab = j[FourBar::<f64>::B] - j[FourBar::<f64>::A];
+    /// assert!(ab.y.abs() < 1e-12 && (ab.x - 3.0).abs() < 1e-12);
+    /// ```
+    pub fn set_start_angle(&mut self, start: Option<T>) {
+        self.start = start.filter(|a| a.is_finite());
     }
 
     /// Adds a fixed joint. See [`Construction::Fixed`].

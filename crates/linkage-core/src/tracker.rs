@@ -721,7 +721,15 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     fn advance(&mut self, theta: T, joints: &mut [Vec2<T>]) -> Result<T, Error> {
         let at = self.at_of(theta);
         if self.nhist == 0 {
-            return self.restart(theta, at, joints);
+            // With a start angle (Mechanism::set_start_angle) the declared sides hold there,
+            // and the first sample is reached by the walk below; else they hold at `theta`.
+            let started = self.mech.start_angle().is_some_and(|a0| {
+                let at0 = self.at_of(a0);
+                self.restart(a0, at0, joints).is_ok()
+            });
+            if !started {
+                return self.restart(theta, at, joints);
+            }
         }
         match self.walk_to(at) {
             Ok(near) => {

@@ -225,10 +225,12 @@ impl FourBar {
 
     /// The mechanism program (joints O, C, A, B, P).
     fn mechanism(&self) -> PyResult<Mechanism> {
-        let mut m = linkage_core::Mechanism::<f64, CAPACITY>::new();
-        for c in self.inner.mechanism().constructions() {
-            m.push(*c).map_err(to_py)?;
-        }
+        // The program and its start angle (a change point's crank-up position).
+        let m = self
+            .inner
+            .mechanism()
+            .resized::<CAPACITY>()
+            .map_err(to_py)?;
         Ok(Mechanism::from_core(m))
     }
 
