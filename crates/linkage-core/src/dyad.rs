@@ -2,7 +2,6 @@
 
 use nalgebra::RealField;
 
-use crate::error::Error;
 use crate::scalar::{cross, eps, length, lit, perp, Vec2};
 
 /// Which of the two mirror-image solutions of a dyad: the side of the directed line from the
@@ -51,44 +50,9 @@ impl Side {
             Side::Right => Side::Left,
         }
     }
-
-    /// Every name [`Side::from_str`](core::str::FromStr::from_str) takes, in declaration order.
-    pub const NAMES: [&'static str; 2] = ["left", "right"];
-
-    /// The name users write: `"left"` or `"right"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Side::Left => "left",
-            Side::Right => "right",
-        }
-    }
 }
 
-impl core::str::FromStr for Side {
-    type Err = Error;
-
-    /// The side named `"left"` or `"right"` (exactly; see [`Side::name`]).
-    ///
-    /// # Errors
-    /// [`Error::InvalidChoice`] for any other name.
-    fn from_str(name: &str) -> Result<Self, Error> {
-        match name {
-            "left" => Ok(Side::Left),
-            "right" => Ok(Side::Right),
-            _ => Err(Error::InvalidChoice {
-                what: "side",
-                choices: "'left' or 'right'",
-            }),
-        }
-    }
-}
-
-impl core::fmt::Display for Side {
-    /// [`Side::name`].
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+crate::choice::choice_names!(Side, "side", Left => "left", Right => "right");
 
 /// Area of a triangle with sides `a`, `b`, `c` (any order), by Kahan's formula
 /// `¼·√((a+(b+c))(c−(a−b))(c+(a−b))(a+(b−c)))` with `a ≥ b ≥ c`.

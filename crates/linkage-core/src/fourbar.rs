@@ -49,45 +49,9 @@ impl Assembly {
             Assembly::Crossed => Side::Right,
         }
     }
-
-    /// Every name [`Assembly::from_str`](core::str::FromStr::from_str) takes, in declaration
-    /// order.
-    pub const NAMES: [&'static str; 2] = ["open", "crossed"];
-
-    /// The name users write: `"open"` or `"crossed"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Assembly::Open => "open",
-            Assembly::Crossed => "crossed",
-        }
-    }
 }
 
-impl core::str::FromStr for Assembly {
-    type Err = Error;
-
-    /// The assembly named `"open"` or `"crossed"` (exactly; see [`Assembly::name`]).
-    ///
-    /// # Errors
-    /// [`Error::InvalidChoice`] for any other name.
-    fn from_str(name: &str) -> Result<Self, Error> {
-        match name {
-            "open" => Ok(Assembly::Open),
-            "crossed" => Ok(Assembly::Crossed),
-            _ => Err(Error::InvalidChoice {
-                what: "assembly",
-                choices: "'open' or 'crossed'",
-            }),
-        }
-    }
-}
-
-impl core::fmt::Display for Assembly {
-    /// [`Assembly::name`].
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+crate::choice::choice_names!(Assembly, "assembly", Open => "open", Crossed => "crossed");
 
 /// Grashof classification by `s + l` against `p + q` and by which link is shortest.
 ///

@@ -63,6 +63,7 @@ mod burmester;
 mod cam;
 mod catalog_impl;
 mod centres;
+mod choice;
 mod dyad;
 mod error;
 mod fourbar;

@@ -11,13 +11,20 @@ use crate::scalar::{cross, eps, lit, nan, perp, Vec2};
 /// Which of the two intersections of a circle and a line.
 ///
 /// ```
-/// use linkage_core::{Reach, SliderDyad, Vec2};
+/// use linkage_core::{Error, Reach, SliderDyad, Vec2};
 /// // Pivot (0, 3), link 5, the x axis as the line: the joint 4 ahead of the foot, or 4 behind.
 /// let s = SliderDyad { r: 5.0_f64 };
 /// let pose = s.solve(Vec2::new(0.0, 3.0), Vec2::zeros(), Vec2::new(1.0, 0.0), 0.0).unwrap();
 /// assert_eq!(pose.point(Reach::Ahead), Vec2::new(4.0, 0.0));
 /// assert_eq!(pose.point(Reach::Behind), Vec2::new(-4.0, 0.0));
 /// assert_eq!(Reach::Behind.sign::<f64>(), -1.0);
+/// // Named "ahead" and "behind".
+/// assert_eq!("behind".parse::<Reach>(), Ok(Reach::Behind));
+/// assert_eq!(Reach::Ahead.name(), "ahead");
+/// assert_eq!(
+///     "back".parse::<Reach>(),
+///     Err(Error::InvalidChoice { what: "reach", choices: "'ahead' or 'behind'" })
+/// );
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Reach {
@@ -36,54 +43,9 @@ impl Reach {
             Reach::Behind => -T::one(),
         }
     }
-
-    /// Every name [`Reach::from_str`](core::str::FromStr::from_str) takes, in declaration order.
-    pub const NAMES: [&'static str; 2] = ["ahead", "behind"];
-
-    /// The name users write: `"ahead"` or `"behind"`.
-    ///
-    /// ```
-    /// use linkage_core::{Error, Reach};
-    /// assert_eq!("behind".parse::<Reach>(), Ok(Reach::Behind));
-    /// assert_eq!(Reach::Ahead.name(), "ahead");
-    /// assert_eq!(
-    ///     "back".parse::<Reach>(),
-    ///     Err(Error::InvalidChoice { what: "reach", choices: "'ahead' or 'behind'" })
-    /// );
-    /// ```
-    pub fn name(self) -> &'static str {
-        match self {
-            Reach::Ahead => "ahead",
-            Reach::Behind => "behind",
-        }
-    }
 }
 
-impl core::str::FromStr for Reach {
-    type Err = Error;
-
-    /// The reach named `"ahead"` or `"behind"` (exactly; see [`Reach::name`]).
-    ///
-    /// # Errors
-    /// [`Error::InvalidChoice`] for any other name.
-    fn from_str(name: &str) -> Result<Self, Error> {
-        match name {
-            "ahead" => Ok(Reach::Ahead),
-            "behind" => Ok(Reach::Behind),
-            _ => Err(Error::InvalidChoice {
-                what: "reach",
-                choices: "'ahead' or 'behind'",
-            }),
-        }
-    }
-}
-
-impl core::fmt::Display for Reach {
-    /// [`Reach::name`].
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+crate::choice::choice_names!(Reach, "reach", Ahead => "ahead", Behind => "behind");
 
 /// Direction of a slider's line.
 ///
