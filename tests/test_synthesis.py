@@ -12,7 +12,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import linkage
-from linkage import export, synthesis
+from linkage import synthesis
 from linkage.synthesis import Atlas
 
 
@@ -324,14 +324,14 @@ def test_placement_arc_and_polyline_distance_from_the_core_match_numpy() -> None
         feet = rng.uniform(-10.0, 20.0, int(rng.integers(1, 30)))
         np.testing.assert_allclose(synthesis._arc(feet, False), _arc_reference(feet), atol=1e-12)
         path, pts = rng.normal(size=(40, 2)), rng.normal(size=(15, 2)) * 2
-        assert export._distance_to(pts, path) == pytest.approx(
+        assert synthesis.largest_distance(pts, path) == pytest.approx(
             _distance_reference(pts, path), 1e-12
         )
     assert synthesis._arc(np.array([0.3, 1.0]), True) == (0.0, 2 * math.pi)
     # A NaN sample breaks the polyline: no segment across the gap (the old code drew one).
     path = np.array([[0.0, 0.0], [2.0, 0.0], [np.nan, np.nan], [2.0, 2.0]])
-    assert export._distance_to(np.array([[2.0, 1.5]]), path) == pytest.approx(0.5)
-    assert export._distance_to(np.array([[0.0, 1.0]]), np.full((3, 2), np.nan)) == math.inf
+    assert synthesis.largest_distance(np.array([[2.0, 1.5]]), path) == pytest.approx(0.5)
+    assert synthesis.largest_distance(np.array([[0.0, 1.0]]), np.full((3, 2), np.nan)) == math.inf
 
 
 def evans_b_target() -> np.ndarray:
@@ -359,8 +359,8 @@ def test_candidates_draw_different_curves(atlas: Atlas) -> None:
                 if synthesis._cognates(a, b, 1e-3 * size) or synthesis._cognates(b, a, 1e-3 * size):
                     continue  # Roberts cognates draw the same curve and are kept on purpose
                 gap = max(
-                    synthesis._distance(curves[i], curves[j]),
-                    synthesis._distance(curves[j], curves[i]),
+                    synthesis.largest_distance(curves[i], curves[j]),
+                    synthesis.largest_distance(curves[j], curves[i]),
                 )
                 assert gap > max(1e-6 * size, min(a.error, b.error) / 20), (i, j)
 

@@ -22,8 +22,8 @@ from PIL import Image
 import linkage
 from linkage import runner, scene, synthesis
 from linkage.cli import main
-from linkage.export import _distance_to
 from linkage.report import MARKER
+from linkage.synthesis import largest_distance
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "synthesis_foot.toml"
@@ -180,12 +180,12 @@ def test_every_exported_candidate_passes_check_and_draws_its_curve(report: Path,
         assert res.sweep is not None and res.sweep.valid.all()
         trace = res.sweep.point
         # One crank turn draws the candidate's coupler curve, in the target's frame.
-        assert _distance_to(trace, curves[k - 1]) < 1e-6
-        assert _distance_to(target, trace) == pytest.approx(c["error"], abs=1e-3)
+        assert largest_distance(trace, curves[k - 1]) < 1e-6
+        assert largest_distance(target, trace) == pytest.approx(c["error"], abs=1e-3)
     # The best one is the linkage the foot path came from.
-    assert _distance_to(target, runner.run(scene.load(report / "candidate-1.toml")).sweep.point) < (
-        1e-5
-    )
+    assert largest_distance(
+        target, runner.run(scene.load(report / "candidate-1.toml")).sweep.point
+    ) < (1e-5)
 
 
 def test_the_page_shows_the_figures_the_candidates_and_the_plot(report: Path) -> None:
@@ -241,7 +241,7 @@ def test_cranks_that_rock_are_exported_driven_between_their_limits(
         # From limit to limit on one assembly: half the circuit, on the candidate's curve.
         ok = res.sweep.valid
         assert (
-            _distance_to(res.sweep.point[ok], curves[k - 1])
+            largest_distance(res.sweep.point[ok], curves[k - 1])
             < 1e-3 * s["synthesis"]["target"]["size"]
         )
     capsys.readouterr()

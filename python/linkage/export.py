@@ -46,14 +46,13 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage import _core
 from linkage._arrays import choices, side_of
 from linkage._core import LinkageError
 from linkage._mechanism import Mechanism
 from linkage._version import __version__
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.figures import Result, Row, length_unit, torque_unit
-from linkage.synthesis import Candidate
+from linkage.synthesis import Candidate, largest_distance
 
 Array = NDArray[np.float64]
 
@@ -616,14 +615,6 @@ def _mechanism_of(c: Candidate, side: str, phase: float) -> Mechanism:
     return m
 
 
-def _distance_to(points: Array, path: Array) -> float:
-    """Largest distance from ``points`` (n, 2) to the polyline ``path``, broken where not finite."""
-    d = _core.polyline_distance(
-        np.ascontiguousarray(points, dtype=np.float64), np.ascontiguousarray(path, dtype=np.float64)
-    )
-    return float(d.max()) if len(d) else 0.0
-
-
 CANDIDATE_RPM = 60.0
 """Motor speed of an exported candidate scene: one crank turn per second."""
 
@@ -655,7 +646,7 @@ def candidate_side(c: Candidate, target: Array) -> str:
     gaps = {}
     for sd in choices("side"):
         s = _mechanism_of(c, sd, phase).sweep(theta, outputs=("point",))
-        gaps[sd] = _distance_to(np.asarray(target, dtype=float), s.point)
+        gaps[sd] = largest_distance(target, s.point)
     return min(choices("side"), key=lambda sd: (gaps[sd], sd != side))
 
 

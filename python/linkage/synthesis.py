@@ -768,8 +768,8 @@ def _distinct(
         for u, ucurve in kept:
             tol = max(1e-6 * size, min(c.error, u.error) / 20)
             if (
-                _distance(curve, ucurve) <= tol
-                and _distance(ucurve, curve) <= tol
+                largest_distance(curve, ucurve) <= tol
+                and largest_distance(ucurve, curve) <= tol
                 and not _cognates(u, c, max(1e-6 * size, 1e-3 * size))
             ):
                 same = True
@@ -779,9 +779,18 @@ def _distinct(
     return [c for c, _ in kept]
 
 
-def _distance(points: Float2D, path: Float2D) -> float:
-    """Largest distance from ``points`` to the polyline ``path`` (a NaN sample breaks it)."""
-    d = _core.polyline_distance(points[np.all(np.isfinite(points), axis=1)], path)
+def largest_distance(points: ArrayLike, path: ArrayLike) -> float:
+    """Return the largest distance from the finite ``points`` (n, 2) to the polyline ``path``.
+
+    A sample of ``path`` that is not finite breaks the polyline (no segment is drawn across
+    it; ``linkage_core::polyline_distances``); ∞ when no point or no path sample is finite.
+
+    >>> largest_distance([[1.0, 1.0], [np.nan, 0.0]], [[0.0, 0.0], [2.0, 0.0]])
+    1.0
+    """
+    p = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    p = np.ascontiguousarray(p[np.all(np.isfinite(p), axis=1)])
+    d = _core.polyline_distance(p, np.ascontiguousarray(path, dtype=np.float64).reshape(-1, 2))
     return float(d.max()) if len(d) else math.inf
 
 
