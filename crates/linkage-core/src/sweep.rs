@@ -641,11 +641,9 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let mut cen = BlockCentres::<T, N>::new(&self.bodies);
         // Margins are needed for the watched dyads always, for the others only when written
         // (margin, regular) or used (centres condition on them; rates by the sample path).
-        blk.margins = out.margin.is_some()
-            || out.regular.is_some()
-            || self.rates
-            || self.wants_centres
-            || self.wants_curvature;
+        // Curvatures do not use them.
+        blk.margins =
+            out.margin.is_some() || out.regular.is_some() || self.rates || self.wants_centres;
         let n = theta.len();
         let mut k0 = 0;
         while k0 < n {

@@ -494,6 +494,55 @@ proptest! {
     }
 }
 
+/// Curvatures asked for alone (no margin, regular, rates or centres, so the held pass skips
+/// the margins of unwatched dyads): the same bits on the held pass as on the tracker, for the
+/// Hoecken leg and the multi-loop catalogue.
+#[test]
+fn curvature_alone_equals_the_tracker() {
+    let theta: Vec<f64> = (0..700).map(|k| -2.0 + 0.013 * k as f64).collect();
+    let run = |m: &Mechanism<f64, 16>, plan: Plan| {
+        let (n, j) = (theta.len(), m.len());
+        let mut b = buffers(n, j, 0);
+        let mut out = SweepOutputs::positions(&mut b.joints, &mut b.valid);
+        out.curvature = Some(&mut b.curvature);
+        out.curvature_centres = Some(&mut b.curvature_centres);
+        let zero = Rate::Scalar(0.0);
+        let done = sweep_planned(m, &theta, zero, zero, out, &mut || true, plan).unwrap();
+        (b, done.held)
+    };
+    let hoecken = FourBar::new(20.0, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
+    let mut mechs = vec![("hoecken", hoecken.mechanism().resized::<16>().unwrap())];
+    for name in catalog::MULTI_LOOP {
+        let m = catalog::linkage_by_name::<f64>(name).unwrap().mechanism;
+        mechs.push((name, m.resized::<16>().unwrap()));
+    }
+    let mut swept_held = Vec::new();
+    for (name, m) in &mechs {
+        let (held, was_held) = run(m, Plan::Held);
+        let (tracked, _) = run(m, Plan::Tracked);
+        if was_held {
+            swept_held.push(*name);
+        }
+        assert!(
+            same_floats(&held.curvature, &tracked.curvature),
+            "{name}: curvatures differ"
+        );
+        assert!(
+            same_points(&held.curvature_centres, &tracked.curvature_centres),
+            "{name}: centres of curvature differ"
+        );
+        assert!(
+            same_points(&held.joints, &tracked.joints),
+            "{name}: joints differ"
+        );
+    }
+    // (linkages that come near a toggle are swept by the tracker under either plan)
+    assert!(
+        swept_held.contains(&"hoecken") && swept_held.len() >= 2,
+        "the held pass swept only {swept_held:?}"
+    );
+}
+
 /// The multi-loop catalogue, over several turns with a jump and a NaN: the same bits as the
 /// tracker loop.
 #[test]
