@@ -365,8 +365,10 @@ def foot_path(path: ArrayLike, tol: float, velocity: ArrayLike | None = None) ->
     mask = np.ones(n, dtype=bool)
     mask[stance.indices] = False
     swing = np.flatnonzero(mask)
-    # The swing's height above the stance line (linkage_core::StraightPart::lift).
-    lift = stance.lift if stance.lift is not None else 0.0
+    # The swing's height above the stance line (linkage_core::StraightPart::lift), which the
+    # run of a closed path always carries.
+    lift = stance.lift
+    assert lift is not None, "a closed path's straight run has its lift"
     return FootPath(
         stance=stance,
         swing=swing,
