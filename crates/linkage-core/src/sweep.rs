@@ -636,9 +636,14 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let mut blk = BlockPoses::<T, N>::new();
         blk.prepare(self.mech);
         let mut rts = BlockRates::<T, N>::new();
-        // Unit-drive rates and body turns, for centres and curvatures.
-        let mut unit = BlockRates::<T, N>::new();
-        let mut cen = BlockCentres::<T, N>::new(&self.bodies);
+        // Unit-drive rates and body turns, built only for sweeps that ask for centres or
+        // curvatures (their tables are sized by the capacity).
+        let mut scratch = (self.wants_centres || self.wants_curvature).then(|| {
+            (
+                BlockRates::<T, N>::new(),
+                BlockCentres::<T, N>::new(&self.bodies),
+            )
+        });
         // Margins are needed for the watched dyads always, for the others only when written
         // (margin, regular) or used (centres condition on them; rates by the sample path).
         // Curvatures do not use them.
@@ -669,8 +674,8 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
                 } else {
                     self.block_write(&blk, None, toggle_margin, &theta[k0..k1], k0, out)
                 };
-                if done && (self.wants_centres || self.wants_curvature) {
-                    done = self.block_centres(&blk, &mut unit, &mut cen, (k0, k1 - k0), out);
+                if let (true, Some((unit, cen))) = (done, scratch.as_mut()) {
+                    done = self.block_centres(&blk, unit, cen, (k0, k1 - k0), out);
                 }
                 if done {
                     k0 = k1;
