@@ -246,8 +246,9 @@ def test_change_point_next_to_its_flat_position_keeps_every_digit():
 
 
 def test_huge_jumps_cost_a_few_turns():
-    """Samples 1e9 rad apart: the walk skips whole periods of the turn, so each costs a few
-    turns of work (the core's work counter is proptested; here, that it finishes at all)."""
+    """Samples 1e9 rad apart: a parallelogram's orientation is a function of the angle (one
+    placement a sample), and a walked mechanism skips whole periods of the turn, so each costs a
+    few turns of work (the core's work counter is proptested; here, that it finishes at all)."""
     fb = linkage.FourBar(ground=3, crank=1, coupler=3, rocker=1, point=(1.5, 0.5))
     th = 0.5 + np.arange(200) * 1e9
     s = fb.sweep(th)
@@ -261,17 +262,26 @@ def test_a_long_sweep_honours_ctrl_c():
     import threading
     import time
 
-    fb = linkage.FourBar(ground=3, crank=1, coupler=3, rocker=1, point=(1.5, 0.5))
-    th = 0.5 + np.arange(400_000) * 1e6  # each step walks a few turns: tens of seconds in all
+    # A parallelogram driving a second dyad from its coupler point: flat positions (so no held
+    # pass) and a dyad not on the crank (so no closed form): every sample is walked to.
+    m = linkage.Mechanism()
+    m.fixed("O", (0, 0))
+    m.fixed("C", (3, 0))
+    m.crank("A", "O", radius=1)
+    m.dyad("B", "A", "C", 3, 1, side="left")
+    m.point("P", on=("A", "B"), at=(1.5, 0.5))
+    m.fixed("D", (1.5, 4.0))
+    m.dyad("E", "P", "D", 3.0, 2.0, side="left")
+    th = 0.5 + np.arange(400_000) * 1e6  # each step walks a few turns: minutes in all
     timer = threading.Timer(0.3, _thread.interrupt_main)
     timer.start()
     t0 = time.monotonic()
     try:
         with pytest.raises(KeyboardInterrupt):
-            fb.sweep(th)
+            m.sweep(th)
     finally:
         timer.cancel()
-    # The whole sweep takes about a minute (each jump walks many turns); the signal is seen
+    # The whole sweep takes minutes (each jump walks a few turns, 0.4 ms); the signal is seen
     # after at most 2^15 placements of work (~10 ms here), so a second is ample on a loaded
     # machine and still proves the sweep stopped long before its end.
     assert time.monotonic() - t0 < 0.3 + 1.0

@@ -4,7 +4,7 @@ use nalgebra::RealField;
 
 use crate::dyad::{Dyad, DyadFailure, Side};
 use crate::error::{check_finite, check_length, Error};
-use crate::scalar::{lit, perp, Vec2};
+use crate::scalar::{eps, lit, perp, Vec2};
 use crate::slider::{LineDirection, Reach, SliderDyad};
 
 /// One step of a mechanism's program: it places one joint from joints placed before it.
@@ -567,29 +567,68 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         Some(odd)
     }
 
+    /// Ground length `g`, crank radius `r` and link lengths `(r1, r2)` of joint `i` when it is
+    /// a dyad on a crank pin and a fixed joint (see [`Mechanism::crank_base`]).
+    fn crank_fixed_lengths(&self, i: usize) -> Option<(T, T, T, T)> {
+        let Construction::Dyad { p1, p2, dyad, .. } = self.steps[i] else {
+            return None;
+        };
+        let (k, q) = self.crank_and_fixed(p1, p2)?;
+        let (Construction::Crank { centre, radius, .. }, Construction::Fixed { at: qp }) =
+            (self.steps[k], self.steps[q])
+        else {
+            return None;
+        };
+        let Construction::Fixed { at: o } = self.steps[centre] else {
+            return None;
+        };
+        Some((crate::scalar::length(qp - o), radius, dyad.r1, dyad.r2))
+    }
+
     /// Whether a tracked sweep may ever change joint `i`'s orientation: false for joints
     /// without a branch and for a dyad on a crank pin and a fixed joint with no flat position
     /// (the tracker turns such a dyad only at its flat positions, counted in closed form, and
     /// never by extrapolation: see [`Mechanism::flat_crossings`]); true otherwise.
     pub(crate) fn may_flip(&self, i: usize) -> bool {
         match self.steps[i] {
-            Construction::Dyad { p1, p2, dyad, .. } => {
-                let Some((k, q)) = self.crank_and_fixed(p1, p2) else {
-                    return true;
-                };
-                let (Construction::Crank { centre, radius, .. }, Construction::Fixed { at: qp }) =
-                    (self.steps[k], self.steps[q])
-                else {
-                    return true;
-                };
-                let Construction::Fixed { at: o } = self.steps[centre] else {
-                    return true;
-                };
-                let g = crate::scalar::length(qp - o);
-                let [at_zero, at_pi] = crate::fourbar::flat_angles(g, radius, dyad.r1, dyad.r2);
-                at_zero.is_some() || at_pi.is_some()
+            Construction::Dyad { .. } => {
+                self.crank_fixed_lengths(i).is_none_or(|(g, r, r1, r2)| {
+                    let [at_zero, at_pi] = crate::fourbar::flat_angles(g, r, r1, r2);
+                    at_zero.is_some() || at_pi.is_some()
+                })
             }
             Construction::Slider { .. } => true,
+            _ => false,
+        }
+    }
+
+    /// Whether every joint's orientation is a function of the driver angle alone, known in
+    /// closed form: every dyad is on a crank pin and a fixed joint, assembles over the whole
+    /// turn (its base `|g − r| … g + r` within `[|r1 − r2|, r1 + r2]`, to the `8ε` of
+    /// [`Mechanism::flat_crossings`]), and there is no slider. Its orientation is then the
+    /// declared one, turned at each flat position crossed (counted by `flat_crossings`), and a
+    /// tracker needs no walk between samples.
+    pub(crate) fn branches_in_closed_form(&self) -> bool {
+        (0..self.len).all(|i| match self.steps[i] {
+            Construction::Dyad { .. } => {
+                self.crank_fixed_lengths(i).is_some_and(|(g, r, r1, r2)| {
+                    let (delta, sigma) = ((r1 - r2).abs(), r1 + r2);
+                    let tol = eps::<T>() * lit::<T>(8.0) * (g + r + sigma);
+                    (g - r).abs() >= delta - tol && g + r <= sigma + tol
+                })
+            }
+            Construction::Slider { .. } => false,
+            _ => true,
+        })
+    }
+
+    /// Whether joint `i` is a dyad on a crank pin and a fixed joint with a flat position on its
+    /// turn: its orientation turns there, counted in closed form ([`Mechanism::flat_crossings`]).
+    pub(crate) fn has_flats(&self, i: usize) -> bool {
+        match self.steps[i] {
+            Construction::Dyad { p1, p2, .. } => {
+                self.crank_and_fixed(p1, p2).is_some() && self.may_flip(i)
+            }
             _ => false,
         }
     }

@@ -198,6 +198,17 @@ struct Snapshot<T: RealField + Copy, const N: usize> {
 /// then skips whole periods: a jump of any size costs a bounded number of turns. A caller that
 /// must stay responsive (Ctrl-C) steps a bounded number of samples at a time.
 ///
+/// # Orientations in closed form
+/// A mechanism whose every dyad is on a crank pin and a fixed joint and assembles over the
+/// whole turn, with no slider (every four-bar whose crank turns fully: crank-rockers,
+/// double-cranks, parallelograms, kites, deltoids and other change points;
+/// `Mechanism::branches_in_closed_form`), has no choice left to the walk: an orientation turns
+/// exactly at each flat position crossed — counted at every placement, near a toggle or not —
+/// and at no other point. The count is a function of the angle (`Mechanism::flat_crossings`),
+/// so it telescopes along any path, and the tracker places each sample straight from the
+/// first one (or from the start angle), one placement a sample, in any order: the walk's bits,
+/// checked by a property test against the walk itself.
+///
 /// A grid point where a construction is undetermined (a kite's crank pin exactly on the rocker
 /// pivot) is stepped over. A sample that cannot assemble writes NaN joints, returns its error
 /// and changes nothing else. A path that cannot be walked (a locked zone lies between two
@@ -214,10 +225,11 @@ struct Snapshot<T: RealField + Copy, const N: usize> {
 ///     let s = t.step(1.745 * k as f64, None, &mut joints, Rates::none()).unwrap();
 ///     assert!(s.margin > 0.1);
 /// }
-/// // A jump of a billion radians costs a few turns of work, not 10⁸ of them.
+/// // A jump of a billion radians costs one placement: a crank-rocker's orientation is known
+/// // in closed form. (Where the walk is needed it costs a few turns, not 10⁸ of them.)
 /// let before = t.work();
 /// t.step(1e9, None, &mut joints, Rates::none()).unwrap();
-/// assert!(t.work() - before < 5 * 1024);
+/// assert_eq!(t.work() - before, 1, "one placement");
 /// ```
 #[derive(Clone, Debug)]
 pub struct Tracker<'m, T: RealField + Copy, const N: usize> {
@@ -246,6 +258,12 @@ pub struct Tracker<'m, T: RealField + Copy, const N: usize> {
     /// Grid points per turn.
     fine: i64,
     work: u64,
+    /// Dyads whose orientation turns at flat positions counted in closed form
+    /// ([`Mechanism::has_flats`]): checked at every placement, near a toggle or not.
+    flats: [bool; N],
+    /// Whether every orientation is a function of the angle ([`Mechanism::branches_in_closed_form`]):
+    /// samples are then placed from the first one with no walk between.
+    closed_form: bool,
 }
 
 impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
@@ -282,6 +300,10 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         for (s, c) in sign.iter_mut().zip(mech.constructions()) {
             *s = if c.initial_sign() < T::zero() { -1 } else { 1 };
         }
+        let mut flats = [false; N];
+        for (i, f) in flats.iter_mut().enumerate().take(mech.len()) {
+            *f = mech.has_flats(i);
+        }
         Ok(Tracker {
             mech,
             sign,
@@ -298,6 +320,8 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             toggle_margin,
             fine,
             work: 0,
+            flats,
+            closed_form: mech.branches_in_closed_form(),
         })
     }
 
@@ -357,12 +381,15 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         for (i, w) in watched.iter_mut().enumerate() {
             *w = self.mech.may_flip(i);
         }
-        held && (0..self.fine).all(|idx| {
-            matches!(
-                self.mech.pose_watched(self.grid_angle(idx), scratch, watched),
-                Ok((_, m)) if m >= self.toggle_margin
-            )
-        })
+        // A dyad with flat positions turns there, whatever the margins on the grid.
+        let no_flats = !self.flats.iter().any(|&f| f);
+        held && no_flats
+            && (0..self.fine).all(|idx| {
+                matches!(
+                    self.mech.pose_watched(self.grid_angle(idx), scratch, watched),
+                    Ok((_, m)) if m >= self.toggle_margin
+                )
+            })
     }
 
     /// The assembly margin below which a dyad is near a toggle.
@@ -443,18 +470,20 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                     };
                     // A dyad on a crank pin and a fixed joint knows its flat positions exactly:
                     // both branches through one change side there, and only there.
-                    let flats = if test && self.nhist >= 1 {
+                    // Counted at every placement, near a toggle or not: a grid step can cross
+                    // one with both ends clear of the toggle margin (a fast-turning dyad).
+                    let flats = if (test || self.flats[i]) && self.nhist >= 1 {
                         mech.flat_crossings(i, self.hist_theta[new], path)
                     } else {
                         None
                     };
                     if let Some(odd) = flats {
                         if odd {
-                            if choice == Choice::Continue {
+                            if choice == Choice::Probe {
+                                would_flip = true;
+                            } else {
                                 s = -s;
                                 self.sign[i] = -self.sign[i];
-                            } else {
-                                would_flip = true;
                             }
                         }
                     } else if test && self.nhist >= 2 {
@@ -731,6 +760,14 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                 return self.restart(theta, at, joints);
             }
         }
+        if self.closed_form {
+            // Orientations are a function of the angle: counted from the cursor (the first
+            // sample, or the start angle) in closed form, with no walk (see the type's docs).
+            let walked = self.sign;
+            let placed = self.place(theta, theta, at, Choice::Keep, joints);
+            self.sign = walked;
+            return placed.map(|(m, _)| m);
+        }
         match self.walk_to(at) {
             Ok(near) => {
                 // The sample does not move the walk: its own choice is not kept.
@@ -808,6 +845,105 @@ mod tests {
         // Fine sampling, and sampling far too coarse to see the flat positions.
         assert!(sweep_parallelogram(3600) < 1e-12);
         assert!(sweep_parallelogram(5) < 1e-12);
+    }
+
+    /// Change-point four-bars (any link shortest), parallelograms, kites and deltoids, any
+    /// pivots, coupler point and assembly: every one has its orientation in closed form.
+    fn change_point() -> impl proptest::strategy::Strategy<Value = crate::FourBar<f64>> {
+        use proptest::prelude::*;
+        (
+            0usize..4,
+            (0.2f64..3.0, 0.2f64..3.0, 0.2f64..3.0),
+            (0usize..4, 0.0f64..core::f64::consts::TAU),
+            (-3.0f64..3.0, -3.0f64..3.0, -2.0f64..2.0, -2.0f64..2.0),
+            any::<bool>(),
+        )
+            .prop_filter_map(
+                "a four-bar",
+                |(kind, (a, b, c), (perm, rot), (ox, oy, pa, pl), open)| {
+                    let (g, r, cp, rk) = match kind {
+                        0 => {
+                            let (s, p, q) = (a.min(b).min(c) * 0.5, a, b);
+                            let mut v = [s, p + q - s, p, q];
+                            v.rotate_left(perm);
+                            (v[0], v[1], v[2], v[3])
+                        }
+                        1 => (a, b, a, b),
+                        // A kite turns fully when its crank is not longer than its coupler.
+                        2 => (a.min(b), a.min(b), a.max(b), a.max(b)),
+                        _ => (a, b, b, a),
+                    };
+                    let o = Vec2::new(ox, oy);
+                    let cpos = o + Vec2::new(rot.cos(), rot.sin()) * g;
+                    let asm = if open {
+                        crate::Assembly::Open
+                    } else {
+                        crate::Assembly::Crossed
+                    };
+                    crate::FourBar::with_pivots(o, cpos, r, cp, rk, (pa * cp, pl * cp), asm).ok()
+                },
+            )
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig {
+            cases: 256,
+            max_global_rejects: 100_000,
+            ..proptest::prelude::ProptestConfig::default()
+        })]
+        /// Where orientations are in closed form, placing each sample from the first one with no
+        /// walk gives the walk's bits (or its error), at random angles over ±3 turns in random
+        /// order and at points 1e-12 … 1e-3 rad from the flat positions; and a sample's pose does
+        /// not depend on the order of the samples before it.
+        #[test]
+        fn closed_form_is_the_walk(
+            fb in change_point(),
+            random in proptest::collection::vec(-3.0f64..3.0, 1..40),
+            near in proptest::collection::vec((0usize..2, -12i32..-3, proptest::prelude::any::<bool>()), 0..8),
+        ) {
+            let m = fb.mechanism();
+            let d = fb.c - fb.o;
+            let base = d.y.atan2(d.x);
+            let mut th: Vec<f64> = random.iter().map(|u| u * core::f64::consts::TAU).collect();
+            for &(which, e, after) in &near {
+                let flat = base + core::f64::consts::PI * which as f64;
+                let off = 10f64.powi(e);
+                th.push(if after { flat + off } else { flat - off });
+            }
+            let mut closed = Tracker::new(&m).unwrap();
+            // Parallelograms and deltoids turn fully; other change points (kites with the
+            // crank longer than the coupler, a crank not the shortest link) may lock.
+            let same = |x: f64, y: f64| (x - y).abs() < 1e-12;
+            let g = fb.ground();
+            let shapes = (same(g, fb.coupler) && same(fb.crank, fb.rocker))
+                || (same(g, fb.rocker) && same(fb.crank, fb.coupler));
+            proptest::prop_assert!(closed.closed_form || !shapes, "closed form for {:?}", fb);
+            // Change points with the crank not the shortest link lock: walked, not compared.
+            proptest::prop_assume!(closed.closed_form);
+            let mut walk = Tracker::new(&m).unwrap();
+            walk.closed_form = false;
+            let (mut a, mut b) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5]);
+            let mut first = Vec::new();
+            for &t in &th {
+                let ra = closed.step(t, None, &mut a, Rates::none());
+                let rb = walk.step(t, None, &mut b, Rates::none());
+                proptest::prop_assert_eq!(ra.is_ok(), rb.is_ok(), "outcome at {}", t);
+                if ra.is_ok() {
+                    proptest::prop_assert_eq!(a, b, "joints at {}", t);
+                }
+                first.push(a);
+            }
+            // The same samples, reversed after the first: the same poses.
+            let mut again = Tracker::new(&m).unwrap();
+            again.step(th[0], None, &mut a, Rates::none()).ok();
+            for (k, &t) in th.iter().enumerate().skip(1).rev() {
+                again.step(t, None, &mut a, Rates::none()).ok();
+                let same = a.iter().zip(&first[k]).all(|(p, q)| p == q || (p.x.is_nan() && q.x.is_nan()));
+                proptest::prop_assert!(same, "order changed the pose at {}", t);
+            }
+            // One placement a sample, whatever the jump.
+            proptest::prop_assert!(closed.work() <= th.len() as u64 + 1, "work {}", closed.work());
+        }
     }
 
     #[test]
