@@ -443,10 +443,9 @@ def _on_a_line(p: Array, extent: float) -> bool:
     """
     if len(p) < 3 or not extent > 0:
         return False
-    d = p - p.mean(axis=0)
-    _, _, vt = np.linalg.svd(d, full_matrices=False)
-    off = np.abs(d @ vt[-1])
-    return bool(off.max() <= 1e-9 * extent)
+    # The core's least-squares line (linkage_core::straight_part): the whole path is one run.
+    run = straightness(p, tol=1e-9 * extent)
+    return run is not None and len(run.indices) == len(p)
 
 
 def _smallest_radius(g: Sweep, s: Sweep) -> float:
