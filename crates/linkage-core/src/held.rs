@@ -14,7 +14,7 @@
 use nalgebra::RealField;
 
 use crate::dyad::EXACT_BASE_SLACK;
-use crate::mechanism::{Construction, CrankBaseFrame, Mechanism};
+use crate::mechanism::{Construction, CrankBaseFrame, FlatParity, Mechanism};
 use crate::scalar::{eps, lit, tiny_square, Vec2};
 
 /// Samples per block.
@@ -40,6 +40,10 @@ pub(crate) struct BlockPoses<T, const N: usize> {
     pub(crate) margins: bool,
     /// The frame of each dyad's crank base, if it has one (see [`Self::prepare`]).
     bases: [Option<CrankBaseFrame<T>>; N],
+    /// For a mechanism with its orientations in closed form ([`Self::orient`]), each dyad's
+    /// flat positions and their parity at the reference angle: the dyad is on its declared
+    /// side where the parity is the reference's, on the other where not.
+    flats: [Option<(FlatParity<T>, bool)>; N],
 }
 
 /// Powers of two of ordinary sizes: a mechanism whose every nonzero length and coordinate lies
@@ -58,6 +62,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             failed: [false; BLOCK],
             margins: true,
             bases: [None; N],
+            flats: [None; N],
         }
     }
 
@@ -77,6 +82,19 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                 }
                 _ => {}
             }
+        }
+    }
+
+    /// Orients the dyads with flat positions per sample, as the tracker does for a mechanism
+    /// whose orientations are in closed form: declared at driver angle `reference` (the start
+    /// angle, or the first sample), turned at each flat position crossed from there.
+    pub(crate) fn orient(&mut self, mech: &Mechanism<T, N>, reference: T) {
+        for (i, f) in self.flats.iter_mut().enumerate().take(mech.len()) {
+            *f = mech
+                .has_flats(i)
+                .then(|| mech.flat_positions(i))
+                .flatten()
+                .map(|p| (p, p.at(reference)));
         }
     }
 
@@ -131,9 +149,24 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                 Construction::Dyad { p1, p2, dyad, side } => {
                     let mut th = [T::zero(); BLOCK];
                     th[..n].copy_from_slice(&theta[..n]);
-                    let (base, sign) = (self.bases[i], side.sign::<T>());
+                    let (base, declared) = (self.bases[i], side.sign::<T>());
+                    let mut sign = [declared; BLOCK];
+                    if let Some((flats, at_reference)) = self.flats[i] {
+                        // Mechanism::flat_parity term for term, a block at a time.
+                        let mut half = [T::zero(); BLOCK];
+                        for (h, &t) in half.iter_mut().zip(&th) {
+                            *h = flats.half(t);
+                        }
+                        let (mut s, mut c) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
+                        crate::trig::sin_cos_block(&half, &mut s, &mut c);
+                        for k in 0..BLOCK {
+                            if flats.of(s[k], c[k]) != at_reference {
+                                sign[k] = -declared;
+                            }
+                        }
+                    }
                     let lengths = (dyad.r1, dyad.r2);
-                    self.dyad(i, (p1, p2), lengths, sign, base, watched[i], &th);
+                    self.dyad(i, (p1, p2), lengths, &sign, base, watched[i], &th);
                 }
                 Construction::Point {
                     from,
@@ -183,7 +216,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
         i: usize,
         (p1, p2): (usize, usize),
         (r1, r2): (T, T),
-        sign: T,
+        sign: &[T; BLOCK],
         base: Option<CrankBaseFrame<T>>,
         watched: bool,
         theta: &[T; BLOCK],
@@ -264,8 +297,8 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             }
             // foot + sign·offset, offset = perp(u)·h.
             let (fx, fy) = (ax[k] + ux * x, ay[k] + uy * x);
-            xi[k] = fx + (-uy * h) * sign;
-            yi[k] = fy + (ux * h) * sign;
+            xi[k] = fx + (-uy * h) * sign[k];
+            yi[k] = fy + (ux * h) * sign[k];
         }
         (self.x[i], self.y[i]) = (xi, yi);
         (self.scalar, self.failed) = (scalar, failed);

@@ -131,6 +131,40 @@ pub(crate) struct CrankBaseFrame<T> {
     pub(crate) crank_first: bool,
 }
 
+/// The flat positions of a dyad on a crank pin and a fixed joint, for their parity up to a
+/// driver angle ([`Mechanism::flat_parity`]): at `ψ = 0` (`zero`) and at `ψ = π` (`pi`), `ψ`
+/// the crank angle `t + phase` measured from the ground direction `β`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FlatParity<T> {
+    pub(crate) zero: bool,
+    pub(crate) pi: bool,
+    pub(crate) beta: T,
+    pub(crate) phase: T,
+}
+
+impl<T: RealField + Copy> FlatParity<T> {
+    /// Half of `ψ` at driver angle `t`: the parity is read off its sine and cosine.
+    #[inline(always)]
+    pub(crate) fn half(&self, t: T) -> T {
+        (t + self.phase - self.beta) * lit::<T>(0.5)
+    }
+
+    /// The parity from `sin`, `cos` of [`Self::half`]: `⌊(ψ − ψ_f)/2π⌋` is odd exactly when
+    /// `sin((ψ − ψ_f)/2) < 0`, the sign of a sine reduced accurately ([`crate::trig`], the
+    /// function `Mechanism::crank_base` forms its base with, from the same `ψ`), so a sample on
+    /// the float nearest a flat position is on the side it truly is.
+    #[inline(always)]
+    pub(crate) fn of(&self, sin: T, cos: T) -> bool {
+        (self.zero && sin < T::zero()) != (self.pi && cos > T::zero())
+    }
+
+    /// The parity at driver angle `t`.
+    pub(crate) fn at(&self, t: T) -> bool {
+        let (s, c) = crate::trig::sin_cos(self.half(t));
+        self.of(s, c)
+    }
+}
+
 /// Where a construction may put its joint.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Candidates<T: RealField + Copy> {
@@ -534,6 +568,19 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// positions are counted as `⌊(ψ − ψ_f)/2π⌋` (mod 2), a function of the angle, so a path
     /// that returns changes nothing.
     pub(crate) fn flat_crossings(&self, i: usize, from: T, to: T) -> Option<bool> {
+        Some(self.flat_parity(i, from)? != self.flat_parity(i, to)?)
+    }
+
+    /// The parity of the flat positions of joint `i` (a dyad on a crank pin and a fixed joint;
+    /// `None` for other constructions) up to driver angle `t`: `⌊(ψ − ψ_f)/2π⌋ mod 2` summed
+    /// over its flat positions `ψ_f`, so that [`Mechanism::flat_crossings`] between two angles
+    /// is whether their parities differ (and counts along any path telescope).
+    pub(crate) fn flat_parity(&self, i: usize, t: T) -> Option<bool> {
+        Some(self.flat_positions(i)?.at(t))
+    }
+
+    /// The flat positions of joint `i` when it is a dyad on a crank pin and a fixed joint.
+    pub(crate) fn flat_positions(&self, i: usize) -> Option<FlatParity<T>> {
         let Construction::Dyad { p1, p2, dyad, .. } = self.steps[i] else {
             return None;
         };
@@ -552,19 +599,13 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         };
         let gv = qp - o;
         let g = crate::scalar::length(gv);
-        let beta = gv.y.atan2(gv.x);
-        // ⌊(ψ − ψ_f)/2π⌋ is odd exactly when sin((ψ − ψ_f)/2) < 0: the sign of a sine, which
-        // libm reduces exactly, so a sample on the float nearest a flat position (2π rounds
-        // below it) is on the side it truly is — the side `crank_base` builds its base on, from
-        // the same ψ.
-        let parity = |t: T| {
-            let half = (t + phase - beta) * lit::<T>(0.5);
-            let (s, c) = half.sin_cos();
-            let [at_zero, at_pi] = crate::fourbar::flat_angles(g, r, dyad.r1, dyad.r2);
-            (at_zero.is_some() && s < T::zero()) != (at_pi.is_some() && c > T::zero())
-        };
-        let odd = parity(from) != parity(to);
-        Some(odd)
+        let [at_zero, at_pi] = crate::fourbar::flat_angles(g, r, dyad.r1, dyad.r2);
+        Some(FlatParity {
+            zero: at_zero.is_some(),
+            pi: at_pi.is_some(),
+            beta: gv.y.atan2(gv.x),
+            phase,
+        })
     }
 
     /// Ground length `g`, crank radius `r` and link lengths `(r1, r2)` of joint `i` when it is
@@ -641,6 +682,18 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         joints: &mut [Vec2<T>],
         watched: &[bool],
     ) -> Result<(T, T), Error> {
+        self.pose_oriented(theta, joints, watched, &[false; N])
+    }
+
+    /// [`Mechanism::pose_watched`] with the joints `flipped` marks on the other side of their
+    /// declared one.
+    pub(crate) fn pose_oriented(
+        &self,
+        theta: T,
+        joints: &mut [Vec2<T>],
+        watched: &[bool],
+        flipped: &[bool; N],
+    ) -> Result<(T, T), Error> {
         let mut margin = T::one();
         let mut least = T::one();
         for i in 0..self.len {
@@ -655,7 +708,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                     if watched[i] {
                         least = least.min(m);
                     }
-                    foot + offset * self.steps[i].initial_sign()
+                    let sign = self.steps[i].initial_sign();
+                    foot + offset * if flipped[i] { -sign } else { sign }
                 }
             };
         }

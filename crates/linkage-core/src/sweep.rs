@@ -221,7 +221,9 @@ pub struct Swept {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Plan {
     /// The held pass when there are at least as many samples as the tracker's grid points
-    /// per turn (so its check costs at most one pose per sample), the tracker otherwise.
+    /// per turn (so its check costs at most one pose per sample), or a block of them for a
+    /// mechanism whose orientations are in closed form (no check: every full-turn four-bar,
+    /// change points included, see [`Tracker`]); the tracker otherwise.
     #[default]
     Auto,
     /// The tracker, sample by sample.
@@ -617,14 +619,22 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
 
     /// The held pass: every sample posed on the declared orientations, no walk (valid only
     /// after [`Tracker::holds_everywhere`]), a block of samples at a time where the block
-    /// kernel applies ([`BlockPoses`]: the same bits as one pose). Returns `None`, having
-    /// written some rows, at the first sample whose own `watched` margins are below the toggle
-    /// margin or that does not assemble: the tracker must sweep then.
+    /// kernel applies ([`BlockPoses`]: the same bits as one pose). With a `reference` angle
+    /// (a mechanism whose orientations are in closed form, [`Tracker::closed_form`]) the dyads
+    /// with flat positions are turned at each one crossed from there, as the tracker turns
+    /// them. Returns `None`, having written some rows, at the first sample whose own `watched`
+    /// margins are below the toggle margin or that does not assemble: the tracker must sweep
+    /// then.
     #[inline(always)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the pass's rule (margin, watched dyads, reference), its samples and outputs"
+    )]
     fn held(
         &mut self,
         toggle_margin: T,
         watched: &[bool],
+        reference: Option<T>,
         theta: &[T],
         (omega, alpha): (Rate<'_, T>, Rate<'_, T>),
         out: &mut SweepOutputs<'_, T>,
@@ -635,6 +645,14 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let blocks = BlockPoses::<T, N>::applies(self.mech);
         let mut blk = BlockPoses::<T, N>::new();
         blk.prepare(self.mech);
+        // The flat positions' parities at the reference, for samples posed one by one.
+        let mut parity_at_reference = [None; N];
+        if let Some(r) = reference {
+            blk.orient(self.mech, r);
+            for (i, p) in parity_at_reference.iter_mut().enumerate().take(j) {
+                *p = self.mech.flat_parity(i, r);
+            }
+        }
         let mut rts = BlockRates::<T, N>::new();
         // Unit-drive rates and body turns, built only for sweeps that ask for centres or
         // curvatures (their tables are sized by the capacity).
@@ -698,7 +716,16 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
                     }
                     (blk.margin[b], blk.watched[b])
                 } else {
-                    match self.mech.pose_watched(th, &mut self.pos[..j], watched) {
+                    let mut flipped = [false; N];
+                    for (i, f) in flipped.iter_mut().enumerate().take(j) {
+                        if let Some(at_reference) = parity_at_reference[i] {
+                            *f = self.mech.flat_parity(i, th) != Some(at_reference);
+                        }
+                    }
+                    match self
+                        .mech
+                        .pose_oriented(th, &mut self.pos[..j], watched, &flipped)
+                    {
                         Ok(m) => m,
                         Err(_) => return Ok(None),
                     }
@@ -897,10 +924,26 @@ pub fn sweep_planned<T: RealField + Copy, const N: usize>(
     };
     let mut scratch = zero;
     let mut watched = [false; N];
-    if try_held && tracker.holds_everywhere(&mut scratch[..j], &mut watched[..j]) {
-        let tm = tracker.toggle_margin();
+    let tm = tracker.toggle_margin();
+    if tracker.closed_form() && plan != Plan::Tracked && (plan == Plan::Held || n >= BLOCK) {
+        // Orientations in closed form: no check of the turn, and no toggle margin to keep
+        // (nothing is watched). The tracker's reference: its start angle, or the first sample
+        // (which must assemble, as the tracker's first sample does).
+        let reference = mech
+            .start_angle()
+            .or_else(|| theta.iter().copied().find(|t| t.is_finite()));
+        if let Some(r) = reference.filter(|&r| mech.pose(r, &mut scratch[..j]).is_ok()) {
+            let rates = (omega, alpha);
+            if let Some(done) =
+                engine.held(tm, &watched[..j], Some(r), theta, rates, &mut out, go_on)?
+            {
+                return Ok(done);
+            }
+        }
+    } else if try_held && tracker.holds_everywhere(&mut scratch[..j], &mut watched[..j]) {
         let watched = &watched[..j];
-        if let Some(done) = engine.held(tm, watched, theta, (omega, alpha), &mut out, go_on)? {
+        let rates = (omega, alpha);
+        if let Some(done) = engine.held(tm, watched, None, theta, rates, &mut out, go_on)? {
             return Ok(done);
         }
     }

@@ -392,6 +392,12 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             })
     }
 
+    /// Whether every orientation is a function of the driver angle, known in closed form
+    /// (see the type's docs): samples are placed from the reference angle with no walk.
+    pub(crate) fn closed_form(&self) -> bool {
+        self.closed_form
+    }
+
     /// The assembly margin below which a dyad is near a toggle.
     pub(crate) fn toggle_margin(&self) -> T {
         self.toggle_margin

@@ -639,10 +639,41 @@ fn held_pass_on_arbitrary_angles() {
         "regular flags: {}",
         flag_difference(&got.regular, &want.regular)
     );
-    // A parallelogram passes flat positions: never held.
-    let par = FourBar::new(3.0_f64, 1.0, 3.0, 1.0, (1.5, 0.0), Assembly::Open).unwrap();
-    let (_, held) = engine_with(Plan::Held, &par.mechanism(), &theta[..10], omega, omega);
-    assert!(!held, "a parallelogram through flat positions was held");
+    // A parallelogram passes flat positions: its orientation is in closed form (turned at
+    // each one crossed), so the held pass poses it too, with the tracker's bits; also at 2⁻⁴⁰
+    // of the size, outside the block kernel's sizes, where it is posed one by one.
+    for scale in [1.0, 2f64.powi(-40)] {
+        let par = FourBar::new(
+            3.0 * scale,
+            scale,
+            3.0 * scale,
+            scale,
+            (1.5 * scale, 0.0),
+            Assembly::Open,
+        );
+        let par = par.unwrap().mechanism();
+        let (got, held) = engine_with(Plan::Auto, &par, &theta, omega, Rate::Scalar(0.0));
+        assert!(
+            held,
+            "a parallelogram ({scale}) over arbitrary angles not held"
+        );
+        let want = reference(&par, &theta, &[2.0; 100_000], 0.0);
+        assert!(
+            same_points(&got.joints, &want.joints) && got.valid == want.valid,
+            "parallelogram ({scale}) joints: {}, validity: {}",
+            point_difference(&got.joints, &want.joints),
+            flag_difference(&got.valid, &want.valid)
+        );
+        // Every sample on the parallelogram (B − A = C − O), none on the antiparallelogram.
+        let on_parallelogram = got
+            .joints
+            .chunks_exact(par.len())
+            .all(|p| (p[3] - p[2] - Vec2::new(3.0 * scale, 0.0)).norm() < 1e-12 * scale);
+        assert!(
+            on_parallelogram,
+            "a sample left the parallelogram ({scale})"
+        );
+    }
 }
 
 /// Intersection of the lines through `a`, `b` and through `c`, `d`.
