@@ -28,7 +28,7 @@
 //! - `synthesis` (default, implies `std`): dimensional synthesis — Burmester motion
 //!   generation ([`BurmesterCurve`], [`centre_point`], [`MotionCandidate`]), Freudenstein
 //!   function generation ([`FunctionGenerator`]) and path synthesis ([`Efd`] elliptic Fourier
-//!   descriptors, the [`Atlas`] of four-bars, [`CircuitPath`]).
+//!   descriptors, the [`Atlas`] of four-bars, the [`Circuit`] of a four-bar, [`CircuitPath`]).
 //!
 //! # Example
 //! ```
@@ -107,7 +107,8 @@ pub use efd::{
 #[cfg(feature = "synthesis")]
 pub use path_synthesis::{
     covering_arc, path_errors, path_residuals, place_entry, polyline_distances, ArcFigures,
-    CircuitPath, FootSearch, PathError, FOOT_STARTS, PLACED_PARAMS,
+    Circuit, CircuitPath, FootSearch, PathError, BRANCH_JOINT, FOOT_STARTS, PLACED_PARAMS,
+    POINT_JOINT,
 };
 
 /// The repository README's Rust examples, compiled and run as doc tests.

@@ -27,10 +27,10 @@ use crate::mechanism::Mechanism;
 use crate::scalar::{lit, to_f64, Vec2};
 use crate::tracker::{Rates, Tracker};
 
-/// Local minima of the polyline distance refined by [`CircuitPath::foot`].
+/// Local minima of the polyline distance refined by [`Circuit::foot`].
 pub const FOOT_STARTS: usize = 4;
 
-/// Quarter steps of the polyline [`CircuitPath::foot`] scans about each local minimum (five
+/// Quarter steps of the polyline [`Circuit::foot`] scans about each local minimum (five
 /// steps) before its golden-section search.
 const FOOT_SCAN: usize = 20;
 
@@ -41,7 +41,7 @@ pub const PLACED_PARAMS: usize = 9;
 /// target's units.
 ///
 /// ```
-/// use linkage_core::{path_errors, CircuitPath, FootSearch, PathError};
+/// use linkage_core::{path_errors, Circuit, CircuitPath, FootSearch, PathError};
 /// // Hoecken's linkage against two points of its own curve, and a linkage that never assembles.
 /// let hoecken = [0.0, 0.0, 20.0, 0.0, 10.0, 25.0, 25.0, 50.0, 0.0];
 /// let broken = [0.0, 0.0, 20.0, 0.0, 1.0, 2.0, 2.0, 0.0, 0.0];
@@ -80,10 +80,10 @@ impl<T: RealField + Copy> PathError<T> {
     }
 }
 
-/// How [`CircuitPath::errors`] finds each target point's nearest curve point.
+/// How [`Circuit::errors`] finds each target point's nearest curve point.
 ///
 /// ```
-/// use linkage_core::{CircuitPath, FootSearch};
+/// use linkage_core::{Circuit, CircuitPath, FootSearch};
 /// let hoecken = [0.0, 0.0, 20.0, 0.0, 10.0, 25.0, 25.0, 50.0, 0.0];
 /// let path = CircuitPath::placed(&hoecken, false).unwrap();
 /// // Two points of the curve between the vertices of a 64-point polyline.
@@ -98,16 +98,16 @@ pub enum FootSearch {
     /// The nearest segment of the circuit's polyline (fast; a chord error of the order of the
     /// squared sample spacing).
     Polyline,
-    /// The true nearest point ([`CircuitPath::foot`]: local minima of the polyline, refined
+    /// The true nearest point ([`Circuit::foot`]: local minima of the polyline, refined
     /// by golden-section search on the curve).
     Exact,
 }
 
 /// Figures of a circuit over an arc `s_lo ≤ s ≤ s_hi` of its parameter
-/// ([`CircuitPath::arc`]).
+/// ([`Circuit::arc`]).
 ///
 /// ```
-/// use linkage_core::{catalog, CircuitPath};
+/// use linkage_core::{catalog, Circuit, CircuitPath};
 /// // Evans C's circuit: limit to limit on one assembly (0 ≤ s ≤ π), back on the other.
 /// let c = CircuitPath::new(catalog::evans_c::<f64>()).unwrap();
 /// let a = c.arc(0.5, 2.5, 32);
@@ -132,7 +132,7 @@ pub struct ArcFigures<T> {
 /// A four-bar's circuit, parametrised as in the module.
 ///
 /// ```
-/// use linkage_core::{catalog, Assembly, CircuitPath, Error, FourBar};
+/// use linkage_core::{catalog, Assembly, Circuit, CircuitPath, Error, FourBar};
 /// let c = CircuitPath::new(catalog::hoecken::<f64>()).unwrap();
 /// assert!(c.full_turn() && c.limits.is_none());
 /// c.check(64).unwrap(); // the tracker follows the circuit
@@ -193,7 +193,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
     ///
     /// # Example
     /// ```
-    /// use linkage_core::{CircuitPath, FootSearch, Vec2};
+    /// use linkage_core::{Circuit, CircuitPath, FootSearch, Vec2};
     /// // Hoecken's straight-line linkage, ground from (0, 0) to (20, 0), foot 50 along the coupler.
     /// let path = CircuitPath::placed(&[0.0, 0.0, 20.0, 0.0, 10.0, 25.0, 25.0, 50.0, 0.0], false)?;
     /// assert!(path.full_turn());
@@ -231,55 +231,80 @@ impl<T: RealField + Copy> CircuitPath<T> {
         CircuitPath::new(fb)
     }
 
-    /// Whether the crank turns fully.
-    pub fn full_turn(&self) -> bool {
-        self.limits.is_none()
-    }
-
-    /// Crank angle at circuit parameter `s`, and whether it is on the other assembly.
-    pub fn theta(&self, s: T) -> (T, bool) {
-        match self.limits {
-            None => (self.base + s, false),
-            Some((lo, hi)) => {
-                let half = lit::<T>(0.5);
-                let theta = (lo + hi) * half - (hi - lo) * half * s.cos();
-                (theta, s.sin() < T::zero())
-            }
-        }
-    }
-
     /// The two programs, for posing many points.
-    fn poser(&self) -> Poser<'_, T> {
+    fn programs(&self) -> Poser<'_, T> {
         Poser {
             path: self,
             mechs: [self.linkage.mechanism(), self.other.mechanism()],
         }
     }
+}
+
+/// Joint of a [`Circuit::program`] whose branch the circuit passes to the other at a crank
+/// limit: a four-bar's `B` ([`FourBar::B`]).
+pub const BRANCH_JOINT: usize = 3;
+
+/// Joint of a [`Circuit::program`] that traces the curve: the coupler point.
+pub const POINT_JOINT: usize = 4;
+
+/// A one-degree-of-freedom linkage's circuit as a closed curve of the circuit parameter `s`
+/// (period `2π`, as the module describes), and what path synthesis measures on it: points,
+/// the true distance of targets to the curve ([`Circuit::foot`], [`Circuit::errors`]), the
+/// least-squares residuals ([`Circuit::residuals`]), the tracker's check that the circuit is
+/// what the driven linkage traces ([`Circuit::check`]) and the figures of an arc
+/// ([`Circuit::arc`]). Implemented by the four-bar's [`CircuitPath`]; the provided methods are
+/// the one implementation of that machinery.
+///
+/// A limited crank's circuit has its limits at `s = 0` and `s = π`, on the declared branch
+/// for `0 ≤ s ≤ π` and on the other back.
+///
+/// ```
+/// use linkage_core::{catalog, Circuit, CircuitPath, FootSearch};
+/// let c = CircuitPath::new(catalog::hoecken::<f64>()).unwrap();
+/// let p = c.point(1.0).unwrap();
+/// let mut feet = [0.0; 2];
+/// let e = c.errors(&[p, c.point(2.0).unwrap()], 128, FootSearch::Exact, false, &mut feet);
+/// assert!(e.unwrap().max < 1e-9 && (feet[0] - 1.0).abs() < 1e-6);
+/// ```
+pub trait Circuit<T: RealField + Copy> {
+    /// A function of `s` giving the coupler point (`None` where rounding at a limit leaves it
+    /// unassembled), prepared once for many points.
+    fn poser(&self) -> impl Fn(T) -> Option<Vec2<T>> + '_;
+
+    /// Crank angle at circuit parameter `s` (absolute, radians), and whether it is on the other
+    /// branch.
+    fn theta(&self, s: T) -> (T, bool);
+
+    /// Transmission angle's distance from a toggle at `s` (radians, `0 … π/2`; `None` where it
+    /// does not assemble).
+    fn transmission(&self, s: T) -> Option<T>;
+
+    /// Whether the crank turns fully.
+    fn full_turn(&self) -> bool;
+
+    /// A length of the linkage's size (its largest length or pivot offset).
+    fn size(&self) -> T;
+
+    /// The linkage as a mechanism on its declared branch, joint [`BRANCH_JOINT`] the one whose
+    /// branch changes at a crank limit, joint [`POINT_JOINT`] the coupler point.
+    fn program(&self) -> Mechanism<T, 5>;
 
     /// Coupler point at circuit parameter `s`; `None` where rounding at a limit leaves it
     /// unassembled.
-    pub fn point(&self, s: T) -> Option<Vec2<T>> {
-        self.poser().point(s)
-    }
-
-    /// Transmission angle's distance from a toggle, `min(μ, π − μ)`, at `s` (`None` where it
-    /// does not assemble).
-    pub fn transmission(&self, s: T) -> Option<T> {
-        let (theta, other) = self.theta(s);
-        let fb = if other { &self.other } else { &self.linkage };
-        fb.transmission_angle(theta).map(|mu| mu.min(T::pi() - mu))
+    fn point(&self, s: T) -> Option<Vec2<T>> {
+        self.poser()(s)
     }
 
     /// Sweeps the circuit with the [`Tracker`] (`n` samples at `s = 2πk/n`, passing to the other
-    /// assembly after the upper limit as [`FourBar::circuit`] does) and checks that each
-    /// tracked coupler point is [`CircuitPath::point`]: the circuit is one branch of the driven
+    /// branch after the upper limit, as [`FourBar::circuit`] does) and checks that each
+    /// tracked coupler point is [`Circuit::point`]: the circuit is one branch of the driven
     /// linkage, never switched at a flat position or lost.
     ///
     /// # Errors
     /// [`Error::CannotAssemble`] at a sample that does not assemble; [`Error::ToggleOnPath`]
     /// (its crank angle) where the tracked point leaves the circuit's (a branch switch);
     /// [`Error::BufferLength`] for `n < 4`.
-    pub fn check(&self, n: usize) -> Result<(), Error> {
+    fn check(&self, n: usize) -> Result<(), Error> {
         if n < 4 {
             return Err(Error::BufferLength {
                 what: "check samples",
@@ -287,27 +312,33 @@ impl<T: RealField + Copy> CircuitPath<T> {
                 got: n,
             });
         }
-        let m = self.linkage.mechanism();
+        let m = self.program();
         let mut tracker = Tracker::new(&m)?;
         let mut joints = [Vec2::zeros(); 5];
         let size = self.size();
         let tol = lit::<T>(1e-9) * size;
+        let limit_tol = crate::scalar::eps::<T>().sqrt() * lit::<T>(64.0) * size;
         let mut flipped = false;
         let poser = self.poser();
         for k in 0..n {
             let s = T::two_pi() * lit::<T>(k as f64) / lit::<T>(n as f64);
             let (theta, other) = self.theta(s);
             if other && !flipped {
-                let b = tracker.branch(FourBar::<T>::B);
-                tracker.set_branch(FourBar::<T>::B, -b);
+                let b = tracker.branch(BRANCH_JOINT);
+                tracker.set_branch(BRANCH_JOINT, -b);
                 flipped = true;
             }
             tracker.step(theta, None, &mut joints, Rates::none())?;
-            let want = poser.point(s).ok_or(Error::CannotAssemble {
-                joint: FourBar::<T>::B,
+            let want = poser(s).ok_or(Error::CannotAssemble {
+                joint: BRANCH_JOINT,
                 gap: 0.0,
             })?;
-            if (joints[FourBar::<T>::P] - want).norm() > tol {
+            // At a crank limit (s = 0, π of a limited crank) the two branches meet, and a
+            // mechanism's pose there keeps only √ε of the size (the half chord is the root of a
+            // difference that rounding leaves at ε): no switch is possible, only that noise.
+            let at_limit = !self.full_turn() && (k == 0 || 2 * k == n);
+            let tol = if at_limit { limit_tol } else { tol };
+            if (joints[POINT_JOINT] - want).norm() > tol {
                 return Err(Error::ToggleOnPath {
                     angle: to_f64(theta),
                 });
@@ -316,29 +347,18 @@ impl<T: RealField + Copy> CircuitPath<T> {
         Ok(())
     }
 
-    /// A length of the linkage's size (its largest length or pivot offset).
-    pub fn size(&self) -> T {
-        let f = &self.linkage;
-        f.crank
-            .max(f.coupler)
-            .max(f.rocker)
-            .max(f.ground())
-            .max(f.along.abs())
-            .max(f.left.abs())
-    }
-
     /// `m` points of the circuit at `s = 2πk/m` (NaN where a sample does not assemble).
     ///
     /// # Panics
     /// When `m` points cannot be allocated: more bytes than `isize::MAX` panics (capacity
     /// overflow), like any `Vec` of that length.
-    pub fn polyline(&self, m: usize) -> Vec<Vec2<T>> {
+    fn polyline(&self, m: usize) -> Vec<Vec2<T>> {
         let poser = self.poser();
         let nan = crate::scalar::nan::<T>();
         (0..m)
             .map(|k| {
                 let s = T::two_pi() * lit::<T>(k as f64) / lit::<T>(m as f64);
-                poser.point(s).unwrap_or(Vec2::new(nan, nan))
+                poser(s).unwrap_or(Vec2::new(nan, nan))
             })
             .collect()
     }
@@ -351,24 +371,20 @@ impl<T: RealField + Copy> CircuitPath<T> {
     /// As [`Efd::closed`] and [`Efd::normalised`] (an unassembled sample is not finite).
     ///
     /// # Panics
-    /// As [`CircuitPath::polyline`] of `samples` points.
-    pub fn normalisation(
-        &self,
-        samples: usize,
-        harmonics: usize,
-    ) -> Result<Normalisation<T>, Error> {
+    /// As [`Circuit::polyline`] of `samples` points.
+    fn normalisation(&self, samples: usize, harmonics: usize) -> Result<Normalisation<T>, Error> {
         let poly = self.polyline(samples.max(8));
         Ok(Efd::closed(&poly, harmonics)?.normalised()?.1)
     }
 
     /// True distance from `target` to the circuit's curve and the circuit parameter of the
-    /// nearest point: the vertices of `poly` (from [`CircuitPath::polyline`]) nearest `target`
+    /// nearest point: the vertices of `poly` (from [`Circuit::polyline`]) nearest `target`
     /// by vertex or segment distance are found among the local minima along the polyline; about
     /// each of the best [`FOOT_STARTS`] the curve is sampled at a quarter of the polyline's step
     /// over five steps and a golden-section search of `|P(s) − target|` runs within a quarter
     /// step of the best sample (where the curve crosses itself or passes close by itself the
     /// nearest vertex may lie on the wrong pass, and two passes may lie within one step). `None` when `poly` has no finite point.
-    pub fn foot(&self, target: Vec2<T>, poly: &[Vec2<T>]) -> Option<(T, T)> {
+    fn foot(&self, target: Vec2<T>, poly: &[Vec2<T>]) -> Option<(T, T)> {
         let m = poly.len();
         let poser = self.poser();
         let finite = |p: &Vec2<T>| p.x.is_finite() && p.y.is_finite();
@@ -416,7 +432,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
             let (a, h) = (centre - step - step, step / lit::<T>(4.0));
             let mut dk = [big; FOOT_SCAN + 1];
             for (k, d) in dk.iter_mut().enumerate() {
-                if let Some(p) = poser.point(a + h * lit::<T>(k as f64)) {
+                if let Some(p) = poser(a + h * lit::<T>(k as f64)) {
                     *d = (p - target).norm();
                 }
             }
@@ -427,7 +443,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
                     continue;
                 }
                 let mid = a + h * lit::<T>(k as f64);
-                let (dg, sg) = Self::golden(&poser, target, mid - h, mid + h);
+                let (dg, sg) = golden(&poser, target, mid - h, mid + h);
                 for (dc, sc) in [(dk[k], mid), (dg, sg)] {
                     if dc < best.0 {
                         best = (dc, sc);
@@ -438,49 +454,13 @@ impl<T: RealField + Copy> CircuitPath<T> {
         Some(best)
     }
 
-    /// Golden-section search of `|P(s) − target|` over `[a, b]`: `(distance, s)`.
-    fn golden(poser: &Poser<'_, T>, target: Vec2<T>, mut a: T, mut b: T) -> (T, T) {
-        let dist = |s: T| {
-            poser
-                .point(s)
-                .map_or(T::max_value().unwrap_or(T::one()), |p| (p - target).norm())
-        };
-        let g = lit::<T>(0.618_033_988_749_894_8);
-        let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
-        let (mut f1, mut f2) = (dist(x1), dist(x2));
-        // 48 golden steps shrink the bracket (half a polyline step) by 0.618⁴⁸ ≈ 1e-10.
-        for _ in 0..48 {
-            if f1 < f2 {
-                b = x2;
-                (x2, f2) = (x1, f1);
-                x1 = b - g * (b - a);
-                f1 = dist(x1);
-            } else {
-                a = x1;
-                (x1, f1) = (x2, f2);
-                x2 = a + g * (b - a);
-                f2 = dist(x2);
-            }
-        }
-        if f1 < f2 {
-            (f1, x1)
-        } else {
-            (f2, x2)
-        }
-    }
-
     /// Residuals `P(sᵢ) − targetᵢ` of target points at circuit parameters `s` (NaN where a
     /// sample does not assemble): the least-squares fit's residuals. At a fit's optimum each
     /// `|P(sᵢ) − targetᵢ|` is the true point-to-curve distance.
     ///
     /// # Errors
     /// [`Error::BufferLength`] unless `s` and `out` have one entry per target.
-    pub fn residuals(
-        &self,
-        targets: &[Vec2<T>],
-        s: &[T],
-        out: &mut [Vec2<T>],
-    ) -> Result<(), Error> {
+    fn residuals(&self, targets: &[Vec2<T>], s: &[T], out: &mut [Vec2<T>]) -> Result<(), Error> {
         for (what, got) in [("circuit parameters", s.len()), ("residuals", out.len())] {
             if got != targets.len() {
                 return Err(Error::BufferLength {
@@ -492,7 +472,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
         }
         let (nan, poser) = (crate::scalar::nan::<T>(), self.poser());
         for ((r, &t), &si) in out.iter_mut().zip(targets).zip(s) {
-            *r = poser.point(si).map_or(Vec2::new(nan, nan), |q| q - t);
+            *r = poser(si).map_or(Vec2::new(nan, nan), |q| q - t);
         }
         Ok(())
     }
@@ -506,8 +486,8 @@ impl<T: RealField + Copy> CircuitPath<T> {
     /// targets, or `feet` is not one per target.
     ///
     /// # Panics
-    /// As [`CircuitPath::polyline`] of `samples` points.
-    pub fn errors(
+    /// As [`Circuit::polyline`] of `samples` points.
+    fn errors(
         &self,
         targets: &[Vec2<T>],
         samples: usize,
@@ -563,7 +543,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
 
     /// Crank interval, least transmission angle and whether a limit is passed, over the arc
     /// `s_lo ≤ s ≤ s_hi` sampled at `samples + 1` evenly spaced parameters (at least 2).
-    pub fn arc(&self, s_lo: T, s_hi: T, samples: usize) -> ArcFigures<T> {
+    fn arc(&self, s_lo: T, s_hi: T, samples: usize) -> ArcFigures<T> {
         let k = samples.max(1);
         let big = T::max_value().unwrap_or(T::one());
         let (mut lo, mut hi, mut mu) = (big, -big, big);
@@ -589,15 +569,88 @@ impl<T: RealField + Copy> CircuitPath<T> {
     }
 }
 
-/// A circuit's two programs built once, for many points ([`CircuitPath::point`] builds them per
-/// call): the same bits.
+/// Golden-section search of `|P(s) − target|` over `[a, b]`: `(distance, s)`.
+fn golden<T: RealField + Copy>(
+    poser: &impl Fn(T) -> Option<Vec2<T>>,
+    target: Vec2<T>,
+    mut a: T,
+    mut b: T,
+) -> (T, T) {
+    let dist = |s: T| poser(s).map_or(T::max_value().unwrap_or(T::one()), |p| (p - target).norm());
+    let g = lit::<T>(0.618_033_988_749_894_8);
+    let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
+    let (mut f1, mut f2) = (dist(x1), dist(x2));
+    // 48 golden steps shrink the bracket (half a polyline step) by 0.618⁴⁸ ≈ 1e-10.
+    for _ in 0..48 {
+        if f1 < f2 {
+            b = x2;
+            (x2, f2) = (x1, f1);
+            x1 = b - g * (b - a);
+            f1 = dist(x1);
+        } else {
+            a = x1;
+            (x1, f1) = (x2, f2);
+            x2 = a + g * (b - a);
+            f2 = dist(x2);
+        }
+    }
+    if f1 < f2 {
+        (f1, x1)
+    } else {
+        (f2, x2)
+    }
+}
+
+impl<T: RealField + Copy> Circuit<T> for CircuitPath<T> {
+    fn poser(&self) -> impl Fn(T) -> Option<Vec2<T>> + '_ {
+        let p = self.programs();
+        move |s| p.point(s)
+    }
+
+    fn theta(&self, s: T) -> (T, bool) {
+        match self.limits {
+            None => (self.base + s, false),
+            Some((lo, hi)) => {
+                let half = lit::<T>(0.5);
+                let theta = (lo + hi) * half - (hi - lo) * half * s.cos();
+                (theta, s.sin() < T::zero())
+            }
+        }
+    }
+
+    fn transmission(&self, s: T) -> Option<T> {
+        let (theta, other) = self.theta(s);
+        let fb = if other { &self.other } else { &self.linkage };
+        fb.transmission_angle(theta).map(|mu| mu.min(T::pi() - mu))
+    }
+
+    fn full_turn(&self) -> bool {
+        self.limits.is_none()
+    }
+
+    fn size(&self) -> T {
+        let f = &self.linkage;
+        f.crank
+            .max(f.coupler)
+            .max(f.rocker)
+            .max(f.ground())
+            .max(f.along.abs())
+            .max(f.left.abs())
+    }
+
+    fn program(&self) -> Mechanism<T, 5> {
+        self.linkage.mechanism()
+    }
+}
+
+/// A circuit's two programs built once, for many points.
 struct Poser<'a, T: RealField + Copy> {
     path: &'a CircuitPath<T>,
     mechs: [Mechanism<T, 5>; 2],
 }
 
 impl<T: RealField + Copy> Poser<'_, T> {
-    /// [`CircuitPath::point`].
+    /// [`Circuit::point`].
     fn point(&self, s: T) -> Option<Vec2<T>> {
         let (theta, other) = self.path.theta(s);
         let mut joints = [Vec2::zeros(); 5];
@@ -695,13 +748,7 @@ pub fn place_entry<T: RealField + Copy>(
     target: &Normalisation<T>,
     flip: bool,
 ) -> [T; PLACED_PARAMS] {
-    let k = target.scale / curve.scale;
-    let turn = target.rotation - curve.rotation + if flip { T::pi() } else { T::zero() };
-    let (s, c) = turn.sin_cos();
-    let moved = |p: Vec2<T>| {
-        let d = p - curve.centre;
-        target.centre + Vec2::new(c * d.x - s * d.y, s * d.x + c * d.y) * k
-    };
+    let (k, _, moved) = similarity(curve, target, flip);
     let (o, g) = (moved(Vec2::zeros()), moved(Vec2::new(T::one(), T::zero())));
     let [r, b, rk, along, left] = *entry;
     [
@@ -715,6 +762,25 @@ pub fn place_entry<T: RealField + Copy>(
         k * along,
         k * left,
     ]
+}
+
+/// The similarity that takes a curve's normalisation frame `curve` onto a target's `target`
+/// (with `flip`, turned by `π` more: the other end of the first harmonic's major axis): its
+/// scale, its turn and the map itself.
+pub(crate) fn similarity<T: RealField + Copy>(
+    curve: &Normalisation<T>,
+    target: &Normalisation<T>,
+    flip: bool,
+) -> (T, T, impl Fn(Vec2<T>) -> Vec2<T>) {
+    let k = target.scale / curve.scale;
+    let turn = target.rotation - curve.rotation + if flip { T::pi() } else { T::zero() };
+    let (s, c) = turn.sin_cos();
+    let (from, to) = (curve.centre, target.centre);
+    let moved = move |p: Vec2<T>| {
+        let d = p - from;
+        to + Vec2::new(c * d.x - s * d.y, s * d.x + c * d.y) * k
+    };
+    (k, turn, moved)
 }
 
 /// The distance from each of `points` to the polyline through `path` into `out`: a sample
@@ -837,7 +903,7 @@ fn rows_times(m: usize, n: usize) -> Result<usize, Error> {
     })
 }
 
-/// [`CircuitPath::errors`] of `M` placed four-bars (`params` rows of [`PLACED_PARAMS`], one
+/// [`Circuit::errors`] of `M` placed four-bars (`params` rows of [`PLACED_PARAMS`], one
 /// `crossed` flag each) against the same targets, on `threads` threads (the same bits for any
 /// count): `errors[i]` (NaN for a linkage that cannot be built or whose circuit does not
 /// assemble throughout) and `feet[i·n .. (i+1)·n]`.
@@ -847,7 +913,7 @@ fn rows_times(m: usize, n: usize) -> Result<usize, Error> {
 /// than 8 samples; [`Error::CountOverflow`] when `M·n` overflows `usize`.
 ///
 /// # Panics
-/// As [`CircuitPath::polyline`] of `samples` points.
+/// As [`Circuit::polyline`] of `samples` points.
 #[allow(
     clippy::too_many_arguments,
     reason = "the batch's inputs, its two outputs and the search settings"
@@ -864,6 +930,29 @@ pub fn path_errors(
     feet: &mut [f64],
 ) -> Result<(), Error> {
     let m = placed_rows(params, crossed)?;
+    let build = |i: usize| {
+        CircuitPath::placed(
+            &params[PLACED_PARAMS * i..PLACED_PARAMS * (i + 1)],
+            crossed[i],
+        )
+        .ok()
+    };
+    let settings = (samples, search, closed, threads);
+    errors_of(m, build, targets, settings, errors, feet)
+}
+
+/// [`path_errors`] of `m` circuits, `build(i)` the `i`-th (`None`: NaN errors): the one
+/// implementation for every kind of linkage. `settings` are `(samples, search, closed,
+/// threads)`.
+pub(crate) fn errors_of<C: Circuit<f64>>(
+    m: usize,
+    build: impl Fn(usize) -> Option<C> + Sync,
+    targets: &[Vec2<f64>],
+    settings: (usize, FootSearch, bool, usize),
+    errors: &mut [PathError<f64>],
+    feet: &mut [f64],
+) -> Result<(), Error> {
+    let (samples, search, closed, threads) = settings;
     let n = targets.len();
     let mn = rows_times(m, n)?;
     for (what, expected, got, short) in [
@@ -882,13 +971,9 @@ pub fn path_errors(
     }
     let rows = crate::parallel::map_parts(m, threads, |i| {
         let mut f = alloc::vec![f64::NAN; n];
-        let e = CircuitPath::placed(
-            &params[PLACED_PARAMS * i..PLACED_PARAMS * (i + 1)],
-            crossed[i],
-        )
-        .ok()
-        .and_then(|path| path.errors(targets, samples, search, closed, &mut f))
-        .unwrap_or_else(PathError::nan);
+        let e = build(i)
+            .and_then(|path| path.errors(targets, samples, search, closed, &mut f))
+            .unwrap_or_else(PathError::nan);
         (e, f)
     });
     for (i, (e, f)) in rows.into_iter().enumerate() {
@@ -898,7 +983,7 @@ pub fn path_errors(
     Ok(())
 }
 
-/// [`CircuitPath::residuals`] of `M` placed four-bars (as [`path_errors`]) at circuit
+/// [`Circuit::residuals`] of `M` placed four-bars (as [`path_errors`]) at circuit
 /// parameters `s[i·n .. (i+1)·n]`: `out[i·n + j] = P_i(s_ij) − target_j`, NaN where a linkage
 /// or a sample does not assemble.
 ///
@@ -913,6 +998,24 @@ pub fn path_residuals(
     out: &mut [Vec2<f64>],
 ) -> Result<(), Error> {
     let m = placed_rows(params, crossed)?;
+    let build = |i: usize| {
+        CircuitPath::placed(
+            &params[PLACED_PARAMS * i..PLACED_PARAMS * (i + 1)],
+            crossed[i],
+        )
+        .ok()
+    };
+    residuals_of(m, build, targets, s, out)
+}
+
+/// [`path_residuals`] of `m` circuits, `build(i)` the `i`-th (`None`: NaN residuals).
+pub(crate) fn residuals_of<C: Circuit<f64>>(
+    m: usize,
+    build: impl Fn(usize) -> Option<C>,
+    targets: &[Vec2<f64>],
+    s: &[f64],
+    out: &mut [Vec2<f64>],
+) -> Result<(), Error> {
     let n = targets.len();
     let mn = rows_times(m, n)?;
     for (what, got) in [("circuit parameters", s.len()), ("residuals", out.len())] {
@@ -926,12 +1029,9 @@ pub fn path_residuals(
     }
     for i in 0..m {
         let rows = i * n..(i + 1) * n;
-        match CircuitPath::placed(
-            &params[PLACED_PARAMS * i..PLACED_PARAMS * (i + 1)],
-            crossed[i],
-        ) {
-            Ok(path) => path.residuals(targets, &s[rows.clone()], &mut out[rows])?,
-            Err(_) => out[rows].fill(Vec2::new(f64::NAN, f64::NAN)),
+        match build(i) {
+            Some(path) => path.residuals(targets, &s[rows.clone()], &mut out[rows])?,
+            None => out[rows].fill(Vec2::new(f64::NAN, f64::NAN)),
         }
     }
     Ok(())

@@ -6,8 +6,8 @@
 mod common;
 
 use linkage_core::{
-    candidate, nearest, path_errors, path_residuals, Assembly, Atlas, AtlasSpec, CircuitPath, Efd,
-    FootSearch, FourBar, GrashofClass, InputRange, PathError, Vec2,
+    candidate, nearest, path_errors, path_residuals, Assembly, Atlas, AtlasSpec, Circuit,
+    CircuitPath, Efd, FootSearch, FourBar, GrashofClass, InputRange, PathError, Vec2,
 };
 use proptest::prelude::*;
 

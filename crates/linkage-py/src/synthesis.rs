@@ -4,7 +4,7 @@
 
 use linkage_core::{
     covering_arc, descriptor_len, nearest, path_errors, path_residuals, place_entry,
-    polyline_distances, query_descriptors, Atlas, AtlasSpec, CircuitPath, FootSearch,
+    polyline_distances, query_descriptors, Atlas, AtlasSpec, Circuit, CircuitPath, FootSearch,
     Normalisation, PathError, Vec2, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS,
 };
 use numpy::ndarray::{Ix2, Ix3};
