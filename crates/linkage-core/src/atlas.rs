@@ -28,7 +28,11 @@ use crate::batch::FourBarBatch;
 use crate::efd::{descriptor_len, Efd};
 use crate::error::Error;
 use crate::fourbar::{Assembly, FourBar, GrashofClass, InputRange};
+use crate::path_synthesis::Circuit;
 use crate::scalar::Vec2;
+use crate::slider::Reach;
+use crate::slider_circuit::SliderCircuit;
+use crate::slider_crank::SliderCrank;
 use crate::uniform_sweep::AngleMode;
 
 /// Link lengths of atlas four-bars relative to the ground: `(least, greatest)`.
@@ -37,6 +41,10 @@ pub const LENGTH_RANGE: (f64, f64) = (0.2, 5.0);
 /// Parameters per entry: `crank, coupler, rocker, along, left, assembly` (ground 1; assembly
 /// `0` open, `1` crossed).
 pub const ENTRY_PARAMS: usize = 6;
+
+/// Parameters per slider-crank entry ([`Atlas::build_slider_cranks`]): `coupler, offset,
+/// along, left` (crank 1, crank pivot at the origin, line along `+x`, reach ahead).
+pub const SLIDER_ENTRY_PARAMS: usize = 4;
 
 /// Candidate indices per unit of parallel work.
 const CHUNK: u64 = 2048;
@@ -78,7 +86,8 @@ impl Default for AtlasSpec {
 }
 
 /// Atlas entries as flat arrays: `descriptors[i·D .. (i+1)·D]` and
-/// `params[i·ENTRY_PARAMS ..]` of entry `i`, with `D = dim`.
+/// `params[i·ENTRY_PARAMS ..]` of entry `i`, with `D = dim` (for a slider-crank atlas,
+/// [`Atlas::build_slider_cranks`], rows of [`SLIDER_ENTRY_PARAMS`]).
 ///
 /// ```
 /// use linkage_core::{candidate, nearest, Atlas, AtlasSpec, ENTRY_PARAMS};
@@ -121,11 +130,54 @@ impl Atlas {
     /// [`Error::BufferLength`] for fewer than 1 harmonic or 8 samples; [`Error::CountOverflow`]
     /// for more entries, harmonics or samples than an address space holds.
     pub fn build(entries: usize, spec: AtlasSpec, threads: usize) -> Result<Atlas, Error> {
+        Self::build_with(entries, spec, threads, ENTRY_PARAMS, build_chunk)
+    }
+
+    /// Builds an atlas of `entries` slider-cranks ([`slider_candidate`]; parameters
+    /// [`SLIDER_ENTRY_PARAMS`] an entry) on `threads` threads, as [`Atlas::build`] does
+    /// four-bars. The result does not depend on `threads`.
+    ///
+    /// ```
+    /// use linkage_core::{nearest, slider_candidate, Atlas, AtlasSpec, SLIDER_ENTRY_PARAMS};
+    /// let atlas = Atlas::build_slider_cranks(50, AtlasSpec::default(), 2).unwrap();
+    /// assert_eq!(atlas, Atlas::build_slider_cranks(50, AtlasSpec::default(), 1).unwrap());
+    /// assert_eq!(atlas.params.len(), 50 * SLIDER_ENTRY_PARAMS);
+    /// let sc = slider_candidate(atlas.candidate[3]).unwrap();
+    /// assert_eq!(atlas.params[3 * SLIDER_ENTRY_PARAMS], sc.coupler);
+    /// let query = &atlas.descriptors[3 * atlas.dim..4 * atlas.dim];
+    /// assert_eq!(nearest(&atlas.descriptors, atlas.dim, query, 1, 1).unwrap(), [(3, 0.0, 0)]);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Atlas::build`].
+    pub fn build_slider_cranks(
+        entries: usize,
+        spec: AtlasSpec,
+        threads: usize,
+    ) -> Result<Atlas, Error> {
+        Self::build_with(
+            entries,
+            spec,
+            threads,
+            SLIDER_ENTRY_PARAMS,
+            build_slider_chunk,
+        )
+    }
+
+    /// [`Atlas::build`] with `chunk` making the entries of a range of candidates, `params`
+    /// numbers an entry.
+    fn build_with(
+        entries: usize,
+        spec: AtlasSpec,
+        threads: usize,
+        params: usize,
+        chunk: fn(core::ops::Range<u64>, AtlasSpec) -> Atlas,
+    ) -> Result<Atlas, Error> {
         check_spec(spec)?;
         let dim = descriptor_len(spec.harmonics);
         // The descriptors (f32) and parameters (f64) of every entry must fit in memory: this
         // also keeps the counts below from overflowing.
-        let row = dim.saturating_mul(4).max(ENTRY_PARAMS * 8);
+        let row = dim.saturating_mul(4).max(params * 8);
         if entries
             .checked_mul(row)
             .is_none_or(|bytes| bytes > isize::MAX as usize)
@@ -149,7 +201,7 @@ impl Atlas {
             next_chunk += round;
             let parts = crate::parallel::map_parts(chunks.len(), threads, |j| {
                 let c = chunks[j];
-                build_chunk(c * CHUNK..(c + 1) * CHUNK, spec)
+                chunk(c * CHUNK..(c + 1) * CHUNK, spec)
             });
             for p in parts {
                 atlas.descriptors.extend_from_slice(&p.descriptors);
@@ -158,7 +210,7 @@ impl Atlas {
             }
         }
         atlas.descriptors.truncate(entries * dim);
-        atlas.params.truncate(entries * ENTRY_PARAMS);
+        atlas.params.truncate(entries * params);
         atlas.candidate.truncate(entries);
         Ok(atlas)
     }
@@ -235,6 +287,40 @@ fn build_chunk(range: core::ops::Range<u64>, spec: AtlasSpec) -> Atlas {
                 1.0
             },
         ]);
+        part.candidate.push(i);
+    }
+    part
+}
+
+/// [`build_chunk`] of slider-cranks: an entry for each candidate whose circuit assembles at
+/// every sample (its closed form, [`SliderCircuit`]) and whose curve has a shape.
+fn build_slider_chunk(range: core::ops::Range<u64>, spec: AtlasSpec) -> Atlas {
+    let dim = descriptor_len(spec.harmonics);
+    let mut part = Atlas {
+        dim,
+        ..Atlas::default()
+    };
+    let mut desc = alloc::vec![0.0f32; dim];
+    for i in range {
+        let Some(sc) = slider_candidate(i) else {
+            continue;
+        };
+        let Ok(c) = SliderCircuit::new(sc) else {
+            continue;
+        };
+        let pts = c.polyline(spec.samples);
+        if pts.iter().any(|p| !(p.x.is_finite() && p.y.is_finite())) {
+            continue;
+        }
+        let Ok((norm, _)) = Efd::closed(&pts, spec.harmonics).and_then(|e| e.normalised()) else {
+            continue;
+        };
+        if norm.descriptor(false, &mut desc).is_err() || desc.iter().any(|v| !v.is_finite()) {
+            continue;
+        }
+        part.descriptors.extend_from_slice(&desc);
+        part.params
+            .extend_from_slice(&[sc.coupler, sc.offset, sc.along, sc.left]);
         part.candidate.push(i);
     }
     part
@@ -341,6 +427,50 @@ pub fn candidate(i: u64) -> Option<FourBar<f64>> {
         return None;
     }
     Some(fb)
+}
+
+/// φ₄ = 1.167303978261418684256045…, the root of x⁵ = x + 1: Roberts' generalised golden
+/// ratio in four dimensions, for the slider-crank atlas's four shape numbers.
+const ROBERTS_PHI4: f64 = 1.167_303_978_261_418_7;
+
+/// Point `i` of Roberts' four-dimensional low-discrepancy sequence in `[0, 1)⁴`:
+/// `frac(½ + i·αⱼ)`, `αⱼ = φ₄^−j`.
+fn sequence4(i: u64) -> [f64; 4] {
+    let mut u = [0.0f64; 4];
+    let mut a = 1.0;
+    for v in u.iter_mut() {
+        a /= ROBERTS_PHI4;
+        let x = 0.5 + (i as f64) * a;
+        *v = x - x.floor();
+    }
+    u
+}
+
+/// Candidate `i` of the slider-crank atlas: crank pivot `(0, 0)`, crank 1, the line along
+/// `+x`, [`Reach::Ahead`] (the other reach is the same linkage with the line reversed and the
+/// offset negated, see [`SliderCrank`], so it adds no shape), and from point `i` of Roberts'
+/// four-dimensional sequence the coupler log-uniform in [`LENGTH_RANGE`], the offset uniform
+/// in `(−(1 + coupler), 1 + coupler)` (every offset at which the linkage moves; both signs, so
+/// mirror images are both present), and the coupler point `coupler·(u, v)` with
+/// `u ∈ [−1, 2]`, `v ∈ [−1.5, 1.5]` as for four-bars. `None` for a change point
+/// (`|offset| + 1 = coupler`) or a linkage that does not move.
+pub fn slider_candidate(i: u64) -> Option<SliderCrank<f64>> {
+    let u = sequence4(i);
+    let (lo, hi) = (LENGTH_RANGE.0.ln(), LENGTH_RANGE.1.ln());
+    let coupler = (lo + (hi - lo) * u[0]).exp();
+    let offset = (1.0 + coupler) * (2.0 * u[1] - 1.0);
+    let point = (coupler * (-1.0 + 3.0 * u[2]), coupler * (-1.5 + 3.0 * u[3]));
+    let sc = SliderCrank::new(
+        Vec2::zeros(),
+        0.0,
+        offset,
+        1.0,
+        coupler,
+        point,
+        Reach::Ahead,
+    )
+    .ok()?;
+    (!sc.is_change_point() && sc.input_range() != InputRange::Never).then_some(sc)
 }
 
 /// The `k` entries nearest (squared Euclidean distance of descriptors) any of `targets`

@@ -28,7 +28,8 @@
 //! - `synthesis` (default, implies `std`): dimensional synthesis — Burmester motion
 //!   generation ([`BurmesterCurve`], [`centre_point`], [`MotionCandidate`]), Freudenstein
 //!   function generation ([`FunctionGenerator`]) and path synthesis ([`Efd`] elliptic Fourier
-//!   descriptors, the [`Atlas`] of four-bars, the [`Circuit`] of a four-bar, [`CircuitPath`]).
+//!   descriptors, the [`Atlas`] of four-bars or slider-cranks, the [`Circuit`]s of four-bars
+//!   ([`CircuitPath`]) and of offset slider-cranks ([`SliderCrank`], [`SliderCircuit`])).
 //!
 //! # Example
 //! ```
@@ -99,7 +100,14 @@ mod efd;
 #[cfg(feature = "synthesis")]
 mod path_synthesis;
 #[cfg(feature = "synthesis")]
-pub use atlas::{candidate, nearest, Atlas, AtlasSpec, ENTRY_PARAMS, LENGTH_RANGE};
+mod slider_circuit;
+#[cfg(feature = "synthesis")]
+mod slider_crank;
+#[cfg(feature = "synthesis")]
+pub use atlas::{
+    candidate, nearest, slider_candidate, Atlas, AtlasSpec, ENTRY_PARAMS, LENGTH_RANGE,
+    SLIDER_ENTRY_PARAMS,
+};
 #[cfg(feature = "synthesis")]
 pub use efd::{
     descriptor_len, query_descriptors, Efd, Normalisation, MIN_CURVE_POINTS, QUERY_VARIANTS,
@@ -110,6 +118,12 @@ pub use path_synthesis::{
     Circuit, CircuitPath, FootSearch, PathError, BRANCH_JOINT, FOOT_STARTS, PLACED_PARAMS,
     POINT_JOINT,
 };
+#[cfg(feature = "synthesis")]
+pub use slider_circuit::{
+    place_slider_entry, slider_path_errors, slider_path_residuals, SliderCircuit, SLIDER_PARAMS,
+};
+#[cfg(feature = "synthesis")]
+pub use slider_crank::{SliderCrank, SliderCrankPose};
 
 /// The repository README's Rust examples, compiled and run as doc tests.
 #[cfg(doctest)]

@@ -241,7 +241,7 @@ impl<T: RealField + Copy> CircuitPath<T> {
 }
 
 /// Joint of a [`Circuit::program`] whose branch the circuit passes to the other at a crank
-/// limit: a four-bar's `B` ([`FourBar::B`]).
+/// limit: a four-bar's `B` ([`FourBar::B`]), a slider-crank's slider.
 pub const BRANCH_JOINT: usize = 3;
 
 /// Joint of a [`Circuit::program`] that traces the curve: the coupler point.
@@ -252,8 +252,9 @@ pub const POINT_JOINT: usize = 4;
 /// the true distance of targets to the curve ([`Circuit::foot`], [`Circuit::errors`]), the
 /// least-squares residuals ([`Circuit::residuals`]), the tracker's check that the circuit is
 /// what the driven linkage traces ([`Circuit::check`]) and the figures of an arc
-/// ([`Circuit::arc`]). Implemented by the four-bar's [`CircuitPath`]; the provided methods are
-/// the one implementation of that machinery.
+/// ([`Circuit::arc`]). Implemented by the four-bar's [`CircuitPath`] and the slider-crank's
+/// [`SliderCircuit`](crate::SliderCircuit); the provided methods are the one implementation of
+/// that machinery.
 ///
 /// A limited crank's circuit has its limits at `s = 0` and `s = π`, on the declared branch
 /// for `0 ≤ s ≤ π` and on the other back.

@@ -6,8 +6,9 @@
 mod common;
 
 use linkage_core::{
-    candidate, nearest, path_errors, path_residuals, Assembly, Atlas, AtlasSpec, Circuit,
-    CircuitPath, Efd, FootSearch, FourBar, GrashofClass, InputRange, PathError, Vec2,
+    candidate, nearest, path_errors, path_residuals, slider_candidate, slider_path_errors,
+    slider_path_residuals, Assembly, Atlas, AtlasSpec, Circuit, CircuitPath, Efd, FootSearch,
+    FourBar, GrashofClass, InputRange, PathError, Reach, SliderCircuit, SliderCrank, Vec2,
 };
 use proptest::prelude::*;
 
@@ -110,6 +111,126 @@ proptest! {
         prop_assert!(res[0].norm() <= 1e-9 * size && res[1].norm() <= 1e-9 * size, "{res:?}");
         prop_assert!((res[2].norm() - one.max).abs() <= 1e-9 * size, "off-curve point {:?}: residual {} vs error {}", on[2], res[2].norm(), one.max);
     }
+}
+
+/// Slider-cranks with crank 1 anywhere in the plane: rod, offset and coupler point over the
+/// atlas's box, either reach, away from a change point (`|e| + r = l`, where the reaches meet
+/// and the tracker may pass to the other).
+fn slider_crank() -> impl Strategy<Value = SliderCrank<f64>> {
+    (
+        (0.2f64..5.0, -0.999f64..0.999, -1.0f64..2.0, -1.5f64..1.5),
+        (-3.0f64..3.0, -5.0f64..5.0, -5.0f64..5.0, any::<bool>()),
+    )
+        .prop_filter_map(
+            "moves, not near a change point",
+            |((l, w, u, v), (angle, ox, oy, ahead))| {
+                let reach = if ahead { Reach::Ahead } else { Reach::Behind };
+                let e = (1.0 + l) * w;
+                let sc =
+                    SliderCrank::new(Vec2::new(ox, oy), angle, e, 1.0, l, (u * l, v * l), reach)
+                        .ok()?;
+                ((e.abs() + 1.0 - l).abs() > 1e-3 * l).then_some(sc)
+            },
+        )
+}
+
+proptest! {
+    #![proptest_config(common::config("proptest-regressions/synthesis.txt"))]
+
+    /// A slider-crank's circuit, swept by the tracker, is its closed form on the declared reach
+    /// from limit to limit and the other reach back (a full turn: the declared reach): no branch
+    /// switch, no unassembled sample; and every circuit point is the linkage's pose at the
+    /// circuit's crank angle on that reach.
+    #[test]
+    fn slider_circuits_are_one_tracked_branch(sc in slider_crank()) {
+        let c = SliderCircuit::new(sc).unwrap();
+        prop_assert!(c.check(512).is_ok(), "{:?}", c.check(512));
+        let other = SliderCrank { reach: if sc.reach == Reach::Ahead { Reach::Behind } else { Reach::Ahead }, ..sc };
+        prop_assert_eq!(c.full_turn(), sc.offset.abs() + sc.crank <= sc.coupler, "full turn of {:?}", sc);
+        let size = c.size();
+        for k in 0..97 {
+            let s = 0.0647 * k as f64;
+            let (theta, flipped) = c.theta(s);
+            let pose = if flipped { other } else { sc }.pose(theta);
+            let got = c.pose(s).unwrap();
+            // The direct pose keeps √ε of the size near a limit (the circuit's form keeps all).
+            let tol = if got.transmission > 1e-3 { 1e-12 } else { 1e-7 } * size;
+            prop_assert!(pose.is_some(), "s {s}: no pose at θ {theta}");
+            let want = pose.unwrap().coupler_point;
+            prop_assert!((got.coupler_point - want).norm() <= tol, "s {s}: {:?} vs {:?}", got.coupler_point, want);
+        }
+    }
+
+    /// The other reach is the line reversed: `Behind` with `(γ, e)` draws `Ahead` with
+    /// `(γ + π, −e)`, pose for pose.
+    #[test]
+    fn the_other_reach_is_the_line_reversed(sc in slider_crank(), theta in -7.0f64..7.0) {
+        let reversed = SliderCrank {
+            angle: sc.angle + core::f64::consts::PI,
+            offset: -sc.offset,
+            reach: if sc.reach == Reach::Ahead { Reach::Behind } else { Reach::Ahead },
+            ..sc
+        };
+        let (p, q) = (sc.pose(theta), reversed.pose(theta));
+        prop_assert_eq!(p.is_some(), q.is_some(), "θ {}", theta);
+        if let (Some(p), Some(q)) = (p, q) {
+            let tol = 1e-12 * SliderCircuit::new(sc).unwrap().size();
+            // Away from a toggle (√ε there, as above).
+            prop_assume!(p.transmission > 1e-3);
+            prop_assert!((p.coupler_point - q.coupler_point).norm() <= tol, "{:?} {:?}", p, q);
+        }
+    }
+
+    /// Batched slider-crank errors and residuals are the single ones, and a point on the curve
+    /// is at distance 0 with its foot on it.
+    #[test]
+    fn batched_slider_errors_are_the_single_ones(idx in 0u64..4000, s in 0.0f64..6.0) {
+        let sc = slider_candidate(idx);
+        prop_assume!(sc.is_some(), "not an atlas entry");
+        let sc = sc.unwrap();
+        let p = [sc.o.x, sc.o.y, sc.angle, sc.offset, sc.crank, sc.coupler, sc.along, sc.left];
+        let c = SliderCircuit::placed(&p).unwrap();
+        let on = [c.point(s).unwrap(), c.point(s + 1.0).unwrap(), Vec2::new(9.0, -4.0)];
+        let mut feet = [0.0; 3];
+        let one = c.errors(&on, 256, FootSearch::Exact, true, &mut feet).unwrap();
+        let (mut errs, mut feet2) = ([PathError::nan(); 2], [0.0; 6]);
+        let params: Vec<f64> = p.iter().chain(p.iter()).copied().collect();
+        slider_path_errors(&params, &on, 256, FootSearch::Exact, true, 2, &mut errs, &mut feet2).unwrap();
+        prop_assert_eq!(errs[0], one, "batched errors of linkage 0 vs c.errors");
+        prop_assert_eq!(errs[1], one, "batched errors of linkage 1 vs c.errors");
+        let mut res = [Vec2::zeros(); 3];
+        slider_path_residuals(&p, &on, &feet, &mut res).unwrap();
+        let size = c.size();
+        prop_assert!(res[0].norm() <= 1e-9 * size && res[1].norm() <= 1e-9 * size, "{res:?}");
+        prop_assert!((res[2].norm() - one.max).abs() <= 1e-9 * size, "residual {} vs error {}", res[2].norm(), one.max);
+    }
+}
+
+#[test]
+fn slider_atlas_is_the_same_on_any_number_of_threads_and_finds_each_entry() {
+    let spec = AtlasSpec::default();
+    let atlas = Atlas::build_slider_cranks(3000, spec, 2).unwrap();
+    assert_eq!(
+        atlas,
+        Atlas::build_slider_cranks(3000, spec, 1).unwrap(),
+        "slider atlas on 2 threads vs 1"
+    );
+    let d = atlas.dim;
+    let mut full = 0;
+    for e in 0..atlas.len() {
+        full += usize::from(
+            SliderCircuit::new(slider_candidate(atlas.candidate[e]).unwrap())
+                .unwrap()
+                .full_turn(),
+        );
+        if e % 499 == 0 {
+            let q = &atlas.descriptors[e * d..(e + 1) * d];
+            let hits = nearest(&atlas.descriptors, d, q, 1, 2).unwrap();
+            assert_eq!(hits[0].0, e, "entry {e}'s nearest: {:?}", hits[0]);
+        }
+    }
+    // Both kinds of crank are present in numbers.
+    assert!(full > 300 && full < 2700, "{full} of 3000 turn fully");
 }
 
 #[test]
