@@ -229,6 +229,39 @@ def test_fourbar_constructor(kw, use_c, c):
 
 
 @FAST
+@given(
+    kw=args(
+        crank=maybe(1.0, HOSTILE),
+        coupler=maybe(3.0, HOSTILE),
+        offset=maybe(0.5, HOSTILE),
+        point=maybe((1.0, 0.5), PAIR),
+        o=maybe((0, 0), PAIR),
+        angle=maybe(0.3, HOSTILE),
+        reach=maybe("ahead", NAME),
+    ),
+    theta=HOSTILE,
+    n=maybe(17, COUNT),
+)
+def test_slider_crank(kw, theta, n):
+    sc = call(lambda: linkage.SliderCrank(**kw))
+    if sc is None:
+        return
+    assert sc.crank > 0 and sc.coupler > 0 and sc.reach in ("ahead", "behind")
+    ranges = sc.input_ranges()
+    assert len(ranges) <= 2 and all(lo <= hi for lo, hi in ranges)
+    s = call(lambda: sc.sweep(theta))
+    if s is not None:
+        check_sweep(s, np.size(s.theta))
+    mu = call(lambda: sc.transmission_angle(theta))
+    if mu is not None:
+        mu = np.asarray(mu)
+        assert ((mu[np.isfinite(mu)] >= 0) & (mu[np.isfinite(mu)] <= math.pi / 2)).all()
+    c = call(lambda: sc.circuit(n))
+    if c is not None:
+        assert c.point.shape == (n, 2)
+
+
+@FAST
 @given(fb=sound_fourbar(), theta=HOSTILE, omega=HOSTILE, alpha=HOSTILE, outputs=maybe(OUTS, NAME))
 def test_fourbar_sweeps(fb, theta, omega, alpha, outputs):
     s = call(lambda: fb.sweep(theta, omega=omega, alpha=alpha, outputs=outputs))
@@ -844,6 +877,7 @@ def test_every_public_name_is_exercised():
     """The lists above cover the public API: a new public name must be added to this suite."""
     covered = {
         "OUTPUTS", "AssemblyError", "FourBar", "batch", "Leg", "LinkageError", "Mechanism", "Sweep",
+        "SliderCrank",
         "Walker", "ball_point", "cam", "catalog", "circumcentre", "curvature_centre", "drive",
         "foot_path", "gait_phases", "gait_search", "forces", "geometry", "inflection_circle",
         "mobility", "search_duty_factor",

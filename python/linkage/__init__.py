@@ -25,6 +25,7 @@ from linkage import (
 from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage._slider_crank import SliderCrank
 from linkage._sweep import OUTPUTS, Sweep
 from linkage._version import __version__
 from linkage.gait_search import search_duty_factor
@@ -47,6 +48,7 @@ __all__ = [
     "Leg",
     "LinkageError",
     "Mechanism",
+    "SliderCrank",
     "Sweep",
     "Walker",
     "__version__",

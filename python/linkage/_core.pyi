@@ -15,6 +15,7 @@ __all__ = [
     "FourBar",
     "LinkageError",
     "Mechanism",
+    "SliderCrank",
     "batch_sweep",
     "burmester_centre_point",
     "burmester_circle_point",
@@ -55,6 +56,12 @@ __all__ = [
     "synth_info",
     "synth_place",
     "synth_residuals",
+    "synth_slider_atlas_build",
+    "synth_slider_errors",
+    "synth_slider_frame",
+    "synth_slider_info",
+    "synth_slider_place",
+    "synth_slider_residuals",
 ]
 
 CAPACITY: int
@@ -148,6 +155,31 @@ class FourBar:
         ]
         | None
     ): ...
+
+@final
+class SliderCrank:
+    def __new__(
+        cls,
+        o: tuple[float, float],
+        angle: float,
+        offset: float,
+        crank: float,
+        coupler: float,
+        point: tuple[float, float],
+        reach: str,
+    ) -> SliderCrank: ...
+    def parameters(
+        self,
+    ) -> tuple[float, float, float, float, float, float, float, float, str, float, float]: ...
+    def input_range(
+        self,
+    ) -> str | tuple[float, float] | tuple[tuple[float, float], tuple[float, float]] | None: ...
+    def is_change_point(self) -> bool: ...
+    def transmission(self, theta: NDArray[np.float64]) -> NDArray[np.float64]: ...
+    def mechanism(self) -> Mechanism: ...
+    def circuit(
+        self, n: int
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]: ...
 
 def sweep_simd() -> str: ...
 def sweep_mechanisms(
@@ -315,4 +347,30 @@ def synth_info(
     s_lo: float,
     s_hi: float,
     check_samples: int = 2048,
+) -> tuple[str | None, bool, float, float, float, bool]: ...
+def synth_slider_atlas_build(
+    entries: int, harmonics: int = 8, samples: int = 64, threads: int = 1
+) -> tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.uint64]]: ...
+def synth_slider_frame(
+    params: NDArray[np.float64], harmonics: int, samples: int
+) -> NDArray[np.float64]: ...
+def synth_slider_place(
+    entry: NDArray[np.float64],
+    curve: NDArray[np.float64],
+    target: NDArray[np.float64],
+    flip: bool,
+) -> NDArray[np.float64]: ...
+def synth_slider_residuals(
+    params: NDArray[np.float64], targets: NDArray[np.float64], s: NDArray[np.float64]
+) -> NDArray[np.float64]: ...
+def synth_slider_errors(
+    params: NDArray[np.float64],
+    targets: NDArray[np.float64],
+    samples: int = 256,
+    exact: bool = False,
+    closed: bool = True,
+    threads: int = 1,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
+def synth_slider_info(
+    params: NDArray[np.float64], s_lo: float, s_hi: float, check_samples: int = 2048
 ) -> tuple[str | None, bool, float, float, float, bool]: ...

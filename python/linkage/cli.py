@@ -181,12 +181,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     des.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
     des.set_defaults(func=_design)
-    syn = sub.add_parser("synth", help="four-bars whose coupler curve passes through points")
+    syn = sub.add_parser(
+        "synth", help="four-bars (or slider-cranks) whose coupler curve passes through points"
+    )
     syn.add_argument("curve", help="CSV file of target points x,y (one a line, in order)")
     syn.add_argument("--top", type=int, default=5, help="candidates shown (default 5)")
     syn.add_argument("--open", action="store_true", help="the points are part of a curve")
     syn.add_argument("--units", default="", help="length unit shown in the table, e.g. mm")
     syn.add_argument("--full-turn", action="store_true", help="only cranks that turn fully")
+    syn.add_argument(
+        "--kind",
+        choices=("fourbar", "slider-crank", "any"),
+        default="fourbar",
+        help="linkage sought (default fourbar; any: both, one ranking)",
+    )
     syn.add_argument("--atlas", help="atlas folder (default: built once into the user cache)")
     syn.add_argument("--quiet", action="store_true", help="no progress bar")
     syn.set_defaults(func=lambda a, _s: __import__("linkage.synthesis").synthesis.command(a))

@@ -48,6 +48,7 @@ from numpy.typing import NDArray
 
 from linkage._arrays import choices, side_of
 from linkage._core import LinkageError
+from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._version import __version__
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
@@ -602,7 +603,7 @@ def _num_toml(x: float, decimals: int) -> str:
     return repr(round(float(x), decimals) + 0.0)
 
 
-def _mechanism_of(c: Candidate, side: str, phase: float) -> Mechanism:
+def _mechanism_of(c: Candidate[FourBar], side: str, phase: float) -> Mechanism:
     """Build the candidate from the joints of its exported scene: the crank at ``theta + phase``."""
     fb = c.linkage
     m = Mechanism()
@@ -619,7 +620,7 @@ CANDIDATE_RPM = 60.0
 """Motor speed of an exported candidate scene: one crank turn per second."""
 
 
-def candidate_drive(c: Candidate) -> tuple[float, float]:
+def candidate_drive(c: Candidate[FourBar]) -> tuple[float, float]:
     """Return the exported scene's crank phase and run time.
 
     The crank starts at the beginning of the candidate's crank range (``phase`` in radians, the
@@ -632,7 +633,7 @@ def candidate_drive(c: Candidate) -> tuple[float, float]:
     return lo, span / omega
 
 
-def candidate_side(c: Candidate, target: Array) -> str:
+def candidate_side(c: Candidate[FourBar], target: Array) -> str:
     """Return the side of the exported scene's dyad (``B`` relative to ``A → C``).
 
     The candidate's assembly (``open`` is ``left``), except for a crank that rocks within its limits

@@ -94,7 +94,7 @@ class SynthesisRun:
     target: Array
     """The target points, ``(n, 2)``, as read."""
     closed: bool
-    candidates: list[Candidate]
+    candidates: list[Candidate[FourBar]]
     """Best (smallest largest error) first; each placed in the target's frame."""
     curves: list[Array]
     """Each candidate's coupler curve over its whole circuit, ``(samples, 2)``."""

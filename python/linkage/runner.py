@@ -213,7 +213,7 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
     lengths = s.get("lengths")
     pivots = s.get("pivots")
 
-    def search() -> list[synthesis.Candidate]:
+    def search() -> list[synthesis.Candidate[FourBar]]:
         return synthesis.path(
             target,
             closed=closed,

@@ -1,9 +1,10 @@
-"""Dimensional synthesis of four-bars for path generation.
+"""Dimensional synthesis of four-bars and slider-cranks for path generation.
 
 The linkage sought is one whose coupler curve passes through given points.
 
 ``path(points)`` normalises the target's elliptic Fourier descriptors, looks up the nearest
-shapes in an :class:`Atlas` of normalised four-bars, places each in the target's frame, refines
+shapes in an :class:`Atlas` of normalised four-bars (``kind="slider-crank"``: of normalised
+offset slider-cranks; ``"any"``: both), places each in the target's frame, refines
 the best by a least-squares fit of the true point-to-curve distance and, where the atlas does
 not cover the target (an open curve, or no close match), searches globally by differential
 evolution over the batch evaluator. Every candidate's circuit is swept by the tracker
@@ -21,10 +22,10 @@ import json
 import math
 import os
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, Generic, TypeVar, Union
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -44,9 +45,11 @@ from linkage._precision import (
     motion,
 )
 from linkage._progress import Bar
+from linkage._slider_crank import SliderCrank
 from linkage.catalog import cache_dir
 
 __all__ = [
+    "KINDS",
     "MIN_POINTS",
     "Atlas",
     "Candidate",
@@ -67,7 +70,13 @@ MIN_POINTS = 5
 """Fewest target points: a four-bar's coupler curve has five shape parameters beyond placement."""
 
 DEFAULT_ENTRIES = 200_000
-"""Entries of the default atlas (built once into the cache folder)."""
+"""Entries of the default four-bar atlas (built once into the cache folder)."""
+
+DEFAULT_SLIDER_ENTRIES = 100_000
+"""Entries of the default slider-crank atlas (four shape numbers against the four-bar's five)."""
+
+KINDS = ("fourbar", "slider-crank")
+"""The kinds of linkage :func:`path` searches (``kind="any"``: both)."""
 
 ATLAS_FORMAT = 3
 """Bumped whenever the stored atlas's content or meaning changes."""
@@ -77,6 +86,29 @@ LONG_LINK = 20.0
 sizes rank after all others (a 25 mm curve drawn with links of metres is no design)."""
 
 Float2D = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class _Kind:
+    """What the search needs to know of a kind of linkage's placed parameter vector."""
+
+    name: str
+    params: int  # placed parameters
+    entry: int  # atlas entry parameters
+    lengths: tuple[int, ...]  # indices of the link lengths
+    angles: tuple[int, ...]  # indices of angles (radians, not lengths)
+    pivots: tuple[tuple[int, int], ...]  # indices of the ground pivots' (x, y)
+    default_entries: int
+
+
+FOURBAR = _Kind("fourbar", 9, 6, (4, 5, 6), (), ((0, 1), (2, 3)), DEFAULT_ENTRIES)
+"""Placed ``[ox, oy, cx, cy, crank, coupler, rocker, along, left]`` (with an assembly flag)."""
+
+SLIDER = _Kind("slider-crank", 8, 4, (4, 5), (2,), ((0, 1),), DEFAULT_SLIDER_ENTRIES)
+"""Placed ``[ox, oy, angle, offset, crank, coupler, along, left]`` (reach ahead: the other reach
+is the same linkage with the line reversed, so no flag)."""
+
+_KIND = {k.name: k for k in (FOURBAR, SLIDER)}
 
 
 # -- the atlas ------------------------------------------------------------------------------
@@ -92,12 +124,17 @@ class Atlas:
     ``descriptors`` is ``(N, D)`` float32 (``D = 1 + 4(harmonics − 1)``), ``params`` ``(N, 6)``
     float64 ``crank, coupler, rocker, along, left, crossed``. Stored as a folder of ``.npy``
     files (memory-mapped on load) and a ``meta.json``.
+
+    An atlas of ``kind="slider-crank"`` holds offset slider-cranks with the crank pivot at
+    ``(0, 0)``, crank 1 and the line along ``+x`` (reach ahead); its ``params`` are ``(N, 4)``
+    ``coupler, offset, along, left``.
     """
 
     descriptors: NDArray[np.float32]
     params: NDArray[np.float64]
     harmonics: int
     samples: int
+    kind: str = "fourbar"
 
     def __len__(self) -> int:
         """Return the number of entries."""
@@ -105,17 +142,25 @@ class Atlas:
 
     @classmethod
     def build(
-        cls, entries: int, harmonics: int = 8, samples: int = 64, threads: int | None = None
+        cls,
+        entries: int,
+        harmonics: int = 8,
+        samples: int = 64,
+        threads: int | None = None,
+        kind: str = "fourbar",
     ) -> Atlas:
         """Build an atlas of ``entries`` entries on ``threads`` threads (default: every core).
 
-        The result does not depend on ``threads``.
+        ``kind`` is ``"fourbar"`` or ``"slider-crank"``. The result does not depend on
+        ``threads``.
         """
         n = as_count(entries, "entries")
         h = as_count(harmonics, "harmonics")
         m = as_count(samples, "samples", 8)
-        desc, params, _ = _core.synth_atlas_build(n, h, m, _threads(threads))
-        return cls(desc, params, h, m)
+        k = _kind(kind)
+        build = _core.synth_atlas_build if k is FOURBAR else _core.synth_slider_atlas_build
+        desc, params, _ = build(n, h, m, _threads(threads))
+        return cls(desc, params, h, m, k.name)
 
     def save(self, folder: str | os.PathLike[str]) -> Path:
         """Write the atlas to ``folder`` (created; files written there only)."""
@@ -128,6 +173,7 @@ class Atlas:
             "harmonics": self.harmonics,
             "samples": self.samples,
             "entries": len(self),
+            "kind": self.kind,
         }
         (out / "meta.json").write_text(json.dumps(meta))
         return out
@@ -142,15 +188,17 @@ class Atlas:
             params = np.load(src / "params.npy", mmap_mode="r")
         except (OSError, ValueError) as e:
             raise LinkageError(f"{src} is not a readable atlas: {e}") from None
+        kind = _KIND.get(meta.get("kind", "fourbar"))
         if (
             meta.get("format") != ATLAS_FORMAT
+            or kind is None
             or desc.dtype != np.float32
             or desc.ndim != 2
-            or params.shape != (desc.shape[0], 6)
+            or params.shape != (desc.shape[0], kind.entry)
             or desc.shape[1] != 1 + 4 * (int(meta["harmonics"]) - 1)
         ):
             raise LinkageError(f"{src} is not an atlas of format {ATLAS_FORMAT}")
-        return cls(desc, params, int(meta["harmonics"]), int(meta["samples"]))
+        return cls(desc, params, int(meta["harmonics"]), int(meta["samples"]), kind.name)
 
     def nearest(
         self, targets: NDArray[np.float32], k: int, threads: int | None = None
@@ -170,31 +218,42 @@ class Atlas:
         return _core.synth_atlas_nearest(self.descriptors, q, as_count(k, "k"), _threads(threads))
 
 
+def _kind(kind: Any) -> _Kind:
+    if not isinstance(kind, str):
+        raise TypeError(f"kind must be a str, got {type(kind).__name__}")
+    if kind not in _KIND:
+        raise LinkageError(f"kind must be 'fourbar' or 'slider-crank', got {kind!r}")
+    return _KIND[kind]
+
+
 def _threads(threads: int | None) -> int:
     if threads is None:
         return max(1, min(os.cpu_count() or 1, 64))
     return min(as_count(threads, "threads"), 256)
 
 
-def default_atlas(entries: int = DEFAULT_ENTRIES, harmonics: int = 8) -> Atlas:
-    """Return the default atlas, built on first use into the cache folder.
+def default_atlas(entries: int | None = None, harmonics: int = 8, kind: str = "fourbar") -> Atlas:
+    """Return the default atlas of ``kind``, built on first use into the cache folder.
 
-    The cache folder is ``$LINKAGE_CACHE_DIR``, else the user's cache folder; the atlas is
-    memory-mapped from there afterwards.
+    ``entries`` defaults to :data:`DEFAULT_ENTRIES` four-bars or
+    :data:`DEFAULT_SLIDER_ENTRIES` slider-cranks. The cache folder is ``$LINKAGE_CACHE_DIR``,
+    else the user's cache folder; the atlas is memory-mapped from there afterwards.
     """
+    k = _kind(kind)
+    entries = k.default_entries if entries is None else entries
     core = getattr(_core, "__file__", "") or ""
-    key = hashlib.sha256(
-        json.dumps(
-            [ATLAS_FORMAT, entries, harmonics, os.path.getsize(core) if core else 0]
-        ).encode()
-    ).hexdigest()[:16]
+    # The four-bar key is the one used before slider-cranks, so existing caches stay valid.
+    tag: list[Any] = [ATLAS_FORMAT, entries, harmonics, os.path.getsize(core) if core else 0]
+    if k is not FOURBAR:
+        tag.append(k.name)
+    key = hashlib.sha256(json.dumps(tag).encode()).hexdigest()[:16]
     folder = cache_dir() / f"atlas-{key}"
     if (folder / "meta.json").exists():
         try:
             return Atlas.load(folder)
         except LinkageError:
             pass  # a corrupt cache is rebuilt
-    atlas = Atlas.build(entries, harmonics)
+    atlas = Atlas.build(entries, harmonics, kind=k.name)
     try:
         tmp = folder.with_name(folder.name + f".tmp{os.getpid()}")
         atlas.save(tmp)
@@ -204,23 +263,38 @@ def default_atlas(entries: int = DEFAULT_ENTRIES, harmonics: int = 8) -> Atlas:
     return atlas
 
 
+AtlasArg = Union[Atlas, str, "os.PathLike[str]", None]
+"""An atlas as :func:`path` takes it: loaded, a folder written by :meth:`Atlas.save`, or None."""
+
+
 # -- candidates -----------------------------------------------------------------------------
 
 
+LinkageT = TypeVar("LinkageT", bound=Union[FourBar, SliderCrank])
+"""The kind of linkage a :class:`Candidate` holds."""
+
+
 @dataclass
-class Candidate:
+class Candidate(Generic[LinkageT]):
     """One linkage found by :func:`path`, placed in the target's frame.
 
-    ``error`` and ``rms`` are the largest and root-mean-square distance from the target points
-    to the candidate's coupler curve (its circuit, traced whole), in the target's units;
+    ``linkage`` is a :class:`~linkage.FourBar` or (``kind == "slider-crank"``) a
+    :class:`~linkage.SliderCrank`; both sweep (``.sweep``, ``.circuit``) and give a
+    :class:`~linkage.Mechanism` (``.mechanism()``). ``error`` and ``rms`` are the largest and
+    root-mean-square distance from the target points to the candidate's coupler curve (its
+    circuit, traced whole), in the target's units;
     ``back`` the largest distance from the curve back to the target polygon (closed targets:
     the two together bound the Hausdorff distance; NaN for an open target, which matches a
     part of the circuit only). ``crank_range`` is the crank interval
     (radians, absolute) that traces the matched part; ``through_limit`` whether tracing it takes
     the crank through one of its limits (it must reverse there; never for a full-turn crank).
+    ``grashof`` is the four-bar's Grashof class, or for a slider-crank ``"crank-slider"`` (the
+    crank turns fully, ``|offset| + crank < coupler``) or ``"rocker-slider"`` (it rocks);
+    ``min_transmission`` is the transmission angle's least distance from a toggle (a
+    slider-crank's: the angle between the rod and the normal to the line).
     """
 
-    linkage: FourBar
+    linkage: LinkageT
     error: float
     rms: float
     back: float
@@ -231,6 +305,7 @@ class Candidate:
     through_limit: bool
     source: str
     params: NDArray[np.float64] = field(repr=False)
+    kind: str = "fourbar"
 
     @property
     def min_transmission_deg(self) -> float:
@@ -352,13 +427,15 @@ def _placed(
     frame_t: NDArray[np.float64],
     frame_c: NDArray[np.float64],
     flip: bool,
+    kind: _Kind = FOURBAR,
 ) -> NDArray[np.float64]:
     """Move an atlas entry's linkage by the similarity taking its curve's frame onto the target's.
 
     The frames are the curves' normalisation frames; ``flip`` takes the other end of the major axis
-    (``linkage_core::place_entry``).
+    (``linkage_core::place_entry``, ``place_slider_entry``).
     """
-    return _core.synth_place(
+    place = _core.synth_place if kind is FOURBAR else _core.synth_slider_place
+    return place(
         np.ascontiguousarray(entry, dtype=np.float64),
         np.ascontiguousarray(frame_c, dtype=np.float64),
         np.ascontiguousarray(frame_t, dtype=np.float64),
@@ -375,9 +452,15 @@ def _errors(
     samples: int = 256,
     exact: bool = False,
     threads: int = 1,
+    kind: _Kind = FOURBAR,
 ) -> tuple[Float2D, Float2D]:
+    p = np.ascontiguousarray(params, dtype=np.float64)
+    if kind is SLIDER:
+        return _core.synth_slider_errors(
+            p, target, samples=samples, exact=exact, closed=closed, threads=threads
+        )
     return _core.synth_errors(
-        np.ascontiguousarray(params, dtype=np.float64),
+        p,
         np.ascontiguousarray(crossed, dtype=bool),
         target,
         samples=samples,
@@ -385,6 +468,17 @@ def _errors(
         closed=closed,
         threads=threads,
     )
+
+
+def _residuals(
+    kind: _Kind, params: Float2D, crossed: NDArray[np.bool_], target: Float2D, s: Float2D
+) -> NDArray[np.float64]:
+    """``P_i(s_ij) − target_j`` of placed linkages of ``kind`` (``(M, n, 2)``, NaN unassembled)."""
+    p = np.ascontiguousarray(params, dtype=np.float64)
+    s = np.ascontiguousarray(s, dtype=np.float64)
+    if kind is SLIDER:
+        return _core.synth_slider_residuals(p, target, s)
+    return _core.synth_residuals(p, np.ascontiguousarray(crossed, dtype=bool), target, s)
 
 
 def _refine(
@@ -395,27 +489,26 @@ def _refine(
     size: float,
     bounds: tuple[NDArray[np.float64], NDArray[np.float64]],
     max_nfev: int,
+    kind: _Kind = FOURBAR,
 ) -> NDArray[np.float64]:
     """Fit the true point-to-curve distance by least squares.
 
-    The unknowns are the nine parameters and each target point's circuit parameter, the residuals
-    ``P(s_i) − t_i`` evaluated in Rust.
+    The unknowns are the placed parameters (nine of a four-bar, eight of a slider-crank) and
+    each target point's circuit parameter, the residuals ``P(s_i) − t_i`` evaluated in Rust.
     """
     # scipy.optimize costs ~0.3 s to import: only when a fit runs.
     from scipy.optimize import least_squares  # type: ignore[import-untyped]  # noqa: PLC0415
 
     n = len(target)
+    q = kind.params
     penalty = 10.0 * size
-    steps = np.concatenate([np.full(9, 1e-6 * size), [1e-6]])
+    # Length steps scale with the target; an angle's (the slider's line) is in radians.
+    steps = np.full(q + 1, 1e-6 * size)
+    steps[[*kind.angles, q]] = 1e-6
 
     def batch(rows: NDArray[np.float64]) -> NDArray[np.float64]:
         m = len(rows)
-        r = _core.synth_residuals(
-            np.ascontiguousarray(rows[:, :9]),
-            np.full(m, crossed),
-            target,
-            np.ascontiguousarray(rows[:, 9:]),
-        ).reshape(m, -1)
+        r = _residuals(kind, rows[:, :q], np.full(m, crossed), target, rows[:, q:]).reshape(m, -1)
         out: NDArray[np.float64] = np.where(np.isfinite(r), r, penalty)
         return out
 
@@ -424,18 +517,18 @@ def _refine(
         return out
 
     def jac(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        # Central differences of all ten directions (nine parameters, then every s at once:
+        # Central differences of all q + 1 directions (the q parameters, then every s at once:
         # s_i moves residual i only) in one batched call.
-        d = np.zeros((10, 9 + n))
-        d[np.arange(9), np.arange(9)] = steps[:9]
-        d[9, 9:] = steps[9]
+        d = np.zeros((q + 1, q + n))
+        d[np.arange(q), np.arange(q)] = steps[:q]
+        d[q, q:] = steps[q]
         r = batch(np.concatenate([x + d, x - d]))
-        g = (r[:10] - r[10:]) / (2 * steps[:, None])
-        j = np.zeros((2 * n, 9 + n))
-        j[:, :9] = g[:9].T
+        g = (r[: q + 1] - r[q + 1 :]) / (2 * steps[:, None])
+        j = np.zeros((2 * n, q + n))
+        j[:, :q] = g[:q].T
         rows = np.arange(n)
-        j[2 * rows, 9 + rows] = g[9, 0::2]
-        j[2 * rows + 1, 9 + rows] = g[9, 1::2]
+        j[2 * rows, q + rows] = g[q, 0::2]
+        j[2 * rows + 1, q + rows] = g[q, 1::2]
         return j
 
     lo = np.concatenate([bounds[0], np.full(n, -np.inf)])
@@ -448,11 +541,16 @@ def _refine(
     common: dict[str, Any] = dict(
         jac=jac, x_scale="jac", ftol=1e-15, xtol=1e-15, gtol=1e-15, max_nfev=max_nfev
     )
-    if np.all(np.isinf(lo[:4])) and np.all(np.isinf(hi[:9])) and np.all(lo[4:7] < 1e-6 * size):
+    free = [i for i in range(q) if i not in kind.lengths]
+    if (
+        np.all(np.isinf(lo[free]))
+        and np.all(np.isinf(hi[:q]))
+        and np.all(lo[list(kind.lengths)] < 1e-6 * size)
+    ):
         res = least_squares(fun, x, method="lm", **common)
     else:
         res = least_squares(fun, x, bounds=(lo, hi), method="trf", tr_solver="lsmr", **common)
-    out: NDArray[np.float64] = res.x[:9]
+    out: NDArray[np.float64] = res.x[:q]
     return out
 
 
@@ -478,32 +576,36 @@ def _de(
     threads: int,
     bar: Any,
     keep: int = 4,
+    kind: _Kind = FOURBAR,
 ) -> list[tuple[NDArray[np.float64], bool]]:
-    """Search by differential evolution over placed linkages (both assemblies).
+    """Search by differential evolution over placed linkages (a four-bar's both assemblies).
 
     The population is evaluated in one batch call per generation.
     """
     from scipy.optimize import differential_evolution  # noqa: PLC0415 (as above)
 
     span = 3.0 * size
-    box = [
-        (centre[0] - span, centre[0] + span),
-        (centre[1] - span, centre[1] + span),
-        (centre[0] - span, centre[0] + span),
-        (centre[1] - span, centre[1] + span),
-        (0.05 * size, 4 * size),
-        (0.05 * size, 6 * size),
-        (0.05 * size, 6 * size),
-        (-span, span),
-        (-span, span),
-    ]
+    pivot = [(centre[0] - span, centre[0] + span), (centre[1] - span, centre[1] + span)]
+    if kind is SLIDER:
+        # Crank pivot, line direction and offset, crank, rod, coupler point.
+        box = [*pivot, (-math.pi, math.pi), (-span, span), (0.05 * size, 4 * size)]
+        box += [(0.05 * size, 6 * size), (-span, span), (-span, span)]
+    else:
+        box = [*pivot, *pivot, (0.05 * size, 4 * size), (0.05 * size, 6 * size)]
+        box += [(0.05 * size, 6 * size), (-span, span), (-span, span)]
     found = []
-    for crossed in (False, True):
+    for crossed in (False, True) if kind is FOURBAR else (False,):
 
         def cost(pop: NDArray[np.float64], crossed: bool = crossed) -> NDArray[np.float64]:
             params = np.ascontiguousarray(pop.T)
             e, _ = _errors(
-                params, np.full(len(params), crossed), target, closed, samples=128, threads=threads
+                params,
+                np.full(len(params), crossed),
+                target,
+                closed,
+                samples=128,
+                threads=threads,
+                kind=kind,
             )
             f = np.maximum(e[:, 0], e[:, 2]) if closed else e[:, 0]
             return np.where(np.isfinite(f), f, 100.0 * size)
@@ -537,7 +639,8 @@ def path(
     closed: bool = True,
     top: int = 5,
     *,
-    atlas: Atlas | str | os.PathLike[str] | None = None,
+    kind: str = "fourbar",
+    atlas: AtlasArg | Sequence[AtlasArg] = None,
     refine: int = 8,
     global_search: bool | None = None,
     full_turn: bool = False,
@@ -550,8 +653,8 @@ def path(
     seed: int = 0,
     threads: int | None = None,
     progress: bool = False,
-) -> list[Candidate]:
-    """Four-bars whose coupler curve passes through ``points``, best (smallest ``error``) first.
+) -> list[Candidate[Any]]:
+    """Four-bars (or slider-cranks) whose coupler curve passes through ``points``, best first.
 
     Parameters
     ----------
@@ -562,17 +665,23 @@ def path(
         candidate's circuit).
     top : int
         Most candidates returned.
-    atlas : Atlas, folder or None
-        The atlas (default: :func:`default_atlas`). Open targets do not use it.
+    kind : {"fourbar", "slider-crank", "any"}
+        The linkage sought: a four-bar, an offset slider-crank (crank, rod, slider on a line at
+        any angle and offset, coupler point rigid with the rod), or either (both searched, one
+        ranking).
+    atlas : Atlas, folder, None, or a sequence of them
+        The atlas of each kind searched (default: :func:`default_atlas` of that kind); for
+        ``kind="any"`` a sequence may give one of each. Open targets do not use atlases.
     refine : int
-        Atlas matches refined by least squares.
+        Atlas matches refined by least squares (of each kind).
     global_search : bool or None
         Run differential evolution; ``None``: when the target is open or the best atlas
         candidate's error exceeds ``tol`` of the target's size.
     full_turn, min_transmission, lengths, pivots
         Constraints: a crank that turns fully, a transmission angle at least this far from a
-        toggle (radians) over the matched part, every link length within ``lengths``, both
-        ground pivots inside the box ``pivots = ((xmin, ymin), (xmax, ymax))``.
+        toggle (radians) over the matched part, every link length within ``lengths`` (a
+        slider-crank's crank and rod), both ground pivots (a slider-crank's crank pivot) inside
+        the box ``pivots = ((xmin, ymin), (xmax, ymax))``.
     max_link : float or None
         Candidates with a link (or coupler-triangle side) longer than ``max_link`` times the
         target's size (:func:`target_size`) are ranked after every other, whatever their error:
@@ -597,9 +706,11 @@ def path(
     TypeError
         For non-numeric points.
     LinkageError
-        For a wrong shape, fewer than :data:`MIN_POINTS` distinct points, non-finite values, or
-        a closed target whose points are all collinear.
+        For a wrong shape, fewer than :data:`MIN_POINTS` distinct points, non-finite values, a
+        closed target whose points are all collinear, an unknown ``kind``, or an atlas of a
+        kind not searched.
     """
+    kinds = list(_KIND.values()) if kind == "any" else [_kind(kind)]
     closed = as_flag(closed, "closed")
     top = as_count(top, "top")
     refine = as_count(refine, "refine", 0)
@@ -625,60 +736,38 @@ def path(
     nthreads = _threads(threads)
     centre = target.mean(axis=0)
     size = target_size(target)
-    bounds = _bounds(lengths, pivots, size)
-    bar = _bar(progress, refine)
-    pool: list[tuple[NDArray[np.float64], bool, str]] = []
-    if closed:
-        at = (
-            atlas
-            if isinstance(atlas, Atlas)
-            else (Atlas.load(atlas) if atlas is not None else default_atlas())
-        )
-        variants, frame_t = _core.synth_descriptors(target, at.harmonics, True)
-        k = min(max(4 * top, 4 * refine, 16), len(at))
-        idx, _, _ = at.nearest(variants, k, nthreads)
-        placed, crossed = [], []
-        for i in idx:
-            entry = np.asarray(at.params[int(i)], dtype=np.float64)
-            base = np.array([0.0, 0.0, 1.0, 0.0, *entry[:5]])
-            try:
-                frame_c = _core.synth_frame(base, bool(entry[5]), at.harmonics, at.samples)
-            except LinkageError:
-                continue
-            for flip in (False, True):
-                placed.append(_placed(entry, frame_t, frame_c, flip))
-                crossed.append(bool(entry[5]))
-        if placed:
-            p = np.array(placed)
-            cr = np.array(crossed)
-            e, _ = _errors(p, cr, target, True, threads=nthreads)
-            score = np.where(np.isfinite(e[:, 0]), np.maximum(e[:, 0], e[:, 2]), np.inf)
-            order = np.argsort(score, kind="stable")
-            pool += [
-                (p[j], bool(cr[j]), "atlas")
-                for j in order[: max(refine, top)]
-                if np.isfinite(score[j])
-            ]
-    found = _finish(pool, target, closed, size, bounds, refine, nthreads, bar, top)
+    bar = _bar(progress, refine * len(kinds))
+    atlases = _atlases(atlas, kinds) if closed else {}
+    found: list[Candidate[Any]] = []
+    for k in kinds:
+        bounds = _bounds(lengths, pivots, size, k)
+        pool = []
+        if closed:
+            at = atlases.get(k.name) or default_atlas(kind=k.name)
+            pool = _atlas_pool(k, at, target, max(refine, top), 4 * max(top, refine), nthreads)
+        found += _finish(pool, target, closed, size, bounds, refine, nthreads, bar, top, k)
     run_global = (
         global_search
         if global_search is not None
         else (not closed or not found or min(c.error for c in found) > tol * size)
     )
     if run_global:
-        if bar is not None and bar.total is not None:
-            bar.total += 2 * maxiter + 8  # generations of both assemblies, then refinements
-        de = _de(target, closed, size, centre, seed, maxiter, nthreads, bar)
-        found += _finish(
-            [(x, c, "global") for x, c in de],
-            target,
-            closed,
-            size,
-            bounds,
-            min(refine, len(de)),
-            nthreads,
-            bar,
-        )
+        for k in kinds:
+            if bar is not None and bar.total is not None:
+                # Generations (of both assemblies for four-bars), then refinements.
+                bar.total += (2 if k is FOURBAR else 1) * maxiter + 8
+            de = _de(target, closed, size, centre, seed, maxiter, nthreads, bar, kind=k)
+            found += _finish(
+                [(x, c, "global") for x, c in de],
+                target,
+                closed,
+                size,
+                _bounds(lengths, pivots, size, k),
+                min(refine, len(de)),
+                nthreads,
+                bar,
+                kind=k,
+            )
     if bar is not None:
         bar.close()
     ok = [c for c in found if _meets(c, full_turn, min_transmission, lengths, pivots)]
@@ -686,11 +775,66 @@ def path(
     return _distinct(_ranked(ok, size, limit), target, closed, size, top)
 
 
+def _atlases(given: Any, kinds: list[_Kind]) -> dict[str, Atlas]:
+    """Return the atlases given to :func:`path` by kind, loading folders.
+
+    An atlas of a kind not searched is an error.
+    """
+    items = list(given) if isinstance(given, (list, tuple)) else [given]
+    out: dict[str, Atlas] = {}
+    for a in items:
+        if a is None:
+            continue
+        at = a if isinstance(a, Atlas) else Atlas.load(a)
+        if at.kind not in [k.name for k in kinds]:
+            searched = " or ".join(repr(k.name) for k in kinds)
+            raise LinkageError(f"a {at.kind} atlas was given, but the search is for {searched}")
+        out[at.kind] = at
+    return out
+
+
+def _atlas_pool(
+    kind: _Kind, at: Atlas, target: Float2D, keep: int, k: int, threads: int
+) -> list[tuple[NDArray[np.float64], bool, str]]:
+    """Return the ``keep`` best placed atlas matches of ``target``, of the ``k`` nearest shapes.
+
+    Each nearest entry is placed by the similarity between its curve's frame and the target's
+    (both ends of the major axis) and scored by the polyline distance both ways.
+    """
+    variants, frame_t = _core.synth_descriptors(target, at.harmonics, True)
+    idx, _, _ = at.nearest(variants, min(max(k, 16), len(at)), threads)
+    placed, crossed = [], []
+    for i in idx:
+        entry = np.asarray(at.params[int(i)], dtype=np.float64)
+        try:
+            if kind is FOURBAR:
+                base = np.array([0.0, 0.0, 1.0, 0.0, *entry[:5]])
+                cr = bool(entry[5])
+                frame_c = _core.synth_frame(base, cr, at.harmonics, at.samples)
+            else:
+                coupler, offset, along, left = entry[:4]
+                base = np.array([0.0, 0.0, 0.0, offset, 1.0, coupler, along, left])
+                cr = False
+                frame_c = _core.synth_slider_frame(base, at.harmonics, at.samples)
+        except LinkageError:
+            continue
+        for flip in (False, True):
+            placed.append(_placed(entry, frame_t, frame_c, flip, kind))
+            crossed.append(cr)
+    if not placed:
+        return []
+    p, cr_a = np.array(placed), np.array(crossed)
+    e, _ = _errors(p, cr_a, target, True, threads=threads, kind=kind)
+    score = np.where(np.isfinite(e[:, 0]), np.maximum(e[:, 0], e[:, 2]), np.inf)
+    order = np.argsort(score, kind="stable")
+    return [(p[j], bool(cr_a[j]), "atlas") for j in order[:keep] if np.isfinite(score[j])]
+
+
 EXACT = 1e-6
 """Errors below this fraction of the target's size count as exact (a tie) when ranking."""
 
 
-def _ranked(found: list[Candidate], size: float, limit: float) -> list[Candidate]:
+def _ranked(found: list[Candidate[Any]], size: float, limit: float) -> list[Candidate[Any]]:
     """Rank candidates: links longer than ``limit`` last, then by error.
 
     Among exact fits (error ≤ :data:`EXACT` × size, where cognates and round-off differ by
@@ -698,7 +842,7 @@ def _ranked(found: list[Candidate], size: float, limit: float) -> list[Candidate
     angle farthest from a toggle.
     """
 
-    def key(c: Candidate) -> tuple[bool, float, bool, float, float, float]:
+    def key(c: Candidate[Any]) -> tuple[bool, float, bool, float, float, float]:
         exact = c.error <= EXACT * size
         return (
             _longest(c) > limit,
@@ -712,35 +856,43 @@ def _ranked(found: list[Candidate], size: float, limit: float) -> list[Candidate
     return sorted(found, key=key)
 
 
-def _longest(c: Candidate) -> float:
-    fb = c.linkage
+def _longest(c: Candidate[Any]) -> float:
+    fb: FourBar | SliderCrank = c.linkage
     along, left = fb.point
     arms = (math.hypot(along, left), math.hypot(fb.coupler - along, left))
+    if isinstance(fb, SliderCrank):
+        # The line's distance from the crank pivot counts as a link: the frame must reach it.
+        return max(abs(fb.offset), fb.crank, fb.coupler, *arms)
     return max(fb.ground, fb.crank, fb.coupler, fb.rocker, *arms)
 
 
-def _matched_curve(c: Candidate, target: Float2D, closed: bool, samples: int = 512) -> Float2D:
+def _matched_curve(c: Candidate[Any], target: Float2D, closed: bool, samples: int = 512) -> Float2D:
     """Sample the part of ``c``'s circuit that the target points fall on (closed: all of it)."""
-    crossed = np.array([c.linkage.assembly == "crossed"])
-    _, feet = _errors(c.params[None, :], crossed, target, closed, samples=2048, exact=True)
+    kind = _KIND[c.kind]
+    fb = c.linkage
+    crossed = np.array([isinstance(fb, FourBar) and fb.assembly == "crossed"])
+    _, feet = _errors(
+        c.params[None, :], crossed, target, closed, samples=2048, exact=True, kind=kind
+    )
     lo, hi = _arc(feet[0], closed)
     s = np.linspace(lo, hi, samples)[None, :]
     # Residuals from the origin are the curve points themselves.
-    pts = _core.synth_residuals(
-        np.ascontiguousarray(c.params[None, :]), crossed, np.zeros((samples, 2)), s
-    )
+    pts = _residuals(kind, c.params[None, :], crossed, np.zeros((samples, 2)), s)
     return np.ascontiguousarray(pts[0])
 
 
-def _third_pivot(c: Candidate) -> complex:
+def _third_pivot(c: Candidate[Any]) -> complex:
     """Roberts' third pivot ``D``: the triangle ``O C D`` is directly similar to ``A B P``."""
     fb = c.linkage
+    assert isinstance(fb, FourBar)
     o, cc = complex(*fb.o), complex(*fb.c)
     return o + (cc - o) * complex(*fb.point) / fb.coupler
 
 
-def _cognates(a: Candidate, b: Candidate, tol: float) -> bool:
-    """Whether ``b``'s ground pivots are those of one of ``a``'s Roberts cognates."""
+def _cognates(a: Candidate[Any], b: Candidate[Any], tol: float) -> bool:
+    """Whether ``b``'s ground pivots are those of one of ``a``'s Roberts cognates (four-bars)."""
+    if not (isinstance(a.linkage, FourBar) and isinstance(b.linkage, FourBar)):
+        return False
     o, c, d = complex(*a.linkage.o), complex(*a.linkage.c), _third_pivot(a)
     mine = (complex(*b.linkage.o), complex(*b.linkage.c))
     for pair in ((o, d), (c, d)):
@@ -751,15 +903,15 @@ def _cognates(a: Candidate, b: Candidate, tol: float) -> bool:
 
 
 def _distinct(
-    ranked: list[Candidate], target: Float2D, closed: bool, size: float, top: int
-) -> list[Candidate]:
+    ranked: list[Candidate[Any]], target: Float2D, closed: bool, size: float, top: int
+) -> list[Candidate[Any]]:
     """Return the first ``top`` of ``ranked`` drawing different curves (cognates kept).
 
     Two candidates draw the same curve when each one's matched part lies within
     ``max(1e-6 size, error / 20)`` of the other's (a difference the target cannot tell); the
     later (worse-ranked) one is dropped unless it is a Roberts cognate of the earlier.
     """
-    kept: list[tuple[Candidate, Float2D]] = []
+    kept: list[tuple[Candidate[Any], Float2D]] = []
     for c in ranked:
         if len(kept) >= top:
             break
@@ -803,22 +955,26 @@ def _bounds(
     lengths: tuple[float, float] | None,
     pivots: tuple[tuple[float, float], tuple[float, float]] | None,
     size: float,
+    kind: _Kind = FOURBAR,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    lo = np.array([-np.inf] * 4 + [1e-9 * size] * 3 + [-np.inf] * 2)
-    hi = np.full(9, np.inf)
+    lo = np.full(kind.params, -np.inf)
+    hi = np.full(kind.params, np.inf)
+    at = list(kind.lengths)
+    lo[at] = 1e-9 * size
     if lengths is not None:
         a, b = float(lengths[0]), float(lengths[1])
         if not (0 < a < b):
             raise LinkageError(
                 f"lengths must be (least, greatest) with 0 < least < greatest, got {lengths}"
             )
-        lo[4:7], hi[4:7] = a, b
+        lo[at], hi[at] = a, b
     if pivots is not None:
         (x0, y0), (x1, y1) = pivots
         if not (x0 < x1 and y0 < y1):
             raise LinkageError(f"pivots must be ((xmin, ymin), (xmax, ymax)), got {pivots}")
-        lo[[0, 2]], hi[[0, 2]] = x0, x1
-        lo[[1, 3]], hi[[1, 3]] = y0, y1
+        for ix, iy in kind.pivots:
+            lo[ix], hi[ix] = x0, x1
+            lo[iy], hi[iy] = y0, y1
     return lo, hi
 
 
@@ -836,12 +992,13 @@ def _finish(
     threads: int,
     bar: Any,
     enough: int | None = None,
-) -> list[Candidate]:
+    kind: _Kind = FOURBAR,
+) -> list[Candidate[Any]]:
     """Refine the first ``refine`` of ``pool``, then measure and check every one.
 
     Stop early once ``enough`` distinct candidates draw the target exactly (to 1e-10 of its size).
     """
-    out: list[Candidate] = []
+    out: list[Candidate[Any]] = []
     exact: list[NDArray[np.float64]] = []
     for k, (x, crossed, source) in enumerate(pool):
         if enough is not None and len(exact) >= enough:
@@ -854,7 +1011,13 @@ def _finish(
             best_x, best_e = x, math.inf
             for r in range(4):
                 e, feet = _errors(
-                    x[None, :], np.array([crossed]), target, closed, samples=512, exact=True
+                    x[None, :],
+                    np.array([crossed]),
+                    target,
+                    closed,
+                    samples=512,
+                    exact=True,
+                    kind=kind,
                 )
                 err = float(e[0, 0]) if np.isfinite(e[0, 0]) else math.inf
                 if err < best_e:
@@ -862,7 +1025,7 @@ def _finish(
                 if r == 3 or not np.all(np.isfinite(feet)) or err <= 1e-10 * size:
                     break
                 try:
-                    x = _refine(x, crossed, target, feet[0], size, bounds, 60)
+                    x = _refine(x, crossed, target, feet[0], size, bounds, 60, kind)
                 except (ValueError, LinkageError):
                     break
             if bar is not None:
@@ -873,7 +1036,7 @@ def _finish(
         else:
             tries = [x]
         for xt in tries:
-            cand = _measure(xt, crossed, target, closed, source, threads)
+            cand = _measure(xt, crossed, target, closed, source, threads, kind)
             if cand is not None:
                 out.append(cand)
                 if cand.error <= 1e-10 * size and all(
@@ -884,27 +1047,43 @@ def _finish(
 
 
 def _measure(
-    x: NDArray[np.float64], crossed: bool, target: Float2D, closed: bool, source: str, threads: int
-) -> Candidate | None:
+    x: NDArray[np.float64],
+    crossed: bool,
+    target: Float2D,
+    closed: bool,
+    source: str,
+    threads: int,
+    kind: _Kind = FOURBAR,
+) -> Candidate[Any] | None:
     """Measure and check a candidate.
 
     ``None`` when its circuit does not assemble throughout or the tracker leaves it.
     """
-    e, feet = _errors(x[None, :], np.array([crossed]), target, closed, samples=2048, exact=True)
+    e, feet = _errors(
+        x[None, :], np.array([crossed]), target, closed, samples=2048, exact=True, kind=kind
+    )
     if not np.all(np.isfinite(e[:, :2])):  # (back is NaN for an open target)
         return None
     lo_s, hi_s = _arc(feet[0], closed)
+    fb: FourBar | SliderCrank
     try:
-        problem, full, th_lo, th_hi, mu, through = _core.synth_info(x, crossed, lo_s, hi_s)
-        fb = FourBar(
-            crank=x[4],
-            coupler=x[5],
-            rocker=x[6],
-            point=(x[7], x[8]),
-            assembly="crossed" if crossed else "open",
-            o=(x[0], x[1]),
-            c=(x[2], x[3]),
-        )
+        if kind is SLIDER:
+            problem, full, th_lo, th_hi, mu, through = _core.synth_slider_info(x, lo_s, hi_s)
+            ox, oy, angle, offset, crank, coupler, along, left = (float(v) for v in x)
+            fb = SliderCrank(crank, coupler, offset, (along, left), (ox, oy), angle)
+            grashof = "crank-slider" if full else "rocker-slider"
+        else:
+            problem, full, th_lo, th_hi, mu, through = _core.synth_info(x, crossed, lo_s, hi_s)
+            fb = FourBar(
+                crank=x[4],
+                coupler=x[5],
+                rocker=x[6],
+                point=(x[7], x[8]),
+                assembly="crossed" if crossed else "open",
+                o=(x[0], x[1]),
+                c=(x[2], x[3]),
+            )
+            grashof = fb.grashof()
     except LinkageError:
         return None
     if problem is not None:
@@ -916,16 +1095,17 @@ def _measure(
         back=float(e[0, 2]),
         crank_range=(th_lo, th_hi),
         full_turn=full,
-        grashof=fb.grashof(),
+        grashof=grashof,
         min_transmission=mu,
         through_limit=through,
         source=source,
         params=x.copy(),
+        kind=kind.name,
     )
 
 
 def _meets(
-    c: Candidate,
+    c: Candidate[Any],
     full_turn: bool,
     min_transmission: float,
     lengths: tuple[float, float] | None,
@@ -935,13 +1115,17 @@ def _meets(
         return False
     if c.min_transmission < min_transmission:
         return False
+    fb = c.linkage
     if lengths is not None:
-        links = (c.linkage.ground, c.linkage.crank, c.linkage.coupler, c.linkage.rocker)
+        if isinstance(fb, SliderCrank):
+            links: tuple[float, ...] = (fb.crank, fb.coupler)
+        else:
+            links = (fb.ground, fb.crank, fb.coupler, fb.rocker)
         if any(not (lengths[0] <= v <= lengths[1]) for v in links):
             return False
     if pivots is not None:
         (x0, y0), (x1, y1) = pivots
-        for px, py in (c.linkage.o, c.linkage.c):
+        for px, py in (fb.o,) if isinstance(fb, SliderCrank) else (fb.o, fb.c):
             if not (x0 <= px <= x1 and y0 <= py <= y1):
                 return False
     return True
@@ -951,63 +1135,69 @@ def command(args: argparse.Namespace) -> int:
     """``linkage synth curve.csv``: print the candidates as a table with units."""
     if int(args.top) < 1:
         raise LinkageError(f"--top must be at least 1, got {args.top}")
+    kind = getattr(args, "kind", "fourbar")
     t0 = time.perf_counter()
     found = path(
         args.curve,
         closed=not args.open,
         top=int(args.top),
+        kind=kind,
         full_turn=bool(args.full_turn),
         atlas=args.atlas,
         progress=not args.quiet,
     )
     took = time.perf_counter() - t0
     u = f" {args.units}" if args.units else ""
+    what = {"fourbar": "four-bar", "slider-crank": "slider-crank", "any": "linkage"}[kind]
     if not found:
-        print(f"no valid four-bar found for {args.curve} ({took:.1f} s)")
+        print(f"no valid {what} found for {args.curve} ({took:.1f} s)")
         return 1
     print(
-        f"{len(found)} four-bar(s) for {args.curve}, best first ({took:.1f} s; errors are the "
+        f"{len(found)} {what}(s) for {args.curve}, best first ({took:.1f} s; errors are the "
         f"largest / RMS distance of the target points to the coupler curve{u and ', in' + u}):"
     )
-    head = (
-        "#",
-        f"error{u}",
-        f"rms{u}",
-        "class",
-        "crank range (deg)",
-        "min μ (deg)",
-        "O",
-        "C",
-        "crank",
-        "coupler",
-        "rocker",
-        "point (along, left)",
-        "assembly",
-    )
-    rows = [head]
-    for k, c in enumerate(found, 1):
-        fb = c.linkage
-        lo, hi = (math.degrees(v) for v in c.crank_range)
-        rows.append(
-            (
-                str(k),
+    g = "{:.4g}".format
+    common = ("#", f"error{u}", f"rms{u}", "class", "crank range (deg)", "min μ (deg)", "O")
+    heads = {
+        "fourbar": (*common, "C", "crank", "coupler", "rocker", "point (along, left)", "assembly"),
+        "slider-crank": (
+            *common,
+            "line (deg)",
+            "offset",
+            "crank",
+            "coupler",
+            "point (along, left)",
+        ),
+    }
+    # One table per kind (their columns differ), numbered by the common ranking.
+    for k, head in heads.items():
+        rows = [head]
+        for rank, c in enumerate(found, 1):
+            if c.kind != k:
+                continue
+            fb = c.linkage
+            lo, hi = (math.degrees(v) for v in c.crank_range)
+            row = [
+                str(rank),
                 f"{c.error:.3g}",
                 f"{c.rms:.3g}",
                 c.grashof,
                 f"{lo:.1f} … {hi:.1f}",
                 f"{c.min_transmission_deg:.1f}",
-                f"({fb.o[0]:.4g}, {fb.o[1]:.4g})",
-                f"({fb.c[0]:.4g}, {fb.c[1]:.4g})",
-                f"{fb.crank:.4g}",
-                f"{fb.coupler:.4g}",
-                f"{fb.rocker:.4g}",
-                f"({fb.point[0]:.4g}, {fb.point[1]:.4g})",
-                fb.assembly,
-            )
-        )
-    widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
-    for r in rows:
-        print("  ".join(cell.rjust(w) for cell, w in zip(r, widths)))
+                f"({g(fb.o[0])}, {g(fb.o[1])})",
+            ]
+            if isinstance(fb, SliderCrank):
+                row += [f"{math.degrees(fb.angle):.2f}", g(fb.offset), g(fb.crank)]
+                row += [g(fb.coupler), f"({g(fb.point[0])}, {g(fb.point[1])})"]
+            else:
+                row += [f"({g(fb.c[0])}, {g(fb.c[1])})", g(fb.crank), g(fb.coupler)]
+                row += [g(fb.rocker), f"({g(fb.point[0])}, {g(fb.point[1])})", fb.assembly]
+            rows.append(tuple(row))
+        if len(rows) == 1:
+            continue
+        widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
+        for r in rows:
+            print("  ".join(cell.rjust(w) for cell, w in zip(r, widths)))
     return 0
 
 

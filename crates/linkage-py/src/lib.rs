@@ -26,6 +26,7 @@ mod kinetostatics;
 mod mechanism;
 mod memory;
 mod precision;
+mod slider_crank;
 mod support;
 mod synthesis;
 
@@ -60,6 +61,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ASSEMBLY_SIDES", sides)?;
     m.add_class::<mechanism::Mechanism>()?;
     m.add_class::<fourbar::FourBar>()?;
+    m.add_class::<slider_crank::SliderCrank>()?;
     m.add_function(wrap_pyfunction!(catalog::catalog_four_bar, m)?)?;
     m.add_function(wrap_pyfunction!(catalog::catalog_linkage, m)?)?;
     m.add_function(wrap_pyfunction!(catalog::catalog_names, m)?)?;
@@ -100,5 +102,11 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(synthesis::synth_residuals, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_errors, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_info, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_slider_atlas_build, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_slider_frame, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_slider_place, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_slider_residuals, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_slider_errors, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_slider_info, m)?)?;
     Ok(())
 }

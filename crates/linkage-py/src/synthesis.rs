@@ -1,11 +1,13 @@
-//! Mirrors `linkage_core::{efd, atlas, path_synthesis}`: the Rust half of
+//! Mirrors `linkage_core::{efd, atlas, path_synthesis, slider_circuit}`: the Rust half of
 //! `linkage.synthesis` (descriptors, the atlas, circuit errors and residuals). Converts arrays,
 //! allocates outputs with numpy, releases the GIL and calls the core.
 
 use linkage_core::{
     covering_arc, descriptor_len, nearest, path_errors, path_residuals, place_entry,
-    polyline_distances, query_descriptors, Atlas, AtlasSpec, Circuit, CircuitPath, FootSearch,
-    Normalisation, PathError, Vec2, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS,
+    place_slider_entry, polyline_distances, query_descriptors, slider_path_errors,
+    slider_path_residuals, Atlas, AtlasSpec, Circuit, CircuitPath, FootSearch, Normalisation,
+    PathError, SliderCircuit, Vec2, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS,
+    SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
 };
 use numpy::ndarray::{Ix2, Ix3};
 use numpy::{
@@ -67,22 +69,54 @@ pub fn synth_atlas_build<'py>(
     harmonics: usize,
     samples: usize,
     threads: usize,
-) -> PyResult<(Arr2<'py, f32>, Arr2<'py, f64>, Arr1<'py, u64>)> {
+) -> PyResult<AtlasArrays<'py>> {
+    let spec = AtlasSpec { harmonics, samples };
+    atlas_arrays(py, entries, spec, ENTRY_PARAMS, || {
+        Atlas::build(entries, spec, threads_of(threads))
+    })
+}
+
+/// Builds a slider-crank atlas (`linkage_core::Atlas::build_slider_cranks`): `(descriptors
+/// (N, D) float32, params (N, 4) float64 [coupler, offset, along, left], candidate (N,))`.
+#[pyfunction]
+#[pyo3(signature = (entries, harmonics=8, samples=64, threads=1))]
+pub fn synth_slider_atlas_build<'py>(
+    py: Python<'py>,
+    entries: usize,
+    harmonics: usize,
+    samples: usize,
+    threads: usize,
+) -> PyResult<AtlasArrays<'py>> {
+    let spec = AtlasSpec { harmonics, samples };
+    atlas_arrays(py, entries, spec, SLIDER_ENTRY_PARAMS, || {
+        Atlas::build_slider_cranks(entries, spec, threads_of(threads))
+    })
+}
+
+/// An atlas's descriptors, parameters and candidate indices as numpy arrays.
+type AtlasArrays<'py> = (Arr2<'py, f32>, Arr2<'py, f64>, Arr1<'py, u64>);
+
+/// Builds an atlas of `params` numbers an entry with `build` (GIL released) and moves it into
+/// numpy.
+fn atlas_arrays<'py>(
+    py: Python<'py>,
+    entries: usize,
+    spec: AtlasSpec,
+    params: usize,
+    build: impl FnOnce() -> Result<Atlas, linkage_core::Error> + Send,
+) -> PyResult<AtlasArrays<'py>> {
     // The atlas is built in Rust vectors (entries arrive in rounds), then moved into numpy.
-    let per_entry = 4 * descriptor_len(harmonics) as u128 + 8 * ENTRY_PARAMS as u128 + 8;
+    let per_entry = 4 * descriptor_len(spec.harmonics) as u128 + 8 * params as u128 + 8;
     memory::check(
         &|| format!("atlas of {entries} entries"),
         (entries as u128).saturating_mul(2 * per_entry),
     )?;
-    let spec = AtlasSpec { harmonics, samples };
-    let atlas = py
-        .detach(|| Atlas::build(entries, spec, threads_of(threads)))
-        .map_err(to_py)?;
+    let atlas = py.detach(build).map_err(to_py)?;
     let n = atlas.len();
     let d = atlas.dim;
     let desc = numpy::ndarray::Array2::from_shape_vec((n, d), atlas.descriptors)
         .map_err(|e| linkage_error(format!("internal error: {e}")))?;
-    let params = numpy::ndarray::Array2::from_shape_vec((n, ENTRY_PARAMS), atlas.params)
+    let params = numpy::ndarray::Array2::from_shape_vec((n, params), atlas.params)
         .map_err(|e| linkage_error(format!("internal error: {e}")))?;
     Ok((
         desc.into_pyarray(py),
@@ -144,7 +178,7 @@ pub fn synth_descriptors<'py>(
     Ok((out, frame_array(py, &frame)))
 }
 
-/// The normalisation frame `[cx, cy, scale, rotation]` of a placed linkage's circuit curve
+/// The normalisation frame `[cx, cy, scale, rotation]` of a placed four-bar's circuit curve
 /// (`samples` points).
 #[pyfunction]
 #[pyo3(signature = (params, crossed, harmonics, samples))]
@@ -155,16 +189,36 @@ pub fn synth_frame<'py>(
     harmonics: usize,
     samples: usize,
 ) -> PyResult<Arr1<'py, f64>> {
-    let p = params
-        .as_slice()
-        .map_err(|_| linkage_error("params must be contiguous"))?;
+    let p = contiguous(&params)?;
     let frame = py
         .detach(|| CircuitPath::placed(p, crossed)?.normalisation(samples, harmonics))
         .map_err(to_py)?;
     Ok(frame_array(py, &frame))
 }
 
-/// Residuals `P(s_i) − target_i` of `M` placed linkages (`params (M, 9)`, `crossed (M,)`) at
+/// [`synth_frame`] of a placed slider-crank (`params (8,)`).
+#[pyfunction]
+#[pyo3(signature = (params, harmonics, samples))]
+pub fn synth_slider_frame<'py>(
+    py: Python<'py>,
+    params: PyReadonlyArray1<'py, f64>,
+    harmonics: usize,
+    samples: usize,
+) -> PyResult<Arr1<'py, f64>> {
+    let p = contiguous(&params)?;
+    let frame = py
+        .detach(|| SliderCircuit::placed(p)?.normalisation(samples, harmonics))
+        .map_err(to_py)?;
+    Ok(frame_array(py, &frame))
+}
+
+fn contiguous<'a>(params: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+    params
+        .as_slice()
+        .map_err(|_| linkage_error("params must be contiguous"))
+}
+
+/// Residuals `P(s_i) − target_i` of `M` placed four-bars (`params (M, 9)`, `crossed (M,)`) at
 /// circuit parameters `s (M, n)`: `(M, n, 2)`, NaN where a linkage or sample does not assemble.
 #[pyfunction]
 #[pyo3(signature = (params, crossed, targets, s))]
@@ -179,7 +233,32 @@ pub fn synth_residuals<'py>(
     let cr = flags("crossed", &crossed)?;
     let t = points("targets", &targets)?;
     let sv = rows("s", &s, t.len())?;
-    let (m, n) = (cr.len(), t.len());
+    residual_array(py, cr.len(), t.len(), |o| path_residuals(p, cr, t, sv, o))
+}
+
+/// [`synth_residuals`] of `M` placed slider-cranks (`params (M, 8)`).
+#[pyfunction]
+#[pyo3(signature = (params, targets, s))]
+pub fn synth_slider_residuals<'py>(
+    py: Python<'py>,
+    params: PyReadonlyArray2<'py, f64>,
+    targets: PyReadonlyArray2<'py, f64>,
+    s: PyReadonlyArray2<'py, f64>,
+) -> PyResult<Bound<'py, PyArray3<f64>>> {
+    let p = rows("params", &params, SLIDER_PARAMS)?;
+    let t = points("targets", &targets)?;
+    let sv = rows("s", &s, t.len())?;
+    let m = params.shape()[0];
+    residual_array(py, m, t.len(), |o| slider_path_residuals(p, t, sv, o))
+}
+
+/// An `(m, n, 2)` array filled by `run` with the GIL released.
+fn residual_array<'py>(
+    py: Python<'py>,
+    m: usize,
+    n: usize,
+    run: impl FnOnce(&mut [Vec2<f64>]) -> Result<(), linkage_core::Error> + Send,
+) -> PyResult<Bound<'py, PyArray3<f64>>> {
     let what = || format!("residuals of {m} linkages × {n} points");
     memory::check(
         &what,
@@ -189,13 +268,12 @@ pub fn synth_residuals<'py>(
     {
         let mut w = out.readwrite();
         let o = as_points(&mut w)?;
-        py.detach(|| path_residuals(p, cr, t, sv, o))
-            .map_err(to_py)?;
+        py.detach(|| run(o)).map_err(to_py)?;
     }
     Ok(out)
 }
 
-/// Errors of `M` placed linkages against target points: `(errors (M, 3) [max, rms, back],
+/// Errors of `M` placed four-bars against target points: `(errors (M, 3) [max, rms, back],
 /// feet (M, n))` (`linkage_core::path_errors`); `exact` finds each target's true nearest curve
 /// point, otherwise the nearest segment of a `samples`-point polyline. NaN rows for a linkage
 /// whose circuit does not assemble throughout.
@@ -218,7 +296,49 @@ pub fn synth_errors<'py>(
     let p = rows("params", &params, PLACED_PARAMS)?;
     let cr = flags("crossed", &crossed)?;
     let t = points("targets", &targets)?;
-    let (m, n) = (cr.len(), t.len());
+    let (search, threads) = (search_of(exact), threads_of(threads));
+    error_arrays(py, cr.len(), t.len(), |errs, f| {
+        path_errors(p, cr, t, samples, search, closed, threads, errs, f)
+    })
+}
+
+/// [`synth_errors`] of `M` placed slider-cranks (`params (M, 8)`,
+/// `linkage_core::slider_path_errors`).
+#[pyfunction]
+#[pyo3(signature = (params, targets, samples=256, exact=false, closed=true, threads=1))]
+pub fn synth_slider_errors<'py>(
+    py: Python<'py>,
+    params: PyReadonlyArray2<'py, f64>,
+    targets: PyReadonlyArray2<'py, f64>,
+    samples: usize,
+    exact: bool,
+    closed: bool,
+    threads: usize,
+) -> PyResult<(Arr2<'py, f64>, Arr2<'py, f64>)> {
+    let p = rows("params", &params, SLIDER_PARAMS)?;
+    let t = points("targets", &targets)?;
+    let (search, threads) = (search_of(exact), threads_of(threads));
+    let m = params.shape()[0];
+    error_arrays(py, m, t.len(), |errs, f| {
+        slider_path_errors(p, t, samples, search, closed, threads, errs, f)
+    })
+}
+
+fn search_of(exact: bool) -> FootSearch {
+    if exact {
+        FootSearch::Exact
+    } else {
+        FootSearch::Polyline
+    }
+}
+
+/// `(errors (m, 3), feet (m, n))` filled by `run` with the GIL released.
+fn error_arrays<'py>(
+    py: Python<'py>,
+    m: usize,
+    n: usize,
+    run: impl FnOnce(&mut [PathError<f64>], &mut [f64]) -> Result<(), linkage_core::Error> + Send,
+) -> PyResult<(Arr2<'py, f64>, Arr2<'py, f64>)> {
     let what = || format!("errors of {m} linkages × {n} points");
     memory::check(
         &what,
@@ -226,17 +346,10 @@ pub fn synth_errors<'py>(
     )?;
     let feet = memory::zeros::<f64, Ix2>(py, &what, &[m, n])?;
     let mut errs = memory::filled(&what, m, PathError::nan())?;
-    let search = if exact {
-        FootSearch::Exact
-    } else {
-        FootSearch::Polyline
-    };
     {
         let mut w = feet.readwrite();
         let f = as_slice(&mut w)?;
-        let threads = threads_of(threads);
-        py.detach(|| path_errors(p, cr, t, samples, search, closed, threads, &mut errs, f))
-            .map_err(to_py)?;
+        py.detach(|| run(&mut errs, f)).map_err(to_py)?;
     }
     let flat: Vec<f64> = errs.iter().flat_map(|e| [e.max, e.rms, e.back]).collect();
     let e = numpy::ndarray::Array2::from_shape_vec((m, 3), flat)
@@ -244,7 +357,10 @@ pub fn synth_errors<'py>(
     Ok((e.into_pyarray(py), feet))
 }
 
-/// Validity of a placed linkage's circuit and its figures over the arc `s_lo … s_hi`:
+/// Validity and figures of a circuit ([`synth_info`]).
+type Info = (Option<String>, bool, f64, f64, f64, bool);
+
+/// Validity of a placed four-bar's circuit and its figures over the arc `s_lo … s_hi`:
 /// `(problem or None, full_turn, theta_lo, theta_hi, min transmission angle, through a limit)`.
 #[pyfunction]
 #[pyo3(signature = (params, crossed, s_lo, s_hi, check_samples=2048))]
@@ -255,23 +371,44 @@ pub fn synth_info(
     s_lo: f64,
     s_hi: f64,
     check_samples: usize,
-) -> PyResult<(Option<String>, bool, f64, f64, f64, bool)> {
-    let p = params
-        .as_slice()
-        .map_err(|_| linkage_error("params must be contiguous"))?;
-    let path = CircuitPath::placed(p, crossed).map_err(to_py)?;
+) -> PyResult<Info> {
+    let path = CircuitPath::placed(contiguous(&params)?, crossed).map_err(to_py)?;
+    Ok(info_of(py, &path, s_lo, s_hi, check_samples))
+}
+
+/// [`synth_info`] of a placed slider-crank (`params (8,)`).
+#[pyfunction]
+#[pyo3(signature = (params, s_lo, s_hi, check_samples=2048))]
+pub fn synth_slider_info(
+    py: Python<'_>,
+    params: PyReadonlyArray1<'_, f64>,
+    s_lo: f64,
+    s_hi: f64,
+    check_samples: usize,
+) -> PyResult<Info> {
+    let path = SliderCircuit::placed(contiguous(&params)?).map_err(to_py)?;
+    Ok(info_of(py, &path, s_lo, s_hi, check_samples))
+}
+
+fn info_of(
+    py: Python<'_>,
+    path: &(impl Circuit<f64> + Sync),
+    s_lo: f64,
+    s_hi: f64,
+    check_samples: usize,
+) -> Info {
     let (problem, arc) = py.detach(|| {
         let problem = path.check(check_samples).err().map(|e| e.to_string());
         (problem, path.arc(s_lo, s_hi, 512))
     });
-    Ok((
+    (
         problem,
         path.full_turn(),
         arc.theta.0,
         arc.theta.1,
         arc.min_transmission,
         arc.through_limit,
-    ))
+    )
 }
 
 /// A frame `[cx, cy, scale, rotation]` as the core's normalisation.
@@ -309,6 +446,29 @@ pub fn synth_place<'py>(
         .ok_or_else(|| linkage_error("entry must hold at least 5 numbers, contiguous"))?;
     let (c, t) = (frame_of("curve", &curve)?, frame_of("target", &target)?);
     Ok(place_entry(&e, &c, &t, flip).to_vec().into_pyarray(py))
+}
+
+/// A slider-crank atlas entry `[coupler, offset, along, left]` placed as [`synth_place`]
+/// places a four-bar's: the 8 placed parameters (`linkage_core::place_slider_entry`).
+#[pyfunction]
+#[pyo3(signature = (entry, curve, target, flip))]
+pub fn synth_slider_place<'py>(
+    py: Python<'py>,
+    entry: PyReadonlyArray1<'py, f64>,
+    curve: PyReadonlyArray1<'py, f64>,
+    target: PyReadonlyArray1<'py, f64>,
+    flip: bool,
+) -> PyResult<Arr1<'py, f64>> {
+    let e: [f64; 4] = entry
+        .as_slice()
+        .ok()
+        .and_then(|e| e.get(..4))
+        .and_then(|e| e.try_into().ok())
+        .ok_or_else(|| linkage_error("entry must hold at least 4 numbers, contiguous"))?;
+    let (c, t) = (frame_of("curve", &curve)?, frame_of("target", &target)?);
+    Ok(place_slider_entry(&e, &c, &t, flip)
+        .to_vec()
+        .into_pyarray(py))
 }
 
 /// Distance `(n,)` from each of `points (n, 2)` to the polyline through `path (m, 2)`, broken

@@ -1,0 +1,300 @@
+"""Slider-crank path synthesis (``linkage.synthesis.path(kind="slider-crank")``) and the
+``linkage.SliderCrank`` it returns: exact recovery of slider-crank curves under any placement,
+validity of every candidate against the tracker, open arcs, ``kind="any"``, bad input."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import linkage
+from linkage import synthesis
+from linkage.synthesis import Atlas
+
+
+@pytest.fixture(scope="module")
+def atlas() -> Atlas:
+    # The default size (100,000: ~2 s on two threads). At 40,000 entries 2 of 40 random
+    # slider-cranks were not recovered without the global search (measured), at 100,000 none.
+    return Atlas.build(100_000, threads=2, kind="slider-crank")
+
+
+def placed(points: np.ndarray, rng: np.random.Generator, roll: bool = True) -> np.ndarray:
+    """``points`` under a random rotation, scale, translation and (``roll``) starting point."""
+    ang = rng.uniform(-math.pi, math.pi)
+    k = 10 ** rng.uniform(-2, 2)
+    rot = np.array([[math.cos(ang), -math.sin(ang)], [math.sin(ang), math.cos(ang)]])
+    out = k * points @ rot.T + rng.uniform(-100, 100, 2)
+    return np.roll(out, int(rng.integers(len(out))), axis=0) if roll else out
+
+
+def random_slider_crank(rng: np.random.Generator) -> linkage.SliderCrank:
+    """Crank 1, rod 0.3 … 4, any offset at which it moves, any point, line and reach."""
+    rod = math.exp(rng.uniform(math.log(0.3), math.log(4)))
+    return linkage.SliderCrank(
+        crank=1.0,
+        coupler=rod,
+        offset=(1 + rod) * rng.uniform(-0.95, 0.95),
+        point=(rod * rng.uniform(-0.5, 1.5), rod * rng.uniform(-1, 1)),
+        angle=rng.uniform(-3, 3),
+        reach=str(rng.choice(["ahead", "behind"])),
+    )
+
+
+def tracked_distance(sc: linkage.SliderCrank, target: np.ndarray, n: int = 20001) -> float:
+    """Largest target-to-curve distance against the tracker's sweep of the linkage over its
+    circuit (:func:`tracked_circuit`): an independent measure of a candidate's error."""
+    curve = tracked_circuit(sc, n)
+    a, ab = curve[:-1], np.diff(curve, axis=0)
+    worst = 0.0
+    for p in target:
+        u = np.clip(np.sum((p - a) * ab, 1) / np.maximum(np.sum(ab * ab, 1), 1e-300), 0, 1)
+        worst = max(worst, float(np.min(np.hypot(*(a + ab * u[:, None] - p).T))))
+    return worst
+
+
+def tracked_circuit(sc: linkage.SliderCrank, n: int) -> np.ndarray:
+    """The circuit as the tracker sweeps it (``Mechanism.sweep``) at the crank angles of
+    ``sc.circuit(n)`` (``n`` odd): a full turn on the declared reach; a rocking crank from limit
+    to limit on it (samples ``0 … (n−1)/2``) and back with the other reach, each half a
+    separate tracked sweep from its middle outwards, so it starts away from the toggles."""
+    theta = sc.circuit(n).theta
+    if sc.full_turn:
+        return sc.sweep(theta).point
+    m = (n - 1) // 2
+    other = linkage.SliderCrank(
+        sc.crank,
+        sc.coupler,
+        sc.offset,
+        sc.point,
+        sc.o,
+        sc.angle,
+        "behind" if sc.reach == "ahead" else "ahead",
+    )
+
+    def swept(link: linkage.SliderCrank, th: np.ndarray) -> np.ndarray:
+        k = len(th) // 2
+        up = link.sweep(th[k:]).point
+        down = link.sweep(th[: k + 1][::-1]).point[::-1]
+        return np.concatenate([down[:-1], up])
+
+    return np.concatenate([swept(sc, theta[: m + 1]), swept(other, theta[m + 1 :])])
+
+
+def assert_one_circuit(cand: synthesis.Candidate) -> None:
+    """The candidate's circuit (its closed form, as its error was measured) is, sample for
+    sample, what the tracker gives on the declared reach from limit to limit and on the other
+    reach back: it never switched branch and every sample assembled."""
+    sc = cand.linkage
+    assert isinstance(sc, linkage.SliderCrank)
+    n = 1001
+    curve = sc.circuit(n).point
+    assert np.all(np.isfinite(curve)), "an unassembled sample"
+    tracked = tracked_circuit(sc, n)
+    assert np.all(np.isfinite(tracked)), "the tracker did not assemble a sample"
+    size = float(np.ptp(curve, axis=0).max())
+    gap = np.hypot(*(tracked - curve).T)
+    # A switch is a jump of the order of the size; at a toggle the tracker's pose keeps √ε.
+    assert np.max(gap) <= 1e-4 * size, np.max(gap) / size
+    assert np.median(gap) <= 1e-9 * size, np.median(gap) / size
+
+
+def size_of(points: np.ndarray) -> float:
+    return synthesis.target_size(points)
+
+
+def test_slider_crank_is_the_textbook_linkage() -> None:
+    r, rod, e = 2.0, 5.0, 1.0
+    sc = linkage.SliderCrank(crank=r, coupler=rod, offset=e, point=(2.5, 0.0))
+    theta = np.linspace(0, 2 * math.pi, 73)
+    b = sc.sweep(theta).joint("B")
+    x = r * np.cos(theta) + np.sqrt(rod**2 - (r * np.sin(theta) - e) ** 2)
+    np.testing.assert_allclose(b[:, 0], x, atol=1e-13)
+    np.testing.assert_allclose(b[:, 1], e, atol=1e-13)
+    assert sc.full_turn and sc.input_ranges() == [(0.0, 2 * math.pi)]
+    # |e| + r = l: a change point; |e| + r > l: the crank rocks between the toggles.
+    assert linkage.SliderCrank(crank=2, coupler=3, offset=1).is_change_point()
+    rocking = linkage.SliderCrank(crank=2, coupler=2.5, offset=1, angle=0.3, o=(1, 2))
+    assert not rocking.full_turn
+    ((lo, hi),) = rocking.input_ranges()
+    for t in (lo, hi):
+        assert rocking.transmission_angle(t) < 1e-6
+    circuit = rocking.circuit(401)
+    assert np.all(circuit.valid) and np.allclose(circuit.point[0], circuit.point[-1])
+    assert np.allclose(circuit.joints[:, 1], rocking.line_point)
+    rods = np.hypot(*(circuit.joint("B") - circuit.joint("A")).T)
+    np.testing.assert_allclose(rods, 2.5, rtol=1e-14)
+    assert linkage.SliderCrank(crank=1, coupler=1, offset=5).input_ranges() == []
+    with pytest.raises(linkage.LinkageError, match="reach must be"):
+        linkage.SliderCrank(crank=1, coupler=2, reach="up")
+    with pytest.raises(linkage.LinkageError, match="offset must be finite"):
+        linkage.SliderCrank(crank=1, coupler=2, offset=math.nan)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_random_slider_crank_curve_is_recovered_exactly(atlas: Atlas, seed: int) -> None:
+    rng = np.random.default_rng(100 + seed)
+    sc = random_slider_crank(rng)
+    target = placed(sc.circuit(181).point[:-1][::2], rng)
+    found = synthesis.path(target, kind="slider-crank", atlas=atlas, top=3, global_search=False)
+    assert found, "no candidate"
+    best = found[0]
+    size = size_of(target)
+    assert best.error <= 1e-6 * size, (sc, best.error / size)
+    assert best.kind == "slider-crank" and isinstance(best.linkage, linkage.SliderCrank)
+    assert best.grashof in ("crank-slider", "rocker-slider")
+    assert best.full_turn == best.linkage.full_turn
+    # The error is what the tracker's own sweep of the returned linkage gives (to its chord).
+    assert tracked_distance(best.linkage, target) <= 1e-6 * size + 1e-4 * size
+    for c in found:
+        assert_one_circuit(c)
+
+
+def test_open_arc_is_matched() -> None:
+    """Three radians of a full-turn slider-crank's curve as an open arc: global search then
+    least squares find a slider-crank through it on one circuit. Exact recovery of open arcs is
+    NOT reached: over six such arcs 7e-5 … 1.2e-1 of the size was measured (default budget),
+    so the bound here is what this arc reaches (7.3e-5), with margin."""
+    rng = np.random.default_rng(203)
+    rod = math.exp(rng.uniform(math.log(1.5), math.log(4)))
+    sc = linkage.SliderCrank(
+        crank=1.0,
+        coupler=rod,
+        offset=(rod - 1) * rng.uniform(-0.9, 0.9),
+        point=(rod * rng.uniform(-0.5, 1.5), rod * rng.uniform(-1, 1)),
+        angle=rng.uniform(-3, 3),
+    )
+    target = placed(sc.sweep(np.linspace(1.0, 4.0, 40)).point, rng, roll=False)
+    found = synthesis.path(target, closed=False, kind="slider-crank", top=1, seed=1)
+    assert found
+    best = found[0]
+    size = size_of(target)
+    assert best.error <= 1e-3 * size, best.error / size
+    assert math.isnan(best.back)
+    assert_one_circuit(best)
+    assert tracked_distance(best.linkage, target) <= best.error + 1e-4 * size
+
+
+@settings(
+    max_examples=4, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    coeffs=st.lists(st.floats(-0.4, 0.4), min_size=6, max_size=6),
+    aspect=st.floats(0.2, 1.0),
+)
+def test_no_candidate_switches_branch(atlas: Atlas, coeffs: list[float], aspect: float) -> None:
+    """Random smooth closed targets: every slider-crank candidate's circuit is the tracker's,
+    and its error is what the tracker's curve gives."""
+    t = np.linspace(0, 2 * math.pi, 60, endpoint=False)
+    a1, b1, a2, b2, a3, b3 = coeffs
+    x = np.cos(t) + a1 * np.cos(2 * t) + b1 * np.sin(2 * t) + a3 * np.cos(3 * t)
+    y = aspect * np.sin(t) + a2 * np.cos(2 * t) + b2 * np.sin(2 * t) + b3 * np.sin(3 * t)
+    target = np.c_[x, y]
+    found = synthesis.path(
+        target, kind="slider-crank", atlas=atlas, top=5, global_search=False, refine=3
+    )
+    for cand in found:
+        assert_one_circuit(cand)
+        curve = cand.linkage.circuit(20001).point
+        span = float(np.ptp(curve, axis=0).max())
+        chord = float(np.max(np.hypot(*np.diff(curve, axis=0).T)))
+        d = tracked_distance(cand.linkage, target)
+        assert abs(d - cand.error) <= 1e-3 * span + chord, (d, cand.error, chord)
+
+
+def test_any_kind_finds_the_right_kind(atlas: Atlas) -> None:
+    """``kind="any"`` searches both atlases and ranks together: a slider-crank's curve is
+    drawn exactly by a slider-crank first, Hoecken's four-bar curve by a four-bar."""
+    fourbars = Atlas.build(40_000, threads=2)
+    both = [fourbars, atlas]
+    rng = np.random.default_rng(101)
+    sc = random_slider_crank(rng)
+    target = placed(sc.circuit(181).point[:-1][::2], rng)
+    size = size_of(target)
+    found = synthesis.path(target, kind="any", atlas=both, top=3, global_search=False)
+    assert found[0].kind == "slider-crank" and found[0].error <= 1e-6 * size
+    fb = linkage.catalog.get("hoecken")
+    assert isinstance(fb, linkage.FourBar)
+    foot = fb.circuit(121).point[:-1][::2]
+    found = synthesis.path(foot, kind="any", atlas=both, top=3, global_search=False)
+    assert found[0].kind == "fourbar" and found[0].error <= 1e-6 * size_of(foot)
+    assert isinstance(found[0].linkage, linkage.FourBar)
+
+
+def test_constraints_are_met(atlas: Atlas) -> None:
+    rng = np.random.default_rng(102)
+    target = placed(random_slider_crank(rng).circuit(181).point[:-1][::2], rng)
+    size = size_of(target)
+    found = synthesis.path(
+        target,
+        kind="slider-crank",
+        atlas=atlas,
+        global_search=False,
+        full_turn=True,
+        lengths=(0.01 * size, 100 * size),
+    )
+    for c in found:
+        assert c.full_turn and not c.through_limit
+        assert isinstance(c.linkage, linkage.SliderCrank)
+        assert 0.01 * size <= c.linkage.crank <= 100 * size
+
+
+def test_atlas_round_trips_and_kinds_are_checked(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    a = Atlas.build(3000, harmonics=6, threads=1, kind="slider-crank")
+    b = Atlas.build(3000, harmonics=6, threads=2, kind="slider-crank")
+    assert np.array_equal(a.descriptors, b.descriptors) and np.array_equal(a.params, b.params)
+    assert a.params.shape == (3000, 4) and a.kind == "slider-crank"
+    c = Atlas.load(a.save(tmp_path / "sliders"))
+    assert c.kind == "slider-crank" and np.array_equal(a.params, c.params)
+    fourbars = Atlas.build(100, threads=1)
+    assert Atlas.load(fourbars.save(tmp_path / "fourbars")).kind == "fourbar"
+    pts = linkage.SliderCrank(crank=1, coupler=3, offset=0.5, point=(1, 1)).circuit(61).point
+    with pytest.raises(linkage.LinkageError, match="a fourbar atlas was given"):
+        synthesis.path(pts, kind="slider-crank", atlas=fourbars)
+    with pytest.raises(linkage.LinkageError, match="a slider-crank atlas was given"):
+        synthesis.path(pts, atlas=tmp_path / "sliders")
+    with pytest.raises(linkage.LinkageError, match="kind must be"):
+        Atlas.build(10, kind="fivebar")
+
+
+@pytest.mark.parametrize(
+    ("points", "kind", "error", "match"),
+    [
+        (np.zeros((3, 2)), "slider-crank", linkage.LinkageError, "at least 5 distinct points"),
+        (
+            np.array([[0, 0], [1, 0], [np.nan, 1], [2, 2], [3, 1], [0, 3]]),
+            "slider-crank",
+            linkage.LinkageError,
+            "finite",
+        ),
+        (np.c_[np.arange(8.0), 2 * np.arange(8.0)], "any", linkage.LinkageError, "collinear"),
+        (np.zeros((8, 3)), "slider-crank", linkage.LinkageError, r"shape \(n, 2\)"),
+        (np.array([["a", "b"]] * 6), "slider-crank", TypeError, "real numbers"),
+        (np.eye(6, 2), "crank-slider", linkage.LinkageError, "kind must be"),
+        (np.eye(6, 2), 2, TypeError, "kind must be a str"),
+    ],
+)
+def test_bad_input(points: np.ndarray, kind: object, error: type, match: str) -> None:
+    small = Atlas.build(100, threads=1, kind="slider-crank")
+    with pytest.raises(error, match=match):
+        synthesis.path(points, kind=kind, atlas=small)  # type: ignore[arg-type]
+
+
+def test_cli_synth_slider_crank(tmp_path, capsys, atlas: Atlas) -> None:  # type: ignore[no-untyped-def]
+    from linkage import cli
+
+    rng = np.random.default_rng(103)
+    pts = placed(random_slider_crank(rng).circuit(121).point[:-1][::2], rng)
+    f = tmp_path / "curve.csv"
+    np.savetxt(f, pts, delimiter=",", header="x,y", comments="")
+    folder = atlas.save(tmp_path / "atlas")
+    args = ["synth", str(f), "--kind", "slider-crank", "--top", "2", "--units", "mm"]
+    code = cli.main([*args, "--quiet", "--atlas", str(folder)])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert "slider-crank(s) for" in out and "line (deg)" in out and "offset" in out
+    assert any(k in out for k in ("crank-slider", "rocker-slider")), out
