@@ -141,7 +141,9 @@ class FourBar:
     ) -> NDArray[np.float64]: ...
     def circuit(
         self, n: int
-    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]: ...
+    ) -> tuple[
+        NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]
+    ]: ...
     def coupler_inflection(
         self, theta: float
     ) -> (

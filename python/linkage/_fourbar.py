@@ -390,14 +390,9 @@ class FourBar:
         Sweep
             The circuit, with outputs "point", "joints" and "velocity" (joints O, C, A, B, P).
         """
-        theta, joints, velocity = self._core.circuit(as_count(n, "n", 2))
+        # The margin is the tracker's: |sin| of the transmission angle at B.
+        theta, joints, velocity, margin = self._core.circuit(as_count(n, "n", 2))
         valid = np.isfinite(joints[:, 4, 0])
-        # The dyad margin of a four-bar is |sin| of the transmission angle at B.
-        ba, bc = joints[:, 2] - joints[:, 3], joints[:, 1] - joints[:, 3]
-        # Unit vectors first, so lengths near the float maximum do not overflow the product.
-        with np.errstate(over="ignore", invalid="ignore"):
-            ba, bc = ba / self.coupler, bc / self.rocker
-            margin = np.abs(ba[:, 0] * bc[:, 1] - ba[:, 1] * bc[:, 0])
         raw = {
             "joints": joints,
             "valid": valid,

@@ -21,7 +21,7 @@ from linkage._arrays import (
     choices,
 )
 from linkage._core import LinkageError
-from linkage._mobility import Mobility, mobility
+from linkage._mobility import Mobility
 from linkage._sweep import OUTPUTS, Sweep
 
 if TYPE_CHECKING:  # drive.py imports this module
@@ -173,8 +173,8 @@ class Mechanism:
         Mobility
             The counts of links and pairs, and the ``degrees_of_freedom``.
         """
-        links, lower, higher, _ = self._core.mobility()
-        return mobility(links, lower, higher)
+        links, lower, higher, dof = self._core.mobility()
+        return Mobility(links, lower, higher, dof)
 
     @property
     def trace(self) -> str | None:

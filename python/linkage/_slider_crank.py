@@ -210,12 +210,12 @@ class SliderCrank:
         LinkageError
             When the linkage never assembles, or ``n < 2``.
         """
-        theta, joints, mu = self._core.circuit(as_count(n, "n", 2))
+        theta, joints, margin = self._core.circuit(as_count(n, "n", 2))
         valid = np.isfinite(joints[:, 4, 0])
         raw = {
             "joints": joints,
             "valid": valid,
-            "margin": np.sin(mu),
+            "margin": margin,
             "gap": np.where(valid, 0.0, np.nan),
         }
         return Sweep(theta, raw, JOINTS, 4, ("point", "joints"), links=LINKS)

@@ -561,9 +561,42 @@ impl<T: RealField + Copy> FourBar<T> {
         &self,
         theta: &mut [T],
         joints: &mut [Vec2<T>],
+        velocity: Option<&mut [Vec2<T>]>,
+    ) -> Result<usize, Error> {
+        self.circuit_with_margin(theta, joints, velocity, None)
+    }
+
+    /// [`FourBar::circuit`], also writing each sample's assembly margin (`|sin γ|`, γ the
+    /// transmission angle at `B`; NaN where the sample does not assemble) into `margin`
+    /// (`n` long), if given.
+    ///
+    /// ```
+    /// use linkage_core::{Assembly, FourBar, Vec2};
+    /// let fb = FourBar::new(20.0_f64, 10.0, 25.0, 25.0, (50.0, 0.0), Assembly::Open).unwrap();
+    /// let (mut th, mut j, mut m) = ([0.0; 5], [Vec2::zeros(); 25], [0.0; 5]);
+    /// fb.circuit_with_margin(&mut th, &mut j, None, Some(&mut m)).unwrap();
+    /// // |sin γ| from the joints: the cross product of the unit links at B.
+    /// let (ba, bc) = ((j[2] - j[3]) / 25.0, (j[1] - j[3]) / 25.0);
+    /// assert!((m[0] - (ba.x * bc.y - ba.y * bc.x).abs()).abs() < 1e-15);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`FourBar::circuit`]; [`Error::BufferLength`] for a `margin` of the wrong length.
+    pub fn circuit_with_margin(
+        &self,
+        theta: &mut [T],
+        joints: &mut [Vec2<T>],
         mut velocity: Option<&mut [Vec2<T>]>,
+        mut margin: Option<&mut [T]>,
     ) -> Result<usize, Error> {
         let n = theta.len();
+        if let Some(got) = margin.as_ref().map(|m| m.len()).filter(|&l| l != n) {
+            return Err(Error::BufferLength {
+                what: "margin",
+                expected: n,
+                got,
+            });
+        }
         let n5 = n.checked_mul(5).ok_or(Error::CountOverflow {
             what: "circuit samples",
         })?;
@@ -607,12 +640,11 @@ impl<T: RealField + Copy> FourBar<T> {
                 Some(v) => Rates::velocity(&mut v[5 * k..5 * k + 5]),
                 None => Rates::none(),
             };
-            if tracker
-                .step(t, Some(CrankRates::unit()), out, rates)
-                .is_ok()
-            {
-                ok += 1;
+            let placed = tracker.step(t, Some(CrankRates::unit()), out, rates);
+            if let Some(m) = margin.as_deref_mut() {
+                m[k] = placed.map_or(crate::scalar::nan::<T>(), |s| s.margin);
             }
+            ok += usize::from(placed.is_ok());
         }
         Ok(ok)
     }

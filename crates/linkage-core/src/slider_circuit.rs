@@ -114,6 +114,74 @@ impl<T: RealField + Copy> SliderCircuit<T> {
         SliderCircuit::new(sc)
     }
 
+    /// The circuit in `theta.len()` samples at `s = 2πk/(n − 1)` (the last repeats the
+    /// first): crank angles into `theta`, joints `O, G, A, B, P` into `joints` (`5·n`) and the
+    /// assembly margin `sin μ` (see [`SliderCrankPose::transmission`]) into `margin` (`n`);
+    /// NaN joints and margin where a sample does not assemble. Returns how many assembled.
+    ///
+    /// ```
+    /// use linkage_core::{Reach, SliderCircuit, SliderCrank, Vec2};
+    /// let sc = SliderCrank::new(Vec2::zeros(), 0.0_f64, 0.0, 1.0, 3.0, (1.0, 0.5), Reach::Ahead);
+    /// let c = SliderCircuit::new(sc.unwrap()).unwrap();
+    /// let (mut th, mut joints, mut margin) = ([0.0; 9], [Vec2::zeros(); 45], [0.0; 9]);
+    /// assert_eq!(c.sample(&mut th, &mut joints, &mut margin), Ok(9));
+    /// // The rod (length 3) at every sample; sin μ = |half chord|/rod: 1 with the crank along
+    /// // the line (θ = 0), √8/3 with it across (θ = 90°).
+    /// let rod = |k: usize| (joints[5 * k + 3] - joints[5 * k + 2]).norm();
+    /// assert!((0..9).all(|k| (rod(k) - 3.0).abs() < 1e-12), "rod lengths");
+    /// assert!((margin[0] - 1.0).abs() < 1e-12, "crank at 0: {}", margin[0]);
+    /// assert!((th[2] - core::f64::consts::FRAC_PI_2).abs() < 1e-12, "θ = {}", th[2]);
+    /// assert!((margin[2] - 8f64.sqrt() / 3.0).abs() < 1e-12, "crank at 90°: {}", margin[2]);
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] for mismatched slices or fewer than two samples.
+    pub fn sample(
+        &self,
+        theta: &mut [T],
+        joints: &mut [Vec2<T>],
+        margin: &mut [T],
+    ) -> Result<usize, Error> {
+        let n = theta.len();
+        let n5 = n.checked_mul(5).ok_or(Error::CountOverflow {
+            what: "circuit samples",
+        })?;
+        for (what, expected, got) in [
+            ("theta (at least two samples)", n.max(2), n),
+            ("joints", n5, joints.len()),
+            ("margin", n, margin.len()),
+        ] {
+            if got != expected {
+                return Err(Error::BufferLength {
+                    what,
+                    expected,
+                    got,
+                });
+            }
+        }
+        let (o, g) = (self.linkage.o, self.linkage.line_point());
+        let nan = crate::scalar::nan::<T>();
+        let last = lit::<T>((n - 1) as f64);
+        let mut ok = 0;
+        for k in 0..n {
+            let s = T::two_pi() * lit::<T>(k as f64) / last;
+            theta[k] = self.theta(s).0;
+            let row = &mut joints[5 * k..5 * k + 5];
+            match self.pose(s) {
+                Some(p) => {
+                    row.copy_from_slice(&[o, g, p.a, p.b, p.coupler_point]);
+                    margin[k] = p.transmission.sin();
+                    ok += 1;
+                }
+                None => {
+                    row.fill(Vec2::new(nan, nan));
+                    margin[k] = nan;
+                }
+            }
+        }
+        Ok(ok)
+    }
+
     /// The pose at circuit parameter `s` (see the module); `None` where the rod does not
     /// reach the line (rounding of a full turn near a change point).
     pub fn pose(&self, s: T) -> Option<SliderCrankPose<T>> {

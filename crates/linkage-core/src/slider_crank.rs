@@ -71,6 +71,16 @@ pub struct SliderCrank<T> {
 }
 
 /// A solved slider-crank position.
+///
+/// ```
+/// use linkage_core::{Reach, SliderCrank, Vec2};
+/// // Crank 1 at 90°, rod 3, on the x axis (no offset): B at x = √(3² − 1²).
+/// let sc = SliderCrank::new(Vec2::zeros(), 0.0, 0.0, 1.0, 3.0, (1.0, 0.0), Reach::Ahead).unwrap();
+/// let p = sc.pose(core::f64::consts::FRAC_PI_2).unwrap();
+/// assert!((p.b - Vec2::new(8f64.sqrt(), 0.0)).norm() < 1e-12);
+/// // The rod's angle from the line's normal: atan2(√8, 1).
+/// assert!((p.transmission - 8f64.sqrt().atan2(1.0)).abs() < 1e-12);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SliderCrankPose<T> {
     /// Crank pin `A`.

@@ -248,14 +248,16 @@ impl FourBar {
         Bound<'py, PyArray1<f64>>,
         Bound<'py, PyAny>,
         Bound<'py, PyAny>,
+        Bound<'py, PyArray1<f64>>,
     )> {
         if n < 2 {
             return Err(linkage_error(format!("n must be at least 2, got {n}")));
         }
-        // theta (n) + joints and velocities (n × 5 × 2 each), all f64.
+        // theta and margin (n) + joints and velocities (n × 5 × 2 each), all f64.
         let what = || format!("circuit of {n} samples");
-        memory::check(&what, memory::bytes_of::<f64>(n as u128 * 21))?;
+        memory::check(&what, memory::bytes_of::<f64>(n as u128 * 22))?;
         let mut theta = memory::filled(&what, n, 0.0)?;
+        let mut margin = memory::filled(&what, n, 0.0)?;
         let mut joints = memory::filled(&what, n * 10, 0.0)?;
         let mut vel = memory::filled(&what, n * 10, 0.0)?;
         let f = self.inner;
@@ -265,13 +267,18 @@ impl FourBar {
                 .map_err(|e| linkage_error(format!("internal error: {e}")))
         }
         let (j, v) = (cast(&mut joints)?, cast(&mut vel)?);
-        py.detach(|| f.circuit(&mut theta, j, Some(v)))
+        py.detach(|| f.circuit_with_margin(&mut theta, j, Some(v), Some(&mut margin)))
             .map_err(to_py)?;
         let joints = PyArray1::from_vec(py, joints)
             .reshape([n, 5, 2])?
             .into_any();
         let vel = PyArray1::from_vec(py, vel).reshape([n, 5, 2])?.into_any();
-        Ok((PyArray1::from_vec(py, theta), joints, vel))
+        Ok((
+            PyArray1::from_vec(py, theta),
+            joints,
+            vel,
+            PyArray1::from_vec(py, margin),
+        ))
     }
 
     /// Inflection circle of the coupler at `theta`: (pole, inflection pole, centre, radius,

@@ -1,9 +1,7 @@
 //! Mirrors `linkage_core::{slider_crank, slider_circuit}`: the offset slider-crank and its
 //! circuit (see `linkage.SliderCrank` for the documented Python class).
 
-use linkage_core::{
-    Circuit, InputRange, Reach, SliderCircuit, SliderCrank as CoreSliderCrank, Vec2,
-};
+use linkage_core::{InputRange, Reach, SliderCircuit, SliderCrank as CoreSliderCrank, Vec2};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
@@ -141,7 +139,7 @@ impl SliderCrank {
     }
 
     /// The circuit in `n` samples at `s = 2πk/(n − 1)` (the last repeats the first):
-    /// (theta (n,), joints (n, 5, 2), transmission (n,)), NaN where a sample does not assemble.
+    /// (theta (n,), joints (n, 5, 2), margin sin μ (n,)), NaN where a sample does not assemble.
     #[allow(
         clippy::type_complexity,
         reason = "the Python tuple returned, spelled out where it is built"
@@ -163,29 +161,18 @@ impl SliderCrank {
         let c = SliderCircuit::new(self.inner).map_err(to_py)?;
         let mut theta = memory::filled(&what, n, 0.0)?;
         let mut joints = memory::filled(&what, n * 10, f64::NAN)?;
-        let mut mu = memory::filled(&what, n, f64::NAN)?;
-        let (o, g) = (self.inner.o, self.inner.line_point());
-        py.detach(|| {
-            for k in 0..n {
-                let s = std::f64::consts::TAU * k as f64 / (n - 1) as f64;
-                theta[k] = c.theta(s).0;
-                if let Some(p) = c.pose(s) {
-                    let row = &mut joints[10 * k..10 * (k + 1)];
-                    for (j, q) in [o, g, p.a, p.b, p.coupler_point].iter().enumerate() {
-                        row[2 * j] = q.x;
-                        row[2 * j + 1] = q.y;
-                    }
-                    mu[k] = p.transmission;
-                }
-            }
-        });
+        let mut margin = memory::filled(&what, n, f64::NAN)?;
+        let j: &mut [Vec2<f64>] = bytemuck::try_cast_slice_mut(&mut joints)
+            .map_err(|e| linkage_error(format!("internal error: {e}")))?;
+        py.detach(|| c.sample(&mut theta, j, &mut margin))
+            .map_err(to_py)?;
         let joints = PyArray1::from_vec(py, joints)
             .reshape([n, 5, 2])?
             .into_any();
         Ok((
             PyArray1::from_vec(py, theta),
             joints,
-            PyArray1::from_vec(py, mu),
+            PyArray1::from_vec(py, margin),
         ))
     }
 }
