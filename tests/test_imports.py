@@ -23,6 +23,7 @@ SCENE_MODULES = {
     "linkage.figures",
     "linkage.runner",
     "linkage.scene",
+    "linkage.stage_figures",
 }
 
 
@@ -96,6 +97,7 @@ def test_the_graph_sees_the_scene_modules_imports():
     assert {"linkage._schema", "linkage.figures"} <= top["linkage.build"]
     assert "linkage.build" in top["linkage.scene"]
     assert "linkage._schema" in top["linkage.runner"]
+    assert {"linkage.figures", "linkage.stage_figures"} <= top["linkage.runner"]
     assert {"linkage.report", "linkage.runner"} <= graph(with_lazy=True)["linkage.cli"]
     assert "linkage._core" in top["linkage._arrays"] and "linkage" not in top["linkage._arrays"]
 

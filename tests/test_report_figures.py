@@ -1,5 +1,6 @@
-"""The figures table (linkage.runner rows): units on every row, digits the error supports, ∞ for a
-straight path, and error estimates that bound the sampling error measured at 8× the samples."""
+"""The figures table (the rows linkage.stage_figures makes for linkage.runner): units on every
+row, digits the error supports, ∞ for a straight path, and error estimates that bound the
+sampling error measured at 8× the samples."""
 
 import math
 from pathlib import Path
@@ -7,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from linkage import figures, runner, scene
+from linkage import figures, runner, scene, stage_figures
 from linkage.figures import Row, format_number, significant_digits
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -185,14 +186,14 @@ def test_a_geared_drive_names_the_crank_speed_in_the_scene_unit():
 
 
 def test_a_straight_path_is_recognised_by_the_core_line_fit():
-    """``runner._on_a_line``: every point within 1e-9 of the extent from one line."""
+    """``stage_figures._on_a_line``: every point within 1e-9 of the extent from one line."""
     t = np.linspace(-1.0, 1.0, 101)
     line = np.c_[3.0 + 40.0 * t, -2.0 + 30.0 * t]  # extent 80
     wobble = np.c_[-0.6, 0.8] * (1e-12 * np.sin(7 * t))[:, None]  # off the line by ≤ 1e-12
-    assert runner._on_a_line(line + wobble, 80.0)
+    assert stage_figures._on_a_line(line + wobble, 80.0)
     bent = line.copy()
     bent[50] += np.array([-0.6, 0.8]) * 1e-6  # one point 1e-6 off the line
-    assert not runner._on_a_line(bent, 80.0)
+    assert not stage_figures._on_a_line(bent, 80.0)
     arc = np.c_[np.cos(t), np.sin(t)]
-    assert not runner._on_a_line(arc, 2.0)
-    assert not runner._on_a_line(line[:2], 80.0)
+    assert not stage_figures._on_a_line(arc, 2.0)
+    assert not stage_figures._on_a_line(line[:2], 80.0)

@@ -1,7 +1,8 @@
 """Running a scene: build the study, run only the stages its outputs need, collect figures.
 
-The study is built by :mod:`linkage.build`; the figures (:mod:`linkage.figures`) carry their error
-estimates, and the time of each stage is kept. A ``[synthesis]`` scene runs one stage, the search
+The study is built by :mod:`linkage.build`; each stage's rows of the figures table are made by
+:mod:`linkage.stage_figures`, and carry their error estimates (:mod:`linkage.figures`); the time
+of each stage is kept. A ``[synthesis]`` scene runs one stage, the search
 (:func:`linkage.synthesis.path`).
 """
 
@@ -9,7 +10,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from functools import partial
 from typing import Any
 
@@ -39,29 +40,29 @@ from linkage.build import (
     synthesis_target,
 )
 from linkage.cam import CamProfile
-from linkage.drive import (
-    CrankSchedule,
-    Geared,
-)
+from linkage.drive import CrankSchedule
 from linkage.figures import (
     Result,
     Row,
     SynthesisRun,
     check_counts,
     exact,
-    format_error,
-    format_number,
-    length_unit,
-    pair,
-    row,
-    sci,
-    spread,
-    torque_unit,
     versus,
 )
 from linkage.forces import Forces, joint_forces
-from linkage.geometry import StraightPart, straightness, three_point_centres
-from linkage.walker import Simulation, Walker
+from linkage.geometry import StraightPart, straightness
+from linkage.stage_figures import (
+    cam_figures,
+    drive_label,
+    geometry_figures,
+    rate_figures,
+    straightness_figures,
+    synthesis_figures,
+    torque_figures,
+    trajectory_figures,
+    walker_figures,
+)
+from linkage.walker import Walker
 
 Array = NDArray[np.float64]
 
@@ -119,7 +120,7 @@ def run(
     res.drive = drive
     res.arrays.update(time=t, theta=theta, omega=omega, alpha=alpha)
     rows = res.figures
-    rows.append(Row("drive", _drive_label(scene, drive)))
+    rows.append(Row("drive", drive_label(scene, drive)))
     rows.append(exact("duration", duration, "s"))
     rows.append(Row("samples", str(n), "", f"errors {versus(ns)}", value=n, exact=True))
     second = "second resolution"
@@ -136,19 +137,7 @@ def run(
         closure = max(
             _rigidity(leg.linkage, leg.linkage.sweep(theta + leg.phase)) for leg in walker.legs
         )
-        res.arrays["closure"] = np.array([closure])
-        rows.append(
-            Row(
-                "leg loop-closure residual",
-                sci(closure),
-                length_unit(scene),
-                "0 if exact",
-                value=closure,
-                error=closure,
-                exact=True,
-            )
-        )
-        _walker_figures(res, sim, sims, walker, duration, period)
+        walker_figures(res, sim, sims, walker, duration, period, closure)
         if scene.wants("cam"):
             res.cam = stage("cam", lambda: _cam(res, scene))
         return _finish(res, stages)
@@ -160,7 +149,7 @@ def run(
     res.sweep = sweep
     angles = [drive.angles(ta) for ta in alts]
     sweeps = [stage(second, partial(mech.sweep, a[0])) for a in angles]
-    _trajectory_figures(res, mech, sweep, sweeps)
+    trajectory_figures(res, mech, sweep, sweeps, _rigidity(mech, sweep))
 
     # Straightness reports the speed variation along the straight part, so it needs rates too.
     rates2: list[Sweep] = []
@@ -172,13 +161,13 @@ def run(
             for a in angles
         ]
         res.rates = rates
-        _rate_figures(res, rates, rates2)
+        rate_figures(res, rates, rates2)
     if scene.wants("instant_centres", "curvature"):
         geo_outs = ("point", *(o for o in ("instant_centres", "curvature") if scene.wants(o)))
         geo = stage("geometry", lambda: mech.sweep(theta, outputs=geo_outs))
         geo2 = [stage(second, partial(mech.sweep, a[0], outputs=geo_outs)) for a in angles]
         res.geometry = geo
-        _geometry_figures(res, geo, sweep, geo2)
+        geometry_figures(res, geo, sweep, geo2)
     if scene.wants("straightness"):
         res.straight = stage("straightness", lambda: _straightness(res, mech, rates2 or sweeps))
     if scene.wants("torque"):
@@ -257,101 +246,8 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
     res = Result(scene=scene, time=empty, theta=empty)
     res.synthesis = SynthesisRun(target, closed, found, curves, size, circuits[0])
     res.arrays.update(target=target, curves=np.stack(curves))
-    _synthesis_figures(res)
+    synthesis_figures(res)
     return res
-
-
-def _synthesis_figures(res: Result) -> None:
-    run = res.synthesis
-    assert run is not None
-    u = length_unit(res.scene)
-    rows = res.figures
-    shape = "closed curve" if run.closed else "open path"
-    rows.append(Row("target", f"{len(run.target)} points, {shape}", "", value=len(run.target)))
-    rows.append(
-        Row(
-            "target size",
-            format_number(run.size, digits=3),
-            u,
-            "RMS distance of the points from their centroid",
-            value=run.size,
-        )
-    )
-    top = int((res.scene.synthesis or {}).get("top", 5))
-    rows.append(
-        Row(
-            "candidates found",
-            str(len(run.candidates)),
-            "",
-            f"best first (at most top = {top})",
-            value=len(run.candidates),
-            exact=True,
-        )
-    )
-    for k, c in enumerate(run.candidates, 1):
-        name = f"candidate {k}"
-        rows.append(
-            Row(
-                f"{name}: max error",
-                format_number(c.error, digits=3),
-                u,
-                "largest distance of a target point from the coupler curve",
-                value=c.error,
-            )
-        )
-        rows.append(
-            Row(
-                f"{name}: RMS error",
-                format_number(c.rms, digits=3),
-                u,
-                "root mean square of those distances",
-                value=c.rms,
-            )
-        )
-        rows.append(
-            Row(
-                f"{name}: Grashof class",
-                c.grashof,
-                "",
-                f"{c.linkage.assembly} assembly, from the {c.source} search",
-            )
-        )
-        lo, hi = (round(math.degrees(v), 1) + 0.0 for v in c.crank_range)
-        how = (
-            "full turn"
-            if c.full_turn
-            else "rocks between its limits, through one (the assembly changes there)"
-            if c.through_limit
-            else "rocks within its limits"
-        )
-        rows.append(Row(f"{name}: crank range", f"{lo:.1f} … {hi:.1f}", "deg", how, value=(lo, hi)))
-        mu = round(c.min_transmission_deg, 1) + 0.0
-        rows.append(
-            Row(
-                f"{name}: min transmission angle",
-                f"{mu:.1f}",
-                "deg",
-                "least distance from a toggle over the matched part",
-                value=mu,
-            )
-        )
-
-
-def _drive_label(scene: Scene, drive: Any) -> str:
-    d = scene.drive
-    gears = f" through {'→'.join(map(str, d['gears']))} gears" if "gears" in d else ""
-    if d["kind"] == "constant":
-        speed = f"{d['rpm']:g} rpm" if "rpm" in d else f"{d['omega']:g} rad/s"
-        if isinstance(drive, Geared):
-            # The train scales the speed in whatever unit the scene gave it.
-            crank = drive.train.output_speed(d["rpm"] if "rpm" in d else d["omega"])
-            unit = "rpm" if "rpm" in d else "rad/s"
-            return f"constant {speed}{gears} (crank {format_number(crank, 0)} {unit})"
-        return f"constant {speed}"
-    if d["kind"] == "program":
-        return f"motion program, {len(d['segments'])} segments{gears}"
-    u = length_unit(scene)
-    return f"crank schedule: foot {d['foot_speed']:g} {u}/s, duty factor {d['duty_factor']:g}"
 
 
 def _rigidity(mech: FourBar | Mechanism, s: Sweep) -> float:
@@ -365,157 +261,6 @@ def _rigidity(mech: FourBar | Mechanism, s: Sweep) -> float:
     return float(m._core.closure_residual(joints))
 
 
-def _ranges(s: Sweep) -> tuple[tuple[float, float], tuple[float, float]] | None:
-    p = s.point[s.valid]
-    if not len(p):
-        return None
-    return (
-        (float(p[:, 0].min()), float(p[:, 0].max())),
-        (float(p[:, 1].min()), float(p[:, 1].max())),
-    )
-
-
-def _trajectory_figures(
-    res: Result, mech: FourBar | Mechanism, s: Sweep, others: list[Sweep]
-) -> None:
-    res.arrays.update(point=s.point, joints=s.joints, valid=s.valid.astype(float), margin=s.margin)
-    closure = _rigidity(mech, s)
-    res.arrays["closure"] = np.array([closure])
-    rows = res.figures
-    ns = res.check_samples
-    u = length_unit(res.scene)
-    ok = int(s.valid.sum())
-    rows.append(
-        Row("samples assembled", f"{ok} / {len(s.valid)}", "", "exact", value=ok, exact=True)
-    )
-    rows.append(
-        Row(
-            "loop-closure residual",
-            sci(closure),
-            u,
-            "0 if exact",
-            value=closure,
-            error=closure,
-            exact=True,
-        )
-    )
-    fine, alt = _ranges(s), [_ranges(o) for o in others]
-    if fine is not None:
-        rows.append(pair("trace x range", fine[0], u, [a[0] if a else None for a in alt], ns))
-        rows.append(pair("trace y range", fine[1], u, [a[1] if a else None for a in alt], ns))
-    if isinstance(mech, FourBar):
-        rows.append(Row("Grashof class", mech.grashof(), "", "exact", exact=True))
-
-
-def _peaks(s: Sweep) -> tuple[float, float]:
-    ok = s.valid
-    speed = np.linalg.norm(s.velocity[ok], axis=1)
-    accel = np.linalg.norm(s.acceleration[ok], axis=1)
-    return (
-        float(speed.max()) if len(speed) else math.nan,
-        float(accel.max()) if len(accel) else math.nan,
-    )
-
-
-def _rate_figures(res: Result, s: Sweep, others: list[Sweep]) -> None:
-    res.arrays.update(velocity=s.velocity, acceleration=s.acceleration)
-    (speed, accel), alt = _peaks(s), [_peaks(o) for o in others]
-    u = length_unit(res.scene)
-    ns = res.check_samples
-    if res.scene.wants("velocity"):
-        res.figures.append(row("peak trace speed", speed, f"{u}/s", [a[0] for a in alt], ns))
-    if res.scene.wants("acceleration"):
-        res.figures.append(
-            row("peak trace acceleration", accel, f"{u}/s²", [a[1] for a in alt], ns)
-        )
-
-
-STRAIGHT_RADIUS = 1e6
-"""A path whose every radius of curvature exceeds this many times its extent is straight: its
-radius is reported as ∞ (the finite values are round-off of an exact line)."""
-
-
-def _on_a_line(p: Array, extent: float) -> bool:
-    """Say whether every point of ``p`` lies within 1e-9 × ``extent`` of one line.
-
-    On a straight path the radius is ∞ even where the point stops and turns back, where the sampled
-    radius ``|v|³/|v × a|`` is 0/0.
-    """
-    if len(p) < 3 or not extent > 0:
-        return False
-    # The core's least-squares line (linkage_core::straight_part): the whole path is one run.
-    run = straightness(p, tol=1e-9 * extent)
-    return run is not None and len(run.indices) == len(p)
-
-
-def _smallest_radius(g: Sweep, s: Sweep) -> float:
-    """Return the smallest radius of curvature over the run; ``inf`` for a straight path."""
-    r = g.curvature_radius
-    fin = np.isfinite(r) & (r >= 0)
-    p = s.point[s.valid]
-    extent = float(np.nanmax(np.ptp(p, axis=0))) if len(p) else 0.0
-    if not fin.any() or _on_a_line(p, extent):
-        return math.inf
-    smallest = float(np.min(r[fin]))
-    return math.inf if smallest > STRAIGHT_RADIUS * max(extent, 1e-300) else smallest
-
-
-def _geometry_figures(res: Result, g: Sweep, s: Sweep, others: list[Sweep]) -> None:
-    u = length_unit(res.scene)
-    if res.scene.wants("curvature"):
-        res.arrays.update(curvature_centre=g.curvature_centre, curvature=g.curvature)
-        c, rad = g.curvature_centre, g.curvature_radius
-        est = three_point_centres(s.point, 1)
-        # The core's centres against circles through three neighbouring samples, where the
-        # centre is a "centre of rotation" (radius below the path's extent); near inflections
-        # both run off to infinity and their distance means nothing.
-        extent = float(np.nanmax(np.ptp(s.point[s.valid], axis=0))) if s.valid.any() else 0.0
-        inner = np.isfinite(est[:, 0]) & np.isfinite(c[1:-1, 0]) & (rad[1:-1] < extent)
-        check = (
-            f"3-point check {sci(float(np.max(np.linalg.norm(est[inner] - c[1:-1][inner], 1))))}"
-            if inner.any()
-            else ""
-        )
-        r, alt = _smallest_radius(g, s), [_smallest_radius(o, o) for o in others]
-        if math.isinf(r):
-            res.figures.append(
-                Row(
-                    "smallest radius of curvature",
-                    "∞ (straight path)",
-                    u,
-                    "the path is a line to 1e-9 of its extent, or every radius exceeds "
-                    f"{STRAIGHT_RADIUS:g} × it",
-                    value=None,
-                    error=None,
-                )
-            )
-        else:
-            res.figures.append(
-                row(
-                    "smallest radius of curvature",
-                    r,
-                    u,
-                    [a if math.isfinite(a) else None for a in alt],
-                    res.check_samples,
-                    check,
-                )
-            )
-    if res.scene.wants("instant_centres"):
-        res.arrays.update(
-            instant_centres=g.instant_centres, instant_centre_directions=g.instant_centre_directions
-        )
-        at_inf = int(np.count_nonzero(g.instant_centre_at_infinity))
-        res.figures.append(
-            Row(
-                "instant centres at infinity (samples × pairs)",
-                str(at_inf),
-                "",
-                "flagged",
-                value=at_inf,
-            )
-        )
-
-
 def _straight_size(mech: FourBar | Mechanism, s: Sweep) -> float:
     if isinstance(mech, FourBar):
         return max(mech.ground, mech.crank, mech.coupler, mech.rocker)
@@ -525,65 +270,25 @@ def _straight_size(mech: FourBar | Mechanism, s: Sweep) -> float:
 def _straightness(
     res: Result, mech: FourBar | Mechanism, others: list[Sweep]
 ) -> StraightPart | None:
+    """Find the trace's longest straight part within 0.1 % of the size, and at the check counts.
+
+    The tolerance is 1e-3 of :func:`_straight_size`; ``others`` are the sweeps at the check counts
+    (with rates when the run has them, for the speed variation along the part).
+    """
     s = res.rates or res.sweep
     assert s is not None
-    u = length_unit(res.scene)
-    size = _straight_size(mech, s)
-    tol = 1e-3 * size
-    name = "straight part within 0.1 % of size"
-    if not (math.isfinite(tol) and tol > 0):
-        res.figures.append(Row(name, "none", "", "no extent"))
-        return None
-    vel = res.rates.velocity if res.rates is not None else None
-    part = straightness(s.point, tol, velocity=vel)
-    if part is None:
-        res.figures.append(Row(name, "none", "", f"tolerance {sci(tol)} {u}"))
-        return None
-    parts = [
-        straightness(o.point, tol, velocity=o.velocity if res.rates is not None else None)
-        for o in others
-    ]
-    ns = res.check_samples
-    res.figures.append(
-        row(
-            name,
-            part.length,
-            u,
-            [p.length if p else None for p in parts],
-            ns,
-            f"tolerance {sci(tol)}",
-        )
-    )
-    res.figures.append(
-        row(
-            "straight part max deviation",
-            part.max_deviation,
-            u,
-            [p.max_deviation if p else None for p in parts],
-            ns,
-            "from its least-squares line",
-        )
-    )
-    if part.speed_variation is not None:
-        if math.isfinite(part.speed_variation):
-            alt = [p.speed_variation if p else None for p in parts]
-            res.figures.append(
-                row(
-                    "speed variation along it",
-                    100 * part.speed_variation,
-                    "%",
-                    [100 * v if v is not None and math.isfinite(v) else None for v in alt],
-                    ns,
-                    "this drive",
-                )
-            )
-        else:
-            why = (
-                "unbounded (the run reaches a toggle)"
-                if math.isinf(part.speed_variation)
-                else "undefined (the trace stands still)"
-            )
-            res.figures.append(Row("speed variation along it", why, "%"))
+    tol = 1e-3 * _straight_size(mech, s)
+    part: StraightPart | None = None
+    parts: list[StraightPart | None] = []
+    if math.isfinite(tol) and tol > 0:
+        vel = res.rates.velocity if res.rates is not None else None
+        part = straightness(s.point, tol, velocity=vel)
+        if part is not None:
+            parts = [
+                straightness(o.point, tol, velocity=o.velocity if res.rates is not None else None)
+                for o in others
+            ]
+    straightness_figures(res, part, parts, tol)
     return part
 
 
@@ -596,15 +301,7 @@ def _torque(
         joint_forces(mech, time=ta, drive=drive, masses=masses, gravity=scene.gravity, loads=loads)
         for ta in alts
     ]
-    res.arrays.update(torque=f.torque, power_torque=f.power_torque)
-    check = float(np.nanmax(np.abs(f.torque - f.power_torque)))
-    unit = torque_unit(scene)
-    ns = res.check_samples
-    note = f"power method agrees to {sci(check)}"
-    mean = [g.mean_abs_torque for g in f2]
-    res.figures.append(row("driver torque mean |T|", f.mean_abs_torque, unit, mean, ns, note))
-    peak = [g.peak_torque for g in f2]
-    res.figures.append(row("driver torque peak |T|", f.peak_torque, unit, peak, ns, note))
+    torque_figures(res, f, f2)
     return f
 
 
@@ -612,122 +309,10 @@ CAM_SAMPLES = 721
 """Cam profile samples (every 0.5°); the error estimate compares :func:`check_counts`."""
 
 
-def _cam_values(p: Any) -> tuple[float, float]:
-    return math.degrees(p.max_pressure_angle), float(np.nanmin(np.abs(p.profile_radius)))
-
-
 def _cam(res: Result, scene: Scene) -> CamProfile:
     cam = build_cam(scene)
     assert cam is not None  # the stage runs only for a scene with a [cam]
     p = cam.profile(CAM_SAMPLES)
     ns = check_counts(CAM_SAMPLES)
-    alt = [_cam_values(cam.profile(k)) for k in ns]
-    res.arrays.update(cam_profile=p.profile, cam_pitch=p.pitch, cam_pressure_angle=p.pressure_angle)
-    angle, radius = _cam_values(p)
-    res.figures.append(row("cam max pressure angle", angle, "deg", [a[0] for a in alt], ns))
-    res.figures.append(
-        row("cam smallest profile radius", radius, length_unit(scene), [a[1] for a in alt], ns)
-    )
-    res.figures.append(Row("cam check", "ok" if not p.problems else "; ".join(p.problems)))
+    cam_figures(res, p, [cam.profile(k) for k in ns], ns)
     return p
-
-
-def _walker_values(sim: Simulation, duration: float, period: float) -> dict[str, float]:
-    """Return the sampled walker figures of one simulation (compared between two resolutions)."""
-    cycles = duration / period if period > 0 else 1.0
-    down = sim.stance.sum(1)
-    travel = float(sim.body_position[-1])
-    return {
-        "duty": float(sim.duty_factor.mean()),
-        "stride": float(np.nanmean(sim.stride)),
-        "lift": float(sim.lift_height.min()),
-        "travel": travel,
-        "speed": travel / duration,
-        "slip": float(sim.slip_distance.sum()) / cycles,
-        "spread": float(np.nanmax(sim.spread)),
-        "down_min": float(down.min()),
-        "down_max": float(down.max()),
-        "margin": float(np.min(np.where(np.isfinite(sim.margin), sim.margin, np.inf))),
-    }
-
-
-def _walker_figures(
-    res: Result,
-    sim: Simulation,
-    others: list[Simulation],
-    walker: Walker,
-    duration: float,
-    period: float,
-) -> None:
-    scene = res.scene
-    res.arrays.update(
-        feet=sim.feet,
-        stance=sim.stance.astype(float),
-        body_position=sim.body_position,
-        margin=sim.margin,
-    )
-    a = _walker_values(sim, duration, period)
-    alt = [_walker_values(o, duration, period) for o in others]
-    ns = res.check_samples
-
-    def walker_row(figure: str, key: str, unit: str, note: str = "") -> Row:
-        return row(figure, a[key], unit, [b[key] for b in alt], ns, note)
-
-    rows = res.figures
-    u = length_unit(scene)
-    rows.append(Row("legs", ", ".join(sim.legs)))
-    rows.append(walker_row("duty factor (per leg, mean)", "duty", "of the cycle"))
-    rows.append(walker_row("stride", "stride", u))
-    rows.append(walker_row("lift height (obstacle a foot clears)", "lift", u))
-    rows.append(exact("body clearance", walker.body_underside - sim.ground, u))
-    rows.append(walker_row("body travel", "travel", u, "trapezoid"))
-    rows.append(walker_row("mean body speed", "speed", f"{u}/s"))
-    if scene.wants("stability"):
-        rows.append(_margin_row(sim, u, [b["margin"] for b in alt], ns))
-    if scene.wants("slip"):
-        rows.append(walker_row("foot slip per cycle (all feet)", "slip", u, "trapezoid"))
-        rows.append(walker_row("largest stance-speed spread", "spread", f"{u}/s"))
-    if scene.wants("gait"):
-        lo, hi = int(a["down_min"]), int(a["down_max"])
-        e0 = spread(a["down_min"], [b["down_min"] for b in alt]) or 0.0
-        e1 = spread(a["down_max"], [b["down_max"] for b in alt]) or 0.0
-        rows.append(
-            Row(
-                "feet down (min / max)",
-                f"{lo} / {hi}",
-                "feet",
-                f"±{format_error(max(e0, e1))} ({versus(ns)})",
-                value=(lo, hi),
-                error=max(e0, e1),
-            )
-        )
-
-
-def _margin_row(sim: Simulation, units: str, others: list[float], ns: Sequence[int]) -> Row:
-    """Make the row of the smallest stability margin.
-
-    With no foot on the ground at some samples there is no support polygon and no margin, which the
-    row says instead of printing −inf.
-    """
-    unsupported = sim.margin == -np.inf
-    if unsupported.any():
-        k = int(np.argmax(unsupported))
-        return Row(
-            "minimum stability margin",
-            f"none: no foot down at {int(unsupported.sum())} / {len(sim.margin)} samples",
-            "",
-            f"first at t = {format_number(float(sim.time[k]), digits=4)} s",
-            value=None,
-        )
-    finite = np.isfinite(sim.margin)
-    if not finite.any():
-        return Row("minimum stability margin", "undefined", "", "no support polygon", value=None)
-    k = int(np.argmin(np.where(finite, sim.margin, np.inf)))
-    return row(
-        "minimum stability margin",
-        float(sim.margin[k]),
-        units,
-        [o if math.isfinite(o) else None for o in others],
-        ns,
-        f"at t = {format_number(float(sim.time[k]), digits=4)} s",
-    )

@@ -1,0 +1,505 @@
+"""The figures table's rows of each stage of a run: what the report says a stage found.
+
+:mod:`linkage.runner` runs the stages and hands each one's output here, with the same output at
+the other sample counts (:func:`linkage.figures.check_counts`); each function appends its rows to
+:attr:`Result.figures <linkage.figures.Result.figures>` and its arrays to ``Result.arrays``. The
+rows are made, and their numbers formatted, by :mod:`linkage.figures`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from linkage._fourbar import FourBar
+from linkage._mechanism import Mechanism
+from linkage._schema import Scene
+from linkage._sweep import Sweep
+from linkage.cam import CamProfile
+from linkage.drive import Geared
+from linkage.figures import (
+    Result,
+    Row,
+    exact,
+    format_error,
+    format_number,
+    length_unit,
+    pair,
+    row,
+    sci,
+    spread,
+    torque_unit,
+    versus,
+)
+from linkage.forces import Forces
+from linkage.geometry import StraightPart, straightness, three_point_centres
+from linkage.walker import Simulation, Walker
+
+Array = NDArray[np.float64]
+
+
+def drive_label(scene: Scene, drive: Any) -> str:
+    """Return the text of the ``drive`` row: the scene's drive, and the crank's speed if geared."""
+    d = scene.drive
+    gears = f" through {'→'.join(map(str, d['gears']))} gears" if "gears" in d else ""
+    if d["kind"] == "constant":
+        speed = f"{d['rpm']:g} rpm" if "rpm" in d else f"{d['omega']:g} rad/s"
+        if isinstance(drive, Geared):
+            # The train scales the speed in whatever unit the scene gave it.
+            crank = drive.train.output_speed(d["rpm"] if "rpm" in d else d["omega"])
+            unit = "rpm" if "rpm" in d else "rad/s"
+            return f"constant {speed}{gears} (crank {format_number(crank, 0)} {unit})"
+        return f"constant {speed}"
+    if d["kind"] == "program":
+        return f"motion program, {len(d['segments'])} segments{gears}"
+    u = length_unit(scene)
+    return f"crank schedule: foot {d['foot_speed']:g} {u}/s, duty factor {d['duty_factor']:g}"
+
+
+def synthesis_figures(res: Result) -> None:
+    """Append the rows of a ``[synthesis]`` search: the target, then each candidate's figures."""
+    run = res.synthesis
+    assert run is not None
+    u = length_unit(res.scene)
+    rows = res.figures
+    shape = "closed curve" if run.closed else "open path"
+    rows.append(Row("target", f"{len(run.target)} points, {shape}", "", value=len(run.target)))
+    rows.append(
+        Row(
+            "target size",
+            format_number(run.size, digits=3),
+            u,
+            "RMS distance of the points from their centroid",
+            value=run.size,
+        )
+    )
+    top = int((res.scene.synthesis or {}).get("top", 5))
+    rows.append(
+        Row(
+            "candidates found",
+            str(len(run.candidates)),
+            "",
+            f"best first (at most top = {top})",
+            value=len(run.candidates),
+            exact=True,
+        )
+    )
+    for k, c in enumerate(run.candidates, 1):
+        name = f"candidate {k}"
+        rows.append(
+            Row(
+                f"{name}: max error",
+                format_number(c.error, digits=3),
+                u,
+                "largest distance of a target point from the coupler curve",
+                value=c.error,
+            )
+        )
+        rows.append(
+            Row(
+                f"{name}: RMS error",
+                format_number(c.rms, digits=3),
+                u,
+                "root mean square of those distances",
+                value=c.rms,
+            )
+        )
+        rows.append(
+            Row(
+                f"{name}: Grashof class",
+                c.grashof,
+                "",
+                f"{c.linkage.assembly} assembly, from the {c.source} search",
+            )
+        )
+        lo, hi = (round(math.degrees(v), 1) + 0.0 for v in c.crank_range)
+        how = (
+            "full turn"
+            if c.full_turn
+            else "rocks between its limits, through one (the assembly changes there)"
+            if c.through_limit
+            else "rocks within its limits"
+        )
+        rows.append(Row(f"{name}: crank range", f"{lo:.1f} … {hi:.1f}", "deg", how, value=(lo, hi)))
+        mu = round(c.min_transmission_deg, 1) + 0.0
+        rows.append(
+            Row(
+                f"{name}: min transmission angle",
+                f"{mu:.1f}",
+                "deg",
+                "least distance from a toggle over the matched part",
+                value=mu,
+            )
+        )
+
+
+def _ranges(s: Sweep) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    p = s.point[s.valid]
+    if not len(p):
+        return None
+    return (
+        (float(p[:, 0].min()), float(p[:, 0].max())),
+        (float(p[:, 1].min()), float(p[:, 1].max())),
+    )
+
+
+def trajectory_figures(
+    res: Result, mech: FourBar | Mechanism, s: Sweep, others: list[Sweep], closure: float
+) -> None:
+    """Append the rows of the trajectory stage: its sweep ``s``, ``others`` at the check counts.
+
+    ``closure`` is the sweep's loop-closure residual: the largest change of a link's joint
+    distances over it (0 if exact).
+    """
+    res.arrays.update(point=s.point, joints=s.joints, valid=s.valid.astype(float), margin=s.margin)
+    res.arrays["closure"] = np.array([closure])
+    rows = res.figures
+    ns = res.check_samples
+    u = length_unit(res.scene)
+    ok = int(s.valid.sum())
+    rows.append(
+        Row("samples assembled", f"{ok} / {len(s.valid)}", "", "exact", value=ok, exact=True)
+    )
+    rows.append(
+        Row(
+            "loop-closure residual",
+            sci(closure),
+            u,
+            "0 if exact",
+            value=closure,
+            error=closure,
+            exact=True,
+        )
+    )
+    fine, alt = _ranges(s), [_ranges(o) for o in others]
+    if fine is not None:
+        rows.append(pair("trace x range", fine[0], u, [a[0] if a else None for a in alt], ns))
+        rows.append(pair("trace y range", fine[1], u, [a[1] if a else None for a in alt], ns))
+    if isinstance(mech, FourBar):
+        rows.append(Row("Grashof class", mech.grashof(), "", "exact", exact=True))
+
+
+def _peaks(s: Sweep) -> tuple[float, float]:
+    ok = s.valid
+    speed = np.linalg.norm(s.velocity[ok], axis=1)
+    accel = np.linalg.norm(s.acceleration[ok], axis=1)
+    return (
+        float(speed.max()) if len(speed) else math.nan,
+        float(accel.max()) if len(accel) else math.nan,
+    )
+
+
+def rate_figures(res: Result, s: Sweep, others: list[Sweep]) -> None:
+    """Append the peak speed and acceleration rows (those the scene's outputs ask for)."""
+    res.arrays.update(velocity=s.velocity, acceleration=s.acceleration)
+    (speed, accel), alt = _peaks(s), [_peaks(o) for o in others]
+    u = length_unit(res.scene)
+    ns = res.check_samples
+    if res.scene.wants("velocity"):
+        res.figures.append(row("peak trace speed", speed, f"{u}/s", [a[0] for a in alt], ns))
+    if res.scene.wants("acceleration"):
+        res.figures.append(
+            row("peak trace acceleration", accel, f"{u}/s²", [a[1] for a in alt], ns)
+        )
+
+
+STRAIGHT_RADIUS = 1e6
+"""A path whose every radius of curvature exceeds this many times its extent is straight: its
+radius is reported as ∞ (the finite values are round-off of an exact line)."""
+
+
+def _on_a_line(p: Array, extent: float) -> bool:
+    """Say whether every point of ``p`` lies within 1e-9 × ``extent`` of one line.
+
+    On a straight path the radius is ∞ even where the point stops and turns back, where the sampled
+    radius ``|v|³/|v × a|`` is 0/0.
+    """
+    if len(p) < 3 or not extent > 0:
+        return False
+    # The core's least-squares line (linkage_core::straight_part): the whole path is one run.
+    run = straightness(p, tol=1e-9 * extent)
+    return run is not None and len(run.indices) == len(p)
+
+
+def _smallest_radius(g: Sweep, s: Sweep) -> float:
+    """Return the smallest radius of curvature over the run; ``inf`` for a straight path."""
+    r = g.curvature_radius
+    fin = np.isfinite(r) & (r >= 0)
+    p = s.point[s.valid]
+    extent = float(np.nanmax(np.ptp(p, axis=0))) if len(p) else 0.0
+    if not fin.any() or _on_a_line(p, extent):
+        return math.inf
+    smallest = float(np.min(r[fin]))
+    return math.inf if smallest > STRAIGHT_RADIUS * max(extent, 1e-300) else smallest
+
+
+def geometry_figures(res: Result, g: Sweep, s: Sweep, others: list[Sweep]) -> None:
+    """Append the curvature and instant-centre rows of geometry sweep ``g`` (trajectory ``s``)."""
+    u = length_unit(res.scene)
+    if res.scene.wants("curvature"):
+        res.arrays.update(curvature_centre=g.curvature_centre, curvature=g.curvature)
+        c, rad = g.curvature_centre, g.curvature_radius
+        est = three_point_centres(s.point, 1)
+        # The core's centres against circles through three neighbouring samples, where the
+        # centre is a "centre of rotation" (radius below the path's extent); near inflections
+        # both run off to infinity and their distance means nothing.
+        extent = float(np.nanmax(np.ptp(s.point[s.valid], axis=0))) if s.valid.any() else 0.0
+        inner = np.isfinite(est[:, 0]) & np.isfinite(c[1:-1, 0]) & (rad[1:-1] < extent)
+        check = (
+            f"3-point check {sci(float(np.max(np.linalg.norm(est[inner] - c[1:-1][inner], 1))))}"
+            if inner.any()
+            else ""
+        )
+        r, alt = _smallest_radius(g, s), [_smallest_radius(o, o) for o in others]
+        if math.isinf(r):
+            res.figures.append(
+                Row(
+                    "smallest radius of curvature",
+                    "∞ (straight path)",
+                    u,
+                    "the path is a line to 1e-9 of its extent, or every radius exceeds "
+                    f"{STRAIGHT_RADIUS:g} × it",
+                    value=None,
+                    error=None,
+                )
+            )
+        else:
+            res.figures.append(
+                row(
+                    "smallest radius of curvature",
+                    r,
+                    u,
+                    [a if math.isfinite(a) else None for a in alt],
+                    res.check_samples,
+                    check,
+                )
+            )
+    if res.scene.wants("instant_centres"):
+        res.arrays.update(
+            instant_centres=g.instant_centres, instant_centre_directions=g.instant_centre_directions
+        )
+        at_inf = int(np.count_nonzero(g.instant_centre_at_infinity))
+        res.figures.append(
+            Row(
+                "instant centres at infinity (samples × pairs)",
+                str(at_inf),
+                "",
+                "flagged",
+                value=at_inf,
+            )
+        )
+
+
+def straightness_figures(
+    res: Result, part: StraightPart | None, others: list[StraightPart | None], tol: float
+) -> None:
+    """Append the rows of the straightness stage: the longest straight part within ``tol``.
+
+    ``others`` are the parts found at the check counts. ``part`` is ``None`` when there is none,
+    and when ``tol`` is not a positive number (the trace has no extent; nothing was searched).
+    """
+    u = length_unit(res.scene)
+    name = "straight part within 0.1 % of size"
+    if not (math.isfinite(tol) and tol > 0):
+        res.figures.append(Row(name, "none", "", "no extent"))
+        return
+    if part is None:
+        res.figures.append(Row(name, "none", "", f"tolerance {sci(tol)} {u}"))
+        return
+    ns = res.check_samples
+    res.figures.append(
+        row(
+            name,
+            part.length,
+            u,
+            [p.length if p else None for p in others],
+            ns,
+            f"tolerance {sci(tol)}",
+        )
+    )
+    res.figures.append(
+        row(
+            "straight part max deviation",
+            part.max_deviation,
+            u,
+            [p.max_deviation if p else None for p in others],
+            ns,
+            "from its least-squares line",
+        )
+    )
+    if part.speed_variation is not None:
+        if math.isfinite(part.speed_variation):
+            alt = [p.speed_variation if p else None for p in others]
+            res.figures.append(
+                row(
+                    "speed variation along it",
+                    100 * part.speed_variation,
+                    "%",
+                    [100 * v if v is not None and math.isfinite(v) else None for v in alt],
+                    ns,
+                    "this drive",
+                )
+            )
+        else:
+            why = (
+                "unbounded (the run reaches a toggle)"
+                if math.isinf(part.speed_variation)
+                else "undefined (the trace stands still)"
+            )
+            res.figures.append(Row("speed variation along it", why, "%"))
+
+
+def torque_figures(res: Result, f: Forces, others: list[Forces]) -> None:
+    """Append the driver torque rows of the torque stage (``others`` at the check counts).
+
+    The note gives how closely the power method's torque agrees with the joint forces'.
+    """
+    res.arrays.update(torque=f.torque, power_torque=f.power_torque)
+    check = float(np.nanmax(np.abs(f.torque - f.power_torque)))
+    unit = torque_unit(res.scene)
+    ns = res.check_samples
+    note = f"power method agrees to {sci(check)}"
+    mean = [g.mean_abs_torque for g in others]
+    res.figures.append(row("driver torque mean |T|", f.mean_abs_torque, unit, mean, ns, note))
+    peak = [g.peak_torque for g in others]
+    res.figures.append(row("driver torque peak |T|", f.peak_torque, unit, peak, ns, note))
+
+
+def _cam_values(p: CamProfile) -> tuple[float, float]:
+    return math.degrees(p.max_pressure_angle), float(np.nanmin(np.abs(p.profile_radius)))
+
+
+def cam_figures(
+    res: Result, p: CamProfile, others: Sequence[CamProfile], ns: Sequence[int]
+) -> None:
+    """Append the rows of the cam stage: profile ``p``, ``others`` at the ``ns`` sample counts."""
+    alt = [_cam_values(o) for o in others]
+    res.arrays.update(cam_profile=p.profile, cam_pitch=p.pitch, cam_pressure_angle=p.pressure_angle)
+    angle, radius = _cam_values(p)
+    res.figures.append(row("cam max pressure angle", angle, "deg", [a[0] for a in alt], ns))
+    res.figures.append(
+        row("cam smallest profile radius", radius, length_unit(res.scene), [a[1] for a in alt], ns)
+    )
+    res.figures.append(Row("cam check", "ok" if not p.problems else "; ".join(p.problems)))
+
+
+def _walker_values(sim: Simulation, duration: float, period: float) -> dict[str, float]:
+    """Return the sampled walker figures of one simulation (compared between two resolutions)."""
+    cycles = duration / period if period > 0 else 1.0
+    down = sim.stance.sum(1)
+    travel = float(sim.body_position[-1])
+    return {
+        "duty": float(sim.duty_factor.mean()),
+        "stride": float(np.nanmean(sim.stride)),
+        "lift": float(sim.lift_height.min()),
+        "travel": travel,
+        "speed": travel / duration,
+        "slip": float(sim.slip_distance.sum()) / cycles,
+        "spread": float(np.nanmax(sim.spread)),
+        "down_min": float(down.min()),
+        "down_max": float(down.max()),
+        "margin": float(np.min(np.where(np.isfinite(sim.margin), sim.margin, np.inf))),
+    }
+
+
+def walker_figures(
+    res: Result,
+    sim: Simulation,
+    others: list[Simulation],
+    walker: Walker,
+    duration: float,
+    period: float,
+    closure: float,
+) -> None:
+    """Append the rows of the walker stage: the simulation ``sim``, ``others`` at the check counts.
+
+    ``closure`` is the largest loop-closure residual of the legs' own kinematics over the run.
+    """
+    scene = res.scene
+    res.arrays["closure"] = np.array([closure])
+    res.figures.append(
+        Row(
+            "leg loop-closure residual",
+            sci(closure),
+            length_unit(scene),
+            "0 if exact",
+            value=closure,
+            error=closure,
+            exact=True,
+        )
+    )
+    res.arrays.update(
+        feet=sim.feet,
+        stance=sim.stance.astype(float),
+        body_position=sim.body_position,
+        margin=sim.margin,
+    )
+    a = _walker_values(sim, duration, period)
+    alt = [_walker_values(o, duration, period) for o in others]
+    ns = res.check_samples
+
+    def walker_row(figure: str, key: str, unit: str, note: str = "") -> Row:
+        return row(figure, a[key], unit, [b[key] for b in alt], ns, note)
+
+    rows = res.figures
+    u = length_unit(scene)
+    rows.append(Row("legs", ", ".join(sim.legs)))
+    rows.append(walker_row("duty factor (per leg, mean)", "duty", "of the cycle"))
+    rows.append(walker_row("stride", "stride", u))
+    rows.append(walker_row("lift height (obstacle a foot clears)", "lift", u))
+    rows.append(exact("body clearance", walker.body_underside - sim.ground, u))
+    rows.append(walker_row("body travel", "travel", u, "trapezoid"))
+    rows.append(walker_row("mean body speed", "speed", f"{u}/s"))
+    if scene.wants("stability"):
+        rows.append(_margin_row(sim, u, [b["margin"] for b in alt], ns))
+    if scene.wants("slip"):
+        rows.append(walker_row("foot slip per cycle (all feet)", "slip", u, "trapezoid"))
+        rows.append(walker_row("largest stance-speed spread", "spread", f"{u}/s"))
+    if scene.wants("gait"):
+        lo, hi = int(a["down_min"]), int(a["down_max"])
+        e0 = spread(a["down_min"], [b["down_min"] for b in alt]) or 0.0
+        e1 = spread(a["down_max"], [b["down_max"] for b in alt]) or 0.0
+        rows.append(
+            Row(
+                "feet down (min / max)",
+                f"{lo} / {hi}",
+                "feet",
+                f"±{format_error(max(e0, e1))} ({versus(ns)})",
+                value=(lo, hi),
+                error=max(e0, e1),
+            )
+        )
+
+
+def _margin_row(sim: Simulation, units: str, others: list[float], ns: Sequence[int]) -> Row:
+    """Make the row of the smallest stability margin.
+
+    With no foot on the ground at some samples there is no support polygon and no margin, which the
+    row says instead of printing −inf.
+    """
+    unsupported = sim.margin == -np.inf
+    if unsupported.any():
+        k = int(np.argmax(unsupported))
+        return Row(
+            "minimum stability margin",
+            f"none: no foot down at {int(unsupported.sum())} / {len(sim.margin)} samples",
+            "",
+            f"first at t = {format_number(float(sim.time[k]), digits=4)} s",
+            value=None,
+        )
+    finite = np.isfinite(sim.margin)
+    if not finite.any():
+        return Row("minimum stability margin", "undefined", "", "no support polygon", value=None)
+    k = int(np.argmin(np.where(finite, sim.margin, np.inf)))
+    return row(
+        "minimum stability margin",
+        float(sim.margin[k]),
+        units,
+        [o if math.isfinite(o) else None for o in others],
+        ns,
+        f"at t = {format_number(float(sim.time[k]), digits=4)} s",
+    )
