@@ -7,21 +7,40 @@ motor. The objective is the minimum static stability margin (``"margin"``, maxim
 total foot slip per cycle among statically stable candidates (``"slip"``, minimised).
 
 Both are also reachable as before: ``Walker.search_phases`` and ``linkage.walker.search_*``.
+For those, :mod:`linkage.walker` imports this module, and this one does not import it: a
+walker is checked against the class ``_Walkers``, as which :class:`~linkage.walker.Walker`
+registers itself.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
+from abc import ABC
 from collections.abc import Sequence
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import NDArray
 
 from linkage._arrays import as_choice, as_count, as_finite
 from linkage._core import LinkageError
 from linkage.drive import crank_schedule, stance_profile
-from linkage.walker import Array, Walker, _check_size
+
+if TYPE_CHECKING:
+    # Not imported when running: linkage.walker imports this module.
+    from linkage.walker import Walker
+
+Array = NDArray[np.float64]
+
+
+class _Walkers(ABC):  # noqa: B024 (no abstract methods: a type to register with)
+    """The type of the walkers the searches take: :class:`linkage.walker.Walker` (registered).
+
+    An ``isinstance`` check against this class is one against ``Walker`` without importing
+    :mod:`linkage.walker`, which imports this module.
+    """
 
 
 def search_phases(
@@ -92,7 +111,7 @@ def search_phases(
     ...
     linkage.LinkageError: step must divide a full turn (2π/step a whole number ≥ 2)
     """
-    if not isinstance(walker, Walker):
+    if not isinstance(walker, _Walkers):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
     objective = as_choice(objective, "objective", ("margin", "slip"))
     step = as_finite(step, "step")
@@ -107,7 +126,7 @@ def search_phases(
         raise LinkageError("step must divide a full turn (2π/step a whole number ≥ 2)")
     per = max(1, -(-samples // g))
     n = g * per
-    _check_size(n, len(walker.legs))
+    walker._check_size(n)
     theta = np.linspace(0, 2 * math.pi, n, endpoint=False)
     # Every leg's track at phase 0 over one turn; a phase on the grid is a cyclic shift.
     base = [replace(leg, phase=0.0).feet(theta, np.ones(n)) for leg in walker.legs]
@@ -217,11 +236,11 @@ def search_duty_factor(
     ...
     linkage.LinkageError: no duty factor gives a feasible schedule
     """
-    if not isinstance(walker, Walker):
+    if not isinstance(walker, _Walkers):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
     objective = as_choice(objective, "objective", ("margin", "slip"))
     samples = as_count(samples, "samples")
-    _check_size(samples, len(walker.legs))
+    walker._check_size(samples)
     if isinstance(duty_factors, (str, bytes)) or not hasattr(duty_factors, "__iter__"):
         raise TypeError(
             f"duty_factors must be a sequence of numbers, got {type(duty_factors).__name__}"

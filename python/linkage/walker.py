@@ -20,12 +20,12 @@ import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from linkage import _core
+from linkage import _core, gait_search
 from linkage._arrays import (
     as_angles,
     as_count,
@@ -39,10 +39,9 @@ from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage.drive import Drive, Program
 
-if TYPE_CHECKING:
-    # Re-exported lazily by __getattr__ below (gait_search imports this module).
-    from linkage.gait_search import search_duty_factor as search_duty_factor
-    from linkage.gait_search import search_phases as search_phases
+# The searches moved to linkage.gait_search; their old names here keep working.
+from linkage.gait_search import search_duty_factor as search_duty_factor
+from linkage.gait_search import search_phases as search_phases
 
 Array = NDArray[np.float64]
 PLANES = ("sagittal", "horizontal")
@@ -245,6 +244,7 @@ class Simulation:
         return out
 
 
+@gait_search._Walkers.register
 class Walker:
     """A body carrying legs, all driven by one crank drive (each leg at its own phase).
 
@@ -425,7 +425,7 @@ class Walker:
             if not hasattr(drive, "angles"):
                 raise TypeError(f"drive must have an angles(t) method, got {type(drive).__name__}")
             t, _ = as_angles(time, "time")
-            _check_size(len(t), len(self.legs))
+            self._check_size(len(t))
             th, w, _ = drive.angles(t)
         else:
             if theta is None:
@@ -434,7 +434,7 @@ class Walker:
             w0 = as_finite(omega, "omega")
             if w0 == 0:
                 raise LinkageError("omega must be non-zero")
-            _check_size(len(th), len(self.legs))
+            self._check_size(len(th))
             with np.errstate(over="ignore"):
                 t, w = th / w0, np.full_like(th, w0)
             if not np.isfinite(t).all():
@@ -542,7 +542,7 @@ class Walker:
         60.0
         """
         samples = as_count(samples, "samples")
-        _check_size(samples, len(self.legs))
+        self._check_size(samples)
         sim = self.simulate(np.linspace(0, 2 * math.pi, samples))
         return float(self.body_underside - sim.ground)
 
@@ -575,10 +575,16 @@ class Walker:
         LinkageError, TypeError
             As :func:`linkage.gait_search.search_phases`.
         """
-        # gait_search imports this module: importing it at the top would be a cycle.
-        from linkage.gait_search import search_phases  # noqa: PLC0415 (see above)
+        return gait_search.search_phases(self, objective, step, samples, rounds, max_evals)
 
-        return search_phases(self, objective, step, samples, rounds, max_evals)
+    def _check_size(self, n: int) -> None:
+        """Refuse a simulation of ``n`` samples that cannot fit in memory.
+
+        Per sample and leg: positions, velocities, support corners and the sweep's arrays (about
+        60 float64 values).
+        """
+        legs = len(self.legs)
+        check_memory(n * max(1, legs) * 8 * 60, f"a walker simulation of {n} samples × {legs} legs")
 
 
 def leg_labels(mounts: Sequence[Sequence[float]]) -> tuple[str, ...]:
@@ -625,15 +631,6 @@ def leg_labels(mounts: Sequence[Sequence[float]]) -> tuple[str, ...]:
         for pos, k in enumerate(ks, start=1):
             labels[k] = f"{side}{pos}"
     return tuple(labels)
-
-
-def _check_size(n: int, legs: int) -> None:
-    """Refuse a simulation that cannot fit in memory.
-
-    Per sample and leg: positions, velocities, support corners and the sweep's arrays (about 60
-    float64 values).
-    """
-    check_memory(n * max(1, legs) * 8 * 60, f"a walker simulation of {n} samples × {legs} legs")
 
 
 class _quiet:
@@ -714,16 +711,3 @@ def gait_phases(gait: str, legs: Sequence[str]) -> Array:
     if missing:
         raise LinkageError(f"gait {gait!r} has no phase for legs {missing}")
     return np.array([-2 * math.pi * table[leg] for leg in legs])
-
-
-def __getattr__(name: str) -> Any:
-    """Resolve the gait searches, which moved to :mod:`linkage.gait_search`.
-
-    ``from linkage.walker import search_duty_factor`` keeps working; the import is deferred to
-    the first use because :mod:`linkage.gait_search` imports this module.
-    """
-    if name in ("search_duty_factor", "search_phases"):
-        from linkage import gait_search  # noqa: PLC0415 (see the docstring)
-
-        return getattr(gait_search, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
