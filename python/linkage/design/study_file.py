@@ -20,6 +20,11 @@ from linkage._toml_lines import Locator, NotText, decode
 from linkage.design.search import Constraints, Study
 from linkage.legs import FAMILIES, OBJECTIVES, Settings
 
+if sys.version_info >= (3, 11):  # pragma: no cover - depends on the interpreter
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
 Array = NDArray[np.float64]
 
 
@@ -72,10 +77,6 @@ def load_study(path: str | Path) -> StudyFile:
         text = decode(data)
     except NotText as exc:
         raise LinkageError(f"{p}:{exc.line}: {exc.problem}") from None
-    if sys.version_info >= (3, 11):
-        import tomllib  # noqa: PLC0415 (tomllib only on Python >= 3.11)
-    else:  # pragma: no cover
-        import tomli as tomllib  # noqa: PLC0415 (tomli before 3.11)
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
