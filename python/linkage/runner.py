@@ -51,6 +51,7 @@ from linkage.figures import (
 )
 from linkage.forces import Forces, joint_forces
 from linkage.geometry import StraightPart, straightness
+from linkage.stage_figures import STRAIGHT_RADIUS as STRAIGHT_RADIUS  # moved; its old home
 from linkage.stage_figures import (
     cam_figures,
     drive_label,
