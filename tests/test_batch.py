@@ -46,7 +46,8 @@ def _theta(seed: int = 0) -> np.ndarray:
 
 def test_each_row_equals_the_tracked_sweep_of_its_linkage() -> None:
     th = _theta()
-    g, r, b, c, pt, asm = (list(x) for x in zip(*CASES, strict=True))
+    assert {len(case) for case in CASES} == {6}  # zip(strict=True) is Python 3.10+
+    g, r, b, c, pt, asm = (list(x) for x in zip(*CASES))
     points, valid = sweep_fourbars(g, r, b, c, np.array(pt), th, np.array(asm))
     assert points.shape == (len(CASES), th.size, 2) and points.dtype == np.float64
     assert valid.shape == (len(CASES), th.size) and valid.dtype == np.bool_

@@ -55,7 +55,7 @@ def test_summary_numbers_are_typed_with_units_and_errors(hoecken):
     assert len(figs) == len(res.figures)
     for f in summary["figures"]:
         assert set(f) == {"figure", "value", "text", "unit", "error", "error_note", "exact"}
-        assert f["error"] is None or (isinstance(f["error"], float | int) and f["error"] >= 0)
+        assert f["error"] is None or (isinstance(f["error"], (float, int)) and f["error"] >= 0)
     straight = figs["straight part within 0.1 % of size"]
     assert isinstance(straight["value"], float) and straight["unit"] == "mm"
     assert isinstance(straight["error"], float)
