@@ -13,6 +13,7 @@ import json
 import math
 import os
 import pickle
+import random
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -313,6 +314,17 @@ def _load_checkpoint(path: Path, study: Study) -> dict[str, Any] | None:
     return state
 
 
+def _uses_global_rng(algorithm: Any) -> bool:
+    """Return whether the algorithm draws from the process-wide random generators.
+
+    pymoo 0.6.2 on draws from a generator of its own (``algorithm.random_state``), pickled with
+    the algorithm. Earlier releases (0.6.1, the last for Python 3.9) seed and draw from the
+    global ``random`` and ``numpy.random`` generators instead, so a checkpoint must carry their
+    states too for a resumed search to reach the same front.
+    """
+    return not isinstance(getattr(algorithm, "random_state", None), np.random.Generator)
+
+
 def search(
     study: Study,
     checkpoint: str | Path | None = None,
@@ -327,8 +339,9 @@ def search(
 
     With ``checkpoint`` the state is saved atomically after every generation and a search
     started again with the same study resumes from it (to the same front: the optimiser's
-    random state is part of the checkpoint). ``stop_after`` ends after that many generations
-    in this call (a stopped search, for tests). ``progress`` draws a bar on stderr.
+    random state is part of the checkpoint, see :func:`_uses_global_rng`). ``stop_after`` ends
+    after that many generations in this call (a stopped search, for tests). ``progress`` draws
+    a bar on stderr.
     """
     if not isinstance(study, Study):
         raise TypeError(f"study must be a Study, got {type(study).__name__}")
@@ -348,6 +361,10 @@ def search(
     else:
         algorithm = state["algorithm"]
         xs, figs, gen = state["x"], state["figures"], state["generation"]
+        if "global_rng" in state:  # saved for pymoo < 0.6.2 (_uses_global_rng)
+            random.setstate(state["global_rng"][0])
+            np.random.set_state(state["global_rng"][1])  # noqa: NPY002
+    global_rng = _uses_global_rng(algorithm)
     done_here = 0
     bar = Bar("design search", total=study.generations, enabled=progress)
     bar.done = gen
@@ -366,16 +383,17 @@ def search(
             gen += 1
             done_here += 1
             if path is not None:
-                _save_checkpoint(
-                    path,
-                    {
-                        "fingerprint": study.fingerprint(),
-                        "algorithm": algorithm,
-                        "x": xs,
-                        "figures": figs,
-                        "generation": gen,
-                    },
-                )
+                saved = {
+                    "fingerprint": study.fingerprint(),
+                    "algorithm": algorithm,
+                    "x": xs,
+                    "figures": figs,
+                    "generation": gen,
+                }
+                if global_rng:
+                    # pymoo < 0.6.2 draws from the legacy global generators (_uses_global_rng).
+                    saved["global_rng"] = (random.getstate(), np.random.get_state())  # noqa: NPY002
+                _save_checkpoint(path, saved)
             bar.update(1, f"{sum(len(v) for v in xs)} legs evaluated")
     bar.close()
     x_all = np.concatenate(xs) if xs else np.empty((0, len(fam.params)))
