@@ -51,8 +51,9 @@ wheel: $(STAMP) ## Build the shipped wheel (abi3, manylinux2014 via zig, strippe
 	$(BIN)/auditwheel show $(DIST)/linkage_kinematics-*.whl
 	@ls -l $(DIST)/linkage_kinematics-*
 
-wheel-test: wheel ## Install the wheel into a fresh venv of each declared Python (3.9-3.13); run it outside the tree.
-	LINKAGE_WHEEL_DIST="$(CURDIR)/$(DIST)" $(BIN)/pytest tests/test_wheel.py -p no:cacheprovider
+wheel-test: wheel ## Install the wheel into a fresh venv of each declared Python (3.9-3.13); run it and the whole pytest suite outside the tree.
+	LINKAGE_WHEEL_DIST="$(CURDIR)/$(DIST)" $(BIN)/pytest tests/test_wheel.py -p no:cacheprovider \
+		-raP --durations=0 --durations-min=5
 
 firmware: ## Build the core and a firmware example (f32 + f64) for thumbv7em-none-eabihf: no std, no heap.
 	rustup target add $(FIRMWARE)

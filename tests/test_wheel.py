@@ -7,7 +7,11 @@ stripped. This module checks both files, then, for every Python version the pack
 the source tree, installs the wheel's dependencies from PyPI and the wheel itself with
 ``--no-index``, and from that folder runs ``linkage run`` and a smoke script (import, a sweep
 checked against the link lengths, errors mapped to ``LinkageError`` and exit status 2), so the
-source tree's ``python/`` is never on the path. A version without an interpreter here fails.
+source tree's ``python/`` is never on the path. Then, in another fresh venv of each version,
+it installs the wheel with its ``test`` extra and runs the whole pytest suite (``make test``'s
+run: ``tests/`` and the doctests) against the installed package, from a copy of the files the
+tests read. A version without an interpreter here fails. The venvs and every cache the runs
+fill live in temporary folders removed afterwards.
 
 It runs only when ``LINKAGE_WHEEL_DIST`` names the folder holding the built files
 (``make wheel-test`` builds them and sets it); ``make test`` leaves this module out.
@@ -25,7 +29,9 @@ import struct
 import subprocess
 import sys
 import tarfile
+import tempfile
 import zipfile
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -136,10 +142,10 @@ def clean_env() -> dict[str, str]:
     return env
 
 
-def run(args: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
+def run(args: list[str], cwd: Path, timeout: float = TIMEOUT) -> subprocess.CompletedProcess[str]:
     """Run a command outside the tree with a clean environment; return what it did."""
     return subprocess.run(
-        args, cwd=cwd, env=clean_env(), capture_output=True, text=True, timeout=TIMEOUT
+        args, cwd=cwd, env=clean_env(), capture_output=True, text=True, timeout=timeout
     )
 
 
@@ -149,6 +155,48 @@ def ok(proc: subprocess.CompletedProcess[str]) -> str:
         f"{' '.join(proc.args)} exited {proc.returncode}\n{proc.stdout}\n{proc.stderr}"
     )
     return proc.stdout
+
+
+def scratch() -> str | None:
+    """Return where the temporary venvs go: ``/dev/shm`` if it is a roomy tmpfs, else the default.
+
+    On this machine's disk (ext4 mounted with ``discard``) removing one venv with the test
+    dependencies (about 500 MB) takes 50 s; on tmpfs it takes no time. At most one venv and
+    pip's cache (about 1 GB) are there at a time.
+    """
+    shm = "/dev/shm"
+    if not (os.path.isdir(shm) and os.access(shm, os.W_OK)):
+        return None
+    if os.statvfs(shm).f_flag & os.ST_NOEXEC or shutil.disk_usage(shm).free < 4 << 30:
+        return None  # the venvs' extension modules must load; room for a venv and the cache
+    return shm
+
+
+@pytest.fixture(scope="module")
+def pip_cache() -> Iterator[Path]:
+    """Return pip's cache for this module's installs (shared by the versions), removed after."""
+    folder = Path(tempfile.mkdtemp(prefix="linkage-wheel-pip-", dir=scratch()))
+    yield folder
+    shutil.rmtree(folder, ignore_errors=True)
+
+
+@pytest.fixture
+def work(pip_cache: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
+    """Return a temporary folder outside the tree for one venv and its runs, removed after.
+
+    What the runs cache (pip's downloads, matplotlib's font list, linkage's synthesis atlas
+    and catalogue table, Chromium's profile data) goes into it or into ``pip_cache``: nothing
+    is kept between runs, so each is timed as on a fresh machine, and nothing is left behind.
+    """
+    folder = Path(tempfile.mkdtemp(prefix="linkage-wheel-", dir=scratch())).resolve()
+    assert ROOT not in folder.parents, folder
+    monkeypatch.setenv("PIP_CACHE_DIR", str(pip_cache))
+    monkeypatch.setenv("XDG_CACHE_HOME", str(folder / "cache"))
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(folder / "config"))
+    for name in ("MPLCONFIGDIR", "LINKAGE_CACHE_DIR", DIST_ENV):
+        monkeypatch.delenv(name, raising=False)
+    yield folder
+    shutil.rmtree(folder, ignore_errors=True)
 
 
 def test_wheel_is_abi3_manylinux_at_the_declared_minimum() -> None:
@@ -288,20 +336,19 @@ rpm = 50.0
 
 
 @pytest.mark.parametrize("minor", VERSIONS, ids=[f"py3.{v}" for v in VERSIONS])
-def test_wheel_installs_and_runs_outside_the_tree(minor: int, tmp_path: Path) -> None:
+def test_wheel_installs_and_runs_outside_the_tree(minor: int, work: Path) -> None:
     """Install the wheel into a fresh venv of 3.<minor>; run ``linkage run`` and the smoke script."""
-    assert ROOT not in tmp_path.resolve().parents, tmp_path
     exe = interpreter(minor)
     assert exe, f"no CPython 3.{minor} with venv here; it is declared, so it must be tested"
-    venv = tmp_path / "venv"
-    ok(run([str(exe), "-m", "venv", str(venv)], cwd=tmp_path))
+    venv = work / "venv"
+    ok(run([str(exe), "-m", "venv", str(venv)], cwd=work))
     py, bindir = venv / "bin" / "python", venv / "bin"
 
     # The dependencies from PyPI (binary only: no build of numpy), then our wheel and nothing else.
     meta = wheel_metadata()
     deps = [r for r in meta.get_all("Requires-Dist", []) if "extra ==" not in r]
     pip = [str(py), "-m", "pip", "install", "--quiet", "--only-binary=:all:"]
-    ok(run([*pip, *deps], cwd=tmp_path))
+    ok(run([*pip, *deps], cwd=work))
     ok(
         run(
             [
@@ -311,14 +358,14 @@ def test_wheel_installs_and_runs_outside_the_tree(minor: int, tmp_path: Path) ->
                 str(DIST),
                 f"{PROJECT['name']}=={meta['Version']}",
             ],
-            cwd=tmp_path,
+            cwd=work,
         )
     )
-    ok(run([str(py), "-m", "pip", "check"], cwd=tmp_path))
+    ok(run([str(py), "-m", "pip", "check"], cwd=work))
 
     # The main job, by its console script, into a folder outside the tree.
-    out = tmp_path / "report"
-    stdout = ok(run([str(bindir / "linkage"), "run", "--out", str(out)], cwd=tmp_path))
+    out = work / "report"
+    stdout = ok(run([str(bindir / "linkage"), "run", "--out", str(out)], cwd=work))
     assert f"report: {out}/" in stdout, stdout
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     assert (summary["tool"], summary["version"]) == ("linkage", meta["Version"]), summary
@@ -327,16 +374,85 @@ def test_wheel_installs_and_runs_outside_the_tree(minor: int, tmp_path: Path) ->
         assert (out / name).stat().st_size > 0, name
 
     # A mistake in a scene: exit status 2, one located line, no traceback.
-    bad = tmp_path / "bad.toml"
+    bad = work / "bad.toml"
     bad.write_text(BAD_SCENE, encoding="utf-8")
-    refused = run(
-        [str(bindir / "linkage"), "run", str(bad), "--out", str(tmp_path / "r2")], cwd=tmp_path
-    )
+    refused = run([str(bindir / "linkage"), "run", str(bad), "--out", str(work / "r2")], cwd=work)
     assert refused.returncode == 2, (refused.returncode, refused.stderr)
     lines = refused.stderr.splitlines()
     assert len(lines) == 1 and lines[0].startswith(f"linkage: error: {bad}:5:"), refused.stderr
-    assert "hoeken" in lines[0] and not (tmp_path / "r2").exists()
+    assert "hoeken" in lines[0] and not (work / "r2").exists()
 
-    script = tmp_path / "smoke.py"
+    script = work / "smoke.py"
     script.write_text(SMOKE, encoding="utf-8")
-    assert ok(run([str(py), "-I", str(script), str(meta["Version"])], cwd=tmp_path)) == "smoke ok\n"
+    assert ok(run([str(py), "-I", str(script), str(meta["Version"])], cwd=work)) == "smoke ok\n"
+
+
+# What the tests read besides themselves: the examples, the docs they check the code against,
+# the README (its Python blocks run) and pyproject.toml (pytest's options). Not python/: the
+# tests import the installed wheel.
+SUITE_FILES = ("tests", "examples", "docs", "README.md", "pyproject.toml")
+SUITE_TIMEOUT = 1800  # seconds for the whole suite on one version (about 2 minutes here)
+
+
+@pytest.fixture(scope="module")
+def suite_size() -> int:
+    """Return how many tests ``make test``'s pytest run collects in the tree (doctests included)."""
+    args = ["tests", "python/linkage", "--ignore=tests/test_wheel.py", "-p", "no:cacheprovider"]
+    listed = subprocess.run(
+        [sys.executable, "-m", "pytest", "--collect-only", "-q", *args],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=TIMEOUT,
+    )
+    found = re.search(r"^(\d+) tests? collected", listed.stdout, re.M)
+    assert listed.returncode == 0 and found, listed.stdout[-5000:] + listed.stderr
+    return int(found.group(1))
+
+
+@pytest.mark.parametrize("minor", VERSIONS, ids=[f"py3.{v}" for v in VERSIONS])
+def test_full_suite_passes_on_the_installed_wheel(minor: int, work: Path, suite_size: int) -> None:
+    """Install the wheel with its ``test`` extra into a fresh venv of 3.<minor>; run every test.
+
+    ``make test``'s pytest run (``tests/`` but this module, and the package's doctests) on a copy
+    of the files the tests read, outside the tree, against the installed package: the doctests
+    are collected from the venv's ``linkage``, and the run's header (``tests/conftest.py``)
+    must name the venv's ``linkage/__init__.py``. Every test must pass, and as many as the tree
+    collects: a failure, an error, a skip or a test left uncollected fails this test.
+    """
+    exe = interpreter(minor)
+    assert exe, f"no CPython 3.{minor} with venv here; it is declared, so it must be tested"
+    venv = work / "venv"
+    ok(run([str(exe), "-m", "venv", str(venv)], cwd=work))
+    py, bindir = venv / "bin" / "python", venv / "bin"
+
+    # The test dependencies from PyPI (binary only), our wheel from dist/ and nowhere else.
+    version = str(wheel_metadata()["Version"])
+    pip = [str(py), "-m", "pip", "install", "--quiet", "--only-binary=:all:"]
+    ok(run([*pip, f"{WHEEL}[test]"], cwd=work))
+    ok(run([str(py), "-m", "pip", "check"], cwd=work))
+    where = ok(run([str(py), "-I", "-c", "import linkage; print(linkage.__file__)"], cwd=work))
+    package = Path(where.strip()).parent
+    assert venv in package.parents, package
+
+    tree = work / "tree"
+    skip = shutil.ignore_patterns("__pycache__", ".hypothesis", "test_wheel.py")
+    for name in SUITE_FILES:
+        if (ROOT / name).is_dir():
+            shutil.copytree(ROOT / name, tree / name, ignore=skip)
+        else:
+            shutil.copy2(ROOT / name, tree / name)
+    assert not (tree / "python").exists()
+
+    config = ["-c", str(tree / "pyproject.toml"), "--rootdir", str(tree), "-p", "no:cacheprovider"]
+    suite = run([str(bindir / "pytest"), *config, "tests", str(package)], tree, SUITE_TIMEOUT)
+    out = suite.stdout
+    assert suite.returncode == 0, (
+        f"pytest exited {suite.returncode}:\n{out[-20000:]}\n{suite.stderr}"
+    )
+    assert f"linkage {version}: {package / '__init__.py'}" in out.splitlines(), out[:2000]
+    closing = out.rstrip().splitlines()[-1]
+    counts = re.fullmatch(r"=+ (\d+) passed(?:, \d+ warnings?)? in ([\d.]+)s.* =+", closing)
+    assert counts, f"not every test passed: {closing}"
+    assert int(counts.group(1)) == suite_size, f"{closing}; `make test` collects {suite_size}"
+    print(f"Python 3.{minor}: {closing.strip('= ')}, linkage from {package}")
