@@ -130,11 +130,23 @@ pub fn path_curvature<T: RealField + Copy>(p: Vec2<T>, v: Vec2<T>, a: Vec2<T>) -
         return (T::zero(), Centre::AtInfinity(perp(v) / speed));
     }
     let offset = perp(v) * (v2 / c);
-    let centre = if ordinary {
+    let mut centre = if ordinary {
         p + offset
     } else {
         p + offset * (sv / sa) * sv
     };
+    if !finite(centre) {
+        // The offset alone may pass the float range while the point cancels part of it (a
+        // centre near the range's end seen from a point far out): the same sum, halved and
+        // doubled (exact), is finite whenever the centre is.
+        let half = lit::<T>(0.5);
+        let offset = if ordinary {
+            offset * half
+        } else {
+            offset * (sv / sa) * (sv * half)
+        };
+        centre = (p * half + offset) * lit::<T>(2.0);
+    }
     if finite(centre) {
         (kappa, Centre::Finite(centre))
     } else {

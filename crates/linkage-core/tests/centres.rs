@@ -247,6 +247,34 @@ fn crank_pin_curvature_is_the_crank() {
     }
 }
 
+/// A centre near the end of the float range, seen from a point far out: the offset from the
+/// point alone passes the range (1.8e308) while the centre (1.7e308) does not, so the centre
+/// is finite and scales with the point, velocity and acceleration (found by hypothesis in
+/// tests/test_fuzz_api.py::test_circumcentre_scale_invariance).
+#[test]
+fn curvature_centre_near_the_float_range_end_is_finite() {
+    let (p, v, a) = (
+        Vec2::new(0.0_f64, -1.0),
+        Vec2::new(0.9375, 0.33203125),
+        Vec2::new(0.9375, 0.38671875),
+    );
+    let (k0, c0) = path_curvature(p, v, a);
+    let c0 = c0.finite().unwrap();
+    let s = 1e307;
+    let (k1, c1) = path_curvature(p * s, v * s, a * s);
+    let c1 = c1
+        .finite()
+        .unwrap_or_else(|| panic!("centre of curvature at scale {s:e}: {c1:?}, not finite"));
+    assert!(
+        (c1 / s - c0).norm() < 1e-12 * c0.norm(),
+        "{c1:?} vs {c0:?} × {s:e}"
+    );
+    assert!(
+        (k1 * s - k0).abs() < 1e-9 * k0.abs(),
+        "κ {k1:e} vs {k0:e} / {s:e}"
+    );
+}
+
 /// Ball point: on the inflection circle, and the path of a coupler point placed there has zero
 /// curvature and zero curvature derivative at that crank angle (checked along a sweep).
 #[test]
