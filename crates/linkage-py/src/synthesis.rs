@@ -426,6 +426,16 @@ fn frame_of(what: &str, f: &PyReadonlyArray1<'_, f64>) -> PyResult<Normalisation
     }
 }
 
+/// The first `K` numbers of an atlas entry (a contiguous array).
+fn entry_head<const K: usize>(entry: &PyReadonlyArray1<'_, f64>) -> PyResult<[f64; K]> {
+    entry
+        .as_slice()
+        .ok()
+        .and_then(|e| e.get(..K))
+        .and_then(|e| e.try_into().ok())
+        .ok_or_else(|| linkage_error(format!("entry must hold at least {K} numbers, contiguous")))
+}
+
 /// An atlas entry `[crank, coupler, rocker, along, left, ...]` placed by the similarity taking
 /// its curve's frame `curve` onto the target's `target` (`flip`: the other end of the major
 /// axis): the 9 placed parameters (`linkage_core::place_entry`).
@@ -438,12 +448,7 @@ pub fn synth_place<'py>(
     target: PyReadonlyArray1<'py, f64>,
     flip: bool,
 ) -> PyResult<Arr1<'py, f64>> {
-    let e: [f64; 5] = entry
-        .as_slice()
-        .ok()
-        .and_then(|e| e.get(..5))
-        .and_then(|e| e.try_into().ok())
-        .ok_or_else(|| linkage_error("entry must hold at least 5 numbers, contiguous"))?;
+    let e = entry_head::<5>(&entry)?;
     let (c, t) = (frame_of("curve", &curve)?, frame_of("target", &target)?);
     Ok(place_entry(&e, &c, &t, flip).to_vec().into_pyarray(py))
 }
@@ -459,12 +464,7 @@ pub fn synth_slider_place<'py>(
     target: PyReadonlyArray1<'py, f64>,
     flip: bool,
 ) -> PyResult<Arr1<'py, f64>> {
-    let e: [f64; 4] = entry
-        .as_slice()
-        .ok()
-        .and_then(|e| e.get(..4))
-        .and_then(|e| e.try_into().ok())
-        .ok_or_else(|| linkage_error("entry must hold at least 4 numbers, contiguous"))?;
+    let e = entry_head::<4>(&entry)?;
     let (c, t) = (frame_of("curve", &curve)?, frame_of("target", &target)?);
     Ok(place_slider_entry(&e, &c, &t, flip)
         .to_vec()
