@@ -131,6 +131,24 @@ pub(crate) struct CrankBaseFrame<T> {
     pub(crate) crank_first: bool,
 }
 
+/// A dyad on a crank pin and a fixed joint ([`Mechanism::crank_fixed_dyad`]).
+#[derive(Clone, Copy, Debug)]
+struct CrankFixedDyad<T> {
+    /// From the crank centre to the fixed joint.
+    gv: Vec2<T>,
+    r: T,
+    phase: T,
+    r1: T,
+    r2: T,
+}
+
+impl<T: RealField + Copy> CrankFixedDyad<T> {
+    /// The ground length `|gv|`.
+    fn g(&self) -> T {
+        crate::scalar::length(self.gv)
+    }
+}
+
 /// The flat positions of a dyad on a crank pin and a fixed joint, for their parity up to a
 /// driver angle ([`Mechanism::flat_parity`]): at `ψ = 0` (`zero`) and at `ψ = π` (`pi`), `ψ`
 /// the crank angle `t + phase` measured from the ground direction `β`.
@@ -581,49 +599,44 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
 
     /// The flat positions of joint `i` when it is a dyad on a crank pin and a fixed joint.
     pub(crate) fn flat_positions(&self, i: usize) -> Option<FlatParity<T>> {
-        let Construction::Dyad { p1, p2, dyad, .. } = self.steps[i] else {
-            return None;
-        };
-        let (k, q) = self.crank_and_fixed(p1, p2)?;
-        let Construction::Crank {
-            centre,
-            radius: r,
-            phase,
-        } = self.steps[k]
-        else {
-            return None;
-        };
-        let (o, qp) = match (self.steps[centre], self.steps[q]) {
-            (Construction::Fixed { at: o }, Construction::Fixed { at: qp }) => (o, qp),
-            _ => return None,
-        };
-        let gv = qp - o;
-        let g = crate::scalar::length(gv);
-        let [at_zero, at_pi] = crate::fourbar::flat_angles(g, r, dyad.r1, dyad.r2);
+        let d = self.crank_fixed_dyad(i)?;
+        let [at_zero, at_pi] = crate::fourbar::flat_angles(d.g(), d.r, d.r1, d.r2);
         Some(FlatParity {
             zero: at_zero.is_some(),
             pi: at_pi.is_some(),
-            beta: gv.y.atan2(gv.x),
-            phase,
+            beta: d.gv.y.atan2(d.gv.x),
+            phase: d.phase,
         })
     }
 
-    /// Ground length `g`, crank radius `r` and link lengths `(r1, r2)` of joint `i` when it is
-    /// a dyad on a crank pin and a fixed joint (see [`Mechanism::crank_base`]).
-    fn crank_fixed_lengths(&self, i: usize) -> Option<(T, T, T, T)> {
+    /// Joint `i` when it is a dyad on a crank pin and a fixed joint: the ground vector from
+    /// the crank centre to the fixed joint, the crank's radius and phase, the dyad's lengths.
+    fn crank_fixed_dyad(&self, i: usize) -> Option<CrankFixedDyad<T>> {
         let Construction::Dyad { p1, p2, dyad, .. } = self.steps[i] else {
             return None;
         };
         let (k, q) = self.crank_and_fixed(p1, p2)?;
-        let (Construction::Crank { centre, radius, .. }, Construction::Fixed { at: qp }) =
-            (self.steps[k], self.steps[q])
+        let (
+            Construction::Crank {
+                centre,
+                radius,
+                phase,
+            },
+            Construction::Fixed { at: qp },
+        ) = (self.steps[k], self.steps[q])
         else {
             return None;
         };
         let Construction::Fixed { at: o } = self.steps[centre] else {
             return None;
         };
-        Some((crate::scalar::length(qp - o), radius, dyad.r1, dyad.r2))
+        Some(CrankFixedDyad {
+            gv: qp - o,
+            r: radius,
+            phase,
+            r1: dyad.r1,
+            r2: dyad.r2,
+        })
     }
 
     /// Whether a tracked sweep may ever change joint `i`'s orientation: false for joints
@@ -632,12 +645,11 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// never by extrapolation: see [`Mechanism::flat_crossings`]); true otherwise.
     pub(crate) fn may_flip(&self, i: usize) -> bool {
         match self.steps[i] {
-            Construction::Dyad { .. } => {
-                self.crank_fixed_lengths(i).is_none_or(|(g, r, r1, r2)| {
-                    let [at_zero, at_pi] = crate::fourbar::flat_angles(g, r, r1, r2);
-                    at_zero.is_some() || at_pi.is_some()
-                })
-            }
+            Construction::Dyad { .. } => self.crank_fixed_dyad(i).is_none_or(|d| {
+                let (g, r, r1, r2) = (d.g(), d.r, d.r1, d.r2);
+                let [at_zero, at_pi] = crate::fourbar::flat_angles(g, r, r1, r2);
+                at_zero.is_some() || at_pi.is_some()
+            }),
             Construction::Slider { .. } => true,
             _ => false,
         }
@@ -651,13 +663,12 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// tracker needs no walk between samples.
     pub(crate) fn branches_in_closed_form(&self) -> bool {
         (0..self.len).all(|i| match self.steps[i] {
-            Construction::Dyad { .. } => {
-                self.crank_fixed_lengths(i).is_some_and(|(g, r, r1, r2)| {
-                    let (delta, sigma) = ((r1 - r2).abs(), r1 + r2);
-                    let tol = eps::<T>() * lit::<T>(8.0) * (g + r + sigma);
-                    (g - r).abs() >= delta - tol && g + r <= sigma + tol
-                })
-            }
+            Construction::Dyad { .. } => self.crank_fixed_dyad(i).is_some_and(|d| {
+                let (g, r, r1, r2) = (d.g(), d.r, d.r1, d.r2);
+                let (delta, sigma) = ((r1 - r2).abs(), r1 + r2);
+                let tol = eps::<T>() * lit::<T>(8.0) * (g + r + sigma);
+                (g - r).abs() >= delta - tol && g + r <= sigma + tol
+            }),
             Construction::Slider { .. } => false,
             _ => true,
         })
