@@ -98,6 +98,14 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
         }
     }
 
+    /// The dyads [`Self::orient`] turns at driver angle `t`, for a sample posed one by one
+    /// ([`Mechanism::pose_oriented`]): the parity of their flat positions differs from the
+    /// reference's (`Mechanism::flat_parity`, the same bits as the block's).
+    pub(crate) fn flipped(&self, t: T) -> [bool; N] {
+        self.flats
+            .map(|f| f.is_some_and(|(flats, at_reference)| flats.at(t) != at_reference))
+    }
+
     /// Whether the kernel poses `mech` (see the module): no slider, ordinary sizes.
     pub(crate) fn applies(mech: &Mechanism<T, N>) -> bool {
         let (lo, hi) = (lit::<T>(ORDINARY.0), lit::<T>(ORDINARY.1));

@@ -645,13 +645,8 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let blocks = BlockPoses::<T, N>::applies(self.mech);
         let mut blk = BlockPoses::<T, N>::new();
         blk.prepare(self.mech);
-        // The flat positions' parities at the reference, for samples posed one by one.
-        let mut parity_at_reference = [None; N];
         if let Some(r) = reference {
             blk.orient(self.mech, r);
-            for (i, p) in parity_at_reference.iter_mut().enumerate().take(j) {
-                *p = self.mech.flat_parity(i, r);
-            }
         }
         let mut rts = BlockRates::<T, N>::new();
         // Unit-drive rates and body turns, built only for sweeps that ask for centres or
@@ -716,12 +711,7 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
                     }
                     (blk.margin[b], blk.watched[b])
                 } else {
-                    let mut flipped = [false; N];
-                    for (i, f) in flipped.iter_mut().enumerate().take(j) {
-                        if let Some(at_reference) = parity_at_reference[i] {
-                            *f = self.mech.flat_parity(i, th) != Some(at_reference);
-                        }
-                    }
+                    let flipped = blk.flipped(th);
                     match self
                         .mech
                         .pose_oriented(th, &mut self.pos[..j], watched, &flipped)
