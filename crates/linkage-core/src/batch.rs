@@ -44,6 +44,7 @@ use nalgebra::RealField;
 
 use crate::error::{check_finite, Error};
 use crate::fourbar::{flat_angles, Assembly, FourBar};
+use crate::held::{self, BlockPoses};
 use crate::scalar::{lit, nan, Vec2};
 use crate::tracker::{Rates, Tracker};
 
@@ -374,19 +375,8 @@ impl<'a, T: RealField + Copy> FourBarBatch<'a, T> {
                     *v = p.x.is_finite() && p.y.is_finite();
                 }
                 if any_near {
-                    // The program built once for the block's near samples (FourBar::pose
-                    // builds it per call): the same bits.
-                    let mech = fb.mechanism();
-                    let mut joints = [Vec2::zeros(); 5];
-                    for (j, (p, v)) in out.iter_mut().zip(ok.iter_mut()).enumerate() {
-                        if near[j] {
-                            work.exact += 1;
-                            (*p, *v) = match mech.pose(theta[start + j], &mut joints) {
-                                Ok(_) => (joints[FourBar::<T>::P], true),
-                                Err(_) => (Vec2::new(nan(), nan()), false),
-                            };
-                        }
-                    }
+                    let near = &near[..len];
+                    work.exact += exact_near(&fb, &theta[start..stop], near, out, ok);
                 }
             }
             start = stop;
@@ -422,6 +412,57 @@ fn fast_path<T: RealField + Copy>(fb: &FourBar<T>, lo: T, hi: T) -> bool {
     };
     let pad = lit::<T>(FLAT_PAD);
     fb.check_fixed_assembly_path(lo - pad, hi + pad).is_ok()
+}
+
+/// Solves again the samples of `theta` that `near` marks, as [`FourBar::pose`] does (the same
+/// bits): up to [`held::BLOCK`] of them at a time by the mechanism's block kernel, whose frame of
+/// the crank base is formed once, not per sample; a sample the kernel cannot vouch for by the
+/// pose itself. Returns how many were solved. (Inlined, so the binding's AVX builds of the
+/// batch vectorise its kernel wider too.)
+#[inline(always)]
+fn exact_near<T: RealField + Copy>(
+    fb: &FourBar<T>,
+    theta: &[T],
+    near: &[bool],
+    out: &mut [Vec2<T>],
+    ok: &mut [bool],
+) -> usize {
+    let mech = fb.mechanism();
+    let blocks = BlockPoses::<T, 5>::applies(&mech);
+    let mut blk = BlockPoses::<T, 5>::new();
+    blk.margins = false;
+    blk.prepare(&mech);
+    let mut marked = near.iter().enumerate().filter(|&(_, &n)| n).map(|(j, _)| j);
+    let (mut joints, mut solved) = ([Vec2::zeros(); 5], 0);
+    loop {
+        let (mut at, mut angles, mut m) = ([0; held::BLOCK], [T::zero(); held::BLOCK], 0);
+        for j in marked.by_ref().take(held::BLOCK) {
+            (at[m], angles[m], m) = (j, theta[j], m + 1);
+        }
+        if m == 0 {
+            return solved;
+        }
+        solved += m;
+        if blocks {
+            blk.pose(&mech, &angles, &[false; 5]);
+        }
+        for (b, &j) in at[..m].iter().enumerate() {
+            let p = Vec2::new(blk.x[FourBar::<T>::P][b], blk.y[FourBar::<T>::P][b]);
+            let vouched = blocks && !blk.scalar[b];
+            (out[j], ok[j]) = if vouched && blk.failed[b] {
+                // A closure miss beyond the pose's own tolerance (the same rule, the same
+                // bits): the pose fails there.
+                (Vec2::new(nan(), nan()), false)
+            } else if vouched && p.x.is_finite() && p.y.is_finite() {
+                (p, true)
+            } else {
+                match mech.pose(angles[b], &mut joints) {
+                    Ok(_) => (joints[FourBar::<T>::P], true),
+                    Err(_) => (Vec2::new(nan(), nan()), false),
+                }
+            };
+        }
+    }
 }
 
 /// Linkage `fb` over `theta` by the [`Tracker`], as a sweep of its mechanism does; `false`

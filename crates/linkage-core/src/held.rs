@@ -20,6 +20,24 @@ use crate::scalar::{eps, lit, tiny_square, Vec2};
 /// Samples per block.
 pub(crate) const BLOCK: usize = 16;
 
+/// The first [`BLOCK`] of `v` as a block, zeros past its end. A whole block is copied at a
+/// fixed length: the kernel's vector loads of it then read what vector stores wrote (a copy of
+/// unknown length, stored four or one at a time and loaded eight at a time, stalls on every
+/// block: measured 8 % of a point-only sweep).
+#[inline(always)]
+pub(crate) fn padded<T: RealField + Copy>(v: &[T]) -> [T; BLOCK] {
+    match v.get(..BLOCK).and_then(|w| <&[T; BLOCK]>::try_from(w).ok()) {
+        Some(&whole) => whole,
+        None => {
+            let mut b = [T::zero(); BLOCK];
+            for (d, &s) in b.iter_mut().zip(v) {
+                *d = s;
+            }
+            b
+        }
+    }
+}
+
 /// Joint positions of a block of samples, structure of arrays: `x[j][k]`, `y[j][k]` of joint
 /// `j` at sample `k`.
 pub(crate) struct BlockPoses<T, const N: usize> {
@@ -119,11 +137,11 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
         })
     }
 
-    /// Poses `theta` (at most [`BLOCK`] angles) on the declared orientations, the fixed joints
-    /// placed by [`Self::prepare`].
+    /// Poses the block of angles `theta` ([`padded`]: entries past the samples are zeros, whose
+    /// rows nobody reads) on the declared orientations, the fixed joints placed by
+    /// [`Self::prepare`].
     #[inline(always)]
-    pub(crate) fn pose(&mut self, mech: &Mechanism<T, N>, theta: &[T], watched: &[bool]) {
-        let n = theta.len().min(BLOCK);
+    pub(crate) fn pose(&mut self, mech: &Mechanism<T, N>, theta: &[T; BLOCK], watched: &[bool]) {
         let one = T::one();
         // Whole blocks (entries past n are never read): constant-length loops, no memset calls.
         self.margin = [one; BLOCK];
@@ -140,10 +158,10 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                     phase,
                 } => {
                     let mut angle = [T::zero(); BLOCK];
-                    for (a, &t) in angle.iter_mut().zip(&theta[..n]) {
+                    for (a, &t) in angle.iter_mut().zip(theta) {
                         *a = t + phase;
                     }
-                    // Angles past n stay 0: sin/cos of the whole block, a fixed-length loop.
+                    // sin/cos of the whole block, a fixed-length loop.
                     let (mut s, mut c) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
                     crate::trig::sin_cos_block(&angle, &mut s, &mut c);
                     let (cx, cy) = (self.x[centre], self.y[centre]);
@@ -155,8 +173,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                     (self.x[i], self.y[i]) = (xi, yi);
                 }
                 Construction::Dyad { p1, p2, dyad, side } => {
-                    let mut th = [T::zero(); BLOCK];
-                    th[..n].copy_from_slice(&theta[..n]);
+                    let th = *theta;
                     let (base, declared) = (self.bases[i], side.sign::<T>());
                     let mut sign = [declared; BLOCK];
                     if let Some((flats, at_reference)) = self.flats[i] {
@@ -188,19 +205,27 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                     let tiny = tiny_square::<T>();
                     let fixed = mech.link_length(from, to);
                     let inv_fixed = fixed.map_or(T::zero(), |l| T::one() / l);
-                    for k in 0..BLOCK {
-                        let (dx, dy) = (tx[k] - fx[k], ty[k] - fy[k]);
-                        let n2 = dx * dx + dy * dy;
-                        let inv = if fixed.is_some() {
-                            inv_fixed
-                        } else {
-                            T::one() / n2.sqrt()
-                        };
-                        // A link of (nearly) zero length: the scalar code rescales or refuses.
-                        scalar[k] |= n2 <= tiny || !n2.is_finite();
-                        let (ex, ey) = (dx * inv, dy * inv);
-                        xi[k] = fx[k] + ex * along + -ey * left;
-                        yi[k] = fy[k] + ey * along + ex * left;
+                    if fixed.is_some() {
+                        // The link's own length (ordinary, `applies`): never near zero, and a
+                        // sample whose joints are not finite is already marked (a failed dyad).
+                        for k in 0..BLOCK {
+                            let (dx, dy) = (tx[k] - fx[k], ty[k] - fy[k]);
+                            let (ex, ey) = (dx * inv_fixed, dy * inv_fixed);
+                            xi[k] = fx[k] + ex * along + -ey * left;
+                            yi[k] = fy[k] + ey * along + ex * left;
+                        }
+                    } else {
+                        for k in 0..BLOCK {
+                            let (dx, dy) = (tx[k] - fx[k], ty[k] - fy[k]);
+                            let n2 = dx * dx + dy * dy;
+                            let inv = T::one() / n2.sqrt();
+                            // A link of (nearly) zero length: the scalar code rescales or
+                            // refuses.
+                            scalar[k] |= n2 <= tiny || !n2.is_finite();
+                            let (ex, ey) = (dx * inv, dy * inv);
+                            xi[k] = fx[k] + ex * along + -ey * left;
+                            yi[k] = fy[k] + ey * along + ex * left;
+                        }
                     }
                     (self.x[i], self.y[i], self.scalar) = (xi, yi, scalar);
                 }
@@ -274,10 +299,9 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                 &mut scalar,
             );
         }
+        let (mut flat_at, mut any_flat) = ([false; BLOCK], false);
         for k in 0..BLOCK {
             let (dx, dy, d) = (dvx[k], dvy[k], dd[k]);
-            let tol = eight_eps
-                * (d + r1 + r2 + ax[k].abs().max(ay[k].abs()) + bx[k].abs().max(by[k].abs()));
             // Kahan's sides sorted: with r1, r2 fixed, hi = max(d, rmax), lo = min(d, rmin),
             // mid the other (the compare-swaps of `sorted_desc` give the same values).
             let (hi, mid, lo) = crate::dyad::sorted_with(d, rmin, rmax);
@@ -290,8 +314,8 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             } else {
                 prod.sqrt() * quarter
             };
-            // A closure miss beyond rounding (NaN included) is a failure.
-            failed[k] |= flat && (-f2 > tol || !f2.is_finite());
+            // Judged below (a rare case: the tolerance is not worth forming at every sample).
+            (flat_at[k], any_flat, given[k]) = (flat, any_flat | flat, f2);
             let inv_d = T::one() / d;
             let (ux, uy) = (dx * inv_d, dy * inv_d);
             let x = (d + diff * (sum * inv_d)) * half;
@@ -307,6 +331,15 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             let (fx, fy) = (ax[k] + ux * x, ay[k] + uy * x);
             xi[k] = fx + (-uy * h) * sign[k];
             yi[k] = fy + (ux * h) * sign[k];
+        }
+        if any_flat {
+            for k in 0..BLOCK {
+                let (d, f2) = (dd[k], given[k]);
+                let tol = eight_eps
+                    * (d + r1 + r2 + ax[k].abs().max(ay[k].abs()) + bx[k].abs().max(by[k].abs()));
+                // A closure miss beyond rounding (NaN included) is a failure.
+                failed[k] |= flat_at[k] && (-f2 > tol || !f2.is_finite());
+            }
         }
         (self.x[i], self.y[i]) = (xi, yi);
         (self.scalar, self.failed) = (scalar, failed);
@@ -532,7 +565,7 @@ mod timing {
             for _ in 0..9 {
                 let t = std::time::Instant::now();
                 for c in theta.chunks(BLOCK) {
-                    blk.pose(mech, c, &watched[..mech.len()]);
+                    blk.pose(mech, &padded(c), &watched[..mech.len()]);
                     sum += blk.x[mech.len() - 1][0];
                 }
                 best = best.min(t.elapsed().as_secs_f64());

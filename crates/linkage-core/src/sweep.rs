@@ -13,7 +13,7 @@ use nalgebra::RealField;
 use crate::bodies::{Bodies, BodyId, GROUND};
 use crate::centres::{path_curvature, relative_centre, BodyMotion, Centre};
 use crate::error::Error;
-use crate::held::{BlockPoses, BlockRates, BLOCK};
+use crate::held::{padded, BlockPoses, BlockRates, BLOCK};
 use crate::held_centres::BlockCentres;
 use crate::mechanism::{CrankRates, Mechanism};
 use crate::motion::rate_margin;
@@ -61,6 +61,17 @@ impl<T: Copy> Rate<'_, T> {
         match *self {
             Rate::Scalar(x) => x,
             Rate::PerSample(v) => v[k],
+        }
+    }
+}
+
+impl<T: RealField + Copy> Rate<'_, T> {
+    /// The values at samples `k0 … k0 + BLOCK` as a block ([`padded`]).
+    #[inline(always)]
+    fn block(&self, k0: usize) -> [T; BLOCK] {
+        match *self {
+            Rate::Scalar(x) => [x; BLOCK],
+            Rate::PerSample(v) => padded(v.get(k0..).unwrap_or_default()),
         }
     }
 }
@@ -541,11 +552,19 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         }
         let (j, cols) = (self.j, self.columns);
         let write = |buf: &mut [Vec2<T>], x: &[[T; BLOCK]; N], y: &[[T; BLOCK]; N]| match cols {
-            Columns::One(t) => {
-                for (b, p) in buf[k0..k0 + m].iter_mut().enumerate() {
-                    *p = Vec2::new(x[t][b], y[t][b]);
+            Columns::One(t) => match <&mut [Vec2<T>; BLOCK]>::try_from(&mut buf[k0..k0 + m]) {
+                // A whole block: a loop of known length, which vectorises.
+                Ok(whole) => {
+                    for (b, p) in whole.iter_mut().enumerate() {
+                        *p = Vec2::new(x[t][b], y[t][b]);
+                    }
                 }
-            }
+                Err(_) => {
+                    for (b, p) in buf[k0..k0 + m].iter_mut().enumerate() {
+                        *p = Vec2::new(x[t][b], y[t][b]);
+                    }
+                }
+            },
             Columns::All => {
                 for (b, row) in buf[k0 * j..(k0 + m) * j].chunks_exact_mut(j).enumerate() {
                     for (i, p) in row.iter_mut().enumerate() {
@@ -675,12 +694,9 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
             }
             let k1 = (k0 + BLOCK).min(n);
             if blocks {
-                blk.pose(self.mech, &theta[k0..k1], watched);
+                blk.pose(self.mech, &padded(&theta[k0..k1]), watched);
                 let mut done = if self.rates {
-                    let (mut w, mut a) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
-                    for b in 0..k1 - k0 {
-                        (w[b], a[b]) = (omega.at(k0 + b), alpha.at(k0 + b));
-                    }
+                    let (w, a) = (omega.block(k0), alpha.block(k0));
                     rts.rates(self.mech, &blk, &w, &a);
                     let r = Some((&rts, &w, &a));
                     self.block_write(&blk, r, toggle_margin, &theta[k0..k1], k0, out)

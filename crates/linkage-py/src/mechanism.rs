@@ -46,7 +46,17 @@ fn rate<'a>(
 /// (`theta must be finite: theta[3] is nan`): the check is done here, once, rather than by
 /// two numpy passes in Python (a few µs of a one-sample call).
 fn finite(name: &str, values: &[f64]) -> PyResult<()> {
-    match values.iter().position(|v| !v.is_finite()) {
+    // Chunks folded without early exit (a loop that vectorises), then the first bad one.
+    let bad_chunk = values
+        .chunks(256)
+        .position(|c| !c.iter().fold(true, |ok, v| ok & v.is_finite()));
+    let first = bad_chunk.and_then(|b| {
+        let tail = values.get(b * 256..)?;
+        tail.iter()
+            .position(|v| !v.is_finite())
+            .map(|k| b * 256 + k)
+    });
+    match first {
         None => Ok(()),
         Some(k) => {
             let v = values[k];
