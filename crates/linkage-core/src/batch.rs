@@ -369,11 +369,8 @@ impl<'a, T: RealField + Copy> FourBarBatch<'a, T> {
                 }
                 let row = i * n + start..i * n + stop;
                 let out = &mut points[row.clone()];
-                let any_near = kernel(&fb, &cos[..len], &sin[..len], out, &mut near[..len]);
                 let ok = &mut valid[row];
-                for (v, p) in ok.iter_mut().zip(out.iter()) {
-                    *v = p.x.is_finite() && p.y.is_finite();
-                }
+                let any_near = kernel(&fb, (&cos[..len], &sin[..len]), out, ok, &mut near[..len]);
                 if any_near {
                     let near = &near[..len];
                     work.exact += exact_near(&fb, &theta[start..stop], near, out, ok);
@@ -499,14 +496,14 @@ fn tracked_row<T: RealField + Copy>(
 
 /// The closed form over a block of crank directions, branch-free so it vectorises; `near[k]`
 /// marks the samples within [`NEAR_TOGGLE`] of a toggle (to be solved again exactly). A sample
-/// that cannot close gets a negative Kahan product, whose square root is NaN. Returns whether
-/// any sample is marked.
+/// that cannot close gets a negative Kahan product, whose square root is NaN, and `ok` false.
+/// Returns whether any sample is marked.
 #[inline(always)]
 fn kernel<T: RealField + Copy>(
     fb: &FourBar<T>,
-    cos: &[T],
-    sin: &[T],
+    (cos, sin): (&[T], &[T]),
     out: &mut [Vec2<T>],
+    ok: &mut [bool],
     near: &mut [bool],
 ) -> bool {
     let (o, c) = (fb.o, fb.c);
@@ -519,7 +516,8 @@ fn kernel<T: RealField + Copy>(
     let (rmax, rmin) = (r1.max(r2), r1.min(r2));
     let diff = (r1 - r2) * (r1 + r2);
     let mut any = false;
-    for (((p, nr), &cs), &sn) in out.iter_mut().zip(near.iter_mut()).zip(cos).zip(sin) {
+    let rows = out.iter_mut().zip(ok.iter_mut()).zip(near.iter_mut());
+    for (((p, v), nr), (&cs, &sn)) in rows.zip(cos.iter().zip(sin)) {
         let ax = o.x + r * cs;
         let ay = o.y + r * sn;
         let (dx, dy) = (c.x - ax, c.y - ay);
@@ -540,7 +538,10 @@ fn kernel<T: RealField + Copy>(
         // B − A = x·u + h·u⊥; P = A + along·e + left·e⊥ with e = (B − A)/r1.
         let ex = (x * ux - h * uy) * inv_r1;
         let ey = (x * uy + h * ux) * inv_r1;
-        *p = Vec2::new(ax + along * ex - left * ey, ay + along * ey + left * ex);
+        let (px, py) = (ax + along * ex - left * ey, ay + along * ey + left * ex);
+        // Written here, not by a second pass over the points (which compiled to gathers).
+        *v = px.is_finite() & py.is_finite();
+        *p = Vec2::new(px, py);
     }
     any
 }
