@@ -118,7 +118,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
 
     /// The dyads [`Self::orient`] turns at driver angle `t`, for a sample posed one by one
     /// ([`Mechanism::pose_oriented`]): the parity of their flat positions differs from the
-    /// reference's (`Mechanism::flat_parity`, the same bits as the block's).
+    /// reference's ([`FlatParity::at`], the same bits as the block's).
     pub(crate) fn flipped(&self, t: T) -> [bool; N] {
         self.flats
             .map(|f| f.is_some_and(|(flats, at_reference)| flats.at(t) != at_reference))
@@ -177,7 +177,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                     let (base, declared) = (self.bases[i], side.sign::<T>());
                     let mut sign = [declared; BLOCK];
                     if let Some((flats, at_reference)) = self.flats[i] {
-                        // Mechanism::flat_parity term for term, a block at a time.
+                        // FlatParity::at term for term, a block at a time.
                         let mut half = [T::zero(); BLOCK];
                         for (h, &t) in half.iter_mut().zip(&th) {
                             *h = flats.half(t);

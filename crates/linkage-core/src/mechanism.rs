@@ -150,7 +150,7 @@ impl<T: RealField + Copy> CrankFixedDyad<T> {
 }
 
 /// The flat positions of a dyad on a crank pin and a fixed joint, for their parity up to a
-/// driver angle ([`Mechanism::flat_parity`]): at `ψ = 0` (`zero`) and at `ψ = π` (`pi`), `ψ`
+/// driver angle ([`Mechanism::flat_positions`]): at `ψ = 0` (`zero`) and at `ψ = π` (`pi`), `ψ`
 /// the crank angle `t + phase` measured from the ground direction `β`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct FlatParity<T> {
@@ -174,6 +174,11 @@ impl<T: RealField + Copy> FlatParity<T> {
     #[inline(always)]
     pub(crate) fn of(&self, sin: T, cos: T) -> bool {
         (self.zero && sin < T::zero()) != (self.pi && cos > T::zero())
+    }
+
+    /// Whether the dyad has a flat position on its turn at all.
+    pub(crate) fn any(&self) -> bool {
+        self.zero || self.pi
     }
 
     /// The parity at driver angle `t`.
@@ -574,30 +579,18 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         Some((dv, if unit == T::one() { f2 } else { f2 * unit }))
     }
 
-    /// For a dyad on a crank pin and a fixed joint (see [`Mechanism::crank_base`]), whether an
-    /// odd number of its flat positions lies between driver angles `from` and `to`; `None` for
-    /// other constructions.
+    /// The flat positions of joint `i` when it is a dyad on a crank pin and a fixed joint
+    /// (see [`Mechanism::crank_base`]), for the parity of those between two driver angles.
     ///
     /// The dyad is flat where the crank pin is on the line through the crank centre and the
     /// fixed joint (`ψ = 0` or `π`) and the base length `|g ∓ r|` equals `|r1 − r2|` or
     /// `r1 + r2` (to `8ε` of the lengths: a change point). There the joint's signed height over
     /// its base is `∝ sin(ψ/2)` (or `cos`), an analytic function with a simple zero: each of
-    /// the two branches through the flat position changes side there, and only there. Flat
-    /// positions are counted as `⌊(ψ − ψ_f)/2π⌋` (mod 2), a function of the angle, so a path
-    /// that returns changes nothing.
-    pub(crate) fn flat_crossings(&self, i: usize, from: T, to: T) -> Option<bool> {
-        Some(self.flat_parity(i, from)? != self.flat_parity(i, to)?)
-    }
-
-    /// The parity of the flat positions of joint `i` (a dyad on a crank pin and a fixed joint;
-    /// `None` for other constructions) up to driver angle `t`: `⌊(ψ − ψ_f)/2π⌋ mod 2` summed
-    /// over its flat positions `ψ_f`, so that [`Mechanism::flat_crossings`] between two angles
-    /// is whether their parities differ (and counts along any path telescope).
-    pub(crate) fn flat_parity(&self, i: usize, t: T) -> Option<bool> {
-        Some(self.flat_positions(i)?.at(t))
-    }
-
-    /// The flat positions of joint `i` when it is a dyad on a crank pin and a fixed joint.
+    /// the two branches through the flat position changes side there, and only there. The
+    /// parity up to driver angle `t` ([`FlatParity::at`]) is `⌊(ψ − ψ_f)/2π⌋ mod 2` summed over
+    /// the flat positions `ψ_f`, a function of the angle: an odd number lies between two angles
+    /// exactly when their parities differ, and counts along any path telescope (a path that
+    /// returns changes nothing).
     pub(crate) fn flat_positions(&self, i: usize) -> Option<FlatParity<T>> {
         let d = self.crank_fixed_dyad(i)?;
         let [at_zero, at_pi] = crate::fourbar::flat_angles(d.g(), d.r, d.r1, d.r2);
@@ -642,7 +635,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// Whether a tracked sweep may ever change joint `i`'s orientation: false for joints
     /// without a branch and for a dyad on a crank pin and a fixed joint with no flat position
     /// (the tracker turns such a dyad only at its flat positions, counted in closed form, and
-    /// never by extrapolation: see [`Mechanism::flat_crossings`]); true otherwise.
+    /// never by extrapolation: see [`Mechanism::flat_positions`]); true otherwise.
     pub(crate) fn may_flip(&self, i: usize) -> bool {
         match self.steps[i] {
             Construction::Dyad { .. } => self.crank_fixed_dyad(i).is_none_or(|d| {
@@ -658,8 +651,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// Whether every joint's orientation is a function of the driver angle alone, known in
     /// closed form: every dyad is on a crank pin and a fixed joint, assembles over the whole
     /// turn (its base `|g − r| … g + r` within `[|r1 − r2|, r1 + r2]`, to the `8ε` of
-    /// [`Mechanism::flat_crossings`]), and there is no slider. Its orientation is then the
-    /// declared one, turned at each flat position crossed (counted by `flat_crossings`), and a
+    /// [`Mechanism::flat_positions`]), and there is no slider. Its orientation is then the
+    /// declared one, turned at each flat position crossed (counted by `flat_positions`), and a
     /// tracker needs no walk between samples.
     pub(crate) fn branches_in_closed_form(&self) -> bool {
         (0..self.len).all(|i| match self.steps[i] {
@@ -675,7 +668,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     }
 
     /// Whether joint `i` is a dyad on a crank pin and a fixed joint with a flat position on its
-    /// turn: its orientation turns there, counted in closed form ([`Mechanism::flat_crossings`]).
+    /// turn: its orientation turns there, counted in closed form ([`Mechanism::flat_positions`]).
     pub(crate) fn has_flats(&self, i: usize) -> bool {
         match self.steps[i] {
             Construction::Dyad { p1, p2, .. } => {

@@ -3,7 +3,7 @@
 use nalgebra::RealField;
 
 use crate::error::{check_finite, Error};
-use crate::mechanism::{Candidates, CrankRates, Mechanism};
+use crate::mechanism::{Candidates, CrankRates, FlatParity, Mechanism};
 use crate::scalar::{lit, Vec2};
 
 /// Assembly margin (`sin γ`, see [`crate::DyadPose::margin`]) below which a dyad is "near a
@@ -204,7 +204,7 @@ struct Snapshot<T: RealField + Copy, const N: usize> {
 /// double-cranks, parallelograms, kites, deltoids and other change points;
 /// `Mechanism::branches_in_closed_form`), has no choice left to the walk: an orientation turns
 /// exactly at each flat position crossed — counted at every placement, near a toggle or not —
-/// and at no other point. The count is a function of the angle (`Mechanism::flat_crossings`),
+/// and at no other point. The count is a function of the angle (`Mechanism::flat_positions`),
 /// so it telescopes along any path, and the tracker places each sample straight from the
 /// first one (or from the start angle), one placement a sample, in any order: the walk's bits,
 /// checked by a property test against the walk itself.
@@ -258,9 +258,11 @@ pub struct Tracker<'m, T: RealField + Copy, const N: usize> {
     /// Grid points per turn.
     fine: i64,
     work: u64,
-    /// Dyads whose orientation turns at flat positions counted in closed form
-    /// ([`Mechanism::has_flats`]): checked at every placement, near a toggle or not.
-    flats: [bool; N],
+    /// The flat positions of each dyad on a crank pin and a fixed joint
+    /// ([`Mechanism::flat_positions`], formed once): its orientation turns at those crossed,
+    /// counted in closed form at every placement, near a toggle or not; it has none to turn at
+    /// where both are absent.
+    parity: [Option<FlatParity<T>>; N],
     /// Whether every orientation is a function of the angle ([`Mechanism::branches_in_closed_form`]):
     /// samples are then placed from the first one with no walk between.
     closed_form: bool,
@@ -300,9 +302,9 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         for (s, c) in sign.iter_mut().zip(mech.constructions()) {
             *s = if c.initial_sign() < T::zero() { -1 } else { 1 };
         }
-        let mut flats = [false; N];
-        for (i, f) in flats.iter_mut().enumerate().take(mech.len()) {
-            *f = mech.has_flats(i);
+        let mut parity = [None; N];
+        for (i, p) in parity.iter_mut().enumerate().take(mech.len()) {
+            *p = mech.flat_positions(i);
         }
         Ok(Tracker {
             mech,
@@ -320,7 +322,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             toggle_margin,
             fine,
             work: 0,
-            flats,
+            parity,
             closed_form: mech.branches_in_closed_form(),
         })
     }
@@ -382,7 +384,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             *w = self.mech.may_flip(i);
         }
         // A dyad with flat positions turns there, whatever the margins on the grid.
-        let no_flats = !self.flats.iter().any(|&f| f);
+        let no_flats = !self.parity.iter().flatten().any(FlatParity::any);
         held && no_flats
             && (0..self.fine).all(|idx| {
                 matches!(
@@ -478,10 +480,13 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                     // both branches through one change side there, and only there.
                     // Counted at every placement, near a toggle or not: a grid step can cross
                     // one with both ends clear of the toggle margin (a fast-turning dyad).
-                    let flats = if (test || self.flats[i]) && self.nhist >= 1 {
-                        mech.flat_crossings(i, self.hist_theta[new], path)
-                    } else {
-                        None
+                    // Whether an odd number of flat positions lies between the last point
+                    // and here (None for a dyad not on a crank pin and a fixed joint).
+                    let flats = match self.parity[i] {
+                        Some(p) if (test || p.any()) && self.nhist >= 1 => {
+                            Some(p.any() && p.at(self.hist_theta[new]) != p.at(path))
+                        }
+                        _ => None,
                     };
                     if let Some(odd) = flats {
                         if odd {
