@@ -151,18 +151,21 @@ def sweep_fourbars(
     def pts(a: NDArray[np.float64]) -> NDArray[np.float64]:
         return np.ascontiguousarray(np.broadcast_to(a, (m, 2)), dtype=np.float64)
 
+    # Each parameter broadcast once, checked, and passed on as it is.
+    lens = {name: flat(v) for name, v in lengths.items()}
     for name in ("crank", "coupler", "rocker", "ground"):
-        if name in lengths:
-            _check_lengths(flat(lengths[name]), name)
-    for name, arr in (("point", pt), ("o", po), ("c", pc)):
+        if name in lens:
+            _check_lengths(lens[name], name)
+    pm, o_m = pts(pt), pts(po)
+    c_given = None if pc is None else pts(pc)
+    for name, arr in (("point", pm), ("o", o_m), ("c", c_given)):
         if arr is not None:
-            _check_finite(pts(arr), name)
-    o_m = pts(po)
-    if pc is None:
-        g = flat(lengths["ground"])
+            _check_finite(arr, name)
+    if c_given is None:
+        g = lens["ground"]
         c_m = np.ascontiguousarray(o_m + np.stack([g, np.zeros_like(g)], axis=-1))
     else:
-        c_m = pts(pc)
+        c_m = c_given
         same = np.all(c_m == o_m, axis=-1)
         if same.any():
             k = int(np.flatnonzero(same)[0])
@@ -176,13 +179,12 @@ def sweep_fourbars(
         and out[1].dtype == np.bool_
     ):
         raise TypeError("out must be a pair (float64 array, bool array)")
-    pm = pts(pt)
     points, valid = _core.batch_sweep(
         o_m,
         c_m,
-        flat(lengths["crank"]),
-        flat(lengths["coupler"]),
-        flat(lengths["rocker"]),
+        lens["crank"],
+        lens["coupler"],
+        lens["rocker"],
         np.ascontiguousarray(pm[:, 0]),
         np.ascontiguousarray(pm[:, 1]),
         flat(crossed, np.bool_),

@@ -228,14 +228,20 @@ pub fn batch_sweep<'py>(
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| {
                 (a.min(t), b.max(t))
             });
-        let cost = (0..m).fold(0usize, |acc, i| {
-            let per = if batch.is_tracked(i, lo, hi) {
-                TRACKED_COST
-            } else {
-                1
-            };
-            acc.saturating_add(n.saturating_mul(per))
-        });
+        // Every linkage costs at least its n samples: only a call smaller than INLINE samples
+        // needs the tracked linkages looked up (a pass over the batch).
+        let cost = if m.saturating_mul(n) >= INLINE {
+            INLINE
+        } else {
+            (0..m).fold(0usize, |acc, i| {
+                let per = if batch.is_tracked(i, lo, hi) {
+                    TRACKED_COST
+                } else {
+                    1
+                };
+                acc.saturating_add(n.saturating_mul(per))
+            })
+        };
         let stopped = py.detach(|| {
             if threads <= 1 && cost < INLINE {
                 sweep_part(simd, &batch, th, pts, ok, &|| true)
