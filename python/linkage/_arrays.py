@@ -5,15 +5,17 @@ from __future__ import annotations
 import os
 import sys
 from numbers import Real
-from typing import Any
+from typing import Any, Literal, TypeVar, cast, overload
 
 import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
+from linkage._choices import Assembly, Reach, Side, SweepMode
 from linkage._core import LinkageError
 
 Float1D = NDArray[np.float64]
+C = TypeVar("C", bound=str)
 
 
 def as_angles(value: Any, name: str = "theta", finite: bool = True) -> tuple[Float1D, bool]:
@@ -144,11 +146,22 @@ def as_flag(value: Any, name: str) -> bool:
     raise TypeError(f"{name} must be True or False, got {_short(value)}")
 
 
+@overload
+def choices(kind: Literal["assembly"]) -> tuple[Assembly, ...]: ...
+@overload
+def choices(kind: Literal["side"]) -> tuple[Side, ...]: ...
+@overload
+def choices(kind: Literal["reach"]) -> tuple[Reach, ...]: ...
+@overload
+def choices(kind: Literal["mode"]) -> tuple[SweepMode, ...]: ...
+@overload
+def choices(kind: str) -> tuple[str, ...]: ...
 def choices(kind: str) -> tuple[str, ...]:
     """Return the names of one of the core's string choices, in the core's order.
 
     ``kind`` is ``"assembly"``, ``"side"``, ``"reach"`` or ``"mode"``: the names are defined once,
-    by the core's enums (``Assembly::NAMES`` …), and mirrored by the extension.
+    by the core's enums (``Assembly::NAMES`` …), and mirrored by the extension. Typed as the
+    ``linkage._choices`` alias of the kind.
 
     >>> choices("assembly")
     ('open', 'crossed')
@@ -156,7 +169,7 @@ def choices(kind: str) -> tuple[str, ...]:
     return tuple(_core.CHOICES[kind])
 
 
-def side_of(assembly: str) -> str:
+def side_of(assembly: Assembly) -> Side:
     """Return the dyad side (``"left"``/``"right"``) a four-bar's ``assembly`` puts ``B`` on.
 
     The core's rule (``Assembly::side``), mirrored by the extension.
@@ -164,7 +177,18 @@ def side_of(assembly: str) -> str:
     >>> side_of("open"), side_of("crossed")
     ('left', 'right')
     """
-    return _core.ASSEMBLY_SIDES[assembly]
+    return cast(Side, _core.ASSEMBLY_SIDES[assembly])
+
+
+def assembly_named(crossed: bool) -> Assembly:
+    """Return the name of the assembly whose crossed flag (the extension's) is ``crossed``.
+
+    The core's ``Assembly::NAMES`` are in declaration order, ``Open`` then ``Crossed``.
+
+    >>> assembly_named(False), assembly_named(True)
+    ('open', 'crossed')
+    """
+    return choices("assembly")[1 if crossed else 0]
 
 
 def one_of(kind: str) -> str:
@@ -177,7 +201,7 @@ def one_of(kind: str) -> str:
     return f"{', '.join(names[:-1])} or {names[-1]}" if len(names) > 1 else names[0]
 
 
-def as_choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:
+def as_choice(value: Any, name: str, allowed: tuple[C, ...]) -> C:
     """Return ``value`` if it is one of the names ``allowed``.
 
     A str that is not one of them is a ``LinkageError``, anything else a ``TypeError``.

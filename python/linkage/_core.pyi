@@ -6,6 +6,8 @@ import numpy as np
 from numpy.typing import NDArray
 from typing_extensions import final
 
+from linkage._choices import Assembly, Reach, Side, SweepMode
+
 __all__ = [
     "ASSEMBLY_SIDES",
     "CAPACITY",
@@ -80,12 +82,12 @@ class Mechanism:
     def driver(self) -> int | None: ...
     def fixed(self, x: float, y: float) -> int: ...
     def crank(self, centre: int, radius: float, phase: float = 0.0) -> int: ...
-    def dyad(self, p1: int, p2: int, r1: float, r2: float, side: str) -> int: ...
+    def dyad(self, p1: int, p2: int, r1: float, r2: float, side: Side) -> int: ...
     def slider(
-        self, pivot: int, r: float, origin: int, dx: float, dy: float, reach: str
+        self, pivot: int, r: float, origin: int, dx: float, dy: float, reach: Reach
     ) -> int: ...
     def slider_on_link(
-        self, pivot: int, r: float, origin: int, from_: int, to: int, angle: float, reach: str
+        self, pivot: int, r: float, origin: int, from_: int, to: int, angle: float, reach: Reach
     ) -> int: ...
     def point(self, from_: int, to: int, along: float, left: float) -> int: ...
     def describe(self) -> list[str]: ...
@@ -118,11 +120,11 @@ class FourBar:
         coupler: float,
         rocker: float,
         point: tuple[float, float],
-        assembly: str,
+        assembly: Assembly,
     ) -> FourBar: ...
     def parameters(
         self,
-    ) -> tuple[float, float, float, float, float, float, float, float, float, str]: ...
+    ) -> tuple[float, float, float, float, float, float, float, float, float, Assembly]: ...
     def grashof(self) -> str: ...
     def input_range(
         self,
@@ -134,7 +136,7 @@ class FourBar:
         theta0: float,
         dtheta: float,
         n: int,
-        mode: str = "table",
+        mode: SweepMode = "table",
         block: int = 64,
         threads: int = 1,
         out: NDArray[np.float64] | None = None,
@@ -168,11 +170,11 @@ class SliderCrank:
         crank: float,
         coupler: float,
         point: tuple[float, float],
-        reach: str,
+        reach: Reach,
     ) -> SliderCrank: ...
     def parameters(
         self,
-    ) -> tuple[float, float, float, float, float, float, float, float, str, float, float]: ...
+    ) -> tuple[float, float, float, float, float, float, float, float, Reach, float, float]: ...
     def input_range(
         self,
     ) -> str | tuple[float, float] | tuple[tuple[float, float], tuple[float, float]] | None: ...

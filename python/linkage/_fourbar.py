@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Any, Union
+from typing import TYPE_CHECKING, Any, Union, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
+from linkage._choices import Assembly, Output, SweepMode
 from linkage._core import LinkageError
 from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
 from linkage._sweep import Sweep
@@ -69,7 +70,7 @@ class FourBar:
         coupler: float | None = None,
         rocker: float | None = None,
         point: Sequence[float] = (0.0, 0.0),
-        assembly: str = "open",
+        assembly: Assembly = "open",
         o: Sequence[float] = (0.0, 0.0),
         c: Sequence[float] | None = None,
     ) -> None:
@@ -149,9 +150,9 @@ class FourBar:
         return (p[7], p[8])
 
     @property
-    def assembly(self) -> str:
+    def assembly(self) -> Assembly:
         """Assembly: "open" or "crossed"."""
-        return str(self._p()[9])
+        return cast(Assembly, str(self._p()[9]))
 
     def __repr__(self) -> str:
         return (
@@ -258,7 +259,7 @@ class FourBar:
         theta: ArrayLike | None = None,
         omega: ArrayLike | None = None,
         alpha: ArrayLike | None = None,
-        outputs: Iterable[str] = DEFAULT_OUTPUTS,
+        outputs: Iterable[Output] = DEFAULT_OUTPUTS,
         *,
         time: ArrayLike | None = None,
         drive: Drive | None = None,
@@ -288,7 +289,7 @@ class FourBar:
         theta0: float,
         dtheta: float,
         n: int,
-        mode: str = "table",
+        mode: SweepMode = "table",
         block: int = 64,
         threads: int = 1,
         out: NDArray[np.float64] | None = None,

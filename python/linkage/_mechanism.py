@@ -20,6 +20,7 @@ from linkage._arrays import (
     as_rate,
     choices,
 )
+from linkage._choices import Output, Reach, Side
 from linkage._core import LinkageError
 from linkage._mobility import Mobility
 from linkage._sweep import OUTPUTS, Sweep
@@ -27,7 +28,7 @@ from linkage._sweep import OUTPUTS, Sweep
 if TYPE_CHECKING:  # drive.py imports this module
     from linkage.drive import Drive
 
-DEFAULT_OUTPUTS = ("point", "joints")
+DEFAULT_OUTPUTS: tuple[Output, ...] = ("point", "joints")
 
 
 @functools.lru_cache(maxsize=64)
@@ -242,7 +243,7 @@ class Mechanism:
         ph = as_finite(phase, "phase")
         self._add(name, lambda: self._core.crank(c, r, ph))
 
-    def dyad(self, name: str, p1: str, p2: str, r1: float, r2: float, side: str = "left") -> None:
+    def dyad(self, name: str, p1: str, p2: str, r1: float, r2: float, side: Side = "left") -> None:
         """Add an RRR dyad: the joint at ``r1`` from ``p1`` and ``r2`` from ``p2``.
 
         It is initially on ``side`` ("left" or "right") of the directed line ``p1 → p2``.
@@ -272,7 +273,7 @@ class Mechanism:
         direction: Sequence[float] | None = None,
         link: tuple[str, str] | None = None,
         angle: float = 0.0,
-        reach: str = "ahead",
+        reach: Reach = "ahead",
     ) -> None:
         """Add an RRP slider dyad: the joint at ``r`` from ``pivot`` on a line through ``origin``.
 
@@ -404,7 +405,7 @@ class Mechanism:
         theta: ArrayLike | None = None,
         omega: ArrayLike | None = None,
         alpha: ArrayLike | None = None,
-        outputs: Iterable[str] = DEFAULT_OUTPUTS,
+        outputs: Iterable[Output] = DEFAULT_OUTPUTS,
         *,
         time: ArrayLike | None = None,
         drive: Drive | None = None,

@@ -26,7 +26,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_count, as_finite, as_real_array
+from linkage._arrays import as_count, as_finite, as_real_array, assembly_named
+from linkage._choices import Spacing
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 
@@ -225,6 +226,22 @@ def _dyads_four(p: list[tuple[float, float, float]], beta: Any, n: Any) -> list[
     return out
 
 
+def _placed(q: Sequence[float]) -> FourBar:
+    """Return the four-bar of the extension's placed parameters.
+
+    ``q`` is ``[ox, oy, cx, cy, crank, coupler, rocker, along, left, crossed]``.
+    """
+    return FourBar(
+        crank=q[4],
+        coupler=q[5],
+        rocker=q[6],
+        point=(q[7], q[8]),
+        assembly=assembly_named(bool(q[9])),
+        o=(q[0], q[1]),
+        c=(q[2], q[3]),
+    )
+
+
 def motion(
     poses: ArrayLike,
     *,
@@ -296,15 +313,7 @@ def motion(
         if not r["ok"][m]:
             continue
         q = r["params"][m]
-        fb = FourBar(
-            crank=q[4],
-            coupler=q[5],
-            rocker=q[6],
-            point=(q[7], q[8]),
-            assembly="crossed" if q[9] else "open",
-            o=(q[0], q[1]),
-            c=(q[2], q[3]),
-        )
+        fb = _placed(q)
         code = int(r["defect"][m])
         pose = int(r["defect_pose"][m])
         out.append(
@@ -373,7 +382,7 @@ def function(
     phi_range: Sequence[float],
     psi_range: Sequence[float],
     points: int | Sequence[float] = 3,
-    spacing: str = "chebyshev",
+    spacing: Spacing = "chebyshev",
     *,
     ground: float = 1.0,
     y_range: Sequence[float] | None = None,
@@ -445,15 +454,7 @@ def function(
         [float(v) for v in phi], [float(v) for v in psi], g, np.ascontiguousarray(phi_of(grid))
     )
     q = r["params"]
-    fb = FourBar(
-        crank=q[4],
-        coupler=q[5],
-        rocker=q[6],
-        point=(q[7], q[8]),
-        assembly="crossed" if q[9] else "open",
-        o=(q[0], q[1]),
-        c=(q[2], q[3]),
-    )
+    fb = _placed(q)
     want = psi_of(np.array([_call(f, float(x)) for x in grid]))
     err = np.asarray(r["output"], dtype=np.float64) - want
     err = (err + np.pi) % (2 * np.pi) - np.pi

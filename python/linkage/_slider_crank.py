@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from linkage import _core
 from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
+from linkage._choices import Output, Reach
 from linkage._core import LinkageError
 from linkage._fourbar import ArrayOrFloat
 from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
@@ -71,7 +72,7 @@ class SliderCrank:
         point: Sequence[float] = (0.0, 0.0),
         o: Sequence[float] = (0.0, 0.0),
         angle: float = 0.0,
-        reach: str = "ahead",
+        reach: Reach = "ahead",
     ) -> None:
         ox, oy = as_point(o, "o")
         if not isinstance(reach, str) or reach not in choices("reach"):
@@ -123,9 +124,9 @@ class SliderCrank:
         return (p[6], p[7])
 
     @property
-    def reach(self) -> str:
+    def reach(self) -> Reach:
         """``"ahead"`` or ``"behind"``."""
-        return str(self._p()[8])
+        return cast(Reach, str(self._p()[8]))
 
     @property
     def line_point(self) -> tuple[float, float]:
@@ -192,7 +193,7 @@ class SliderCrank:
         theta: ArrayLike,
         omega: ArrayLike | None = None,
         alpha: ArrayLike | None = None,
-        outputs: Iterable[str] = DEFAULT_OUTPUTS,
+        outputs: Iterable[Output] = DEFAULT_OUTPUTS,
     ) -> Sweep:
         """Solve at each crank angle, tracking the reach (see :meth:`Mechanism.sweep`)."""
         return self.mechanism().sweep(theta, omega, alpha, outputs)

@@ -4,15 +4,16 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable
-from typing import Any
+from typing import Any, get_args
 
 import numpy as np
 from numpy.typing import NDArray
 
 from linkage._arrays import UnknownNameError, as_real
+from linkage._choices import Output
 from linkage._core import RATE_MARGIN, LinkageError
 
-OUTPUTS = ("point", "joints", "velocity", "acceleration", "instant_centres", "curvature")
+OUTPUTS: tuple[Output, ...] = get_args(Output)
 """Names accepted by ``outputs=``: the trace point, every joint, their rates, the instant centres
 of every pair of links, and the path curvature of every joint."""
 

@@ -16,7 +16,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_real_array, choices, one_of
+from linkage._arrays import as_angles, as_count, as_real_array, assembly_named, choices, one_of
+from linkage._choices import Assembly
 from linkage._core import LinkageError
 from linkage._mechanism import Mechanism
 
@@ -30,7 +31,7 @@ def sweep_fourbars(
     rocker: ArrayLike | None = None,
     point: ArrayLike = (0.0, 0.0),
     theta: ArrayLike | None = None,
-    assembly: str | ArrayLike = "open",
+    assembly: Assembly | ArrayLike = "open",
     threads: int = 1,
     *,
     o: ArrayLike | None = None,
@@ -285,7 +286,9 @@ def _assembly(value: Any) -> NDArray[np.bool_]:
         raise LinkageError(
             f"assembly{where} must be {one_of('assembly')}, got {str(values.reshape(-1)[k])!r}"
         )
-    crossed: NDArray[np.bool_] = np.asarray(values == "crossed", dtype=np.bool_).reshape(shape)
+    crossed: NDArray[np.bool_] = np.asarray(values == assembly_named(True), dtype=np.bool_).reshape(
+        shape
+    )
     return crossed
 
 

@@ -69,6 +69,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage._choices import View
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -339,7 +340,7 @@ def mechanism_drawing(mech: FourBar | Mechanism, sweep: Sweep, units: str = "") 
 def walker_drawing(
     walker: Walker,
     sim: Simulation,
-    view: str = "side",
+    view: View = "side",
     leg_theta: Array | None = None,
     units: str = "",
 ) -> Drawing:

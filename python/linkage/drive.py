@@ -33,6 +33,7 @@ from linkage._arrays import (
     as_length,
     check_memory,
 )
+from linkage._choices import Law
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -43,7 +44,7 @@ LAWS: tuple[str, ...] = tuple(_core.motion_law_names())
 """Names of the motion laws."""
 
 
-def motion_law(name: str, u: ArrayLike) -> tuple[Array, Array, Array, Array]:
+def motion_law(name: Law, u: ArrayLike) -> tuple[Array, Array, Array, Array]:
     """Evaluate a dimensionless rise law on ``u ∈ [0, 1]``: ``(s, s', s'', s''')``.
 
     The derivatives are in ``u``. A rise ``L`` over ``β`` scales them as ``L·s``, ``L·s'/β``,
@@ -103,7 +104,7 @@ class Segment:
 
     duration: float
     rise: float = 0.0
-    law: str | None = None
+    law: Law | None = None
 
     def __post_init__(self) -> None:
         """Check the duration (positive), the rise (finite) and the law (a name of :data:`LAWS`)."""

@@ -47,6 +47,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage._arrays import choices, side_of
+from linkage._choices import Side, View
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -111,7 +112,7 @@ def drawing_of(res: Result) -> Drawing | None:
         # The view that shows the legs' linkages in their own plane: from the side for legs in
         # vertical planes, from above for legs in the horizontal plane (the hexapod's).
         flat = sum(leg.plane == "horizontal" for leg in res.walker.legs)
-        view = "top" if 2 * flat > len(res.walker.legs) else "side"
+        view: View = "top" if 2 * flat > len(res.walker.legs) else "side"
         return walker_drawing(res.walker, res.simulation, view, leg_theta, units=units)
     if res.sweep is not None and res.mechanism is not None:
         return mechanism_drawing(res.mechanism, res.sweep, units=units)
@@ -603,7 +604,7 @@ def _num_toml(x: float, decimals: int) -> str:
     return repr(round(float(x), decimals) + 0.0)
 
 
-def _mechanism_of(c: Candidate[FourBar], side: str, phase: float) -> Mechanism:
+def _mechanism_of(c: Candidate[FourBar], side: Side, phase: float) -> Mechanism:
     """Build the candidate from the joints of its exported scene: the crank at ``theta + phase``."""
     fb = c.linkage
     m = Mechanism()
@@ -633,7 +634,7 @@ def candidate_drive(c: Candidate[FourBar]) -> tuple[float, float]:
     return lo, span / omega
 
 
-def candidate_side(c: Candidate[FourBar], target: Array) -> str:
+def candidate_side(c: Candidate[FourBar], target: Array) -> Side:
     """Return the side of the exported scene's dyad (``B`` relative to ``A → C``).
 
     The candidate's assembly (``open`` is ``left``), except for a crank that rocks within its limits

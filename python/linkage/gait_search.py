@@ -19,12 +19,13 @@ import math
 from abc import ABC
 from collections.abc import Sequence
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, get_args
 
 import numpy as np
 from numpy.typing import NDArray
 
 from linkage._arrays import as_choice, as_count, as_finite
+from linkage._choices import Objective
 from linkage._core import LinkageError
 from linkage.drive import crank_schedule, stance_profile
 
@@ -45,7 +46,7 @@ class _Walkers(ABC):  # noqa: B024 (no abstract methods: a type to register with
 
 def search_phases(
     walker: Walker,
-    objective: str = "margin",
+    objective: Objective = "margin",
     step: float = math.radians(15.0),
     samples: int = 360,
     rounds: int = 3,
@@ -113,7 +114,7 @@ def search_phases(
     """
     if not isinstance(walker, _Walkers):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
-    objective = as_choice(objective, "objective", ("margin", "slip"))
+    objective = as_choice(objective, "objective", get_args(Objective))
     step = as_finite(step, "step")
     samples = as_count(samples, "samples")
     rounds = as_count(rounds, "rounds", 0)
@@ -179,7 +180,7 @@ def search_phases(
 def search_duty_factor(
     walker: Walker,
     foot_speed: float,
-    objective: str = "margin",
+    objective: Objective = "margin",
     duty_factors: Sequence[float] = tuple(np.linspace(0.5, 0.75, 11)),
     samples: int = 721,
 ) -> tuple[float, float]:
@@ -238,7 +239,7 @@ def search_duty_factor(
     """
     if not isinstance(walker, _Walkers):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
-    objective = as_choice(objective, "objective", ("margin", "slip"))
+    objective = as_choice(objective, "objective", get_args(Objective))
     samples = as_count(samples, "samples")
     walker._check_size(samples)
     if isinstance(duty_factors, (str, bytes)) or not hasattr(duty_factors, "__iter__"):

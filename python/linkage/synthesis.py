@@ -25,13 +25,14 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Generic, TypeVar, Union
+from typing import Any, Generic, TypeVar, Union, cast, get_args
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import as_count, as_finite, as_flag, as_point, as_real_array
+from linkage._choices import LinkageKind, PathKind
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._precision import (
@@ -75,7 +76,7 @@ DEFAULT_ENTRIES = 200_000
 DEFAULT_SLIDER_ENTRIES = 100_000
 """Entries of the default slider-crank atlas (four shape numbers against the four-bar's five)."""
 
-KINDS = ("fourbar", "slider-crank")
+KINDS: tuple[LinkageKind, ...] = get_args(LinkageKind)
 """The kinds of linkage :func:`path` searches (``kind="any"``: both)."""
 
 ATLAS_FORMAT = 3
@@ -92,7 +93,7 @@ Float2D = NDArray[np.float64]
 class _Kind:
     """What the search needs to know of a kind of linkage's placed parameter vector."""
 
-    name: str
+    name: LinkageKind
     params: int  # placed parameters
     entry: int  # atlas entry parameters
     lengths: tuple[int, ...]  # indices of the link lengths
@@ -134,7 +135,7 @@ class Atlas:
     params: NDArray[np.float64]
     harmonics: int
     samples: int
-    kind: str = "fourbar"
+    kind: LinkageKind = "fourbar"
 
     def __len__(self) -> int:
         """Return the number of entries."""
@@ -147,7 +148,7 @@ class Atlas:
         harmonics: int = 8,
         samples: int = 64,
         threads: int | None = None,
-        kind: str = "fourbar",
+        kind: LinkageKind = "fourbar",
     ) -> Atlas:
         """Build an atlas of ``entries`` entries on ``threads`` threads (default: every core).
 
@@ -232,7 +233,9 @@ def _threads(threads: int | None) -> int:
     return min(as_count(threads, "threads"), 256)
 
 
-def default_atlas(entries: int | None = None, harmonics: int = 8, kind: str = "fourbar") -> Atlas:
+def default_atlas(
+    entries: int | None = None, harmonics: int = 8, kind: LinkageKind = "fourbar"
+) -> Atlas:
     """Return the default atlas of ``kind``, built on first use into the cache folder.
 
     ``entries`` defaults to :data:`DEFAULT_ENTRIES` four-bars or
@@ -305,7 +308,7 @@ class Candidate(Generic[LinkageT]):
     through_limit: bool
     source: str
     params: NDArray[np.float64] = field(repr=False)
-    kind: str = "fourbar"
+    kind: LinkageKind = "fourbar"
 
     @property
     def min_transmission_deg(self) -> float:
@@ -639,7 +642,7 @@ def path(
     closed: bool = True,
     top: int = 5,
     *,
-    kind: str = "fourbar",
+    kind: PathKind = "fourbar",
     atlas: AtlasArg | Sequence[AtlasArg] = None,
     refine: int = 8,
     global_search: bool | None = None,
@@ -1135,7 +1138,7 @@ def command(args: argparse.Namespace) -> int:
     """``linkage synth curve.csv``: print the candidates as a table with units."""
     if int(args.top) < 1:
         raise LinkageError(f"--top must be at least 1, got {args.top}")
-    kind = getattr(args, "kind", "fourbar")
+    kind = cast(PathKind, getattr(args, "kind", "fourbar"))
     t0 = time.perf_counter()
     found = path(
         args.curve,

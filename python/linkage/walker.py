@@ -20,7 +20,7 @@ import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, get_args
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -34,6 +34,7 @@ from linkage._arrays import (
     as_point,
     check_memory,
 )
+from linkage._choices import Objective, Plane
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -44,7 +45,7 @@ from linkage.gait_search import search_duty_factor as search_duty_factor
 from linkage.gait_search import search_phases as search_phases
 
 Array = NDArray[np.float64]
-PLANES = ("sagittal", "horizontal")
+PLANES: tuple[Plane, ...] = get_args(Plane)
 
 
 @dataclass(frozen=True)
@@ -57,7 +58,7 @@ class Leg:
     """Body-frame position of the linkage's origin (x forward, y left, z up)."""
     phase: float = 0.0
     """Crank phase (rad): the leg's crank angle is the drive's plus this."""
-    plane: str = "sagittal"
+    plane: Plane = "sagittal"
     """"sagittal": the linkage's (x, y) is the body's (x, z); "horizontal": the body's (x, y),
     with ``lift`` giving the foot height."""
     mirror: bool = False
@@ -548,7 +549,7 @@ class Walker:
 
     def search_phases(
         self,
-        objective: str = "margin",
+        objective: Objective = "margin",
         step: float = math.radians(15.0),
         samples: int = 360,
         rounds: int = 3,
