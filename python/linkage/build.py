@@ -53,6 +53,30 @@ from linkage.figures import check_counts
 from linkage.forces import LinkMass, PointLoad, joint_forces
 from linkage.walker import Leg, Walker, gait_phases
 
+__all__ = [
+    "ARITHMETIC",
+    "CHUNK",
+    "CURVE_BYTES",
+    "POINTS_FILE_MAX",
+    "affordable_checks",
+    "build_cam",
+    "build_drive",
+    "build_masses",
+    "build_mechanism",
+    "build_study",
+    "build_walker",
+    "check_legs",
+    "check_memory_estimate",
+    "check_synthesis_memory",
+    "estimate_memory",
+    "no_assembly",
+    "run_duration",
+    "sample_count",
+    "synthesis_atlas",
+    "synthesis_target",
+    "validate",
+]
+
 Array = NDArray[np.float64]
 
 

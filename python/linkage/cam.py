@@ -26,6 +26,8 @@ from linkage._arrays import as_count, as_finite, as_length, check_memory
 from linkage._core import LinkageError
 from linkage.drive import Program, Segment
 
+__all__ = ["CamProfile", "DiscCam", "leg_lift", "leg_lift_cam"]
+
 Array = NDArray[np.float64]
 
 

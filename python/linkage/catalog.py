@@ -40,8 +40,41 @@ from linkage.geometry import straightness
 from linkage.legs import family
 from linkage.walker import Leg, Walker, gait_phases
 
+__all__ = [
+    "CACHE_FORMAT",
+    "FOUR_BARS",
+    "MULTI_LOOP",
+    "TABLE_SAMPLES",
+    "WALKERS",
+    "Figures",
+    "cache_dir",
+    "chebyshev",
+    "check_count",
+    "evans_a",
+    "evans_b",
+    "evans_c",
+    "figures",
+    "format_table",
+    "get",
+    "hart",
+    "hexapod_tripod",
+    "hoecken",
+    "hoecken_guided",
+    "hoecken_pantograph",
+    "jansen",
+    "klann",
+    "names",
+    "peaucellier",
+    "quadruped_hoecken",
+    "roberts",
+    "table",
+    "watt",
+]
+
 FOUR_BARS: tuple[str, ...] = tuple(_core.catalog_names()[0])
+"""Names of the catalogue's four-bars (the core's catalogue)."""
 MULTI_LOOP: tuple[str, ...] = tuple(_core.catalog_names()[1])
+"""Names of the catalogue's multi-loop linkages (the core's catalogue)."""
 
 
 def _four_bar(name: str) -> FourBar:

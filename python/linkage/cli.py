@@ -22,6 +22,8 @@ from pathlib import Path
 from linkage import catalog, scene
 from linkage._core import LinkageError
 
+__all__ = ["EXIT_ERROR", "EXIT_INTERNAL", "EXIT_INTERRUPTED", "MAX_FRAMES", "main", "print_table"]
+
 EXIT_ERROR = 2
 """Exit status for a mistake in the scene or the arguments, or a failed write."""
 EXIT_INTERNAL = 3

@@ -39,6 +39,21 @@ from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage.geometry import foot_path
 
+__all__ = [
+    "LAWS",
+    "ConstantSpeed",
+    "CrankSchedule",
+    "Drive",
+    "GearTrain",
+    "Geared",
+    "Program",
+    "Segment",
+    "StanceProfile",
+    "crank_schedule",
+    "motion_law",
+    "stance_profile",
+]
+
 Array = NDArray[np.float64]
 LAWS: tuple[str, ...] = tuple(_core.motion_law_names())
 """Names of the motion laws."""

@@ -56,6 +56,33 @@ from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawi
 from linkage.figures import Result, Row, length_unit, torque_unit
 from linkage.synthesis import Candidate, largest_distance
 
+__all__ = [
+    "CANDIDATE_COLUMNS",
+    "CANDIDATE_RPM",
+    "INSUNITS",
+    "SCHEMA",
+    "candidate_drive",
+    "candidate_rows",
+    "candidate_scene",
+    "candidate_side",
+    "csv_columns",
+    "default_pose",
+    "drawing_of",
+    "figure_json",
+    "layer_name",
+    "summary",
+    "svg_text",
+    "synthesis_drawing",
+    "synthesis_pose",
+    "write_cad",
+    "write_candidates_csv",
+    "write_csv",
+    "write_data",
+    "write_dxf",
+    "write_npz",
+    "write_synthesis",
+]
+
 Array = NDArray[np.float64]
 
 SCHEMA = "linkage-summary/1"

@@ -25,6 +25,27 @@ from linkage.geometry import StraightPart
 from linkage.synthesis import Candidate
 from linkage.walker import Simulation, Walker
 
+__all__ = [
+    "SIG_MAX",
+    "SIG_UNKNOWN",
+    "Result",
+    "Row",
+    "SynthesisRun",
+    "check_counts",
+    "exact",
+    "format_error",
+    "format_number",
+    "length_unit",
+    "pair",
+    "row",
+    "sci",
+    "significant_digits",
+    "spread",
+    "torque_unit",
+    "unit_label",
+    "versus",
+]
+
 Array = NDArray[np.float64]
 Value = Union[float, int, str, tuple[float, ...], None]
 """A figure's typed value: a number, a pair such as a range, a word (a class), or ``None`` for

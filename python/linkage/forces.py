@@ -39,6 +39,8 @@ from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage.drive import Drive
 
+__all__ = ["Forces", "LinkMass", "PointLoad", "forces", "joint_forces"]
+
 Array = NDArray[np.float64]
 
 

@@ -33,6 +33,8 @@ if TYPE_CHECKING:
     # Not imported when running: linkage.walker imports this module.
     from linkage.walker import Walker
 
+__all__ = ["search_duty_factor", "search_phases"]
+
 Array = NDArray[np.float64]
 
 

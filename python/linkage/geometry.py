@@ -22,6 +22,21 @@ from linkage._fourbar import FourBar
 from linkage._mobility import Mobility as Mobility  # re-exported: linkage.geometry.Mobility
 from linkage._mobility import mobility as mobility
 
+__all__ = [
+    "FootPath",
+    "Inflection",
+    "Mobility",
+    "StraightPart",
+    "ball_point",
+    "circumcentre",
+    "curvature_centre",
+    "foot_path",
+    "inflection_circle",
+    "mobility",
+    "straightness",
+    "three_point_centres",
+]
+
 Points = NDArray[np.float64]
 
 

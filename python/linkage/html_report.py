@@ -35,6 +35,8 @@ from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawi
 from linkage.drive import CrankSchedule
 from linkage.figures import Result, format_number, length_unit
 
+__all__ = ["MAX_FRAMES", "PAGE_SIZE", "PATH_POINTS", "frames", "page", "write_index"]
+
 Array = NDArray[np.float64]
 
 MAX_FRAMES = 720

@@ -30,6 +30,20 @@ from linkage import _core
 from linkage._core import LinkageError
 from linkage._mechanism import Mechanism
 
+__all__ = [
+    "CRANK",
+    "FAMILIES",
+    "FIGURES",
+    "GUIDED_REF",
+    "JANSEN_HOLY",
+    "KLANN_REF",
+    "OBJECTIVES",
+    "UNITS",
+    "Family",
+    "Settings",
+    "family",
+]
+
 Array = NDArray[np.float64]
 
 # -- figures ------------------------------------------------------------------------------

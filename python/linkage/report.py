@@ -51,6 +51,21 @@ from linkage.report_folder import prepare as prepare
 from linkage.report_folder import read_marker as read_marker
 from linkage.report_folder import write_folder as write_folder
 
+__all__ = [
+    "DEFAULT_BASE",
+    "GIF_DPI",
+    "MARKER",
+    "PALETTE",
+    "SYNTHESIS_SHOWN",
+    "default_folder",
+    "leg_legend",
+    "line_style",
+    "prepare",
+    "read_marker",
+    "write",
+    "write_folder",
+]
+
 
 def write(res: Result, folder: Path, frames: int = 48, force: bool = False) -> list[Path]:
     """Write the report for ``res`` to ``folder``; return the files written (in ``folder``).

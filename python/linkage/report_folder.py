@@ -39,6 +39,8 @@ from typing import Any
 from linkage._core import LinkageError
 from linkage._version import __version__
 
+__all__ = ["DEFAULT_BASE", "MARKER", "default_folder", "prepare", "read_marker", "write_folder"]
+
 MARKER = ".linkage-report"
 """Name of the marker file that makes a folder a report linkage wrote (and may replace)."""
 

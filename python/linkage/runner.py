@@ -65,6 +65,8 @@ from linkage.stage_figures import (
 )
 from linkage.walker import Walker
 
+__all__ = ["CAM_SAMPLES", "CONSTRAINTS", "STRAIGHT_RADIUS", "run"]
+
 Array = NDArray[np.float64]
 
 

@@ -39,6 +39,19 @@ from linkage.forces import Forces
 from linkage.geometry import StraightPart, straightness, three_point_centres
 from linkage.walker import Simulation, Walker
 
+__all__ = [
+    "STRAIGHT_RADIUS",
+    "cam_figures",
+    "drive_label",
+    "geometry_figures",
+    "rate_figures",
+    "straightness_figures",
+    "synthesis_figures",
+    "torque_figures",
+    "trajectory_figures",
+    "walker_figures",
+]
+
 Array = NDArray[np.float64]
 
 

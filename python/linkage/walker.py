@@ -44,8 +44,21 @@ from linkage.drive import Drive, Program
 from linkage.gait_search import search_duty_factor as search_duty_factor
 from linkage.gait_search import search_phases as search_phases
 
+__all__ = [
+    "GAITS",
+    "PLANES",
+    "Leg",
+    "Simulation",
+    "Walker",
+    "gait_phases",
+    "leg_labels",
+    "search_duty_factor",
+    "search_phases",
+]
+
 Array = NDArray[np.float64]
 PLANES: tuple[Plane, ...] = get_args(Plane)
+"""The planes a leg's linkage can move in (``Leg.plane``)."""
 
 
 @dataclass(frozen=True)
@@ -658,6 +671,7 @@ GAITS = {
     "diagonal": {"A": 0.0, "D": 0.0, "B": 0.5, "C": 0.5},
     "crawl": {"C": 0.0, "A": 0.25, "D": 0.5, "B": 0.75},
 }
+"""The named gaits of :func:`gait_phases`: by gait, each leg's share of the cycle by name."""
 
 
 def gait_phases(gait: str, legs: Sequence[str]) -> Array:

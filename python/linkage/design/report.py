@@ -28,6 +28,8 @@ from linkage.design.search import (
 from linkage.design.study_file import load_study
 from linkage.legs import FIGURES, OBJECTIVES, UNITS, family
 
+__all__ = ["chosen", "main_design", "scene_text", "write_report"]
+
 Array = NDArray[np.float64]
 
 

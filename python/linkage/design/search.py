@@ -29,6 +29,22 @@ from linkage._core import LinkageError
 from linkage._progress import Bar
 from linkage.legs import FIGURES, OBJECTIVES, Settings, family
 
+__all__ = [
+    "INITIAL_POPULATION",
+    "NEIGHBOUR_SPREAD",
+    "Constraints",
+    "Evaluator",
+    "Front",
+    "Study",
+    "evaluate_chunk",
+    "initial_population",
+    "objectives_and_constraints",
+    "pareto_front",
+    "placement",
+    "reference_figures",
+    "search",
+]
+
 Array = NDArray[np.float64]
 
 

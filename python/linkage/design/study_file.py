@@ -20,6 +20,8 @@ from linkage._toml_lines import Locator, NotText, decode
 from linkage.design.search import Constraints, Study
 from linkage.legs import FAMILIES, OBJECTIVES, Settings
 
+__all__ = ["StudyFile", "load_study"]
+
 if sys.version_info >= (3, 11):  # pragma: no cover - depends on the interpreter
     import tomllib
 else:  # pragma: no cover
