@@ -170,6 +170,16 @@ class FourBar:
         str
             "crank-rocker", "double-crank", "rocker-crank", "double-rocker", "change-point"
             (s + l = p + q) or "triple-rocker" (non-Grashof).
+
+        Examples
+        --------
+        >>> import linkage
+        >>> linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25).grashof()
+        'crank-rocker'
+        >>> linkage.FourBar(ground=20, crank=10, coupler=20, rocker=10).grashof()  # parallelogram
+        'change-point'
+        >>> linkage.FourBar(ground=10, crank=30, coupler=8, rocker=9).grashof()
+        'triple-rocker'
         """
         return str(self._core.grashof())
 
@@ -183,6 +193,19 @@ class FourBar:
         -------
         list of (float, float)
             The intervals ``(lo, hi)``, radians: none, one or two.
+
+        Examples
+        --------
+        A full-turn crank, a double-rocker's two circuits, and a linkage that never closes:
+
+        >>> import linkage
+        >>> linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25).input_ranges()
+        [(0.0, 6.283185307179586)]
+        >>> dr = linkage.FourBar(ground=20, crank=15, coupler=10, rocker=20)
+        >>> [(round(lo, 6), round(hi, 6)) for lo, hi in dr.input_ranges()]
+        [(0.505361, 2.046915), (-2.046915, -0.505361)]
+        >>> linkage.FourBar(ground=10, crank=30, coupler=8, rocker=9).input_ranges()
+        []
         """
         r = self._core.input_range()
         if r is None:
@@ -212,6 +235,17 @@ class FourBar:
         ------
         LinkageError
             When the linkage cannot be assembled at any angle.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> dr = linkage.FourBar(ground=20, crank=15, coupler=10, rocker=20)
+        >>> [round(a, 6) for a in dr.input_limits()]
+        [0.505361, 2.046915]
+        >>> linkage.FourBar(ground=10, crank=30, coupler=8, rocker=9).input_limits()
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: the linkage cannot be assembled at any crank angle
         """
         ranges = self.input_ranges()
         if not ranges:
@@ -236,6 +270,15 @@ class FourBar:
         float or (N,) float64
             The transmission angle (radians) at each crank angle; a float for a scalar
             ``theta``.
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25)
+        >>> np.degrees(fb.transmission_angle([0, np.pi / 2, np.pi])).round(4)
+        array([23.0739, 53.1301, 73.7398])
+        >>> linkage.FourBar(ground=20, crank=15, coupler=10, rocker=20).transmission_angle(np.pi)
+        nan
         """
         th, scalar = as_angles(theta, "theta")
         mu = self._core.transmission_angle(th)
@@ -251,6 +294,14 @@ class FourBar:
         -------
         Mechanism
             A new mechanism on each call, traced at ``P``.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+        >>> m = fb.mechanism()
+        >>> m.joint_names, m.trace, m.links
+        (('O', 'C', 'A', 'B', 'P'), 'P', ('ground', 'crank', 'coupler', 'rocker'))
         """
         return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS)
 
@@ -277,6 +328,20 @@ class FourBar:
         -------
         Sweep
             The sweep, with links ground, crank, coupler, rocker.
+
+        Examples
+        --------
+        A double-rocker's crank rocks between 0.505 and 2.047 rad: outside, NaN rows with a gap.
+
+        >>> import numpy as np, linkage
+        >>> dr = linkage.FourBar(ground=20, crank=15, coupler=10, rocker=20)
+        >>> s = dr.sweep([0.0, 1.0, np.pi], omega=1.0, outputs=("point", "velocity"))
+        >>> s.valid, s.gap
+        (array([False,  True, False]), array([5., 0., 5.]))
+        >>> s.velocity.round(6)
+        array([[       nan,        nan],
+               [-12.622065,   8.104535],
+               [       nan,        nan]])
         """
         sweeper = self._sweeper
         if sweeper is None:
@@ -338,6 +403,20 @@ class FourBar:
             linkage (where the motion would switch assembly).
         TypeError
             For arguments of the wrong type, or an ``out`` that is not a float64 numpy array.
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+        >>> fb.uniform_sweep(0.0, np.pi / 2, 4).round(6) + 0.0
+        array([[20.      , 48.989795],
+               [40.      , 40.      ],
+               [20.      , 40.      ],
+               [ 0.      , 40.      ]])
+        >>> fb.uniform_sweep(0.0, 0.1, 4, mode="fast")
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: mode must be 'trig', 'table' or 'recurrence', got "fast"
         """
         n, block, threads = (
             as_count(v, k) for k, v in (("n", n), ("block", block), ("threads", threads))
@@ -369,6 +448,12 @@ class FourBar:
         str
             ``"avx512"``, ``"avx2"`` (builds of the same kernel chosen at run time, same bits)
             or ``"portable"`` — also when the environment sets ``LINKAGE_PORTABLE=1``.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> linkage.FourBar.uniform_sweep_isa() in ("avx512", "avx2", "portable")
+        True
         """
         return str(_core.sweep_simd())
 
@@ -390,6 +475,17 @@ class FourBar:
         -------
         Sweep
             The circuit, with outputs "point", "joints" and "velocity" (joints O, C, A, B, P).
+
+        Examples
+        --------
+        A double-rocker goes from limit to limit on its assembly and back on the other:
+
+        >>> import numpy as np, linkage
+        >>> c = linkage.FourBar(ground=20, crank=15, coupler=10, rocker=20).circuit(5)
+        >>> c.theta.round(6)
+        array([0.505361, 1.276138, 2.046915, 2.046915, 0.505361])
+        >>> bool(np.allclose(c.point[0], c.point[-1])), bool(c.valid.all())
+        (True, True)
         """
         # The margin is the tracker's: |sin| of the transmission angle at B.
         theta, joints, velocity, margin = self._core.circuit(as_count(n, "n", 2))

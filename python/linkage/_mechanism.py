@@ -159,6 +159,13 @@ class Mechanism:
         -------
         tuple of tuple of str
             One tuple of joint names per link, in the order of :attr:`links`.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> m = linkage.catalog.hoecken().mechanism()  # a four-bar: O, C, A, B and the point P
+        >>> m.link_members()
+        (('O', 'C'), ('O', 'A'), ('A', 'B', 'P'), ('C', 'B'))
         """
         return tuple(tuple(self._names[j] for j in ms) for ms in self._core.bodies())
 
@@ -173,6 +180,12 @@ class Mechanism:
         -------
         Mobility
             The counts of links and pairs, and the ``degrees_of_freedom``.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> linkage.catalog.hoecken().mechanism().mobility()
+        Mobility(links=4, lower_pairs=4, higher_pairs=0, degrees_of_freedom=1)
         """
         links, lower, higher, dof = self._core.mobility()
         return Mobility(links, lower, higher, dof)
@@ -220,6 +233,15 @@ class Mechanism:
             Name of the new joint (non-empty, not already defined).
         at : (x, y)
             Its finite position.
+
+        Examples
+        --------
+        >>> m = Mechanism()
+        >>> m.fixed("O", (0, 0))
+        >>> m.fixed("O", (1, 0))
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: joint 'O' is already defined
         """
         x, y = as_point(at, "at")
         self._add(name, lambda: self._core.fixed(x, y))
@@ -237,6 +259,18 @@ class Mechanism:
             Crank length, positive and finite.
         phase : float, default 0.0
             Angle added to the crank angle ``θ`` of a sweep (radians).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> m = Mechanism()
+        >>> m.fixed("O", (0, 0)); m.crank("A", "O", radius=2, phase=np.pi / 2)
+        >>> m.sweep(0.0).point.round(12) + 0.0
+        array([0., 2.])
+        >>> m.crank("B", "X", radius=1)
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: centre: unknown joint 'X' (defined so far: O, A)
         """
         c = self._index(centre, "centre")
         r = as_length(radius, "radius")
@@ -258,6 +292,19 @@ class Mechanism:
             Distances from ``p1`` and ``p2`` (the two links' lengths), positive and finite.
         side : {"left", "right"}, default "left"
             Side of the directed line ``p1 → p2`` the joint starts on.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> m = Mechanism()
+        >>> m.fixed("O", (0, 0)); m.fixed("C", (2, 0)); m.crank("A", "O", 1)
+        >>> m.dyad("B", "A", "C", 2, 2, side="right")
+        >>> m.sweep(np.pi / 2).point.round(6)
+        array([ 0.25838, -0.98324])
+        >>> m.dyad("D", "A", "C", 1, 1, side="up")
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: side must be one of 'left', 'right', got 'up'
         """
         i, j = self._index(p1, "p1"), self._index(p2, "p2")
         a, b = as_length(r1, "r1"), as_length(r2, "r2")
@@ -300,6 +347,22 @@ class Mechanism:
             ``link``.
         reach : {"ahead", "behind"}, default "ahead"
             Which intersection of the circle about ``pivot`` with the line, along its direction.
+
+        Examples
+        --------
+        A slider-crank: ``B`` slides along the x axis through ``O``.
+
+        >>> import numpy as np
+        >>> m = Mechanism()
+        >>> m.fixed("O", (0, 0)); m.crank("A", "O", 1)
+        >>> m.slider("B", "A", 3, origin="O", direction=(1, 0))
+        >>> m.sweep([0.0, np.pi]).point.round(12) + 0.0
+        array([[4., 0.],
+               [2., 0.]])
+        >>> m.slider("D", "A", 3, origin="O")
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: slider needs exactly one of direction=(dx, dy) or link=(from, to)
         """
         p, o = self._index(pivot, "pivot"), self._index(origin, "origin")
         length = as_length(r, "r")
@@ -330,6 +393,15 @@ class Mechanism:
             Two different joints, defined before, that frame the carrying link.
         at : (along, left)
             Finite coordinates of the point in that frame.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> m = Mechanism()
+        >>> m.fixed("O", (0, 0)); m.crank("A", "O", 1)
+        >>> m.point("P", on=("O", "A"), at=(2, 1))  # 2 along the crank, 1 to its left
+        >>> m.sweep(np.pi / 2).point.round(12) + 0.0
+        array([-1.,  2.])
         """
         if isinstance(on, str) or len(on) != 2:
             raise LinkageError("on must be a pair of joint names (from, to)")
@@ -391,6 +463,19 @@ class Mechanism:
         -------
         Mechanism
             The new mechanism.
+
+        Examples
+        --------
+        >>> m = Mechanism.from_joints(
+        ...     [
+        ...         {"kind": "fixed", "name": "O", "at": (0, 0)},
+        ...         {"kind": "crank", "name": "A", "centre": "O", "radius": 1},
+        ...         {"kind": "point", "name": "P", "on": ("O", "A"), "along": 2},
+        ...     ],
+        ...     trace="A",
+        ... )
+        >>> m.joint_names, m.trace
+        (('O', 'A', 'P'), 'A')
         """
         m = cls()
         for j in joints:
@@ -446,9 +531,10 @@ class Mechanism:
         time : float or array_like of float, optional
             Times of the samples (keyword only), scalar or 1-D; given with ``drive``, instead of
             ``theta``, ``omega`` and ``alpha``.
-        drive : object, optional
-            An object whose ``angles(t)`` method returns ``θ, ω, α`` at the times ``t`` (keyword
-            only; see :mod:`linkage.drive`).
+        drive : Drive, optional
+            A :class:`linkage.drive.Drive`: anything whose ``angles(t)`` method returns
+            ``θ, ω, α`` at the times ``t`` (keyword only), such as ``ConstantSpeed``, a
+            ``Program`` or a ``CrankSchedule``.
 
         Returns
         -------
@@ -466,6 +552,20 @@ class Mechanism:
         TypeError
             When neither ``theta`` nor ``time`` and ``drive`` are given, for a ``drive``
             without an ``angles`` method, or for arguments of the wrong type.
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> from linkage.drive import ConstantSpeed
+        >>> m = linkage.catalog.hoecken().mechanism()
+        >>> s = m.sweep(time=[0.0, 0.25], drive=ConstantSpeed(omega=2 * np.pi))  # a turn a second
+        >>> s.time, s.theta.round(6), s.point.round(6)
+        (array([0.  , 0.25]), array([0.      , 1.570796]), array([[20.      , 48.989795],
+               [40.      , 40.      ]]))
+        >>> m.sweep(0.0, outputs=("point", "velocity"))
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: outputs 'velocity'/'acceleration' need omega (crank speed, rad/s)
         """
         if not self._names:
             raise LinkageError("the mechanism has no joints")

@@ -173,6 +173,19 @@ def centre_point_curve(poses: ArrayLike, n: int = 360) -> NDArray[np.float64]:
     LinkageError
         Not 4 poses, non-finite or coincident poses, or poses without a Burmester curve (pure
         translations, rotations about one point).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from linkage import synthesis
+    >>> poses = [(1.0, 1.1, 0.4), (0.3, 1.7, 0.3), (-0.6, 1.5, 0.5), (-1.0, 1.0, 0.9)]
+    >>> cp = synthesis.centre_point_curve(poses, n=8)
+    >>> cp.shape, np.flatnonzero(np.isnan(cp[:, 0]))  # rows where the curve has no real point
+    ((16, 2), array([1, 8, 9]))
+    >>> synthesis.centre_point_curve(poses[:3])
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: needs at least 4 poses, got 3
     """
     _, centres, _ = _curve(poses, n)
     return np.concatenate([centres[:, 0], centres[:, 1]])
@@ -182,6 +195,16 @@ def circle_point_curve(poses: ArrayLike, n: int = 360) -> NDArray[np.float64]:
     """Sample the circle-point curve of four poses (the moving pivots where they lie at pose 0).
 
     Sampled as :func:`centre_point_curve`: row ``i`` pairs with row ``i`` of that curve.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from linkage import synthesis
+    >>> slide = [(0, 0, 0), (1, 0, 0), (2, 1, 0), (3, 0, 0)]  # translations only
+    >>> synthesis.circle_point_curve(slide)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: degenerate synthesis: the four poses have no Burmester curve: ...
     """
     _, _, circles = _curve(poses, n)
     return np.concatenate([circles[:, 0], circles[:, 1]])
@@ -283,6 +306,24 @@ def motion(
         dyads.
     TypeError
         Points chosen for four poses, or ``beta`` for three.
+
+    Examples
+    --------
+    Three poses of a known four-bar's coupler, with its moving pivots chosen:
+
+    >>> import numpy as np, linkage
+    >>> from linkage import synthesis
+    >>> fb = linkage.FourBar(ground=2, crank=0.7, coupler=1.9, rocker=1.6, point=(0.8, 0.6))
+    >>> s = fb.sweep([0.4, 1.3, 2.5, 3.2])
+    >>> a, b = s.joints[:, 2], s.joints[:, 3]
+    >>> poses = np.column_stack([s.point, np.arctan2(*(b - a).T[::-1])])  # (x, y, angle)
+    >>> found = synthesis.motion(poses[:3], circle_points=[a[0], b[0]])
+    >>> [(c.reaches, c.defect) for c in found]
+    [(True, None), (False, 'branch')]
+    >>> synthesis.motion(poses[:3])
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: three poses leave two free choices per dyad: give circle_points= ...
     """
     p = _poses(poses, (3, 4))
     if len(p) == 3:
@@ -411,6 +452,20 @@ def function(
         linkage (a link of infinite or imaginary length), ``f`` not finite.
     TypeError
         ``f`` not callable or not returning a real number.
+
+    Examples
+    --------
+    A log10 generator over ``x ∈ [1, 2]`` (input 45°…105°, output 135°…225°):
+
+    >>> import math, numpy as np
+    >>> from linkage import synthesis
+    >>> g = synthesis.function(math.log10, (1, 2), np.radians((45, 105)), np.radians((135, 225)))
+    >>> g.reaches, g.grashof, f"{g.structural_error_y:.2g}", g.precision_points[:, 0].round(6)
+    (True, 'triple-rocker', '0.00056', array([1.066987, 1.5     , 1.933013]))
+    >>> synthesis.function(math.log10, (1, 2), (0, 1), (1, 2), points=2)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: needs at least 3 precision points, got 2
     """
     if not callable(f):
         raise TypeError(f"f must be callable, got {type(f).__name__}")

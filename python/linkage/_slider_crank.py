@@ -152,6 +152,14 @@ class SliderCrank:
 
         The rod then stands perpendicular to the line at one angle of a full turn, where the
         two reaches meet.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> linkage.SliderCrank(crank=2, coupler=3, offset=1).is_change_point()  # 1 + 2 = 3
+        True
+        >>> linkage.SliderCrank(crank=2, coupler=5, offset=1).is_change_point()
+        False
         """
         return bool(self._core.is_change_point())
 
@@ -161,6 +169,15 @@ class SliderCrank:
         ``[(angle, angle + 2π)]`` for a full turn; one interval between the toggle positions
         (rod perpendicular to the line); two mirror intervals (separate circuits), the first
         with the crank pin ahead of ``O`` along the line; ``[]`` if never.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> rocking = linkage.SliderCrank(crank=2, coupler=2.5, offset=1)
+        >>> [(round(lo, 6), round(hi, 6)) for lo, hi in rocking.input_ranges()]
+        [(-0.848062, 3.989655)]
+        >>> linkage.SliderCrank(crank=2, coupler=0.5, offset=5).input_ranges()  # never reaches
+        []
         """
         r = self._core.input_range()
         if r is None:
@@ -178,6 +195,13 @@ class SliderCrank:
 
         ``π/2`` with the rod along the line (best), ``0`` at a toggle (rod perpendicular to
         the line); NaN where the linkage cannot be assembled. Scalar in, scalar out.
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> rocking = linkage.SliderCrank(crank=2, coupler=2.5, offset=1)
+        >>> round(rocking.transmission_angle(0.0), 6), rocking.transmission_angle(1.5 * np.pi)
+        (1.159279, nan)
         """
         th, scalar = as_angles(theta, "theta")
         mu = self._core.transmission(th)
@@ -185,7 +209,15 @@ class SliderCrank:
 
     # -- sweeping -------------------------------------------------------------------------
     def mechanism(self) -> Mechanism:
-        """Return the linkage as a :class:`Mechanism` (joints O, G, A, B, P; traced at P)."""
+        """Return the linkage as a :class:`Mechanism` (joints O, G, A, B, P; traced at P).
+
+        Examples
+        --------
+        >>> import linkage
+        >>> m = linkage.SliderCrank(crank=2, coupler=5).mechanism()
+        >>> m.joint_names, m.links
+        (('O', 'G', 'A', 'B', 'P'), ('ground', 'crank', 'coupler', 'slider'))
+        """
         return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS)
 
     def sweep(
@@ -195,7 +227,20 @@ class SliderCrank:
         alpha: ArrayLike | None = None,
         outputs: Iterable[Output] = DEFAULT_OUTPUTS,
     ) -> Sweep:
-        """Solve at each crank angle, tracking the reach (see :meth:`Mechanism.sweep`)."""
+        """Solve at each crank angle, tracking the reach (see :meth:`Mechanism.sweep`).
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> sc = linkage.SliderCrank(crank=2, coupler=5, offset=1, point=(2.5, 0))
+        >>> s = sc.sweep([0.0, np.pi], omega=1.0, outputs=("point", "velocity"))
+        >>> s.joint("B").round(6), s.velocity.round(6)
+        (array([[6.898979, 1.      ],
+               [2.898979, 1.      ]]), array([[ 0.204124,  1.      ],
+               [-0.204124, -1.      ]]))
+        >>> linkage.SliderCrank(crank=2, coupler=2.5, offset=1).sweep([0.0, 4.0]).valid
+        array([ True, False])
+        """
         return self.mechanism().sweep(theta, omega, alpha, outputs)
 
     def circuit(self, n: int = 721) -> Sweep:
@@ -210,6 +255,17 @@ class SliderCrank:
         ------
         LinkageError
             When the linkage never assembles, or ``n < 2``.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> c = linkage.SliderCrank(crank=2, coupler=2.5, offset=1).circuit(5)
+        >>> c.theta.round(6)
+        array([-0.848062,  1.570796,  3.989655,  1.570796, -0.848062])
+        >>> linkage.SliderCrank(crank=2, coupler=5).circuit(1)
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: n must be an int ≥ 2, got 1
         """
         theta, joints, margin = self._core.circuit(as_count(n, "n", 2))
         valid = np.isfinite(joints[:, 4, 0])

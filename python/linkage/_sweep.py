@@ -181,6 +181,23 @@ class Sweep:
             When ``threshold`` is NaN.
         TypeError
             When ``threshold`` is not a real number.
+
+        Examples
+        --------
+        At a double-rocker's limits the sample is placed, flagged, and its rates are NaN:
+
+        >>> import numpy as np, linkage
+        >>> dr = linkage.FourBar(ground=20, crank=15, coupler=10, rocker=20)
+        >>> lo, hi = dr.input_limits()
+        >>> s = dr.sweep([lo, 1.0, hi], omega=1.0, outputs=("point", "velocity"))
+        >>> s.valid, s.near_toggle()
+        (array([ True,  True,  True]), array([ True, False,  True]))
+        >>> s.regular, np.isnan(s.velocity[:, 0])
+        (array([False,  True, False]), array([ True, False,  True]))
+        >>> s.near_toggle(float("nan"))
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: threshold must be a number, got nan
         """
         t = as_real(threshold, "threshold")
         if np.isnan(t):
@@ -208,6 +225,18 @@ class Sweep:
             When there is no joint ``name`` (an ``UnknownNameError``, also a ``KeyError``).
         TypeError
             When ``name`` is not a str.
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> s = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25).sweep([0.0, np.pi / 2])
+        >>> s.joint("B").round(6)
+        array([[15.      , 24.494897],
+               [20.      , 25.      ]])
+        >>> s.joint("Q")
+        Traceback (most recent call last):
+        ...
+        linkage._arrays.UnknownNameError: no joint 'Q'; joints are O, C, A, B, P
         """
         if not isinstance(name, str):
             raise TypeError(f"name must be a joint name (str), got {type(name).__name__}")
@@ -279,6 +308,21 @@ class Sweep:
             When ``a`` or ``b`` is not a str.
         AttributeError
             When the sweep was not asked for ``"instant_centres"``.
+
+        Examples
+        --------
+        Crank and rocker turn about a point of the ground line; at θ = π/2 they are parallel, so
+        the coupler translates and its centre with the ground is at infinity (NaN):
+
+        >>> import numpy as np, linkage
+        >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25)
+        >>> s = fb.sweep([0.0, np.pi / 2], outputs=("joints", "instant_centres"))
+        >>> s.instant_centre("crank", "rocker").round(6) + 0.0
+        array([[ 10.      ,   0.      ],
+               [-13.333333,   0.      ]])
+        >>> s.instant_centre("ground", "coupler").round(6) + 0.0
+        array([[20.,  0.],
+               [nan, nan]])
         """
         if not isinstance(a, str) or not isinstance(b, str):
             raise TypeError(

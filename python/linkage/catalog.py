@@ -115,6 +115,12 @@ def roberts() -> FourBar:
     -------
     FourBar
         A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+
+    Examples
+    --------
+    >>> fb = roberts()
+    >>> fb.grashof(), [round(x, 4) for x in fb.input_limits()]
+    ('double-rocker', [0.5054, 1.6961])
     """
     return _four_bar("roberts")
 
@@ -126,6 +132,12 @@ def chebyshev() -> FourBar:
     -------
     FourBar
         A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+
+    Examples
+    --------
+    >>> fb = chebyshev()
+    >>> fb.grashof(), fb.assembly, [round(x, 4) for x in fb.input_limits()]
+    ('double-rocker', 'crossed', [0.6435, 1.7722])
     """
     return _four_bar("chebyshev")
 
@@ -154,6 +166,12 @@ def evans_a() -> FourBar:
     -------
     FourBar
         A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+
+    Examples
+    --------
+    >>> fb = evans_a()
+    >>> fb.grashof(), [round(x, 4) for x in fb.input_limits()]
+    ('triple-rocker', [0.4832, 5.8])
     """
     return _four_bar("evans_a")
 
@@ -165,6 +183,12 @@ def evans_b() -> FourBar:
     -------
     FourBar
         A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+
+    Examples
+    --------
+    >>> fb = evans_b()
+    >>> fb.grashof(), [round(x, 4) for x in fb.input_limits()]
+    ('triple-rocker', [-1.4161, 1.4161])
     """
     return _four_bar("evans_b")
 
@@ -176,6 +200,12 @@ def evans_c() -> FourBar:
     -------
     FourBar
         A new linkage (mm), crank pivot ``O`` at the origin, rocker pivot ``C`` on the +x axis.
+
+    Examples
+    --------
+    >>> fb = evans_c()
+    >>> fb.grashof(), [round(x, 4) for x in fb.input_limits()]
+    ('triple-rocker', [-1.3181, 1.3181])
     """
     return _four_bar("evans_c")
 
@@ -205,6 +235,15 @@ def hart() -> Mechanism:
     -------
     Mechanism
         A new linkage (mm) whose ``trace`` is the straight-line point.
+
+    Examples
+    --------
+    The crank cannot reach every angle: at 0 the sample is NaN.
+
+    >>> m = hart()
+    >>> s = m.sweep([0.0, 1.0])
+    >>> m.trace, s.valid, s.point[1].round(4)
+    ('P', array([False,  True]), array([ 7.5   , 13.7287]))
     """
     return _linkage("hart")
 
@@ -250,6 +289,12 @@ def jansen() -> Mechanism:
     -------
     Mechanism
         A new linkage whose ``trace`` is the foot ``F``.
+
+    Examples
+    --------
+    >>> m = jansen()
+    >>> m.joint_names, m.trace, m.mobility().degrees_of_freedom
+    (('O', 'Q', 'A', 'B', 'C', 'D', 'E', 'F'), 'F', 1)
     """
     return _linkage("jansen")
 
@@ -287,6 +332,12 @@ def klann() -> Mechanism:
     -------
     Mechanism
         A new linkage whose ``trace`` is the foot ``F``.
+
+    Examples
+    --------
+    >>> m = klann()
+    >>> m.joint_names, m.trace, bool(m.sweep([0.0, 1.0]).valid.all())
+    (('O', 'PA', 'PB', 'C', 'D', 'M', 'E', 'F'), 'F', True)
     """
     fam = family("klann")
     m: Mechanism = fam.mechanism(fam.reference)
@@ -640,6 +691,12 @@ def table(rel_tol: float = 1e-3, samples: int = TABLE_SAMPLES, cache: bool = Tru
     ------
     LinkageError
         As :func:`figures`.
+
+    Examples
+    --------
+    >>> rows = table(samples=73, cache=False)
+    >>> rows[0].name, rows[0].samples, rows[0].straight_length_error is not None
+    ('watt', 73, True)
     """
     rel_tol = as_finite(rel_tol, "rel_tol")
     samples = as_count(samples, "samples", 3)

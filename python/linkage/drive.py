@@ -137,7 +137,15 @@ class Drive(Protocol):
     """Anything that gives crank angle, speed and acceleration against time."""
 
     def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
-        """Return ``(θ, ω, α)``, crank angle, speed and acceleration, at times ``t``."""
+        """Return ``(θ, ω, α)``, crank angle, speed and acceleration, at times ``t``.
+
+        Examples
+        --------
+        Every drive of this module is one, e.g. :class:`ConstantSpeed`:
+
+        >>> ConstantSpeed(omega=2.0, theta0=1.0).angles([0.0, 0.5])
+        (array([1., 2.]), array([2., 2.]), array([0., 0.]))
+        """
         ...
 
 
@@ -215,7 +223,17 @@ class Program:
         return out[:, 0], out[:, 1], out[:, 2], out[:, 3]
 
     def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
-        """Return ``(θ, ω, α)`` at times ``t``: :meth:`eval` without the third derivative."""
+        """Return ``(θ, ω, α)`` at times ``t``: :meth:`eval` without the third derivative.
+
+        Examples
+        --------
+        A rise of 2 rad over 1 s and a dwell of 0.5 s; the next period starts 2 rad further:
+
+        >>> p = Program(0.0, [Segment(1.0, 2.0, "simple-harmonic"), Segment(0.5)])
+        >>> theta, omega, alpha = p.angles([0.5, 1.25, 2.0])
+        >>> theta, omega.round(6), alpha.round(6) + 0.0
+        (array([1., 2., 3.]), array([3.141593, 0.      , 3.141593]), array([0., 0., 0.]))
+        """
         y, v, a, _ = self.eval(t)
         return y, v, a
 
@@ -223,6 +241,17 @@ class Program:
         """Return the jumps at the joins (the last to the first included).
 
         Each is ``(after segment, order, jump)`` with order 1 velocity, 2 acceleration, 3 jerk.
+
+        Examples
+        --------
+        Simple-harmonic rises jump in acceleration at both ends, cycloidal ones only in jerk:
+
+        >>> harmonic = Program(0.0, [Segment(1.0, 2.0, "simple-harmonic"), Segment(0.5)])
+        >>> [(after, order, round(jump, 6)) for after, order, jump in harmonic.discontinuities()]
+        [(0, 2, -9.869604), (1, 2, -9.869604)]
+        >>> cycloidal = Program(0.0, [Segment(1.0, 2.0, "cycloidal"), Segment(0.5)])
+        >>> [(after, order) for after, order, _ in cycloidal.discontinuities()]
+        [(0, 3), (1, 3)]
         """
         raw = _core.program_discontinuities(*self._args(), as_finite(tol, "tol"))
         return [(int(after), int(order), float(jump)) for after, order, jump in raw]
@@ -532,6 +561,18 @@ class CrankSchedule:
         ------
         LinkageError
             For a non-finite time, or an output not representable in float64.
+
+        Examples
+        --------
+        One period later the crank is a turn further; f32 interpolation stays within 1e-6 rad:
+
+        >>> import linkage
+        >>> sched = crank_schedule(linkage.catalog.hoecken(), 80.0, 0.6)
+        >>> theta, omega, _ = sched.angles([0.0, sched.period])
+        >>> round(float(theta[1] - theta[0]), 6), bool(omega[0] == omega[1])
+        (6.283185, True)
+        >>> bool(np.abs(sched.angles([0.3], single=True)[0] - sched.angles([0.3])[0]).max() < 1e-6)
+        True
         """
         tt, _ = as_angles(t, "t")
         out = _core.schedule_eval(

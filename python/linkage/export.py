@@ -128,6 +128,14 @@ def drawing_of(res: Result) -> Drawing | None:
     The mechanism over its sweep, or a walker seen in its legs' plane (from the side, or from above
     when most legs work in the horizontal plane); a run always has one after
     :func:`linkage.runner.run`.
+
+    Examples
+    --------
+    >>> from linkage import runner, scene
+    >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
+    >>> d = drawing_of(res)
+    >>> d.leg_labels, d.frame(0).shape  # four legs of six joints (the foot last)
+    (('L1', 'R1', 'L2', 'R2'), (24, 2))
     """
     units = res.scene.units
     if res.synthesis is not None:
@@ -153,6 +161,13 @@ def default_pose(d: Drawing) -> int:
     ------
     LinkageError
         If no sample assembled.
+
+    Examples
+    --------
+    >>> from linkage import runner, scene
+    >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
+    >>> default_pose(drawing_of(res))
+    0
     """
     ok = np.isfinite(d.positions).all(axis=(1, 2))
     if not ok.any():
@@ -333,6 +348,18 @@ def svg_text(
     ------
     LinkageError
         If the run has nothing to draw or ``pose`` is not an assembled sample.
+
+    Examples
+    --------
+    >>> from linkage import runner, scene
+    >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
+    >>> svg, pose = svg_text(res)
+    >>> pose, svg.count("<polyline") > 0, svg.rstrip().endswith("</svg>")
+    (0, True, True)
+    >>> svg_text(res, pose=99)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: pose 99 is not a sample of this run (0 … 36)
     """
     d, k = _drawn(res, pose, drawing)
     x0, x1, y0, y1 = d.bounds()
@@ -428,6 +455,16 @@ def csv_columns(res: Result) -> dict[str, Array]:
     (x, y, z per leg), stance flags and body travel. Arrays not sampled over the run's time (the
     cam's profile, over the cam angle) and the instant centres (many pairs; in the NPZ) are left
     out.
+
+    Examples
+    --------
+    >>> from linkage import runner, scene
+    >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
+    >>> cols = csv_columns(res)
+    >>> list(cols)[:6]
+    ['time [s]', 'theta [rad]', 'omega [rad/s]', 'alpha [rad/s²]', 'foot_A_x [mm]', 'foot_A_y [mm]']
+    >>> cols["stance_A [1 = down]"][:8]
+    array([0., 0., 0., 0., 1., 1., 1., 1.])
     """
     n = len(res.time)
     cols: dict[str, Array] = {}
@@ -468,7 +505,18 @@ def csv_columns(res: Result) -> dict[str, Array]:
 
 
 def write_csv(res: Result, path: Path) -> list[str]:
-    """Write ``data.csv`` (one row per sample, a header of ``name [unit]``); return the headers."""
+    """Write ``data.csv`` (one row per sample, a header of ``name [unit]``); return the headers.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from linkage import runner, scene
+    >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     headers = write_csv(res, Path(tmp) / "data.csv")
+    >>> headers[:3]
+    ['time [s]', 'theta [rad]', 'omega [rad/s]']
+    """
     cols = csv_columns(res)
     for h in cols:
         if "," in h or '"' in h:  # pragma: no cover - names come from joints and legs
@@ -486,7 +534,18 @@ def write_csv(res: Result, path: Path) -> list[str]:
 
 
 def write_npz(res: Result, path: Path) -> None:
-    """Write every array of the run into ``data.npz`` (compressed)."""
+    """Write every array of the run into ``data.npz`` (compressed).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from linkage import runner, scene
+    >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_npz(res, Path(tmp) / "data.npz")
+    ...     print(sorted(np.load(Path(tmp) / "data.npz").files))
+    ['alpha', 'body_position', 'closure', 'feet', 'margin', 'omega', 'stance', 'theta', 'time']
+    """
     arrays = {k: np.asarray(v) for k, v in res.arrays.items()}
     np.savez_compressed(path, **arrays)  # type: ignore[arg-type]
 
@@ -505,7 +564,18 @@ def _json_number(x: Any) -> Any:
 
 
 def figure_json(row: Sequence[str]) -> dict[str, Any]:
-    """One figure of the table as a JSON object (see ``docs/summary-schema.md``)."""
+    """One figure of the table as a JSON object (see ``docs/summary-schema.md``).
+
+    Examples
+    --------
+    >>> from linkage import figures
+    >>> figure_json(figures.exact("crank", 10.0, "mm"))
+    {'figure': 'crank', 'value': 10.0, 'text': '10', 'unit': 'mm', 'error': 0.0,
+     'error_note': 'exact', 'exact': True}
+    >>> figure_json(["note", "n/a", "", ""])  # a plain row: its text only
+    {'figure': 'note', 'value': 'n/a', 'text': 'n/a', 'unit': '', 'error': None,
+     'error_note': '', 'exact': False}
+    """
     figure, text, unit, note = row
     if isinstance(row, Row):
         value: Any = row.value
@@ -531,7 +601,18 @@ def figure_json(row: Sequence[str]) -> dict[str, Any]:
 def summary(
     res: Result, files: Sequence[str], columns: Sequence[str], pose: int | None
 ) -> dict[str, Any]:
-    """Return the ``summary.json`` object of a run."""
+    """Return the ``summary.json`` object of a run.
+
+    Examples
+    --------
+    >>> from linkage import runner, scene
+    >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
+    >>> s = summary(res, ["data.csv"], list(csv_columns(res)), 0)
+    >>> s["schema"], s["scene"], s["samples"], s["check_samples"]
+    ('linkage-summary/1', 'quadruped-hoecken', 37, [18, 73])
+    >>> s["pose"]
+    {'sample': 0, 'time_s': 0.0, 'theta_rad': 0.0}
+    """
     scene = res.scene
     pose_info = None
     run = res.synthesis
@@ -945,6 +1026,15 @@ def write_data(res: Result, folder: Path, pose: int | None = None, cad: bool = T
     ------
     LinkageError
         If ``pose`` is not an assembled sample of the run.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from linkage import runner, scene
+    >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     print([f.name for f in write_data(res, Path(tmp), cad=False)])
+    ['data.npz', 'data.csv', 'summary.json']
     """
     if res.synthesis is not None:
         return write_synthesis(res, folder, cad)

@@ -365,6 +365,18 @@ def forces(
     -----
     DeprecationWarning
         At every call (shown once per call site by Python's default filter).
+
+    Examples
+    --------
+    >>> import warnings, numpy as np, linkage
+    >>> fb = linkage.FourBar(ground=0.02, crank=0.01, coupler=0.025, rocker=0.025)
+    >>> masses = {k: LinkMass(0.01, (0.005, 0), 1e-7) for k in ("crank", "coupler", "rocker")}
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     old = forces(fb, [0.0, 1.0], omega=1.0, masses=masses)
+    >>> new = joint_forces(fb, [0.0, 1.0], omega=1.0, masses=masses)
+    >>> caught[0].category.__name__, bool(np.array_equal(old.torque, new.torque))
+    ('DeprecationWarning', True)
     """
     warnings.warn(
         "linkage.forces.forces is deprecated: use linkage.forces.joint_forces (same arguments "

@@ -519,6 +519,16 @@ def ball_point(fb: FourBar, theta: float) -> Inflection:
     -----
     DeprecationWarning
         At every call (shown once per call site by Python's default filter).
+
+    Examples
+    --------
+    >>> import warnings, linkage
+    >>> fb = linkage.catalog.hoecken()
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     old = ball_point(fb, 1.0)
+    >>> caught[0].category.__name__, old == inflection_circle(fb, 1.0)
+    ('DeprecationWarning', True)
     """
     warnings.warn(
         "linkage.ball_point is deprecated: use linkage.inflection_circle (same arguments and "

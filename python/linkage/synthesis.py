@@ -154,6 +154,18 @@ class Atlas:
 
         ``kind`` is ``"fourbar"`` or ``"slider-crank"``. The result does not depend on
         ``threads``.
+
+        Examples
+        --------
+        >>> at = Atlas.build(100, harmonics=4, threads=1)
+        >>> len(at), at.descriptors.shape, at.params.shape, at.kind
+        (100, (100, 13), (100, 6), 'fourbar')
+        >>> Atlas.build(100, kind="slider-crank", threads=1).params.shape
+        (100, 4)
+        >>> Atlas.build(100, kind="crank")
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: kind must be 'fourbar' or 'slider-crank', got 'crank'
         """
         n = as_count(entries, "entries")
         h = as_count(harmonics, "harmonics")
@@ -164,7 +176,16 @@ class Atlas:
         return cls(desc, params, h, m, k.name)
 
     def save(self, folder: str | os.PathLike[str]) -> Path:
-        """Write the atlas to ``folder`` (created; files written there only)."""
+        """Write the atlas to ``folder`` (created; files written there only).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as tmp:
+        ...     back = Atlas.load(Atlas.build(100, threads=1).save(tmp))
+        ...     print(len(back), back.kind, back.descriptors.dtype)
+        100 fourbar float32
+        """
         out = Path(folder)
         out.mkdir(parents=True, exist_ok=True)
         np.save(out / "descriptors.npy", np.ascontiguousarray(self.descriptors))
@@ -181,7 +202,17 @@ class Atlas:
 
     @classmethod
     def load(cls, folder: str | os.PathLike[str]) -> Atlas:
-        """Open an atlas written by :meth:`save`, memory-mapped."""
+        """Open an atlas written by :meth:`save`, memory-mapped.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as tmp:
+        ...     Atlas.load(tmp)
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: ... is not a readable atlas: ...
+        """
         src = Path(folder)
         try:
             meta = json.loads((src / "meta.json").read_text())
@@ -207,6 +238,14 @@ class Atlas:
         """Find the ``k`` entries nearest any row of ``targets``, nearest first.
 
         Returns ``(entry, squared distance, target row)``.
+
+        Examples
+        --------
+        An entry's own descriptors find it, at distance 0:
+
+        >>> at = Atlas.build(100, threads=1)
+        >>> at.nearest(at.descriptors[[7]], 1, threads=1)
+        (array([7]), array([0.], dtype=float32), array([0]))
         """
         q = np.asarray(targets)
         if q.dtype.kind not in "iuf":
@@ -330,6 +369,16 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
         For a non-numeric array.
     LinkageError
         For a wrong shape, too few points, a non-finite value or an unreadable file.
+
+    Examples
+    --------
+    >>> read_points([[0, 0], [1, 2]])
+    array([[0., 0.],
+           [1., 2.]])
+    >>> read_points([[0, 0], [1, float("nan")]])
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: points must be finite: point 1 is [1.0, nan]
     """
     if isinstance(points, (str, os.PathLike)):
         p = Path(points)
@@ -712,6 +761,22 @@ def path(
         For a wrong shape, fewer than :data:`MIN_POINTS` distinct points, non-finite values, a
         closed target whose points are all collinear, an unknown ``kind``, or an atlas of a
         kind not searched.
+
+    Examples
+    --------
+    Twelve points round the Hoecken curve, matched in a small atlas (the default atlas is built
+    once, into the cache folder; ``refine=0`` skips the least squares):
+
+    >>> import linkage
+    >>> target = linkage.catalog.hoecken().circuit(13).point[:-1]
+    >>> small = Atlas.build(200, threads=1)
+    >>> best = path(target, top=1, atlas=small, refine=0, global_search=False)
+    >>> len(best), best[0].kind, best[0].source, type(best[0].linkage).__name__
+    (1, 'fourbar', 'atlas', 'FourBar')
+    >>> path([(0, 0), (1, 1), (2, 2), (3, 3), (4, 4)], atlas=small)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: the points are all collinear: a closed curve through them encloses ...
     """
     kinds = list(_KIND.values()) if kind == "any" else [_kind(kind)]
     closed = as_flag(closed, "closed")

@@ -136,6 +136,16 @@ class Leg:
         ------
         LinkageError
             If the leg cannot be assembled at one of the angles.
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> leg = linkage.catalog.quadruped_hoecken().legs[0]
+        >>> feet, velocity = leg.feet(np.array([0.0, np.pi]), np.array([1.0, 1.0]))
+        >>> feet.round(4), velocity.round(4) + 0.0
+        (array([[ 70.    ,  50.    , -51.0102],
+               [ 70.    ,  50.    , -60.    ]]), array([[ 48.9898,   0.    ,   0.    ],
+               [-13.3333,   0.    ,   0.    ]]))
         """
         th = theta + self.phase
         s = self.linkage.sweep(th, omega=omega, outputs=("point", "velocity"))
@@ -246,7 +256,18 @@ class Simulation:
         return d
 
     def gait_diagram(self) -> list[tuple[str, list[tuple[float, float]]]]:
-        """Stance bars per leg: ``(leg, [(start, end), ...])`` in time (the source's Fig. 4.4)."""
+        """Stance bars per leg: ``(leg, [(start, end), ...])`` in time (the source's Fig. 4.4).
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> sim = linkage.catalog.quadruped_hoecken().simulate(np.linspace(0, 2 * np.pi, 9))
+        >>> bars = dict(sim.gait_diagram())  # stance from the 3rd to the 7th sample, or split:
+        >>> [(round(a, 4), round(b, 4)) for a, b in bars["A"]]
+        [(1.5708, 4.7124)]
+        >>> [(round(a, 4), round(b, 4)) for a, b in bars["B"]]
+        [(0.0, 1.5708), (4.7124, 6.2832)]
+        """
         out = []
         for i, name in enumerate(self.legs):
             s = np.r_[False, self.stance[:, i], False].astype(int)
@@ -588,6 +609,18 @@ class Walker:
         ------
         LinkageError, TypeError
             As :func:`linkage.gait_search.search_phases`.
+
+        Examples
+        --------
+        >>> import math, linkage
+        >>> q = linkage.catalog.quadruped_hoecken()
+        >>> phases, slip = q.search_phases("slip", step=math.pi / 2, samples=64)
+        >>> np.degrees(phases).round(6), round(slip, 3)
+        (array([  0., 180., 180.,   0.]), 4.229)
+        >>> q.search_phases("speed")
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: objective must be one of 'margin', 'slip', got 'speed'
         """
         return gait_search.search_phases(self, objective, step, samples, rounds, max_evals)
 
