@@ -79,3 +79,14 @@ def test_as_choice_returns_the_value_and_refuses_others():
 def test_public_signatures_say_the_choice(function, parameter, alias):
     # The modules use `from __future__ import annotations`: annotations are their source text.
     assert inspect.signature(function).parameters[parameter].annotation == alias
+
+
+def test_the_messages_name_the_choices_of_their_alias():
+    # The messages are the ones written out by hand before; the names now come from the alias.
+    with pytest.raises(linkage.LinkageError, match=r"^spacing must be 'chebyshev' or 'uniform', "):
+        synthesis.function(abs, (1, 2), (0, 1), (1, 2), spacing="random")
+    walker = linkage.catalog.quadruped_hoecken()
+    sim = walker.simulate([0.0, 1.0])
+    with pytest.raises(linkage.LinkageError, match=r"^view must be 'side' or 'top', got 'front'"):
+        linkage.drawing.walker_drawing(walker, sim, view="front")
+    assert linkage.drawing.walker_drawing(walker, sim, view="top").legs

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Sequence
 from numbers import Real
 from typing import Any, Literal, TypeVar, cast, overload
 
@@ -192,13 +193,22 @@ def assembly_named(crossed: bool) -> Assembly:
 
 
 def one_of(kind: str) -> str:
-    """Return the names of a string choice as a message says them.
+    """Return the names of one of the core's string choices as a message says them.
 
     >>> one_of("mode")
     "'trig', 'table' or 'recurrence'"
     """
-    names = [repr(n) for n in choices(kind)]
-    return f"{', '.join(names[:-1])} or {names[-1]}" if len(names) > 1 else names[0]
+    return said(choices(kind))
+
+
+def said(names: Sequence[str]) -> str:
+    """Return ``names`` as a message says them: quoted, the last after "or".
+
+    >>> said(("side", "top")), said(("only",))
+    ("'side' or 'top'", "'only'")
+    """
+    quoted = [repr(n) for n in names]
+    return f"{', '.join(quoted[:-1])} or {quoted[-1]}" if len(quoted) > 1 else quoted[0]
 
 
 def as_choice(value: Any, name: str, allowed: tuple[C, ...]) -> C:

@@ -20,13 +20,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any, SupportsFloat
+from typing import Any, SupportsFloat, get_args
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_count, as_finite, as_real_array, assembly_named
+from linkage._arrays import as_count, as_finite, as_real_array, assembly_named, said
 from linkage._choices import Spacing
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
@@ -484,7 +484,7 @@ def function(
         elif spacing == "uniform":
             xs = np.linspace(x0, x1, m)
         else:
-            raise LinkageError(f"spacing must be 'chebyshev' or 'uniform', got {spacing!r}")
+            raise LinkageError(f"spacing must be {said(get_args(Spacing))}, got {spacing!r}")
     else:
         xs = np.asarray(as_real_array(points, "points"), dtype=np.float64).reshape(-1)
         if xs.size < 3:

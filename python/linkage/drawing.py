@@ -64,11 +64,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Literal
+from typing import Any, Literal, get_args
 
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage._arrays import said
 from linkage._choices import View
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
@@ -364,8 +365,8 @@ def walker_drawing(
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
     if not isinstance(sim, Simulation):
         raise TypeError(f"sim must be a Simulation, got {type(sim).__name__}")
-    if view not in ("side", "top"):
-        raise LinkageError(f"view must be 'side' or 'top', got {view!r}")
+    if view not in get_args(View):
+        raise LinkageError(f"view must be {said(get_args(View))}, got {view!r}")
     n, m = sim.feet.shape[:2]
     if m != len(walker.legs):
         raise LinkageError(f"the simulation has {m} legs, the walker {len(walker.legs)}")
