@@ -237,7 +237,30 @@ impl<'a, T: RealField + Copy> FourBarBatch<'a, T> {
 
     /// The first linkage that is not a valid four-bar, with its index and why.
     pub fn first_invalid(&self) -> Option<(usize, Error)> {
+        if self.check_lengths().is_ok() && self.plainly_valid() {
+            return None;
+        }
         (0..self.len()).find_map(|i| self.linkage(i).err().map(|e| (i, e)))
+    }
+
+    /// Whether every linkage passes tests sufficient for [`FourBar::with_pivots`] to accept it
+    /// (finite numbers, positive lengths, pivots whose squared distance is positive and finite,
+    /// so `|c − o|` is too), in one pass without early exit (it vectorises): most batches are
+    /// proved valid so, and only the others are searched linkage by linkage.
+    fn plainly_valid(&self) -> bool {
+        let pos = |v: T| v.is_finite() & (v > T::zero());
+        let pivots = self.o.iter().zip(self.c).fold(true, |ok, (o, c)| {
+            let (dx, dy) = (c.x - o.x, c.y - o.y);
+            let n2 = dx * dx + dy * dy;
+            ok & o.x.is_finite() & o.y.is_finite() & c.x.is_finite() & c.y.is_finite() & pos(n2)
+        });
+        let lengths = [self.crank, self.coupler, self.rocker]
+            .iter()
+            .all(|s| s.iter().fold(true, |ok, &v| ok & pos(v)));
+        let points = [self.along, self.left]
+            .iter()
+            .all(|s| s.iter().fold(true, |ok, &v| ok & v.is_finite()));
+        pivots && lengths && points
     }
 
     /// Linkages `range` of the batch (every slice cut the same way).
@@ -549,6 +572,68 @@ fn kernel<T: RealField + Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `first_invalid`'s one-pass proof of validity never accepts a batch that the linkage by
+    /// linkage search rejects: every single-value edit of a valid batch to an extreme value
+    /// (zero, negative, NaN, ±∞, overflowing and underflowing sizes) gives the search's answer.
+    #[test]
+    fn the_quick_validity_pass_agrees_with_the_search() {
+        let extremes = [
+            0.0,
+            -0.0,
+            -1.0,
+            f64::NAN,
+            f64::INFINITY,
+            -f64::INFINITY,
+            f64::MAX,
+            -f64::MAX,
+            1e-320,
+            1e-160,
+            1e200,
+            3.0,
+        ];
+        let mut checked = 0;
+        for field in 0..9 {
+            for &v in &extremes {
+                let mut o = [Vec2::new(0.0_f64, 0.0); 3];
+                let mut c = [Vec2::new(3.0, 0.0); 3];
+                let (mut crank, mut coupler, mut rocker) = ([1.0; 3], [3.0; 3], [2.5; 3]);
+                let (mut along, mut left) = ([1.0; 3], [0.5; 3]);
+                let k = 1;
+                match field {
+                    0 => o[k].x = v,
+                    1 => o[k].y = v,
+                    2 => c[k].x = v,
+                    3 => c[k] = Vec2::new(v, v),
+                    4 => crank[k] = v,
+                    5 => coupler[k] = v,
+                    6 => rocker[k] = v,
+                    7 => along[k] = v,
+                    _ => left[k] = v,
+                }
+                let assembly = [Assembly::Open; 3];
+                let batch = FourBarBatch {
+                    o: &o,
+                    c: &c,
+                    crank: &crank,
+                    coupler: &coupler,
+                    rocker: &rocker,
+                    along: &along,
+                    left: &left,
+                    assembly: &assembly,
+                };
+                let search = (0..3).find_map(|i| batch.linkage(i).err().map(|e| (i, e)));
+                // Debug text: an error holding a NaN is not equal to itself.
+                let (got, want) = (
+                    std::format!("{:?}", batch.first_invalid()),
+                    std::format!("{search:?}"),
+                );
+                assert_eq!(got, want, "field {field} = {v}");
+                checked += usize::from(search.is_some());
+            }
+        }
+        assert!(checked > 40, "only {checked} edits made an invalid batch");
+    }
 
     #[test]
     fn mismatched_slices_are_refused_and_nothing_is_written() {
