@@ -50,6 +50,8 @@ __all__ = [
     "sweep_mechanisms",
     "sweep_simd",
     "synth_arc",
+    "synth_arc_atlas_build",
+    "synth_arc_frame",
     "synth_atlas_build",
     "synth_atlas_nearest",
     "synth_descriptors",
@@ -311,6 +313,12 @@ def gait_columns() -> list[str]: ...
 def synth_atlas_build(
     entries: int, harmonics: int = 8, samples: int = 64, threads: int = 1
 ) -> tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.uint64]]: ...
+def synth_arc_atlas_build(
+    entries: int, harmonics: int = 8, samples: int = 128, phases: int = 8, threads: int = 1
+) -> tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.uint64]]: ...
+def synth_arc_frame(
+    entry: NDArray[np.float64], harmonics: int, samples: int, phases: int
+) -> NDArray[np.float64]: ...
 def synth_atlas_nearest(
     descriptors: NDArray[np.float32], targets: NDArray[np.float32], k: int, threads: int = 1
 ) -> tuple[NDArray[np.int64], NDArray[np.float32], NDArray[np.int64]]: ...

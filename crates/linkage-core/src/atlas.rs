@@ -113,6 +113,13 @@ pub struct Atlas {
 }
 
 impl Atlas {
+    /// Appends an entry: its descriptor, parameters and candidate index.
+    pub(crate) fn push(&mut self, desc: &[f32], params: &[f64], candidate: u64) {
+        self.descriptors.extend_from_slice(desc);
+        self.params.extend_from_slice(params);
+        self.candidate.push(candidate);
+    }
+
     /// Number of entries.
     pub fn len(&self) -> usize {
         self.candidate.len()
@@ -130,7 +137,9 @@ impl Atlas {
     /// [`Error::BufferLength`] for fewer than 1 harmonic or 8 samples; [`Error::CountOverflow`]
     /// for more entries, harmonics or samples than an address space holds.
     pub fn build(entries: usize, spec: AtlasSpec, threads: usize) -> Result<Atlas, Error> {
-        Self::build_with(entries, spec, threads, ENTRY_PARAMS, build_chunk)
+        Self::build_with(entries, spec, threads, ENTRY_PARAMS, 1, |r| {
+            build_chunk(r, spec)
+        })
     }
 
     /// Builds an atlas of `entries` slider-cranks ([`slider_candidate`]; parameters
@@ -155,23 +164,20 @@ impl Atlas {
         spec: AtlasSpec,
         threads: usize,
     ) -> Result<Atlas, Error> {
-        Self::build_with(
-            entries,
-            spec,
-            threads,
-            SLIDER_ENTRY_PARAMS,
-            build_slider_chunk,
-        )
+        Self::build_with(entries, spec, threads, SLIDER_ENTRY_PARAMS, 1, |r| {
+            build_slider_chunk(r, spec)
+        })
     }
 
-    /// [`Atlas::build`] with `chunk` making the entries of a range of candidates, `params`
-    /// numbers an entry.
-    fn build_with(
+    /// [`Atlas::build`] with `chunk` making the entries of a range of candidates (at most
+    /// `per_candidate` each), `params` numbers an entry.
+    pub(crate) fn build_with(
         entries: usize,
         spec: AtlasSpec,
         threads: usize,
         params: usize,
-        chunk: fn(core::ops::Range<u64>, AtlasSpec) -> Atlas,
+        per_candidate: u64,
+        chunk: impl Fn(core::ops::Range<u64>) -> Atlas + Sync,
     ) -> Result<Atlas, Error> {
         check_spec(spec)?;
         let dim = descriptor_len(spec.harmonics);
@@ -191,17 +197,21 @@ impl Atlas {
             dim,
             ..Atlas::default()
         };
+        // Candidates per chunk: about CHUNK entries a chunk.
+        let span = (CHUNK / per_candidate.max(1)).max(1);
         let mut next_chunk = 0u64;
         while atlas.len() < entries {
             // A round of chunks, about enough for what is missing (half the candidates or
-            // more become entries), split among the threads and put back in order.
+            // more give their entries), split among the threads and put back in order.
             let missing = (entries - atlas.len()) as u64;
-            let round = (2 * missing).div_ceil(CHUNK).max(threads as u64);
+            let round = (2 * missing)
+                .div_ceil(span * per_candidate.max(1))
+                .max(threads as u64);
             let chunks: Vec<u64> = (next_chunk..next_chunk + round).collect();
             next_chunk += round;
             let parts = crate::parallel::map_parts(chunks.len(), threads, |j| {
                 let c = chunks[j];
-                chunk(c * CHUNK..(c + 1) * CHUNK, spec)
+                chunk(c * span..(c + 1) * span)
             });
             for p in parts {
                 atlas.descriptors.extend_from_slice(&p.descriptors);
@@ -250,46 +260,76 @@ fn check_spec(spec: AtlasSpec) -> Result<(), Error> {
 }
 
 fn build_chunk(range: core::ops::Range<u64>, spec: AtlasSpec) -> Atlas {
+    each_circuit(range, spec, |part, desc, i, fb, pts| {
+        if shape(Efd::closed(pts, spec.harmonics), desc) {
+            part.push(desc, &entry_head(fb), i);
+        }
+    })
+}
+
+/// The part of an atlas that `add` makes from every candidate of `range` whose circuit
+/// assembles at `spec.samples` samples: `add(part, descriptor buffer, index, linkage,
+/// circuit)`.
+pub(crate) fn each_circuit(
+    range: core::ops::Range<u64>,
+    spec: AtlasSpec,
+    mut add: impl FnMut(&mut Atlas, &mut [f32], u64, &FourBar<f64>, &[Vec2<f64>]),
+) -> Atlas {
     let dim = descriptor_len(spec.harmonics);
     let mut part = Atlas {
         dim,
         ..Atlas::default()
     };
     let mut desc = alloc::vec![0.0f32; dim];
-    let mut pts = Vec::with_capacity(spec.samples);
-    let mut theta = alloc::vec![0.0; spec.samples];
-    let mut valid = alloc::vec![false; spec.samples];
+    let mut circuit = CircuitSamples::new(spec.samples);
     for i in range {
         let Some(fb) = candidate(i) else { continue };
-        pts.clear();
-        if !circuit_points(&fb, &mut pts, &mut theta, &mut valid) {
-            continue;
-        }
-        let Ok(efd) = Efd::closed(&pts, spec.harmonics) else {
-            continue;
-        };
-        let Ok((norm, _)) = efd.normalised() else {
-            continue;
-        };
-        if norm.descriptor(false, &mut desc).is_err() || desc.iter().any(|v| !v.is_finite()) {
-            continue;
-        }
-        part.descriptors.extend_from_slice(&desc);
-        part.params.extend_from_slice(&[
-            fb.crank,
-            fb.coupler,
-            fb.rocker,
-            fb.along,
-            fb.left,
-            if fb.assembly == Assembly::Open {
-                0.0
-            } else {
-                1.0
-            },
-        ]);
-        part.candidate.push(i);
+        let Some(pts) = circuit.of(&fb) else { continue };
+        add(&mut part, &mut desc, i, &fb, pts);
     }
     part
+}
+
+/// An atlas entry's parameters of `fb` ([`ENTRY_PARAMS`]).
+pub(crate) fn entry_head(fb: &FourBar<f64>) -> [f64; ENTRY_PARAMS] {
+    let crossed = if fb.assembly == Assembly::Open {
+        0.0
+    } else {
+        1.0
+    };
+    [fb.crank, fb.coupler, fb.rocker, fb.along, fb.left, crossed]
+}
+
+/// Writes the normalised descriptor of `efd` into `desc`; `false` when the curve has no shape
+/// (no descriptors, a point-like first harmonic, a value that is not finite).
+pub(crate) fn shape(efd: Result<Efd<f64>, Error>, desc: &mut [f32]) -> bool {
+    let Ok((norm, _)) = efd.and_then(|e| e.normalised()) else {
+        return false;
+    };
+    norm.descriptor(false, desc).is_ok() && desc.iter().all(|v| v.is_finite())
+}
+
+/// Buffers for sampling circuits at `samples` points, reused from one linkage to the next.
+pub(crate) struct CircuitSamples {
+    pts: Vec<Vec2<f64>>,
+    theta: Vec<f64>,
+    valid: Vec<bool>,
+}
+
+impl CircuitSamples {
+    pub(crate) fn new(samples: usize) -> Self {
+        CircuitSamples {
+            pts: Vec::with_capacity(samples),
+            theta: alloc::vec![0.0; samples],
+            valid: alloc::vec![false; samples],
+        }
+    }
+
+    /// `fb`'s circuit ([`circuit_points`]); `None` when a sample does not assemble.
+    pub(crate) fn of(&mut self, fb: &FourBar<f64>) -> Option<&[Vec2<f64>]> {
+        self.pts.clear();
+        circuit_points(fb, &mut self.pts, &mut self.theta, &mut self.valid).then_some(&self.pts)
+    }
 }
 
 /// [`build_chunk`] of slider-cranks: an entry for each candidate whose circuit assembles at
@@ -309,19 +349,12 @@ fn build_slider_chunk(range: core::ops::Range<u64>, spec: AtlasSpec) -> Atlas {
             continue;
         };
         let pts = c.polyline(spec.samples);
-        if pts.iter().any(|p| !(p.x.is_finite() && p.y.is_finite())) {
+        if pts.iter().any(|p| !(p.x.is_finite() && p.y.is_finite()))
+            || !shape(Efd::closed(&pts, spec.harmonics), &mut desc)
+        {
             continue;
         }
-        let Ok((norm, _)) = Efd::closed(&pts, spec.harmonics).and_then(|e| e.normalised()) else {
-            continue;
-        };
-        if norm.descriptor(false, &mut desc).is_err() || desc.iter().any(|v| !v.is_finite()) {
-            continue;
-        }
-        part.descriptors.extend_from_slice(&desc);
-        part.params
-            .extend_from_slice(&[sc.coupler, sc.offset, sc.along, sc.left]);
-        part.candidate.push(i);
+        part.push(&desc, &[sc.coupler, sc.offset, sc.along, sc.left], i);
     }
     part
 }

@@ -94,6 +94,8 @@ mod uniform_sweep;
 
 // Path synthesis (feature `synthesis`, needs `std` for its threads).
 #[cfg(feature = "synthesis")]
+mod arc_atlas;
+#[cfg(feature = "synthesis")]
 mod atlas;
 #[cfg(feature = "synthesis")]
 mod efd;
@@ -103,6 +105,8 @@ mod path_synthesis;
 mod slider_circuit;
 #[cfg(feature = "synthesis")]
 mod slider_crank;
+#[cfg(feature = "synthesis")]
+pub use arc_atlas::{arc_frame, arc_points, ArcSpec, ARC_ENTRY_PARAMS, ARC_FRACTIONS};
 #[cfg(feature = "synthesis")]
 pub use atlas::{
     candidate, nearest, slider_candidate, Atlas, AtlasSpec, ENTRY_PARAMS, LENGTH_RANGE,

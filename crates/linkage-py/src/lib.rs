@@ -93,6 +93,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(gait::gait_columns, m)?)?;
     m.add_function(wrap_pyfunction!(mechanism::sweep_mechanisms, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_atlas_build, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_arc_atlas_build, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_arc_frame, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_atlas_nearest, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_descriptors, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_frame, m)?)?;

@@ -3,11 +3,11 @@
 //! allocates outputs with numpy, releases the GIL and calls the core.
 
 use linkage_core::{
-    covering_arc, descriptor_len, nearest, path_errors, path_residuals, place_entry,
+    arc_frame, covering_arc, descriptor_len, nearest, path_errors, path_residuals, place_entry,
     place_slider_entry, polyline_distances, query_descriptors, slider_path_errors,
-    slider_path_residuals, Atlas, AtlasSpec, Circuit, CircuitPath, FootSearch, Normalisation,
-    PathError, SliderCircuit, Vec2, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS,
-    SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
+    slider_path_residuals, ArcSpec, Atlas, AtlasSpec, Circuit, CircuitPath, FootSearch,
+    Normalisation, PathError, SliderCircuit, Vec2, ARC_ENTRY_PARAMS, ENTRY_PARAMS, PLACED_PARAMS,
+    QUERY_VARIANTS, SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
 };
 use numpy::ndarray::{Ix2, Ix3};
 use numpy::{
@@ -91,6 +91,51 @@ pub fn synth_slider_atlas_build<'py>(
     atlas_arrays(py, entries, spec, SLIDER_ENTRY_PARAMS, || {
         Atlas::build_slider_cranks(entries, spec, threads_of(threads))
     })
+}
+
+/// Builds an atlas of open arcs of four-bar circuits (`linkage_core::Atlas::build_arcs`):
+/// `(descriptors (N, D) float32, params (N, 8) float64 [crank, coupler, rocker, along, left,
+/// crossed, phase, fraction], candidate (N,))`.
+#[pyfunction]
+#[pyo3(signature = (entries, harmonics=8, samples=128, phases=8, threads=1))]
+pub fn synth_arc_atlas_build<'py>(
+    py: Python<'py>,
+    entries: usize,
+    harmonics: usize,
+    samples: usize,
+    phases: usize,
+    threads: usize,
+) -> PyResult<AtlasArrays<'py>> {
+    let spec = ArcSpec {
+        harmonics,
+        samples,
+        phases,
+    };
+    let closed = AtlasSpec { harmonics, samples };
+    atlas_arrays(py, entries, closed, ARC_ENTRY_PARAMS, || {
+        Atlas::build_arcs(entries, spec, threads_of(threads))
+    })
+}
+
+/// The normalisation frame `[cx, cy, scale, rotation]` of an arc atlas entry's arc
+/// (`linkage_core::arc_frame`).
+#[pyfunction]
+#[pyo3(signature = (entry, harmonics, samples, phases))]
+pub fn synth_arc_frame<'py>(
+    py: Python<'py>,
+    entry: PyReadonlyArray1<'py, f64>,
+    harmonics: usize,
+    samples: usize,
+    phases: usize,
+) -> PyResult<Arr1<'py, f64>> {
+    let e = entry_head::<ARC_ENTRY_PARAMS>(&entry)?;
+    let spec = ArcSpec {
+        harmonics,
+        samples,
+        phases,
+    };
+    let frame = py.detach(|| arc_frame(&e, spec)).map_err(to_py)?;
+    Ok(frame_array(py, &frame))
 }
 
 /// An atlas's descriptors, parameters and candidate indices as numpy arrays.
