@@ -805,6 +805,8 @@ def test_batch_sweep_mechanisms(theta, threads, which):
 
 # -- synthesis --------------------------------------------------------------------------------
 SMALL_ATLAS = linkage.synthesis.Atlas.build(600, threads=1)
+# Open targets search an arc atlas (without one, path builds the default into the cache).
+SMALL_ARCS = linkage.synthesis.Atlas.build(600, kind="fourbar-arcs", threads=1)
 TARGET = np.c_[np.cos(np.linspace(0, 6, 12)), 0.5 * np.sin(np.linspace(0, 6, 12))]
 
 
@@ -825,7 +827,7 @@ def test_synthesis_path(points, closed, top, refine, lengths, pivots, tol, threa
             points,
             closed=closed,
             top=top,
-            atlas=SMALL_ATLAS,
+            atlas=[SMALL_ATLAS, SMALL_ARCS],
             refine=refine,
             global_search=False,
             lengths=lengths,

@@ -96,24 +96,89 @@ def test_random_fourbar_curve_is_recovered_exactly(atlas: Atlas, seed: int) -> N
     assert found[0].error <= 1e-6 * size_of(target), (fb, found[0].error / size_of(target))
 
 
-def test_open_arc_is_matched(atlas: Atlas) -> None:
-    """Most of Hoecken's curve as an open arc, placed anywhere: global search then least
-    squares find a linkage through it, traced on one circuit. Exact recovery (1e-6) of open
-    arcs is NOT reached yet: measured 3.4e-4 to 5.0e-3 of the size with this budget (see
-    docs/synthesis.md), so the bound here is what is reached, with margin."""
+@pytest.fixture(scope="module")
+def arc_atlas() -> Atlas:
+    # 200,000 arcs (about 3,600 circuits): the default (560,000) is for users.
+    return Atlas.build(200_000, kind="fourbar-arcs", threads=2)
+
+
+def arc_of(fb: linkage.FourBar, rng: np.random.Generator, frac: float) -> np.ndarray:
+    """40 points on ``frac`` of ``fb``'s circuit from a random start, randomly placed."""
+    circuit = fb.circuit(4001).point[:-1]
+    n = len(circuit)
+    idx = (int(rng.integers(n)) + np.round(np.linspace(0, frac * n, 40)).astype(int)) % n
+    return placed(circuit[idx], rng, roll=False)[0]
+
+
+def test_open_arc_is_matched(atlas: Atlas, arc_atlas: Atlas) -> None:
+    """Most of Hoecken's curve as an open arc (crank 1 … 4 rad, its near-straight part
+    included), placed anywhere: a linkage through it, traced on one circuit. Not exact: the arc
+    atlas and least squares reach 2.9e-5 of the size (with this fixture and with the default
+    atlas; arcs 0 … 3 and 2 … 5 rad: 7.1e-5, 1.2e-4), a basin of near-fits of the straight
+    part; the global search alone reached 1.2e-4 … 5e-3."""
     fb = linkage.catalog.get("hoecken")
     assert isinstance(fb, linkage.FourBar)
     arc = fb.sweep(np.linspace(1.0, 4.0, 40)).point
     target, _ = placed(arc, np.random.default_rng(7), roll=False)
-    found = synthesis.path(target, closed=False, top=1, atlas=atlas, seed=1, maxiter=60)
+    found = synthesis.path(target, closed=False, top=1, atlas=[atlas, arc_atlas], seed=1)
     assert found
     best = found[0]
     size = size_of(target)
-    assert best.error <= 1e-2 * size, best.error / size
+    assert best.error <= 1e-4 * size, best.error / size
     assert_one_circuit(best)
     assert tracked_distance(best.linkage, target) <= best.error + 1e-4 * size
     lo, hi = best.crank_range
     assert hi > lo
+
+
+# Arcs of 1/4 … 3/5 of a circuit that the fixture's atlas recovers, chosen among 42 tried
+# (arcs of 0.15 and 0.25 mostly end at 1e-6 … 3e-4; over random arcs of 1/8 … 3/4 the default
+# atlas recovers 37 of 58, bench/open_arcs.py): they pin the method, not its rate.
+OPEN_ARCS = [
+    ("random", 2, 0.3),
+    ("random", 6, 0.3),
+    ("random", 3, 0.6),
+    ("chebyshev", 4, 0.5),
+    ("watt", 5, 0.5),
+    ("roberts", 4, 0.25),
+]
+
+
+@pytest.mark.parametrize(("name", "seed", "frac"), OPEN_ARCS)
+def test_open_arc_is_recovered_exactly(arc_atlas: Atlas, name: str, seed: int, frac: float) -> None:
+    rng = np.random.default_rng(200 + seed)
+    fb = random_fourbar(rng) if name == "random" else linkage.catalog.get(name)
+    assert isinstance(fb, linkage.FourBar)
+    target = arc_of(fb, rng, frac)
+    found = synthesis.path(target, closed=False, top=1, atlas=arc_atlas, global_search=False)
+    assert found
+    size = size_of(target)
+    assert found[0].error <= 1e-6 * size, (name, seed, found[0].error / size)
+    assert_one_circuit(found[0])
+    assert tracked_distance(found[0].linkage, target) <= 1e-6 * size + 1e-4 * size
+
+
+def test_arc_atlas_round_trips_and_finds_its_own_arcs(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    a = Atlas.build(3000, kind="fourbar-arcs", threads=1)
+    assert np.array_equal(
+        a.descriptors, Atlas.build(3000, kind="fourbar-arcs", threads=2).descriptors
+    )
+    assert a.params.shape == (3000, 8) and a.kind == "fourbar-arcs" and a.phases == 8
+    a.save(tmp_path / "arcs")
+    c = Atlas.load(tmp_path / "arcs")
+    assert (c.kind, c.phases, c.samples) == ("fourbar-arcs", 8, 128)
+    assert np.array_equal(a.params, c.params)
+    idx, dist, _ = c.nearest(np.asarray(a.descriptors[17:18]), 1)
+    assert idx[0] == 17 and dist[0] == 0
+    # A closed search does not take an arc atlas, and an arc atlas's entries are checked.
+    with pytest.raises(linkage.LinkageError, match="fourbar-arcs atlas was given"):
+        synthesis.path(
+            np.c_[np.cos(np.arange(8.0)), np.sin(np.arange(8.0))], kind="slider-crank", atlas=a
+        )
+    with pytest.raises(linkage.LinkageError, match="arc phase"):
+        synthesis._core.synth_arc_frame(
+            np.array([1.0, 2.0, 1.5, 0.5, 0.5, 0.0, 9.0, 0.0]), 8, 128, 8
+        )
 
 
 @settings(

@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._arrays import as_count, as_finite, as_flag, as_point, as_real_array
-from linkage._choices import LinkageKind, PathKind
+from linkage._choices import AtlasKind, LinkageKind, PathKind
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._precision import (
@@ -78,6 +78,15 @@ DEFAULT_SLIDER_ENTRIES = 100_000
 
 KINDS: tuple[LinkageKind, ...] = get_args(LinkageKind)
 """The kinds of linkage :func:`path` searches (``kind="any"``: both)."""
+
+ARCS: AtlasKind = "fourbar-arcs"
+"""The kind of :class:`Atlas` whose entries are open arcs of four-bar circuits: :func:`path`
+matches open targets against it (``linkage_core::Atlas::build_arcs``)."""
+
+DEFAULT_ARC_ENTRIES = 560_000
+"""Entries of the default arc atlas: 10,000 circuits × 8 starts × 7 fractions of a circuit."""
+
+_ENTRY_WIDTH = {"fourbar": 6, "slider-crank": 4, ARCS: 8}
 
 ATLAS_FORMAT = 3
 """Bumped whenever the stored atlas's content or meaning changes."""
@@ -129,13 +138,19 @@ class Atlas:
     An atlas of ``kind="slider-crank"`` holds offset slider-cranks with the crank pivot at
     ``(0, 0)``, crank 1 and the line along ``+x`` (reach ahead); its ``params`` are ``(N, 4)``
     ``coupler, offset, along, left``.
+
+    An atlas of ``kind="fourbar-arcs"`` (:data:`ARCS`) holds open arcs of the four-bars'
+    circuits, ``phases`` starts on each times fractions ⅛ … ¾ of the circuit, described as
+    open curves; its ``params`` are ``(N, 8)``: the four-bar's six, the arc's start and the
+    index of its fraction.
     """
 
     descriptors: NDArray[np.float32]
     params: NDArray[np.float64]
     harmonics: int
     samples: int
-    kind: LinkageKind = "fourbar"
+    kind: AtlasKind = "fourbar"
+    phases: int = 0
 
     def __len__(self) -> int:
         """Return the number of entries."""
@@ -146,14 +161,15 @@ class Atlas:
         cls,
         entries: int,
         harmonics: int = 8,
-        samples: int = 64,
+        samples: int | None = None,
         threads: int | None = None,
-        kind: LinkageKind = "fourbar",
+        kind: AtlasKind = "fourbar",
     ) -> Atlas:
         """Build an atlas of ``entries`` entries on ``threads`` threads (default: every core).
 
-        ``kind`` is ``"fourbar"`` or ``"slider-crank"``. The result does not depend on
-        ``threads``.
+        ``kind`` is ``"fourbar"``, ``"slider-crank"`` or ``"fourbar-arcs"`` (then ``samples``
+        are the circuit's, at least 32, and every circuit gives 8 starts × 7 fractions).
+        ``samples`` defaults to 64 (128 for arcs). The result does not depend on ``threads``.
 
         Examples
         --------
@@ -165,12 +181,15 @@ class Atlas:
         >>> Atlas.build(100, kind="crank")
         Traceback (most recent call last):
         ...
-        linkage.LinkageError: kind must be 'fourbar' or 'slider-crank', got 'crank'
+        linkage.LinkageError: kind must be 'fourbar', 'slider-crank' or 'fourbar-arcs', got 'crank'
         """
         n = as_count(entries, "entries")
         h = as_count(harmonics, "harmonics")
-        m = as_count(samples, "samples", 8)
-        k = _kind(kind)
+        m = as_count((128 if kind == ARCS else 64) if samples is None else samples, "samples", 8)
+        if kind == ARCS:
+            desc, params, _ = _core.synth_arc_atlas_build(n, h, m, 8, _threads(threads))
+            return cls(desc, params, h, m, ARCS, 8)
+        k = _atlas_kind(kind)
         build = _core.synth_atlas_build if k is FOURBAR else _core.synth_slider_atlas_build
         desc, params, _ = build(n, h, m, _threads(threads))
         return cls(desc, params, h, m, k.name)
@@ -196,6 +215,7 @@ class Atlas:
             "samples": self.samples,
             "entries": len(self),
             "kind": self.kind,
+            "phases": self.phases,
         }
         (out / "meta.json").write_text(json.dumps(meta))
         return out
@@ -220,17 +240,18 @@ class Atlas:
             params = np.load(src / "params.npy", mmap_mode="r")
         except (OSError, ValueError) as e:
             raise LinkageError(f"{src} is not a readable atlas: {e}") from None
-        kind = _KIND.get(meta.get("kind", "fourbar"))
+        kind = str(meta.get("kind", "fourbar"))
         if (
             meta.get("format") != ATLAS_FORMAT
-            or kind is None
+            or kind not in _ENTRY_WIDTH
             or desc.dtype != np.float32
             or desc.ndim != 2
-            or params.shape != (desc.shape[0], kind.entry)
+            or params.shape != (desc.shape[0], _ENTRY_WIDTH[kind])
             or desc.shape[1] != 1 + 4 * (int(meta["harmonics"]) - 1)
         ):
             raise LinkageError(f"{src} is not an atlas of format {ATLAS_FORMAT}")
-        return cls(desc, params, int(meta["harmonics"]), int(meta["samples"]), kind.name)
+        phases = int(meta.get("phases", 0))
+        return cls(desc, params, int(meta["harmonics"]), int(meta["samples"]), kind, phases)
 
     def nearest(
         self, targets: NDArray[np.float32], k: int, threads: int | None = None
@@ -266,6 +287,13 @@ def _kind(kind: Any) -> _Kind:
     return _KIND[kind]
 
 
+def _atlas_kind(kind: Any) -> _Kind:
+    """The linkage kind of an atlas of ``kind`` other than arcs (the message names all three)."""
+    if isinstance(kind, str) and kind not in _KIND:
+        raise LinkageError(f"kind must be 'fourbar', 'slider-crank' or {ARCS!r}, got {kind!r}")
+    return _kind(kind)
+
+
 def _threads(threads: int | None) -> int:
     if threads is None:
         return max(1, min(os.cpu_count() or 1, 64))
@@ -273,21 +301,23 @@ def _threads(threads: int | None) -> int:
 
 
 def default_atlas(
-    entries: int | None = None, harmonics: int = 8, kind: LinkageKind = "fourbar"
+    entries: int | None = None, harmonics: int = 8, kind: AtlasKind = "fourbar"
 ) -> Atlas:
     """Return the default atlas of ``kind``, built on first use into the cache folder.
 
-    ``entries`` defaults to :data:`DEFAULT_ENTRIES` four-bars or
-    :data:`DEFAULT_SLIDER_ENTRIES` slider-cranks. The cache folder is ``$LINKAGE_CACHE_DIR``,
-    else the user's cache folder; the atlas is memory-mapped from there afterwards.
+    ``entries`` defaults to :data:`DEFAULT_ENTRIES` four-bars,
+    :data:`DEFAULT_SLIDER_ENTRIES` slider-cranks or :data:`DEFAULT_ARC_ENTRIES` arcs
+    (``kind="fourbar-arcs"``). The cache folder is ``$LINKAGE_CACHE_DIR``, else the user's
+    cache folder; the atlas is memory-mapped from there afterwards.
     """
-    k = _kind(kind)
-    entries = k.default_entries if entries is None else entries
+    k = _atlas_kind("fourbar" if kind == ARCS else kind)
+    default = DEFAULT_ARC_ENTRIES if kind == ARCS else k.default_entries
+    entries = default if entries is None else entries
     core = getattr(_core, "__file__", "") or ""
     # The four-bar key is the one used before slider-cranks, so existing caches stay valid.
     tag: list[Any] = [ATLAS_FORMAT, entries, harmonics, os.path.getsize(core) if core else 0]
-    if k is not FOURBAR:
-        tag.append(k.name)
+    if k is not FOURBAR or kind == ARCS:
+        tag.append(ARCS if kind == ARCS else k.name)
     key = hashlib.sha256(json.dumps(tag).encode()).hexdigest()[:16]
     folder = cache_dir() / f"atlas-{key}"
     if (folder / "meta.json").exists():
@@ -295,7 +325,7 @@ def default_atlas(
             return Atlas.load(folder)
         except LinkageError:
             pass  # a corrupt cache is rebuilt
-    atlas = Atlas.build(entries, harmonics, kind=k.name)
+    atlas = Atlas.build(entries, harmonics, kind=ARCS if kind == ARCS else k.name)
     try:
         tmp = folder.with_name(folder.name + f".tmp{os.getpid()}")
         atlas.save(tmp)
@@ -723,12 +753,14 @@ def path(
         ranking).
     atlas : Atlas, folder, None, or a sequence of them
         The atlas of each kind searched (default: :func:`default_atlas` of that kind); for
-        ``kind="any"`` a sequence may give one of each. Open targets do not use atlases.
+        ``kind="any"`` a sequence may give one of each. Open four-bar targets search an atlas
+        of open arcs, ``kind="fourbar-arcs"`` (default: ``default_atlas(kind="fourbar-arcs")``),
+        which the sequence may give too.
     refine : int
         Atlas matches refined by least squares (of each kind).
     global_search : bool or None
-        Run differential evolution; ``None``: when the target is open or the best atlas
-        candidate's error exceeds ``tol`` of the target's size.
+        Run differential evolution; ``None``: when no atlas candidate of any kind searched is
+        within ``tol`` of the target's size (open slider-crank targets have no atlas).
     full_turn, min_transmission, lengths, pivots
         Constraints: a crank that turns fully, a transmission angle at least this far from a
         toggle (radians) over the matched part, every link length within ``lengths`` (a
@@ -805,19 +837,28 @@ def path(
     centre = target.mean(axis=0)
     size = target_size(target)
     bar = _bar(progress, refine * len(kinds))
-    atlases = _atlases(atlas, kinds) if closed else {}
+    atlases = _atlases(atlas, kinds)
     found: list[Candidate[Any]] = []
     for k in kinds:
         bounds = _bounds(lengths, pivots, size, k)
         pool = []
-        if closed:
-            at = atlases.get(k.name) or default_atlas(kind=k.name)
-            pool = _atlas_pool(k, at, target, max(refine, top), 4 * max(top, refine), nthreads)
-        found += _finish(pool, target, closed, size, bounds, refine, nthreads, bar, top, k)
+        # Open targets are matched against open arcs of four-bar circuits (no slider-crank
+        # arc atlas yet: the global search alone serves them).
+        name = k.name if closed else ARCS if k is FOURBAR else None
+        if name is not None:
+            at = atlases.get(name) or default_atlas(kind=name)
+            many = 4 * max(top, refine) if closed else 16 * max(top, refine)
+            fits = max(refine, top) if closed else 3 * refine
+            pool = _atlas_pool(k, at, target, fits, many, nthreads)
+        fits = refine if closed else 3 * refine
+        mine = _finish(pool, target, closed, size, bounds, fits, nthreads, bar, top, k)
+        if not closed and mine and min(c.error for c in mine) > EXACT * size:
+            mine += _hops(mine, target, size, bounds, seed, nthreads, k)
+        found += mine
     run_global = (
         global_search
         if global_search is not None
-        else (not closed or not found or min(c.error for c in found) > tol * size)
+        else (not found or min(c.error for c in found) > tol * size)
     )
     if run_global:
         for k in kinds:
@@ -843,6 +884,41 @@ def path(
     return _distinct(_ranked(ok, size, limit), target, closed, size, top)
 
 
+HOPS = 12
+"""Perturbed restarts of the least-squares fit for an open target that no arc match fits exactly."""
+
+
+def _hops(
+    found: list[Candidate[Any]],
+    target: Float2D,
+    size: float,
+    bounds: tuple[NDArray[np.float64], NDArray[np.float64]],
+    seed: int,
+    threads: int,
+    kind: _Kind,
+) -> list[Candidate[Any]]:
+    """Refine perturbed copies of the best three fits, stopping at the first exact one.
+
+    Every parameter moves by a normal step of 5 %, then 1 %, of the target's size, in turn.
+    An arc is matched to ~1e-5 of its size by many linkages; the fit stalls in such a basin,
+    and a restart from near it often reaches the exact one (measured in docs/synthesis.md).
+    """
+    rng = np.random.default_rng(seed)
+    starts = sorted(found, key=lambda c: c.error)[:3]
+    out: list[Candidate[Any]] = []
+    for t in range(HOPS):
+        c = starts[t % len(starts)]
+        step = (0.05 if t % 2 == 0 else 0.01) * size
+        x = c.params + step * rng.standard_normal(len(c.params))
+        crossed = isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
+        out += _finish(
+            [(x, crossed, "atlas")], target, False, size, bounds, 1, threads, None, kind=kind
+        )
+        if out and min(o.error for o in out) <= 1e-10 * size:
+            break
+    return out
+
+
 def _atlases(given: Any, kinds: list[_Kind]) -> dict[str, Atlas]:
     """Return the atlases given to :func:`path` by kind, loading folders.
 
@@ -854,7 +930,7 @@ def _atlases(given: Any, kinds: list[_Kind]) -> dict[str, Atlas]:
         if a is None:
             continue
         at = a if isinstance(a, Atlas) else Atlas.load(a)
-        if at.kind not in [k.name for k in kinds]:
+        if at.kind not in [k.name for k in kinds] + ([ARCS] if FOURBAR in kinds else []):
             searched = " or ".join(repr(k.name) for k in kinds)
             raise LinkageError(f"a {at.kind} atlas was given, but the search is for {searched}")
         out[at.kind] = at
@@ -867,15 +943,21 @@ def _atlas_pool(
     """Return the ``keep`` best placed atlas matches of ``target``, of the ``k`` nearest shapes.
 
     Each nearest entry is placed by the similarity between its curve's frame and the target's
-    (both ends of the major axis) and scored by the polyline distance both ways.
+    (both ends of the major axis) and scored by the polyline distance both ways (an arc atlas's
+    entries, :data:`ARCS`, against an open target: one way).
     """
-    variants, frame_t = _core.synth_descriptors(target, at.harmonics, True)
+    closed = at.kind != ARCS
+    variants, frame_t = _core.synth_descriptors(target, at.harmonics, closed)
     idx, _, _ = at.nearest(variants, min(max(k, 16), len(at)), threads)
     placed, crossed = [], []
-    for i in idx:
+    # An entry near several query variants is listed once for each: place it once.
+    for i in dict.fromkeys(idx.tolist()):
         entry = np.asarray(at.params[int(i)], dtype=np.float64)
         try:
-            if kind is FOURBAR:
+            if not closed:
+                cr = bool(entry[5])
+                frame_c = _core.synth_arc_frame(entry, at.harmonics, at.samples, at.phases)
+            elif kind is FOURBAR:
                 base = np.array([0.0, 0.0, 1.0, 0.0, *entry[:5]])
                 cr = bool(entry[5])
                 frame_c = _core.synth_frame(base, cr, at.harmonics, at.samples)
@@ -892,8 +974,9 @@ def _atlas_pool(
     if not placed:
         return []
     p, cr_a = np.array(placed), np.array(crossed)
-    e, _ = _errors(p, cr_a, target, True, threads=threads, kind=kind)
-    score = np.where(np.isfinite(e[:, 0]), np.maximum(e[:, 0], e[:, 2]), np.inf)
+    e, _ = _errors(p, cr_a, target, closed, threads=threads, kind=kind)
+    worst = np.maximum(e[:, 0], e[:, 2]) if closed else e[:, 0]
+    score = np.where(np.isfinite(worst), worst, np.inf)
     order = np.argsort(score, kind="stable")
     return [(p[j], bool(cr_a[j]), "atlas") for j in order[:keep] if np.isfinite(score[j])]
 

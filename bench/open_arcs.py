@@ -1,0 +1,99 @@
+"""Exact recovery of open arcs: how many arcs of four-bar coupler curves ``linkage.synthesis.path``
+finds a linkage for to within 1e-6 of the target's size, and in what time.
+
+    .venv/bin/python bench/open_arcs.py [--random 40] [--seed 0] [--entries N] [--out rows.csv]
+
+Targets: arcs of the catalogue four-bars (Hoecken, Chebyshev, Watt, Roberts, Evans A and B) and
+of random four-bars (the test suite's ``random_fourbar``: ground 1, crank, coupler, rocker
+log-uniform in [0.3, 3], coupler point near the coupler, either assembly), each an arc of a
+uniformly random fraction 1/8 … 3/4 of its circuit from a random start, 40 points evenly spaced
+in the circuit parameter, under a random rotation, scale (10⁻² … 10²) and translation. The error is ``path``'s own (largest
+distance target point → coupler curve, the true point-to-curve distance at the optimum) over
+the target's RMS radius; the search runs with its defaults (``top=1``, default atlas). The arc
+atlas is built (or loaded from the cache) before any target is timed, and its build is timed
+on its own.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+import linkage
+from linkage import synthesis
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+from test_synthesis import arc_of, random_fourbar  # the tests' generators
+
+
+def arc(fb: linkage.FourBar, rng: np.random.Generator) -> np.ndarray:
+    """An arc of a random fraction 1/8 … 3/4 of ``fb``'s circuit (the test suite's
+    ``arc_of``: 40 points from a random start, placed anywhere at any scale)."""
+    return arc_of(fb, rng, rng.uniform(1 / 8, 3 / 4))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--random", type=int, default=40)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--entries", type=int, default=None, help="arc atlas entries (default)")
+    ap.add_argument("--out", default=None)
+    args = ap.parse_args()
+    rng = np.random.default_rng(args.seed)
+    cases = []
+    for name in ("hoecken", "chebyshev", "watt", "roberts", "evans_a", "evans_b"):
+        fb = linkage.catalog.get(name)
+        assert isinstance(fb, linkage.FourBar)
+        for k in range(3):
+            cases.append((f"{name}#{k}", arc(fb, rng)))
+    for k in range(args.random):
+        cases.append((f"random#{k}", arc(random_fourbar(rng), rng)))
+
+    has_arcs = hasattr(synthesis, "ARCS")
+    atlas = None
+    if has_arcs:
+        t0 = time.perf_counter()
+        fresh = synthesis.Atlas.build(
+            args.entries or synthesis.DEFAULT_ARC_ENTRIES, kind=synthesis.ARCS
+        )
+        build = time.perf_counter() - t0
+        mb = (fresh.descriptors.nbytes + fresh.params.nbytes) / 1e6
+        print(f"arc atlas: {len(fresh):,} entries built in {build:.1f} s, {mb:.0f} MB")
+        atlas = fresh
+    import scipy.optimize  # noqa: F401  (one-time import, outside the timed calls)
+
+    errs, times, rows = [], [], []
+    for name, target in cases:
+        size = synthesis.target_size(target)
+        t0 = time.perf_counter()
+        kw = {"atlas": atlas} if atlas is not None else {}
+        found = synthesis.path(target, closed=False, top=1, **kw)
+        dt = time.perf_counter() - t0
+        e = found[0].error / size if found else math.inf
+        errs.append(e)
+        times.append(dt)
+        rows.append((name, e, dt))
+        print(f"{name:14s} {e:9.2e} {dt:6.2f} s", flush=True)
+    errs_a = np.array(errs)
+    cat = np.array([not n.startswith("random") for n, _, _ in rows])
+    for label, mask in (("catalogue", cat), ("random", ~cat), ("all", np.ones_like(cat))):
+        ok = int(np.sum(errs_a[mask] <= 1e-6))
+        print(
+            f"{label:9s}: {ok}/{int(mask.sum())} within 1e-6 of the size; median error "
+            f"{np.median(errs_a[mask]):.1e}"
+        )
+    print(f"time per target: median {statistics.median(times):.2f} s, max {max(times):.2f} s")
+    if args.out:
+        with open(args.out, "w") as f:
+            for name, e, dt in rows:
+                f.write(f"{name},{e:.3e},{dt:.3f}\n")
+
+
+if __name__ == "__main__":
+    main()
