@@ -251,7 +251,8 @@ class Atlas:
         ):
             raise LinkageError(f"{src} is not an atlas of format {ATLAS_FORMAT}")
         phases = int(meta.get("phases", 0))
-        return cls(desc, params, int(meta["harmonics"]), int(meta["samples"]), kind, phases)
+        known = cast("AtlasKind", kind)  # one of _ENTRY_WIDTH's keys, checked above
+        return cls(desc, params, int(meta["harmonics"]), int(meta["samples"]), known, phases)
 
     def nearest(
         self, targets: NDArray[np.float32], k: int, threads: int | None = None
@@ -288,7 +289,7 @@ def _kind(kind: Any) -> _Kind:
 
 
 def _atlas_kind(kind: Any) -> _Kind:
-    """The linkage kind of an atlas of ``kind`` other than arcs (the message names all three)."""
+    """Return the linkage kind of an atlas of ``kind`` other than arcs (naming all three)."""
     if isinstance(kind, str) and kind not in _KIND:
         raise LinkageError(f"kind must be 'fourbar', 'slider-crank' or {ARCS!r}, got {kind!r}")
     return _kind(kind)
