@@ -35,6 +35,7 @@ def test_the_motion_laws_alias_names_the_cores_laws():
 def test_the_python_choice_tuples_are_read_from_their_alias():
     assert OUTPUTS == get_args(_choices.Output) == linkage.OUTPUTS
     assert synthesis.KINDS == get_args(_choices.LinkageKind) == ("fourbar", "slider-crank")
+    assert get_args(_choices.AtlasKind) == (*synthesis.KINDS, synthesis.ARCS)
     assert walker.PLANES == get_args(_choices.Plane) == ("sagittal", "horizontal")
 
 
@@ -64,8 +65,8 @@ def test_as_choice_returns_the_value_and_refuses_others():
         (linkage.SliderCrank, "reach", "Reach"),
         (linkage.batch.sweep_fourbars, "assembly", "Assembly | ArrayLike"),
         (synthesis.path, "kind", "PathKind"),
-        (synthesis.Atlas.build, "kind", "LinkageKind"),
-        (synthesis.default_atlas, "kind", "LinkageKind"),
+        (synthesis.Atlas.build, "kind", "AtlasKind"),
+        (synthesis.default_atlas, "kind", "AtlasKind"),
         (synthesis.function, "spacing", "Spacing"),
         (linkage.gait_search.search_phases, "objective", "Objective"),
         (linkage.gait_search.search_duty_factor, "objective", "Objective"),
