@@ -38,6 +38,19 @@ pub(crate) fn padded<T: RealField + Copy>(v: &[T]) -> [T; BLOCK] {
     }
 }
 
+/// Marks in `dst` the samples `src` marks, when `any` (whether `src` marks one) says so.
+/// Flags are built in a fresh local array and merged only in the rare block that has one: a
+/// copy of the block's flags in and out of every construction loaded sixteen bytes that the
+/// loop had just stored eight at a time, and stalled on it (measured under perf).
+#[inline(always)]
+fn merge(dst: &mut [bool; BLOCK], src: &[bool; BLOCK], any: bool) {
+    if any {
+        for (d, &s) in dst.iter_mut().zip(src) {
+            *d |= s;
+        }
+    }
+}
+
 /// Joint positions of a block of samples, structure of arrays: `x[j][k]`, `y[j][k]` of joint
 /// `j` at sample `k`.
 pub(crate) struct BlockPoses<T, const N: usize> {
@@ -58,6 +71,9 @@ pub(crate) struct BlockPoses<T, const N: usize> {
     pub(crate) margins: bool,
     /// The frame of each dyad's crank base, if it has one (see [`Self::prepare`]).
     bases: [Option<CrankBaseFrame<T>>; N],
+    /// The length of the link each carried point divides by, when the mechanism fixes it
+    /// (`Mechanism::link_length`), looked up once by [`Self::prepare`].
+    links: [Option<T>; N],
     /// For a mechanism with its orientations in closed form ([`Self::orient`]), each dyad's
     /// flat positions and their parity at the reference angle: the dyad is on its declared
     /// side where the parity is the reference's, on the other where not.
@@ -80,6 +96,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             failed: [false; BLOCK],
             margins: true,
             bases: [None; N],
+            links: [None; N],
             flats: [None; N],
         }
     }
@@ -97,6 +114,9 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                 }
                 Construction::Dyad { p1, p2, .. } => {
                     self.bases[i] = mech.crank_base_frame(p1, p2, &fixed[..i]);
+                }
+                Construction::Point { from, to, .. } => {
+                    self.links[i] = mech.link_length(from, to);
                 }
                 _ => {}
             }
@@ -201,9 +221,9 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                 } => {
                     let (fx, fy, tx, ty) = (self.x[from], self.y[from], self.x[to], self.y[to]);
                     let (mut xi, mut yi) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
-                    let mut scalar = self.scalar;
+                    let (mut scalar, mut any) = ([false; BLOCK], false);
                     let tiny = tiny_square::<T>();
-                    let fixed = mech.link_length(from, to);
+                    let fixed = self.links[i];
                     let inv_fixed = fixed.map_or(T::zero(), |l| T::one() / l);
                     if fixed.is_some() {
                         // The link's own length (ordinary, `applies`): never near zero, and a
@@ -221,13 +241,15 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                             let inv = T::one() / n2.sqrt();
                             // A link of (nearly) zero length: the scalar code rescales or
                             // refuses.
-                            scalar[k] |= n2 <= tiny || !n2.is_finite();
+                            scalar[k] = n2 <= tiny || !n2.is_finite();
+                            any |= scalar[k];
                             let (ex, ey) = (dx * inv, dy * inv);
                             xi[k] = fx[k] + ex * along + -ey * left;
                             yi[k] = fy[k] + ey * along + ex * left;
                         }
                     }
-                    (self.x[i], self.y[i], self.scalar) = (xi, yi, scalar);
+                    (self.x[i], self.y[i]) = (xi, yi);
+                    merge(&mut self.scalar, &scalar, any);
                 }
                 Construction::Slider { .. } => self.failed = [true; BLOCK],
             }
@@ -257,7 +279,8 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
         // Local copies: the loop then reads and writes distinct arrays of known length, which
         // is what lets it vectorise (measured: twice as fast as slices into the tables).
         let (ax, ay, bx, by) = (self.x[p1], self.y[p1], self.x[p2], self.y[p2]);
-        let (mut scalar, mut failed) = (self.scalar, self.failed);
+        let (mut scalar, mut failed) = ([false; BLOCK], [false; BLOCK]);
+        let (mut any_scalar, mut any_failed) = (false, false);
         let (mut margin_of, mut watched_of) = (self.margin, self.watched);
         let (mut xi, mut yi) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
         let (rmax, rmin) = (r1.max(r2), r1.min(r2));
@@ -279,7 +302,8 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             let n2 = dx * dx + dy * dy;
             let d = n2.sqrt();
             // (nearly) zero base, where the scalar length rescales or the dyad is refused.
-            scalar[k] |= n2 <= tiny || !n2.is_finite();
+            scalar[k] = n2 <= tiny || !n2.is_finite();
+            any_scalar |= scalar[k];
             let longest = d.max(r1).max(r2);
             let plain = (d + rmin).min(sum) - longest;
             use_base[k] = base.is_some() && plain < longest * slack;
@@ -298,6 +322,8 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
                 &mut given,
                 &mut scalar,
             );
+            // The base may mark samples (rare: merged whether it did or not).
+            any_scalar = true;
         }
         let (mut flat_at, mut any_flat) = ([false; BLOCK], false);
         for k in 0..BLOCK {
@@ -333,6 +359,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             yi[k] = fy + (ux * h) * sign[k];
         }
         if any_flat {
+            any_failed = true;
             for k in 0..BLOCK {
                 let (d, f2) = (dd[k], given[k]);
                 let tol = eight_eps
@@ -342,7 +369,8 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             }
         }
         (self.x[i], self.y[i]) = (xi, yi);
-        (self.scalar, self.failed) = (scalar, failed);
+        merge(&mut self.scalar, &scalar, any_scalar);
+        merge(&mut self.failed, &failed, any_failed);
         (self.margin, self.watched) = (margin_of, watched_of);
     }
 
@@ -473,12 +501,13 @@ impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
                     let (v1x, v1y, v2x, v2y) = (self.vx[p1], self.vy[p1], self.vx[p2], self.vy[p2]);
                     let (a1x, a1y, a2x, a2y) = (self.ax[p1], self.ay[p1], self.ax[p2], self.ay[p2]);
                     let bound = m_star * dyad.r1 * dyad.r2;
-                    let mut scalar = self.scalar;
+                    let (mut scalar, mut any) = ([false; BLOCK], false);
                     for k in 0..BLOCK {
                         let (e1x, e1y) = (px[k] - x1[k], py[k] - y1[k]);
                         let (e2x, e2y) = (px[k] - x2[k], py[k] - y2[k]);
                         let amax = e1x.abs().max(e1y.abs()).max(e2x.abs()).max(e2y.abs());
-                        scalar[k] |= amax > hi || amax < lo;
+                        scalar[k] = amax > hi || amax < lo;
+                        any |= scalar[k];
                         let det = e1x * e2y - e1y * e2x;
                         let ok = det.abs() >= bound && det != T::zero() && det.is_finite();
                         let b1 = e1x * v1x[k] + e1y * v1y[k];
@@ -495,7 +524,7 @@ impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
                         ax[k] = if ok { (c1 * e2y - c2 * e1y) / det } else { nan };
                         ay[k] = if ok { (e1x * c2 - e2x * c1) / det } else { nan };
                     }
-                    self.scalar = scalar;
+                    merge(&mut self.scalar, &scalar, any);
                 }
                 Construction::Point { from, to, .. } => {
                     let (fx, fy, tx, ty) = (pos.x[from], pos.y[from], pos.x[to], pos.y[to]);
@@ -503,14 +532,15 @@ impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
                         (self.vx[from], self.vy[from], self.ax[from], self.ay[from]);
                     let (tvx, tvy, tax, tay) = (self.vx[to], self.vy[to], self.ax[to], self.ay[to]);
                     let two = lit::<T>(2.0);
-                    let mut scalar = self.scalar;
+                    let (mut scalar, mut any) = ([false; BLOCK], false);
                     for k in 0..BLOCK {
                         // direction_rates(d, d1, d2): ω = (d × d1)/|d|², α = (d × d2 − 2ω(d·d1))/|d|².
                         let (dx, dy) = (tx[k] - fx[k], ty[k] - fy[k]);
                         let (d1x, d1y) = (tvx[k] - fvx[k], tvy[k] - fvy[k]);
                         let (d2x, d2y) = (tax[k] - fax[k], tay[k] - fay[k]);
                         let amax = dx.abs().max(dy.abs());
-                        scalar[k] |= amax > hi || amax < lo;
+                        scalar[k] = amax > hi || amax < lo;
+                        any |= scalar[k];
                         let l2 = dx * dx + dy * dy;
                         let sd = dx * d1x + dy * d1y;
                         let w = (dx * d1y - dy * d1x) / l2;
@@ -522,14 +552,20 @@ impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
                         ax[k] = fax[k] + -ry * al - rx * (w * w);
                         ay[k] = fay[k] + rx * al - ry * (w * w);
                     }
-                    self.scalar = scalar;
+                    merge(&mut self.scalar, &scalar, any);
                 }
             }
-            let mut regular = self.regular;
+            // Marked in a fresh array and merged only when some sample is marked (see `merge`).
+            let (mut irregular, mut any) = ([false; BLOCK], false);
             for k in 0..BLOCK {
-                regular[k] &= vx[k].is_finite() & vy[k].is_finite();
+                irregular[k] = !(vx[k].is_finite() & vy[k].is_finite());
+                any |= irregular[k];
             }
-            self.regular = regular;
+            if any {
+                for (r, &bad) in self.regular.iter_mut().zip(&irregular) {
+                    *r &= !bad;
+                }
+            }
             (self.vx[i], self.vy[i], self.ax[i], self.ay[i]) = (vx, vy, ax, ay);
         }
     }
