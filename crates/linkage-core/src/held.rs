@@ -43,7 +43,7 @@ pub(crate) fn padded<T: RealField + Copy>(v: &[T]) -> [T; BLOCK] {
 /// copy of the block's flags in and out of every construction loaded sixteen bytes that the
 /// loop had just stored eight at a time, and stalled on it (measured under perf).
 #[inline(always)]
-fn merge(dst: &mut [bool; BLOCK], src: &[bool; BLOCK], any: bool) {
+pub(crate) fn merge(dst: &mut [bool; BLOCK], src: &[bool; BLOCK], any: bool) {
     if any {
         for (d, &s) in dst.iter_mut().zip(src) {
             *d |= s;

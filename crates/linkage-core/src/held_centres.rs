@@ -18,7 +18,7 @@ use nalgebra::RealField;
 use crate::bodies::{Bodies, BodyFrame, BodyId, GROUND};
 use crate::centres::ZERO_RATE;
 use crate::dyad::unit_scale;
-use crate::held::{BlockPoses, BlockRates, BLOCK};
+use crate::held::{merge, BlockPoses, BlockRates, BLOCK};
 use crate::scalar::{eps, lit, nan, tiny_square, Vec2};
 use crate::sweep::Columns;
 
@@ -129,8 +129,9 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                 }
                 continue;
             };
-            let (mut w, mut tol, mut scalar) =
-                ([T::zero(); BLOCK], [T::zero(); BLOCK], self.scalar);
+            // Marks in a fresh array, merged only when there is one (see `held::merge`).
+            let (mut w, mut tol) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
+            let (mut scalar, mut any) = ([false; BLOCK], false);
             let (xo, yo, xt, yt) = (&pos.x[o], &pos.y[o], &pos.x[t], &pos.y[t]);
             let (vxo, vyo, vxt, vyt) = (&unit.vx[o], &unit.vy[o], &unit.vx[t], &unit.vy[t]);
             for k in 0..BLOCK {
@@ -142,7 +143,8 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                 let (lo, bo) = length(vxo[k], vyo[k], tiny);
                 let (lt, bt) = length(vxt[k], vyt[k], tiny);
                 let (ld, bd) = length(dx, dy, tiny);
-                scalar[k] |= !unit_scale(dx.abs().max(dy.abs())) | bo | bt | bd;
+                scalar[k] = !unit_scale(dx.abs().max(dy.abs())) | bo | bt | bd;
+                any |= scalar[k];
                 let scale = (lo + lt) / ld;
                 // conditioned(margin): the tolerance over m², m = margin within [ε, 1].
                 let m = pos.margin[k].min(one).max(e);
@@ -150,7 +152,8 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                 w[k] = wk;
             }
             let s = usize::from(id.slot);
-            (self.w[id.joint][s], self.tol[id.joint][s], self.scalar) = (w, tol, scalar);
+            (self.w[id.joint][s], self.tol[id.joint][s]) = (w, tol);
+            merge(&mut self.scalar, &scalar, any);
         }
     }
 
@@ -208,7 +211,6 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
         let nan2 = Vec2::new(nan_t, nan_t);
         let tiny = tiny_square::<T>();
         let zr = lit::<T>(ZERO_RATE) * eps::<T>();
-        let mut scalar = self.scalar;
         let mut q = 0;
         for (a, ka) in bodies.ids().enumerate() {
             for kb in bodies.ids().skip(a + 1) {
@@ -232,6 +234,7 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                 );
                 let (mut cx, mut cy) = ([nan_t; BLOCK], [nan_t; BLOCK]);
                 let (mut ex, mut ey) = ([nan_t; BLOCK], [nan_t; BLOCK]);
+                let (mut scalar, mut any) = ([false; BLOCK], false);
                 for b in 0..BLOCK {
                     // instant_centre(k, l) at p = k's origin.
                     let (px, py) = (k.ox[b], k.oy[b]);
@@ -246,7 +249,8 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                     let (n, bn) = length(dvx, dvy, tiny);
                     let (lk, bk) = length(k.vx[b], k.vy[b], tiny);
                     let (ll, bl) = length(l.vx[b], l.vy[b], tiny);
-                    scalar[b] |= finite & parallel & (bn | bk | bl);
+                    scalar[b] = finite & parallel & (bn | bk | bl);
+                    any |= scalar[b];
                     let still = n <= zr * (lk + ll) || n == T::zero();
                     let at_infinity = finite & parallel & !still;
                     let at = finite & !parallel;
@@ -271,10 +275,10 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                         d[r] = Vec2::new(ex[b], ey[b]);
                     }
                 }
+                merge(&mut self.scalar, &scalar, any);
                 q += 1;
             }
         }
-        self.scalar = scalar;
     }
 
     /// Writes the path curvature (into `kappa`) and centre of curvature (into `centres`) of
@@ -300,8 +304,8 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
             Columns::All => (0, j, j),
             Columns::One(t) => (t, t + 1, 1),
         };
-        let mut scalar = self.scalar;
         for i in first..last {
+            let (mut scalar, mut any) = ([false; BLOCK], false);
             let (px, py, vx, vy) = (&pos.x[i], &pos.y[i], &unit.vx[i], &unit.vy[i]);
             let (ax, ay) = (&unit.ax[i], &unit.ay[i]);
             let (mut kap, mut cx, mut cy) = ([nan_t; BLOCK], [nan_t; BLOCK], [nan_t; BLOCK]);
@@ -315,7 +319,8 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                 let moving = finite & !(vx[b] == T::zero() && vy[b] == T::zero());
                 let ordinary = unit_scale(vx[b].abs().max(vy[b].abs()))
                     & unit_scale(ax[b].abs().max(ay[b].abs()));
-                scalar[b] |= moving & !ordinary;
+                scalar[b] = moving & !ordinary;
+                any |= scalar[b];
                 let v2 = vx[b] * vx[b] + vy[b] * vy[b];
                 let c = vx[b] * ay[b] - vy[b] * ax[b];
                 let speed = v2.sqrt();
@@ -342,7 +347,7 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
             if let Some(out) = centres.as_deref_mut() {
                 (0..m).for_each(|b| out[e(b)] = Vec2::new(cx[b], cy[b]));
             }
+            merge(&mut self.scalar, &scalar, any);
         }
-        self.scalar = scalar;
     }
 }
