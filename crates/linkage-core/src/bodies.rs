@@ -367,26 +367,44 @@ mod tests {
         let m = catalog::hoecken::<f64>().mechanism();
         let b = Bodies::of(&m);
         let mob = b.mobility();
-        assert_eq!((mob.links, mob.lower_pairs), (4, 4));
-        assert_eq!(mob.degrees_of_freedom(), 1);
+        assert_eq!((mob.links, mob.lower_pairs), (4, 4), "(links, lower pairs)");
+        assert_eq!(mob.degrees_of_freedom(), 1, "four-bar mobility");
         // The coupler point P joins the coupler A–B.
         let coupler = BodyId { joint: 3, slot: 0 };
-        assert!(b.contains(coupler, 4) && b.contains(coupler, 2) && b.contains(coupler, 3));
+        assert!(
+            b.contains(coupler, 4) && b.contains(coupler, 2) && b.contains(coupler, 3),
+            "coupler body holds joints 2, 3, 4: {}, {}, {}",
+            b.contains(coupler, 2),
+            b.contains(coupler, 3),
+            b.contains(coupler, 4)
+        );
     }
 
     /// Peaucellier: 8 links, 10 revolutes (docs/domain.md); Hart: 6 links, 7 revolutes.
     #[test]
     fn inversors_have_one_degree_of_freedom() {
         let p = Bodies::of(&catalog::peaucellier::<f64>().mechanism).mobility();
-        assert_eq!((p.links, p.lower_pairs, p.degrees_of_freedom()), (8, 10, 1));
+        assert_eq!(
+            (p.links, p.lower_pairs, p.degrees_of_freedom()),
+            (8, 10, 1),
+            "Peaucellier (links, lower pairs, mobility)"
+        );
         let h = Bodies::of(&catalog::hart::<f64>().mechanism).mobility();
-        assert_eq!((h.links, h.lower_pairs, h.degrees_of_freedom()), (6, 7, 1));
+        assert_eq!(
+            (h.links, h.lower_pairs, h.degrees_of_freedom()),
+            (6, 7, 1),
+            "Hart (links, lower pairs, mobility)"
+        );
         let g = Bodies::of(&catalog::hoecken_pantograph::<f64>(2.0).unwrap().mechanism).mobility();
-        assert_eq!((g.links, g.lower_pairs, g.degrees_of_freedom()), (8, 10, 1));
+        assert_eq!(
+            (g.links, g.lower_pairs, g.degrees_of_freedom()),
+            (8, 10, 1),
+            "Hoecken pantograph (links, lower pairs, mobility)"
+        );
         // Jansen's leg: frame, crank and two links per dyad (the rigid triangles b-d-e and
         // g-h-i are here pairs of binary links pinned together, which Gruebler counts alike).
         let j = Bodies::of(&catalog::jansen::<f64>().mechanism).mobility();
-        assert_eq!(j.degrees_of_freedom(), 1);
+        assert_eq!(j.degrees_of_freedom(), 1, "Jansen mobility ({j:?})");
     }
 
     #[test]
@@ -407,11 +425,17 @@ mod tests {
         let mob = Bodies::of(&m).mobility();
         assert_eq!(
             (mob.links, mob.lower_pairs, mob.degrees_of_freedom()),
-            (4, 4, 1)
+            (4, 4, 1),
+            "slider-crank (links, lower pairs, mobility)"
         );
         // A point framed by two joints of different bodies is a new body pinned at both:
         // over-constrained, which the count reports.
         m.point(o, s, 1.0, 0.0).unwrap();
-        assert_eq!(Bodies::of(&m).mobility().degrees_of_freedom(), 0);
+        let mob = Bodies::of(&m).mobility();
+        assert_eq!(
+            mob.degrees_of_freedom(),
+            0,
+            "mobility with a point pinned to two bodies ({mob:?})"
+        );
     }
 }

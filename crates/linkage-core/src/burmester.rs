@@ -901,15 +901,23 @@ mod tests {
         let c = pole(&p, &q).finite().unwrap();
         assert!((c - Vec2::new(1.0, 1.0)).norm() < 1e-15, "{c:?}");
         let t = BodyPose::new(3.0, 4.0, 0.0).unwrap();
-        assert!(matches!(pole(&p, &t), Centre::AtInfinity(_)));
-        assert_eq!(pole(&p, &p), Centre::Undefined);
+        let c = pole(&p, &t);
+        assert!(
+            matches!(c, Centre::AtInfinity(_)),
+            "pole of a translation: {c:?}"
+        );
+        assert_eq!(pole(&p, &p), Centre::Undefined, "pole of no motion");
     }
 
     #[test]
     fn wrap_is_in_half_open_interval() {
         use core::f64::consts::PI;
-        assert_eq!(wrap(PI), PI);
-        assert!((wrap(-PI) - PI).abs() < 1e-15);
-        assert!((wrap(3.0 * PI + 0.1) - (-PI + 0.1)).abs() < 1e-14);
+        assert_eq!(wrap(PI), PI, "wrap(π)");
+        assert!((wrap(-PI) - PI).abs() < 1e-15, "wrap(-π) = {}", wrap(-PI));
+        assert!(
+            (wrap(3.0 * PI + 0.1) - (-PI + 0.1)).abs() < 1e-14,
+            "wrap(3π + 0.1) = {}",
+            wrap(3.0 * PI + 0.1)
+        );
     }
 }

@@ -392,13 +392,19 @@ mod tests {
             Vec2::new(0.0, 1.0),
             Vec2::new(-1.0, 0.0),
         );
-        assert!(c.finite().unwrap().norm() < 1e-15);
+        assert!(
+            c.finite().unwrap().norm() < 1e-15,
+            "circumcentre of the unit circle {c:?}"
+        );
         let line = circumcentre(
             Vec2::new(0.0_f64, 0.0),
             Vec2::new(1.0, 1.0),
             Vec2::new(2.0, 2.0),
         );
-        assert!(matches!(line, Centre::AtInfinity(_)));
+        assert!(
+            matches!(line, Centre::AtInfinity(_)),
+            "circumcentre of collinear points {line:?}"
+        );
     }
 
     #[test]
@@ -410,15 +416,25 @@ mod tests {
         let v = Vec2::new(-r * s, r * c) * w;
         let a = Vec2::new(-r * s, r * c) * al - Vec2::new(r * c, r * s) * (w * w);
         let (k, centre) = path_curvature(p, v, a);
-        assert!((k - 0.5).abs() < 1e-15);
-        assert!((centre.finite().unwrap() - Vec2::new(1.0, 1.0)).norm() < 1e-14);
+        assert!((k - 0.5).abs() < 1e-15, "curvature {k} for radius 2");
+        assert!(
+            (centre.finite().unwrap() - Vec2::new(1.0, 1.0)).norm() < 1e-14,
+            "centre {centre:?} against (1, 1)"
+        );
         // Reversed travel: curvature changes sign, the centre does not.
         let (k2, c2) = path_curvature(p, -v, a);
-        assert!((k2 + 0.5).abs() < 1e-15);
-        assert!((c2.finite().unwrap() - Vec2::new(1.0, 1.0)).norm() < 1e-14);
-        assert!(matches!(
-            path_curvature(p, Vec2::zeros(), a).1,
-            Centre::Undefined
-        ));
+        assert!(
+            (k2 + 0.5).abs() < 1e-15,
+            "curvature {k2} travelled backwards"
+        );
+        assert!(
+            (c2.finite().unwrap() - Vec2::new(1.0, 1.0)).norm() < 1e-14,
+            "centre {c2:?} travelled backwards, against (1, 1)"
+        );
+        let (k0, c0) = path_curvature(p, Vec2::zeros(), a);
+        assert!(
+            matches!(c0, Centre::Undefined),
+            "at rest: curvature {k0}, centre {c0:?}"
+        );
     }
 }

@@ -431,14 +431,18 @@ mod tests {
         }
         // f32 the same way.
         let s = pow2_scale(1e-30_f32);
-        assert!((1.0..2.0).contains(&(1e-30_f32 / s)));
-        assert_eq!(pow2_scale(f64::NAN), 1.0);
+        assert!(
+            (1.0..2.0).contains(&(1e-30_f32 / s)),
+            "1e-30_f32: x/s = {}",
+            1e-30_f32 / s
+        );
+        assert_eq!(pow2_scale(f64::NAN), 1.0, "scale of NaN");
     }
 
     #[test]
     fn kahan_area_of_3_4_5() {
-        assert_eq!(triangle_area(3.0, 4.0, 5.0, 0.0), Ok(6.0));
-        assert_eq!(triangle_area(5.0, 3.0, 4.0, 0.0), Ok(6.0));
+        assert_eq!(triangle_area(3.0, 4.0, 5.0, 0.0), Ok(6.0), "sides 3, 4, 5");
+        assert_eq!(triangle_area(5.0, 3.0, 4.0, 0.0), Ok(6.0), "sides 5, 3, 4");
     }
 
     #[test]
@@ -459,13 +463,24 @@ mod tests {
             (kahan - exact_rounded).abs() <= 1e-14 * exact_rounded,
             "{kahan} vs {exact_rounded}"
         );
-        assert!((kahan - exact).abs() <= 2e-4 * exact);
+        assert!(
+            (kahan - exact).abs() <= 2e-4 * exact,
+            "{kahan} vs unrounded {exact}"
+        );
     }
 
     #[test]
     fn violation_reports_gap_and_rounding_touch() {
-        assert_eq!(triangle_area(1.0, 1.0, 3.0, 0.0), Err(1.0));
-        assert_eq!(triangle_area(1.0, 1.0, 2.0 + 1e-15, 1e-14), Ok(0.0));
+        assert_eq!(
+            triangle_area(1.0, 1.0, 3.0, 0.0),
+            Err(1.0),
+            "sides 1, 1, 3: gap"
+        );
+        assert_eq!(
+            triangle_area(1.0, 1.0, 2.0 + 1e-15, 1e-14),
+            Ok(0.0),
+            "sides 1, 1, 2 + 1e-15 within the rounding allowance 1e-14"
+        );
     }
 
     #[test]
@@ -475,8 +490,16 @@ mod tests {
             .solve(Vec2::new(1.0, 1.0), Vec2::new(1.0, 6.0), 0.0)
             .unwrap();
         // p1 → p2 points +y; left is −x.
-        assert!((pose.point(Side::Left) - Vec2::new(1.0 - 2.4, 1.0 + 1.8)).norm() < 1e-15);
-        assert!((pose.point(Side::Right) - Vec2::new(1.0 + 2.4, 1.0 + 1.8)).norm() < 1e-15);
+        assert!(
+            (pose.point(Side::Left) - Vec2::new(1.0 - 2.4, 1.0 + 1.8)).norm() < 1e-15,
+            "left {:?} against (-1.4, 2.8)",
+            pose.point(Side::Left)
+        );
+        assert!(
+            (pose.point(Side::Right) - Vec2::new(1.0 + 2.4, 1.0 + 1.8)).norm() < 1e-15,
+            "right {:?} against (3.4, 2.8)",
+            pose.point(Side::Right)
+        );
     }
 
     #[test]
@@ -484,16 +507,19 @@ mod tests {
         let d = Dyad { r1: 1.0, r2: 1.0 };
         assert_eq!(
             d.solve(Vec2::new(0.0, 0.0), Vec2::new(3.0, 0.0), 0.0),
-            Err(DyadFailure::Gap(1.0))
+            Err(DyadFailure::Gap(1.0)),
+            "links 1, 1 on a base 3"
         );
         assert_eq!(
             d.solve(Vec2::new(0.0, 0.0), Vec2::new(0.0, 0.0), 0.0),
-            Err(DyadFailure::Undetermined)
+            Err(DyadFailure::Undetermined),
+            "links 1, 1 on coincident pivots"
         );
         let d = Dyad { r1: 1.0, r2: 3.0 };
         assert_eq!(
             d.solve(Vec2::new(0.0, 0.0), Vec2::new(0.0, 0.0), 0.0),
-            Err(DyadFailure::Gap(2.0))
+            Err(DyadFailure::Gap(2.0)),
+            "links 1, 3 on coincident pivots"
         );
     }
 
@@ -508,14 +534,27 @@ mod tests {
         let p2 = Vec2::new(2.0 - 1e-10, 0.0);
         let pose = d.solve(p1, p2, 0.0).unwrap();
         let p = pose.point(Side::Left);
-        assert!(((p - p1).norm() - 1.0).abs() < 4e-16);
-        assert!(((p - p2).norm() - 1.0).abs() < 4e-16);
+        assert!(
+            ((p - p1).norm() - 1.0).abs() < 4e-16,
+            "link 1 length {} (want 1)",
+            (p - p1).norm()
+        );
+        assert!(
+            ((p - p2).norm() - 1.0).abs() < 4e-16,
+            "link 2 length {} (want 1)",
+            (p - p2).norm()
+        );
         // h = √(1 − (d/2)²) ≈ 1e-5 and margin = h·d/(r1·r2) ≈ 2e-5; the naive √(r1² − x²) would
         // keep only about half of h's digits.
         // With δ = 2 − d (exact, Sterbenz), h² = 1 − (d/2)² = δ(1 − δ/4) exactly.
         let delta = 2.0 - p2.x;
         let h = (delta * (1.0 - delta / 4.0)).sqrt();
         assert!(p.y > 0.0 && (p.y - h).abs() < 1e-12 * h, "{} vs {h}", p.y);
-        assert!((pose.margin - h * p2.x).abs() < 1e-12 * pose.margin);
+        assert!(
+            (pose.margin - h * p2.x).abs() < 1e-12 * pose.margin,
+            "margin {} vs h·d = {}",
+            pose.margin,
+            h * p2.x
+        );
     }
 }

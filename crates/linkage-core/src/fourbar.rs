@@ -671,21 +671,16 @@ mod tests {
     #[test]
     fn classes_of_the_catalogue() {
         let fb = |g, a, b, c| FourBar::new(g, a, b, c, (0.0, 0.0), Assembly::Open).unwrap();
-        assert_eq!(
-            fb(20.0, 10.0, 25.0, 25.0).grashof(),
-            GrashofClass::CrankRocker
-        );
-        assert_eq!(
-            fb(20.0, 25.0, 10.0, 25.0).grashof(),
-            GrashofClass::DoubleRocker
-        );
-        assert_eq!(
-            fb(40.0, 20.0, 10.0, 20.0).grashof(),
-            GrashofClass::TripleRocker
-        );
-        assert_eq!(fb(2.0, 3.0, 4.0, 3.5).grashof(), GrashofClass::DoubleCrank);
-        assert_eq!(fb(3.0, 1.0, 3.0, 1.0).grashof(), GrashofClass::ChangePoint);
-        assert_eq!(fb(3.0, 2.5, 4.0, 1.0).grashof(), GrashofClass::RockerCrank);
+        for ((g, a, b, c), class) in [
+            ((20.0, 10.0, 25.0, 25.0), GrashofClass::CrankRocker),
+            ((20.0, 25.0, 10.0, 25.0), GrashofClass::DoubleRocker),
+            ((40.0, 20.0, 10.0, 20.0), GrashofClass::TripleRocker),
+            ((2.0, 3.0, 4.0, 3.5), GrashofClass::DoubleCrank),
+            ((3.0, 1.0, 3.0, 1.0), GrashofClass::ChangePoint),
+            ((3.0, 2.5, 4.0, 1.0), GrashofClass::RockerCrank),
+        ] {
+            assert_eq!(fb(g, a, b, c).grashof(), class, "links {g}, {a}, {b}, {c}");
+        }
     }
 
     /// Evans linkages' input ranges: docs/domain.md (thesis 1 §1.4.3.6, after Norton) gives about
@@ -695,7 +690,12 @@ mod tests {
         let evans = |g, a, b, c| FourBar::new(g, a, b, c, (0.0, 0.0), Assembly::Open).unwrap();
         match evans(12.0, 10.0, 16.0, 10.39).input_range() {
             InputRange::Between { lo, hi } => {
-                assert!((deg(lo) - 27.0).abs() < 1.0 && (deg(hi) - 333.0).abs() < 1.0);
+                assert!(
+                    (deg(lo) - 27.0).abs() < 1.0 && (deg(hi) - 333.0).abs() < 1.0,
+                    "Evans A input range {}°…{}° against 27°…333°",
+                    deg(lo),
+                    deg(hi)
+                );
             }
             r => panic!("{r:?}"),
         }
@@ -703,7 +703,10 @@ mod tests {
             match evans(g, 10.0, b, c).input_range() {
                 InputRange::Between { lo, hi } => {
                     assert!((deg(hi) - lim).abs() < 0.6, "{}", deg(hi));
-                    assert!((lo + hi).abs() < 1e-15);
+                    assert!(
+                        (lo + hi).abs() < 1e-15,
+                        "range {lo}…{hi} not symmetric for links {g}, 10, {b}, {c}"
+                    );
                 }
                 r => panic!("{r:?}"),
             }
@@ -737,7 +740,11 @@ mod tests {
             InputRange::Between { hi, .. } => {
                 let p = fb.pose(hi).unwrap();
                 assert!(p.margin < 1e-6, "margin {} at the limit", p.margin);
-                assert!(fb.transmission_angle(hi).unwrap() > core::f64::consts::PI - 1e-3);
+                let mu = fb.transmission_angle(hi).unwrap();
+                assert!(
+                    mu > core::f64::consts::PI - 1e-3,
+                    "transmission angle {mu} at the limit {hi} (want a toggle, near π)"
+                );
                 assert!(fb.pose(hi + 1e-6).is_err(), "assembles past its limit");
             }
             r => panic!("Evans A should have a limited input range, got {r:?}"),
@@ -751,7 +758,7 @@ mod tests {
         let mut th = [0.0; 400];
         let mut j = [Vec2::zeros(); 2000];
         let ok = fb.circuit(&mut th, &mut j, None).unwrap();
-        assert_eq!(ok, n);
+        assert_eq!(ok, n, "samples the circuit filled");
         // Consecutive points close together (no branch jump), and the two halves meet.
         let p = |k: usize| j[5 * k + 4];
         let mut worst: f64 = 0.0;
@@ -759,7 +766,17 @@ mod tests {
             worst = worst.max((p(k) - p(k - 1)).norm());
         }
         assert!(worst < 2.5, "largest step {worst}");
-        assert!((p(0) - p(n - 1)).norm() < 1e-6);
-        assert!((p(n / 2 - 1) - p(n / 2)).norm() < 1e-6);
+        assert!(
+            (p(0) - p(n - 1)).norm() < 1e-6,
+            "circuit not closed: first {:?}, last {:?}",
+            p(0),
+            p(n - 1)
+        );
+        assert!(
+            (p(n / 2 - 1) - p(n / 2)).norm() < 1e-6,
+            "halves do not meet: {:?}, {:?}",
+            p(n / 2 - 1),
+            p(n / 2)
+        );
     }
 }

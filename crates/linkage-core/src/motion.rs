@@ -343,9 +343,10 @@ mod tests {
         m.crank(o, 1.0, 0.0).unwrap();
         let p = [Vec2::zeros(), Vec2::new(1.0, 0.0)];
         let (mut v, mut j) = ([Vec2::zeros(); 2], [Vec2::zeros(); 2]);
-        assert!(matches!(
-            m.motion(&p, CrankRates::unit(), &mut v, None, Some(&mut j)),
-            Err(Error::BufferLength { .. })
-        ));
+        let got = m.motion(&p, CrankRates::unit(), &mut v, None, Some(&mut j));
+        assert!(
+            matches!(got, Err(Error::BufferLength { .. })),
+            "jerk asked without acceleration: {got:?}"
+        );
     }
 }

@@ -356,7 +356,11 @@ mod tests {
             Vec2::new(1.0, 0.0),
             0.0,
         );
-        assert_eq!(got, Err(DyadFailure::Gap(2.0)));
+        assert_eq!(
+            got,
+            Err(DyadFailure::Gap(2.0)),
+            "rod 1 from (0, 3) to the x axis"
+        );
     }
 
     #[test]
@@ -370,10 +374,18 @@ mod tests {
         let pose = SliderDyad { r: l }.solve(a, q, u, 0.0).unwrap();
         let p = pose.point(Reach::Ahead);
         let root = (l * l - r * r * th.sin() * th.sin()).sqrt();
-        assert!((p.x - (r * th.cos() + root)).abs() < 1e-14);
+        assert!(
+            (p.x - (r * th.cos() + root)).abs() < 1e-14,
+            "slider at x = {} against r cos θ + √(l² − r² sin² θ) = {}",
+            p.x,
+            r * th.cos() + root
+        );
         let (_, v) = SliderDyad::velocity(a, va, q, Vec2::zeros(), u, 0.0, p).unwrap();
         let xdot = -r * th.sin() * w - r * r * th.sin() * th.cos() * w / root;
-        assert!((v.x - xdot).abs() < 1e-13 && v.y.abs() < 1e-15);
+        assert!(
+            (v.x - xdot).abs() < 1e-13 && v.y.abs() < 1e-15,
+            "slider velocity {v:?} against ({xdot}, 0)"
+        );
     }
 
     /// A slider through O on a line carried by the crank O → A turned by 1.1 rad, at 3 from
@@ -436,7 +448,8 @@ mod tests {
         for joint in [0, 2, 4, usize::MAX] {
             assert_eq!(
                 m.line_directions(joint, &joints, &mut u),
-                Err(Error::NotASlider { joint })
+                Err(Error::NotASlider { joint }),
+                "line directions of joint {joint}"
             );
         }
         // 8 positions are 2 rows of 4 joints: not 7 positions, nor one row.
@@ -445,13 +458,25 @@ mod tests {
             expected: 8,
             got: 7,
         };
-        assert_eq!(m.line_directions(s, &joints[..7], &mut u), Err(short));
+        assert_eq!(
+            m.line_directions(s, &joints[..7], &mut u),
+            Err(short),
+            "7 positions"
+        );
         let one = Error::BufferLength {
             what: "joints",
             expected: 4,
             got: 8,
         };
-        assert_eq!(m.line_directions(s, &joints, &mut u[..1]), Err(one));
-        assert_eq!(m.line_directions(s, &joints, &mut u), Ok(()));
+        assert_eq!(
+            m.line_directions(s, &joints, &mut u[..1]),
+            Err(one),
+            "2 rows into 1 output"
+        );
+        assert_eq!(
+            m.line_directions(s, &joints, &mut u),
+            Ok(()),
+            "2 rows into 2 outputs"
+        );
     }
 }
