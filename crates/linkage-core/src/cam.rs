@@ -181,19 +181,37 @@ mod tests {
         for k in 0..12 {
             let phi = k as f64 * 0.5;
             let p = f.point(phi, [0.0, 0.0, 0.0]);
-            assert!((p.profile.norm() - 20.0).abs() < 1e-12);
-            assert!((p.pitch.norm() - 25.0).abs() < 1e-12);
             assert!(
-                (p.pitch_radius - 25.0).abs() < 1e-12 && (p.profile_radius - 20.0).abs() < 1e-12
+                (p.profile.norm() - 20.0).abs() < 1e-12,
+                "profile radius {} at φ = {phi}",
+                p.profile.norm()
             );
-            assert!(p.pressure_angle.abs() < 1e-15);
+            assert!(
+                (p.pitch.norm() - 25.0).abs() < 1e-12,
+                "pitch radius {} at φ = {phi}",
+                p.pitch.norm()
+            );
+            assert!(
+                (p.pitch_radius - 25.0).abs() < 1e-12 && (p.profile_radius - 20.0).abs() < 1e-12,
+                "radii of curvature: pitch {}, profile {} at φ = {phi}",
+                p.pitch_radius,
+                p.profile_radius
+            );
+            assert!(
+                p.pressure_angle.abs() < 1e-15,
+                "pressure angle {:e} at φ = {phi}",
+                p.pressure_angle
+            );
         }
         let flat = FlatFollower::new(20.0_f64)
             .unwrap()
             .point(1.0, [0.0, 0.0, 0.0]);
         assert!(
             (flat.profile.norm() - 20.0).abs() < 1e-12
-                && (flat.profile_radius - 20.0).abs() < 1e-12
+                && (flat.profile_radius - 20.0).abs() < 1e-12,
+            "flat follower on a dwell: profile at radius {}, radius of curvature {}",
+            flat.profile.norm(),
+            flat.profile_radius
         );
     }
 
@@ -206,10 +224,22 @@ mod tests {
             let phi = beta * k as f64 / 10.0;
             let s = l * phi / beta;
             let p = f.point(phi, [s, l / beta, 0.0]);
-            assert!((p.pressure_angle - ((l / beta) / (36.0 + s)).atan()).abs() < 1e-14);
+            let want = ((l / beta) / (36.0 + s)).atan();
+            assert!(
+                (p.pressure_angle - want).abs() < 1e-14,
+                "pressure angle {} against {want} at φ = {phi}",
+                p.pressure_angle
+            );
             // The profile is one roller radius from the pitch curve.
-            assert!(((p.pitch - p.profile).norm() - 6.0).abs() < 1e-12);
+            assert!(
+                ((p.pitch - p.profile).norm() - 6.0).abs() < 1e-12,
+                "pitch-to-profile distance {} at φ = {phi} (want the roller radius 6)",
+                (p.pitch - p.profile).norm()
+            );
         }
-        assert!(RollerFollower::new(10.0, 2.0, 12.0).is_err());
+        assert!(
+            RollerFollower::new(10.0, 2.0, 12.0).is_err(),
+            "offset 12 not inside the prime circle (radius 12) accepted"
+        );
     }
 }

@@ -140,31 +140,43 @@ mod tests {
     #[test]
     fn compound_and_signs() {
         let t = GearTrain::compound(&[(12, 36), (10, 40)]).unwrap();
-        assert!((t.ratio() - 1.0 / 12.0).abs() < 1e-15);
-        assert_eq!(t.sign(), 1);
-        assert_eq!(GearTrain::simple(&[20, 40]).unwrap().sign(), -1);
-        assert!(GearTrain::simple(&[20]).is_err());
-        assert!(GearTrain::simple(&[20, 0]).is_err());
+        assert!(
+            (t.ratio() - 1.0 / 12.0).abs() < 1e-15,
+            "ratio {} of 12:36, 10:40 (want 1/12)",
+            t.ratio()
+        );
+        assert_eq!(t.sign(), 1, "sign of a compound train of two meshes");
+        assert_eq!(
+            GearTrain::simple(&[20, 40]).unwrap().sign(),
+            -1,
+            "sign of one external mesh"
+        );
+        let one = GearTrain::simple(&[20]);
+        assert!(one.is_err(), "a single gear: {one:?}");
+        let zero = GearTrain::simple(&[20, 0]);
+        assert!(zero.is_err(), "a gear of no teeth: {zero:?}");
     }
 
     #[test]
     fn compound_ratio_is_exact_or_an_error() {
         // 40 stages of 1:2 is 2⁻⁴⁰, exactly; 1100 stages of 1:2 is below the smallest normal.
         let t = GearTrain::compound(&[(1, 2); 40]).unwrap();
-        assert_eq!(t.ratio(), 1.0 / (1u64 << 40) as f64);
+        assert_eq!(t.ratio(), 1.0 / (1u64 << 40) as f64, "40 stages of 1:2");
         // Far below the float range on the way (4e9⁻⁶⁰ ≈ 1e-577) but exactly 1 in the end: a
         // plain product gives 0; this one is 1 to the rounding of 120 factors.
         let mut stages = [(1, 4_000_000_000); 60].to_vec();
         stages.extend([(4_000_000_000, 1); 60]);
         let r = GearTrain::compound(&stages).unwrap().ratio();
         assert!((r - 1.0).abs() < 1e-13, "{r}");
-        assert!(matches!(
-            GearTrain::compound(&[(1, 2); 1100]),
-            Err(Error::NotRepresentable { .. })
-        ));
-        assert!(matches!(
-            GearTrain::compound(&[(u32::MAX, 1); 40]),
-            Err(Error::NotRepresentable { .. })
-        ));
+        let tiny = GearTrain::compound(&[(1, 2); 1100]);
+        assert!(
+            matches!(tiny, Err(Error::NotRepresentable { .. })),
+            "1100 stages of 1:2: {tiny:?}"
+        );
+        let huge = GearTrain::compound(&[(u32::MAX, 1); 40]);
+        assert!(
+            matches!(huge, Err(Error::NotRepresentable { .. })),
+            "40 stages of u32::MAX:1: {huge:?}"
+        );
     }
 }

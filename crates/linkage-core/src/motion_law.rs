@@ -436,14 +436,28 @@ mod tests {
                 .map(|k| law.eval(k as f64 / 100_000.0)[order].abs())
                 .fold(0.0, f64::max)
         };
-        assert!((peak(MotionLaw::Cycloidal, 2) - core::f64::consts::TAU).abs() < 1e-9);
-        assert!((peak(MotionLaw::Cycloidal, 1) - 2.0).abs() < 1e-9);
-        assert!((peak(MotionLaw::SimpleHarmonic, 1) - core::f64::consts::FRAC_PI_2).abs() < 1e-9);
-        assert!((peak(MotionLaw::Polynomial345, 1) - 1.875).abs() < 1e-9);
-        assert!((peak(MotionLaw::Polynomial345, 2) - 10.0 / 3f64.sqrt()).abs() < 1e-6);
-        assert!((peak(MotionLaw::Polynomial4567, 1) - 2.1875).abs() < 1e-9);
-        assert!((peak(MotionLaw::ConstantAcceleration, 2) - 4.0).abs() < 1e-12);
-        assert!((peak(MotionLaw::ModifiedTrapezoid, 2) - 4.8881).abs() < 1e-4);
+        for (law, order, want, tol) in [
+            (MotionLaw::Cycloidal, 2, core::f64::consts::TAU, 1e-9),
+            (MotionLaw::Cycloidal, 1, 2.0, 1e-9),
+            (
+                MotionLaw::SimpleHarmonic,
+                1,
+                core::f64::consts::FRAC_PI_2,
+                1e-9,
+            ),
+            (MotionLaw::Polynomial345, 1, 1.875, 1e-9),
+            (MotionLaw::Polynomial345, 2, 10.0 / 3f64.sqrt(), 1e-6),
+            (MotionLaw::Polynomial4567, 1, 2.1875, 1e-9),
+            (MotionLaw::ConstantAcceleration, 2, 4.0, 1e-12),
+            (MotionLaw::ModifiedTrapezoid, 2, 4.8881, 1e-4),
+        ] {
+            let got = peak(law, order);
+            assert!(
+                (got - want).abs() < tol,
+                "{}: peak of derivative {order} is {got}, want {want}",
+                law.name()
+            );
+        }
     }
 
     /// The first source's drive: 91° → 271° over 1 s by 3-4-5, then 271° → 451° over the next
@@ -456,11 +470,19 @@ mod tests {
             start: 91.0,
             segments: &segs,
         };
-        assert!((p.eval(0.0)[0] - 91.0).abs() < 1e-12);
-        assert!((p.eval(1.0)[0] - 271.0).abs() < 1e-12);
-        assert!((p.eval(2.0)[0] - 451.0).abs() < 1e-12);
-        assert!((p.eval(0.5)[1] - 337.5).abs() < 1e-12);
-        assert!((p.eval(2.5)[0] - (451.0 + 90.0)).abs() < 1e-9);
+        for (t, order, want, tol) in [
+            (0.0, 0, 91.0, 1e-12),
+            (1.0, 0, 271.0, 1e-12),
+            (2.0, 0, 451.0, 1e-12),
+            (0.5, 1, 337.5, 1e-12),
+            (2.5, 0, 451.0 + 90.0, 1e-9), // one period on
+        ] {
+            let got = p.eval(t)[order];
+            assert!(
+                (got - want).abs() < tol,
+                "derivative {order} at t = {t} is {got}, want {want}"
+            );
+        }
         let mut out = [Discontinuity {
             after: 0,
             order: 0,
@@ -480,6 +502,10 @@ mod tests {
             segments: &segs,
         };
         let n = q.discontinuities(1e-9, &mut out);
-        assert!(n >= 4 && out.iter().take(n.min(4)).all(|d| d.order >= 2));
+        assert!(
+            n >= 4 && out.iter().take(n.min(4)).all(|d| d.order >= 2),
+            "rise-dwell-return-dwell: {n} discontinuities, want at least 4 of order ≥ 2: {:?}",
+            &out[..n.min(4)]
+        );
     }
 }

@@ -405,15 +405,31 @@ mod tests {
         // Periodic continuation: one period later the angle has advanced by `advance`.
         let (a, _, _) = table.at(0.1);
         let (b, _, _) = table.at(0.1 + table.period());
-        assert!((b - a - 100.0).abs() < 1e-12);
+        assert!(
+            (b - a - 100.0).abs() < 1e-12,
+            "advance over one period {} (want 100)",
+            b - a
+        );
     }
 
     #[test]
     fn rejects_bad_tables() {
-        assert!(ScheduleTable::new(0.0, 1.0, &[0.0], &[0.0]).is_err());
-        assert!(ScheduleTable::<f64>::new(1.0, 1.0, &[], &[]).is_err());
-        assert!(ScheduleTable::new(1.0, 1.0, &[0.0, 1.0], &[0.0]).is_err());
-        assert!(ScheduleTable::new(1.0, 1.0, &[f64::NAN], &[0.0]).is_err());
+        assert!(
+            ScheduleTable::new(0.0, 1.0, &[0.0], &[0.0]).is_err(),
+            "a zero time step accepted"
+        );
+        assert!(
+            ScheduleTable::<f64>::new(1.0, 1.0, &[], &[]).is_err(),
+            "an empty table accepted"
+        );
+        assert!(
+            ScheduleTable::new(1.0, 1.0, &[0.0, 1.0], &[0.0]).is_err(),
+            "two angles with one speed accepted"
+        );
+        assert!(
+            ScheduleTable::new(1.0, 1.0, &[f64::NAN], &[0.0]).is_err(),
+            "a NaN angle accepted"
+        );
     }
 
     /// Hand-computed case: a foot moving at a constant 3 mm per radian over a stance of π/2
@@ -433,8 +449,12 @@ mod tests {
             "{}",
             s.stance_time()
         );
-        assert!((s.period() - pi).abs() < 1e-15);
-        assert_eq!(s.slowest_swing_speed(), 2.0);
+        assert!(
+            (s.period() - pi).abs() < 1e-15,
+            "period {} (want π)",
+            s.period()
+        );
+        assert_eq!(s.slowest_swing_speed(), 2.0, "slowest swing speed");
         for k in 0..=40 {
             let t = k as f64 * pi / 40.0;
             let (th, w) = s.at(t);
@@ -443,7 +463,10 @@ mod tests {
         }
         let (mut th, mut w) = ([0.0; 8], [0.0; 8]);
         let dt = s.fill(&mut th, &mut w).unwrap();
-        assert!((dt - pi / 8.0).abs() < 1e-15);
+        assert!(
+            (dt - pi / 8.0).abs() < 1e-15,
+            "fill's time step {dt} (want π/8)"
+        );
         assert!((th[4] - (1.0 + pi)).abs() < 1e-13, "{}", th[4]); // t = π/2 s at 2 rad/s
     }
 
@@ -460,7 +483,10 @@ mod tests {
         let ts = s.stance_time();
         let (th_a, w_a) = s.at(ts * (1.0 - 1e-12));
         let (th_b, w_b) = s.at(ts * (1.0 + 1e-12));
-        assert!((th_a - end).abs() < 1e-9 && (th_b - end).abs() < 1e-9);
+        assert!(
+            (th_a - end).abs() < 1e-9 && (th_b - end).abs() < 1e-9,
+            "θ just before / after the stance ends: {th_a}, {th_b} (want {end})"
+        );
         assert!((w_a - w_b).abs() < 1e-9, "{w_a} vs {w_b}");
         let (th_end, w_end) = s.at(s.period());
         assert!(

@@ -232,20 +232,41 @@ mod tests {
         ];
         let mut hull = [Vec2::zeros(); 7];
         let n = convex_hull(&mut pts, &mut hull).unwrap();
-        assert_eq!(n, 4);
+        assert_eq!(
+            n, 4,
+            "hull of a square with points inside and on an edge: {hull:?}"
+        );
         let h = &hull[..n];
-        assert_eq!(stability_margin(Vec2::new(1.0, 1.0), h), Some(1.0));
-        assert_eq!(stability_margin(Vec2::new(0.5, 1.0), h), Some(0.5));
-        assert_eq!(stability_margin(Vec2::new(3.0, 1.0), h), Some(-1.0));
+        assert_eq!(
+            stability_margin(Vec2::new(1.0, 1.0), h),
+            Some(1.0),
+            "margin at the centre of {h:?}"
+        );
+        assert_eq!(
+            stability_margin(Vec2::new(0.5, 1.0), h),
+            Some(0.5),
+            "margin at (0.5, 1) in {h:?}"
+        );
+        assert_eq!(
+            stability_margin(Vec2::new(3.0, 1.0), h),
+            Some(-1.0),
+            "margin at (3, 1), outside {h:?}"
+        );
         // Two pads touching at a point: a segment has no inside.
         let mut two = [Vec2::new(0.0, 0.0), Vec2::new(2.0, 0.0)];
         let m = convex_hull(&mut two, &mut hull).unwrap();
-        assert_eq!(m, 2);
+        assert_eq!(m, 2, "hull of two pads: {hull:?}");
         assert_eq!(
             stability_margin(Vec2::new(1.0, 0.5), &hull[..m]),
-            Some(-0.5)
+            Some(-0.5),
+            "margin over a segment hull {:?}",
+            &hull[..m]
         );
-        assert_eq!(stability_margin::<f64>(Vec2::new(1.0, 0.5), &[]), None);
+        assert_eq!(
+            stability_margin::<f64>(Vec2::new(1.0, 0.5), &[]),
+            None,
+            "margin with no pads down"
+        );
     }
 
     #[test]
@@ -281,7 +302,7 @@ mod tests {
             &mut margins,
         )
         .unwrap();
-        assert_eq!(counts, [4, 3, 0]);
+        assert_eq!(counts, [4, 3, 0], "hull sizes per sample");
         assert_eq!(margins[0], 1.0, "centre of the square");
         // The triangle (0,0), (2,0), (0,2): (1, 0.5) is 0.5 from the bottom edge and
         // |1 + 0.5 − 2|/√2 ≈ 0.354 from the hypotenuse.

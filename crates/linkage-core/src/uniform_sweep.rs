@@ -392,7 +392,8 @@ mod tests {
             e,
             Err(Error::ToggleOnPath {
                 angle: core::f64::consts::PI
-            })
+            }),
+            "parallelogram swept from 0.1 in steps of 0.5 across its flat position at π"
         );
         assert!(out.iter().all(|p| *p == Vec2::zeros()), "nothing written");
         // Between the flat positions it runs.
@@ -400,7 +401,8 @@ mod tests {
             .unwrap();
         // A Grashof crank-rocker never flattens.
         let h = catalog::hoecken::<f64>();
-        assert!(h.check_fixed_assembly_path(-1e3, 1e3).is_ok());
+        let got = h.check_fixed_assembly_path(-1e3, 1e3);
+        assert!(got.is_ok(), "Hoecken's crank-rocker over ±1e3 rad: {got:?}");
     }
 
     #[test]
@@ -434,6 +436,9 @@ mod tests {
             &mut out,
         )
         .unwrap();
-        assert!(out[0].x.is_finite() && out[2].x.is_nan());
+        assert!(
+            out[0].x.is_finite() && out[2].x.is_nan(),
+            "Evans B at θ = 0, π/2, π, 3π/2 (want θ = 0 finite, π NaN): {out:?}"
+        );
     }
 }
