@@ -254,13 +254,16 @@ mod tests {
                 ..spec
             },
         ] {
-            assert!(matches!(
-                Atlas::build_arcs(10, bad, 1),
-                Err(Error::BufferLength { .. })
-            ));
+            let got = Atlas::build_arcs(10, bad, 1);
+            assert!(
+                matches!(got, Err(Error::BufferLength { .. })),
+                "{bad:?}: want a BufferLength error, got {:?}",
+                got.map(|a| a.len())
+            );
         }
         let good = [1.0, 2.0, 1.5, 0.5, 0.5, 0.0, 3.0, 2.0];
-        assert!(arc_points(&good, spec).is_ok());
+        let got = arc_points(&good, spec);
+        assert!(got.is_ok(), "entry {good:?} rejected: {:?}", got.err());
         for (k, v, what) in [
             (6, 8.0, "arc phase"),
             (7, 1.5, "arc fraction"),
@@ -268,7 +271,11 @@ mod tests {
         ] {
             let mut e = good;
             e[k] = v;
-            assert_eq!(arc_points(&e, spec), Err(Error::NotRepresentable { what }));
+            assert_eq!(
+                arc_points(&e, spec),
+                Err(Error::NotRepresentable { what }),
+                "entry {e:?} ({what} {v} at index {k})"
+            );
         }
     }
 

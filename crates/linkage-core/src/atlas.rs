@@ -640,8 +640,11 @@ mod tests {
         };
         let one = Atlas::build(3000, spec, 1).unwrap();
         let three = Atlas::build(3000, spec, 3).unwrap();
-        assert_eq!(one.len(), 3000);
-        assert_eq!(one, three);
+        assert_eq!(one.len(), 3000, "entries built on one thread");
+        assert_eq!(
+            one, three,
+            "atlas built on one thread differs from three threads'"
+        );
         // Every Grashof class but the change point is present.
         let mut seen = std::collections::HashSet::new();
         for &i in &one.candidate {
@@ -658,9 +661,12 @@ mod tests {
         for e in [0, 17, 1999] {
             let q = &atlas.descriptors[e * d..(e + 1) * d];
             let hits = nearest(&atlas.descriptors, d, q, 3, 2).unwrap();
-            assert_eq!(hits[0].0, e);
-            assert_eq!(hits[0].1, 0.0);
-            assert!(hits[1].1 >= hits[0].1);
+            assert_eq!(hits[0].0, e, "nearest to entry {e}: {hits:?}");
+            assert_eq!(hits[0].1, 0.0, "distance of entry {e} to itself: {hits:?}");
+            assert!(
+                hits[1].1 >= hits[0].1,
+                "hits for entry {e} not by distance: {hits:?}"
+            );
         }
     }
 }

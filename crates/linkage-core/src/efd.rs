@@ -457,7 +457,11 @@ mod tests {
             })
             .collect();
         let efd = Efd::closed(&circle, 6).unwrap();
-        assert!((efd.centre - Vec2::new(2.0, -1.0)).norm() < 1e-3);
+        assert!(
+            (efd.centre - Vec2::new(2.0, -1.0)).norm() < 1e-3,
+            "circle's centre {:?} against (2, -1)",
+            efd.centre
+        );
         for h in &efd.harmonics[1..] {
             assert!(h.iter().all(|v| v.abs() < 1e-3), "{h:?}");
         }
@@ -498,9 +502,18 @@ mod tests {
                 best = best.min(d.sqrt());
             }
             assert!(best < 1e-4, "case {k}: {best}");
-            assert!((frame.scale / scale - a.normalised().unwrap().1.scale).abs() < 1e-4);
+            let want = a.normalised().unwrap().1.scale;
+            assert!(
+                (frame.scale / scale - want).abs() < 1e-4,
+                "case {k}: scale {} / {scale} against {want}",
+                frame.scale
+            );
             let q = Vec2::new(0.3, -0.2);
-            assert!((frame.apply(frame.invert(q)) - q).norm() < 1e-12);
+            let back = frame.apply(frame.invert(q));
+            assert!(
+                (back - q).norm() < 1e-12,
+                "case {k}: apply(invert(q)) = {back:?} for q = {q:?}"
+            );
             // The normalised series put back is the curve.
             for i in 0..50 {
                 let t = i as f64 / 50.0;
@@ -528,23 +541,30 @@ mod tests {
         let efd = Efd::open(&arc, 6).unwrap();
         let (n, _) = efd.normalised().unwrap();
         // Out and back along the same points: no area, so the first harmonic is flat.
-        assert!(n.harmonics[0][3].abs() < 1e-12);
+        assert!(
+            n.harmonics[0][3].abs() < 1e-12,
+            "first harmonic's minor axis {:e} for an out-and-back arc",
+            n.harmonics[0][3]
+        );
     }
 
     #[test]
     fn bad_curves_are_refused() {
         let p = Vec2::new(1.0, 1.0);
-        assert!(matches!(
-            Efd::closed(&[p, p], 3),
-            Err(Error::BufferLength { .. })
-        ));
-        assert!(matches!(
-            Efd::closed(&[p, p, p], 3),
-            Err(Error::NotRepresentable { .. })
-        ));
-        assert!(matches!(
-            Efd::closed(&[p, Vec2::new(f64::NAN, 0.0), p], 3),
-            Err(Error::NotFinite { .. })
-        ));
+        let got = Efd::closed(&[p, p], 3);
+        assert!(
+            matches!(got, Err(Error::BufferLength { .. })),
+            "two points: {got:?}"
+        );
+        let got = Efd::closed(&[p, p, p], 3);
+        assert!(
+            matches!(got, Err(Error::NotRepresentable { .. })),
+            "three coincident points: {got:?}"
+        );
+        let got = Efd::closed(&[p, Vec2::new(f64::NAN, 0.0), p], 3);
+        assert!(
+            matches!(got, Err(Error::NotFinite { .. })),
+            "a NaN point: {got:?}"
+        );
     }
 }

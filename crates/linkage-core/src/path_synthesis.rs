@@ -1047,7 +1047,10 @@ mod tests {
         // Triple rocker (limited both ways): the circuit passes both limits smoothly.
         let fb = FourBar::new(20.0, 10.0, 10.0, 10.0, (20.0, 5.0), Assembly::Open).unwrap();
         let c = CircuitPath::new(fb).unwrap();
-        assert!(!c.full_turn());
+        assert!(
+            !c.full_turn(),
+            "a triple rocker's circuit reported a full turn"
+        );
         c.check(512).unwrap();
         let poly = c.polyline(2000);
         let worst = (0..2000)
@@ -1058,7 +1061,11 @@ mod tests {
         let t = c.point(1.234).unwrap();
         let (d, s) = c.foot(t, &c.polyline(256)).unwrap();
         assert!(d < 1e-12, "{d}");
-        assert!((c.point(s).unwrap() - t).norm() < 1e-12);
+        let foot = c.point(s).unwrap();
+        assert!(
+            (foot - t).norm() < 1e-12,
+            "foot {foot:?} at s = {s} of the curve point {t:?}"
+        );
     }
 
     #[test]

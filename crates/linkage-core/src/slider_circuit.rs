@@ -420,10 +420,11 @@ mod tests {
     #[test]
     fn the_circuit_is_smooth_and_exact_through_its_limits() {
         let c = SliderCircuit::new(sc(0.4, 2.0, 1.5)).unwrap();
-        assert!(matches!(
-            c.linkage.input_range(),
-            InputRange::TwoIntervals { .. }
-        ));
+        let range = c.linkage.input_range();
+        assert!(
+            matches!(range, InputRange::TwoIntervals { .. }),
+            "offset 0.4, crank 2, rod 1.5: {range:?}"
+        );
         for limit in [0.0, core::f64::consts::PI] {
             for k in 1..12 {
                 let ds = 10f64.powi(-k);
@@ -449,17 +450,24 @@ mod tests {
         let mut out = [Vec2::zeros(); 2];
         let t = [Vec2::zeros(); 2];
         let p = [0.0; 9];
-        assert!(matches!(
-            slider_path_residuals(&p, &t, &[0.0; 2], &mut out),
-            Err(Error::BufferLength {
-                expected: 16,
-                got: 9,
-                ..
-            })
-        ));
+        let got = slider_path_residuals(&p, &t, &[0.0; 2], &mut out);
+        assert!(
+            matches!(
+                got,
+                Err(Error::BufferLength {
+                    expected: 16,
+                    got: 9,
+                    ..
+                })
+            ),
+            "9 parameters: {got:?}"
+        );
         // A row that cannot be built (crank 0) gives NaN residuals, not an error.
         let p = [0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0];
         slider_path_residuals(&p, &t, &[0.0; 2], &mut out).unwrap();
-        assert!(out.iter().all(|r| r.x.is_nan()));
+        assert!(
+            out.iter().all(|r| r.x.is_nan()),
+            "residuals of a row with crank 0: {out:?}"
+        );
     }
 }

@@ -337,9 +337,18 @@ mod tests {
                         (p.b.x - x).abs() < 1e-13 && (p.b.y - e).abs() < 1e-15,
                         "{p:?}"
                     );
-                    assert!(((p.b - p.a).norm() - l).abs() < 1e-13);
+                    assert!(
+                        ((p.b - p.a).norm() - l).abs() < 1e-13,
+                        "{e} {r} {l} {th}: rod length {} (want {l})",
+                        (p.b - p.a).norm()
+                    );
                     m.pose(th, &mut joints).unwrap();
-                    assert!((joints[SliderCrank::<f64>::P] - p.coupler_point).norm() < 1e-13);
+                    let got = joints[SliderCrank::<f64>::P];
+                    assert!(
+                        (got - p.coupler_point).norm() < 1e-13,
+                        "{e} {r} {l} {th}: mechanism's coupler point {got:?} against {:?}",
+                        p.coupler_point
+                    );
                 }
             }
         }
@@ -364,7 +373,12 @@ mod tests {
             reach: Reach::Ahead,
             ..behind
         };
-        assert!((ahead.line_point() - behind.line_point()).norm() < 1e-15);
+        assert!(
+            (ahead.line_point() - behind.line_point()).norm() < 1e-15,
+            "line points: ahead {:?}, behind {:?}",
+            ahead.line_point(),
+            behind.line_point()
+        );
         for k in 0..50 {
             let th = k as f64 * 0.13;
             let (p, q) = (behind.pose(th).unwrap(), ahead.pose(th).unwrap());
@@ -376,12 +390,27 @@ mod tests {
     fn the_crank_turns_fully_iff_offset_plus_crank_reaches_the_rod() {
         let full =
             |e: f64, r: f64, l: f64| sc(e, r, l, Reach::Ahead).input_range() == InputRange::Full;
-        assert!(full(0.0, 1.0, 1.0) && full(1.0, 1.0, 2.0) && full(-1.0, 1.0, 2.0));
-        assert!(!full(1.0 + 1e-9, 1.0, 2.0) && !full(0.0, 1.0, 0.999));
-        assert!(sc(1.0, 1.0, 2.0, Reach::Ahead).is_change_point());
+        assert!(
+            full(0.0, 1.0, 1.0) && full(1.0, 1.0, 2.0) && full(-1.0, 1.0, 2.0),
+            "full turn for (e, r, l) = (0, 1, 1): {}, (1, 1, 2): {}, (-1, 1, 2): {}",
+            full(0.0, 1.0, 1.0),
+            full(1.0, 1.0, 2.0),
+            full(-1.0, 1.0, 2.0)
+        );
+        assert!(
+            !full(1.0 + 1e-9, 1.0, 2.0) && !full(0.0, 1.0, 0.999),
+            "full turn for (e, r, l) = (1 + 1e-9, 1, 2): {}, (0, 1, 0.999): {}",
+            full(1.0 + 1e-9, 1.0, 2.0),
+            full(0.0, 1.0, 0.999)
+        );
+        assert!(
+            sc(1.0, 1.0, 2.0, Reach::Ahead).is_change_point(),
+            "|e| + r = l (1 + 1 = 2) not a change point"
+        );
         assert_eq!(
             sc(3.5, 1.0, 2.0, Reach::Ahead).input_range(),
-            InputRange::Never
+            InputRange::Never,
+            "offset 3.5 past crank 1 + rod 2"
         );
         // Every kind of limited range: at each limit the rod is perpendicular to the line.
         for &(e, r, l) in &[
@@ -417,21 +446,27 @@ mod tests {
             Err(Error::InvalidLength {
                 what: "crank",
                 value: -1.0
-            })
+            }),
+            "crank -1"
         );
         assert_eq!(
             new(1.0, 0.0, 0.0),
             Err(Error::InvalidLength {
                 what: "coupler",
                 value: 0.0
-            })
+            }),
+            "rod 0"
         );
-        assert!(matches!(
-            new(1.0, 2.0, f64::NAN),
-            Err(Error::NotFinite {
-                what: "line offset",
-                ..
-            })
-        ));
+        let got = new(1.0, 2.0, f64::NAN);
+        assert!(
+            matches!(
+                got,
+                Err(Error::NotFinite {
+                    what: "line offset",
+                    ..
+                })
+            ),
+            "NaN offset: {got:?}"
+        );
     }
 }

@@ -171,7 +171,10 @@ fn equals_the_direct_scan_on_long_paths() {
         let path = make_path(kind, &raw, 0.3, 1e6);
         let fast = straight_part(&path, tol, closed);
         let direct = reference(&path, tol, closed);
-        assert!(fast.is_some_and(|s| s.count >= 3));
+        assert!(
+            fast.is_some_and(|s| s.count >= 3),
+            "{kind}: no run of 3 samples: {fast:?}"
+        );
         assert!(
             same(fast, direct),
             "{kind}: fast {fast:?}\ndirect {direct:?}"
@@ -273,7 +276,7 @@ fn fast_scan_timing() {
         tree_s / fast_s,
         fast.map(|s| (s.start, s.count))
     );
-    assert!(fast.is_some());
+    assert!(fast.is_some(), "no straight run in the bench path");
     assert!(same(fast, tree), "fast {fast:?}\ntree {tree:?}");
 }
 
@@ -290,14 +293,32 @@ fn finds_the_flat_of_a_d_shape() {
         };
     }
     let s = straight_part(&path, 1e-9, false).unwrap();
-    assert_eq!((s.start, s.count), (0, 21));
-    assert!((s.length - 10.0).abs() < 1e-12 && s.max_deviation < 1e-12);
-    assert!((s.direction - Vec2::new(1.0, 0.0)).norm() < 1e-12);
+    assert_eq!(
+        (s.start, s.count),
+        (0, 21),
+        "(start, count) of the flat: {s:?}"
+    );
+    assert!(
+        (s.length - 10.0).abs() < 1e-12 && s.max_deviation < 1e-12,
+        "flat's length {} (want 10), deviation {:e}",
+        s.length,
+        s.max_deviation
+    );
+    assert!(
+        (s.direction - Vec2::new(1.0, 0.0)).norm() < 1e-12,
+        "flat's direction {:?} (want (1, 0))",
+        s.direction
+    );
     // Closed: the flat run is the same; a looser tolerance takes in more of the arc.
     let c = straight_part(&path, 1e-9, true).unwrap();
-    assert_eq!(c.count, 21);
+    assert_eq!(c.count, 21, "flat's samples on the closed path: {c:?}");
     let loose = straight_part(&path, 0.5, true).unwrap();
-    assert!(loose.count > 21 && loose.max_deviation <= 0.5);
+    assert!(
+        loose.count > 21 && loose.max_deviation <= 0.5,
+        "tolerance 0.5: {} samples, deviation {}",
+        loose.count,
+        loose.max_deviation
+    );
 }
 
 #[test]
@@ -319,14 +340,28 @@ fn wraps_around_a_closed_path() {
     }
     let open = straight_part(&path, 1e-9, false).unwrap();
     let closed = straight_part(&path, 1e-9, true).unwrap();
-    assert_eq!(open.count, 21); // the top side, inside the array
-    assert_eq!(closed.count, 21);
-    assert!((closed.length - 2.0).abs() < 1e-9);
+    assert_eq!(open.count, 21, "open path: {open:?}"); // the top side, inside the array
+    assert_eq!(closed.count, 21, "closed path: {closed:?}");
+    assert!(
+        (closed.length - 2.0).abs() < 1e-9,
+        "closed path's run length {} (want 2)",
+        closed.length
+    );
     // Break the top side: only the wrapped bottom side is left at full length.
     let mut broken = path;
     broken[30] = Vec2::new(f64::NAN, f64::NAN);
-    assert!(straight_part(&broken, 1e-9, false).unwrap().count < 21);
+    let inside = straight_part(&broken, 1e-9, false).unwrap();
+    assert!(
+        inside.count < 21,
+        "open path with the top side broken: {inside:?}"
+    );
     let wrapped = straight_part(&broken, 1e-9, true).unwrap();
-    assert_eq!(wrapped.count, 21);
-    assert!(wrapped.start + wrapped.count > 60 && wrapped.point.y.abs() < 1e-12);
+    assert_eq!(
+        wrapped.count, 21,
+        "closed path with the top side broken: {wrapped:?}"
+    );
+    assert!(
+        wrapped.start + wrapped.count > 60 && wrapped.point.y.abs() < 1e-12,
+        "run not the wrapped bottom side: {wrapped:?}"
+    );
 }
