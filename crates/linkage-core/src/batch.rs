@@ -657,8 +657,12 @@ mod tests {
                 what: "coupler",
                 expected: 2,
                 got: 1
-            })
+            }),
+            "a short coupler slice is refused"
         );
-        assert!(p.iter().all(|q| *q == Vec2::zeros()));
+        assert!(
+            p.iter().all(|q| *q == Vec2::zeros()),
+            "nothing written on a refused batch: {p:?}"
+        );
     }
 }

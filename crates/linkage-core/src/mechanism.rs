@@ -940,26 +940,37 @@ mod tests {
             Err(Error::UnknownJoint {
                 joint: 0,
                 refers_to: 0
-            })
+            }),
+            "a crank about a joint not yet defined"
         );
         let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
-        assert!(matches!(
-            m.crank(o, -1.0, 0.0),
-            Err(Error::InvalidLength {
-                what: "crank radius",
-                ..
-            })
-        ));
-        assert!(matches!(
-            m.fixed(Vec2::new(f64::NAN, 0.0)),
-            Err(Error::NotFinite { .. })
-        ));
+        let negative = m.crank(o, -1.0, 0.0);
+        assert!(
+            matches!(
+                negative,
+                Err(Error::InvalidLength {
+                    what: "crank radius",
+                    ..
+                })
+            ),
+            "a negative crank radius gave {negative:?}"
+        );
+        let nan = m.fixed(Vec2::new(f64::NAN, 0.0));
+        assert!(
+            matches!(nan, Err(Error::NotFinite { .. })),
+            "a NaN fixed joint gave {nan:?}"
+        );
         m.crank(o, 1.0, 0.0).unwrap();
-        assert_eq!(m.crank(o, 1.0, 0.0), Err(Error::SecondDriver { joint: 2 }));
+        assert_eq!(
+            m.crank(o, 1.0, 0.0),
+            Err(Error::SecondDriver { joint: 2 }),
+            "a second crank"
+        );
         m.fixed(Vec2::new(1.0, 0.0)).unwrap();
         assert_eq!(
             m.fixed(Vec2::new(1.0, 0.0)),
-            Err(Error::CapacityExceeded { capacity: 3 })
+            Err(Error::CapacityExceeded { capacity: 3 }),
+            "a fourth joint in a program of capacity 3"
         );
     }
 
@@ -979,10 +990,27 @@ mod tests {
         let root = g.sqrt();
         let x1 = -r * s - r * r * s * c / root;
         let x2 = -r * c - r * r * (c * c - s * s) / root - (r * r * s * c).powi(2) / (g * root);
-        assert!((pos[b].x - (r * c + root)).abs() < 1e-14);
-        assert!((vel[b].x - x1 * w).abs() < 1e-13);
-        assert!((acc[b].x - (x2 * w * w + x1 * al)).abs() < 1e-12);
-        assert!(acc[b].y.abs() < 1e-14);
+        let (x, v, a) = (r * c + root, x1 * w, x2 * w * w + x1 * al);
+        assert!(
+            (pos[b].x - x).abs() < 1e-14,
+            "position {} against {x}",
+            pos[b].x
+        );
+        assert!(
+            (vel[b].x - v).abs() < 1e-13,
+            "velocity {} against {v}",
+            vel[b].x
+        );
+        assert!(
+            (acc[b].x - a).abs() < 1e-12,
+            "acceleration {} against {a}",
+            acc[b].x
+        );
+        assert!(
+            acc[b].y.abs() < 1e-14,
+            "the slider leaves its line: {}",
+            acc[b].y
+        );
     }
 
     #[test]
@@ -1003,7 +1031,7 @@ mod tests {
         let mut pos = [Vec2::zeros(); 3];
         // Exactly at the toggle the pose is valid (joint at the foot) ...
         let margin = m.pose(core::f64::consts::FRAC_PI_2, &mut pos).unwrap();
-        assert!(margin < 1e-7);
+        assert!(margin < 1e-7, "margin {margin:e} at the toggle");
         // ... and a velocity solve there reports the singularity, or stays finite only if the
         // rounding left the rod not exactly perpendicular.
         let mut vel = [Vec2::zeros(); 3];
@@ -1012,6 +1040,10 @@ mod tests {
         let regular = m
             .motion(&pos, CrankRates::unit(), &mut vel, None, None)
             .unwrap();
-        assert!(!regular && vel[b].x.is_nan());
+        assert!(
+            !regular && vel[b].x.is_nan(),
+            "at the toggle: regular {regular}, velocity {:?}",
+            vel[b]
+        );
     }
 }

@@ -854,8 +854,13 @@ mod tests {
     #[test]
     fn parallelogram_stays_parallelogram_through_flat_positions() {
         // Fine sampling, and sampling far too coarse to see the flat positions.
-        assert!(sweep_parallelogram(3600) < 1e-12);
-        assert!(sweep_parallelogram(5) < 1e-12);
+        for n in [3600, 5] {
+            let worst = sweep_parallelogram(n);
+            assert!(
+                worst < 1e-12,
+                "{n} samples a turn: off the parallelogram by {worst:e}"
+            );
+        }
     }
 
     /// Change-point four-bars (any link shortest), parallelograms, kites and deltoids, any
@@ -968,9 +973,14 @@ mod tests {
         let mut j = [Vec2::zeros(); 4];
         let e = t.step(0.0, None, &mut j, Rates::none()).unwrap_err();
         match e {
-            Error::CannotAssemble { joint: 3, gap } => assert!((gap - 1.0).abs() < 1e-12),
+            Error::CannotAssemble { joint: 3, gap } => {
+                assert!((gap - 1.0).abs() < 1e-12, "gap {gap} for a gap of 1");
+            }
             other => panic!("unexpected {other:?}"),
         }
-        assert!(j.iter().all(|p| p.x.is_nan() && p.y.is_nan()));
+        assert!(
+            j.iter().all(|p| p.x.is_nan() && p.y.is_nan()),
+            "joints of a failed step: {j:?}"
+        );
     }
 }
