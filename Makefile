@@ -34,6 +34,7 @@ test: $(STAMP) ## Set up and run every test: Rust unit/property/doc tests, pytes
 check: $(STAMP) firmware firmware-size ## Formatting, lints (clippy -D warnings, ruff), rustdoc -D warnings, firmware builds.
 	cargo fmt --all --check
 	cargo clippy --workspace --all-targets -- -D warnings
+	$(BIN)/python .ci/assert_messages.py
 	RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p linkage-core
 	$(BIN)/ruff check python tests bench
 	$(BIN)/ruff format --check python tests bench
