@@ -207,6 +207,9 @@ def test_out_arrays_are_filled_and_returned() -> None:
         )  # fmt: skip
     with pytest.raises(TypeError, match="out must be a pair"):
         sweep_fourbars(20, 10, 25, 25, (0, 0), th, out=(np.empty((1, th.size, 2)),))  # type: ignore[arg-type]
+    single = (np.empty((1, th.size, 2), dtype=np.float32), np.empty((1, th.size), dtype=bool))
+    with pytest.raises(TypeError, match=r"got \(float32 ndarray, bool ndarray\)"):
+        sweep_fourbars(20, 10, 25, 25, (0, 0), th, out=single)  # type: ignore[arg-type]
     frozen = (np.empty((1, 1, 2)), np.empty((1, 1), dtype=bool))
     frozen[0].flags.writeable = False
     with pytest.raises(LinkageError, match="writeable"):

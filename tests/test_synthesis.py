@@ -158,6 +158,22 @@ def test_open_arc_is_recovered_exactly(arc_atlas: Atlas, name: str, seed: int, f
     assert tracked_distance(found[0].linkage, target) <= 1e-6 * size + 1e-4 * size
 
 
+def test_full_turn_guides_the_search_not_only_the_ranking(arc_atlas: Atlas) -> None:
+    """An arc of a crank-rocker with full_turn=True: the constraint picks which matches are
+    refined, so the drawing crank-rocker is found; before, an exact fit of another class ended
+    the search and the filter then left an empty list (found by a new-user trial)."""
+    fb = linkage.FourBar(ground=10, crank=4, coupler=12, rocker=11, point=(6, -5))
+    target = fb.sweep(np.linspace(0.3, 0.3 + 0.85 * 2 * np.pi, 40)).point
+    found = synthesis.path(
+        target, closed=False, top=1, full_turn=True, atlas=arc_atlas, global_search=False
+    )
+    assert found, "full_turn=True left no candidate"
+    size = size_of(target)
+    assert found[0].full_turn, found[0]
+    assert found[0].error <= 1e-6 * size, found[0].error / size
+    assert_one_circuit(found[0])
+
+
 def test_arc_atlas_round_trips_and_finds_its_own_arcs(tmp_path) -> None:  # type: ignore[no-untyped-def]
     a = Atlas.build(3000, kind="fourbar-arcs", threads=1)
     assert np.array_equal(

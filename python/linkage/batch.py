@@ -179,7 +179,12 @@ def sweep_fourbars(
         and isinstance(out[1], np.ndarray)
         and out[1].dtype == np.bool_
     ):
-        raise TypeError("out must be a pair (float64 array, bool array)")
+        got = (
+            ", ".join(f"{getattr(a, 'dtype', type(a).__name__)} {type(a).__name__}" for a in out)
+            if isinstance(out, tuple)
+            else type(out).__name__
+        )
+        raise TypeError(f"out must be a pair (float64 array, bool array), got ({got})")
     points, valid = _core.batch_sweep(
         o_m,
         c_m,

@@ -811,6 +811,8 @@ def path(
     ...
     linkage.LinkageError: the points are all collinear: a closed curve through them encloses ...
     """
+    if isinstance(kind, str) and kind != "any" and kind not in _KIND:
+        raise LinkageError(f"kind must be 'fourbar', 'slider-crank' or 'any', got {kind!r}")
     kinds = list(_KIND.values()) if kind == "any" else [_kind(kind)]
     closed = as_flag(closed, "closed")
     top = as_count(top, "top")
@@ -837,9 +839,18 @@ def path(
     nthreads = _threads(threads)
     centre = target.mean(axis=0)
     size = target_size(target)
-    bar = _bar(progress, refine * len(kinds))
+    fits = refine if closed else 3 * refine
+    bar = _bar(progress, fits * len(kinds))
     atlases = _atlases(atlas, kinds)
     found: list[Candidate[Any]] = []
+
+    def admissible(c: Candidate[Any]) -> bool:
+        return _meets(c, full_turn, min_transmission, lengths, pivots)
+
+    def best(cs: list[Candidate[Any]]) -> float:
+        """Return the least error of the admissible candidates (∞ if none is)."""
+        return min((c.error for c in cs if admissible(c)), default=math.inf)
+
     for k in kinds:
         bounds = _bounds(lengths, pivots, size, k)
         pool = []
@@ -849,18 +860,23 @@ def path(
         if name is not None:
             at = atlases.get(name) or default_atlas(kind=name)
             many = 4 * max(top, refine) if closed else 16 * max(top, refine)
-            fits = max(refine, top) if closed else 3 * refine
-            pool = _atlas_pool(k, at, target, fits, many, nthreads)
-        fits = refine if closed else 3 * refine
-        mine = _finish(pool, target, closed, size, bounds, fits, nthreads, bar, top, k)
-        if not closed and mine and min(c.error for c in mine) > EXACT * size:
-            mine += _hops(mine, target, size, bounds, seed, nthreads, k)
+            placed = max(refine, top) if closed else 3 * refine
+            if full_turn and k is FOURBAR:
+                # Refine the best matches whose crank turns fully (the constraint asked for),
+                # from four times as many, before any other.
+                pool = _atlas_pool(k, at, target, 4 * placed, 4 * many, nthreads)
+                pool.sort(key=lambda entry: not _turns_fully(entry[0]))
+                pool = pool[:placed]
+            else:
+                pool = _atlas_pool(k, at, target, placed, many, nthreads)
+        mine = _finish(pool, target, closed, size, bounds, fits, nthreads, bar, top, k, admissible)
+        # Restarts and the global search are judged by the candidates the constraints admit:
+        # an exact fit they reject must not end the search for one they admit.
+        if not closed and mine and best(mine) > EXACT * size:
+            starts = [c for c in mine if admissible(c)] or mine
+            mine += _hops(starts, target, size, bounds, seed, nthreads, k)
         found += mine
-    run_global = (
-        global_search
-        if global_search is not None
-        else (not found or min(c.error for c in found) > tol * size)
-    )
+    run_global = global_search if global_search is not None else best(found) > tol * size
     if run_global:
         for k in kinds:
             if bar is not None and bar.total is not None:
@@ -877,12 +893,25 @@ def path(
                 nthreads,
                 bar,
                 kind=k,
+                admissible=admissible,
             )
     if bar is not None:
         bar.close()
     ok = [c for c in found if _meets(c, full_turn, min_transmission, lengths, pivots)]
     limit = math.inf if lengths is not None or max_link is None else max_link * size
     return _distinct(_ranked(ok, size, limit), target, closed, size, top)
+
+
+def _turns_fully(x: NDArray[np.float64]) -> bool:
+    """Whether the crank of the placed four-bar ``x`` turns fully.
+
+    Its base ``|C − A|`` runs over ``[|g − r|, g + r]``, which must lie within the dyad's
+    ``[|b − c|, b + c]`` (to rounding).
+    """
+    g = math.hypot(x[2] - x[0], x[3] - x[1])
+    r, b, c = x[4], x[5], x[6]
+    slack = 1e-12 * (g + r + b + c)
+    return bool(abs(g - r) >= abs(b - c) - slack and g + r <= b + c + slack)
 
 
 HOPS = 12
@@ -1145,10 +1174,12 @@ def _finish(
     bar: Any,
     enough: int | None = None,
     kind: _Kind = FOURBAR,
+    admissible: Callable[[Candidate[Any]], bool] | None = None,
 ) -> list[Candidate[Any]]:
     """Refine the first ``refine`` of ``pool``, then measure and check every one.
 
-    Stop early once ``enough`` distinct candidates draw the target exactly (to 1e-10 of its size).
+    Stop early once ``enough`` distinct candidates that are ``admissible`` (meet the caller's
+    constraints) draw the target exactly (to 1e-10 of its size).
     """
     out: list[Candidate[Any]] = []
     exact: list[NDArray[np.float64]] = []
@@ -1191,8 +1222,10 @@ def _finish(
             cand = _measure(xt, crossed, target, closed, source, threads, kind)
             if cand is not None:
                 out.append(cand)
-                if cand.error <= 1e-10 * size and all(
-                    np.max(np.abs(cand.params - e)) > 1e-6 * size for e in exact
+                if (
+                    cand.error <= 1e-10 * size
+                    and (admissible is None or admissible(cand))
+                    and all(np.max(np.abs(cand.params - e)) > 1e-6 * size for e in exact)
                 ):
                     exact.append(cand.params)
     return out
