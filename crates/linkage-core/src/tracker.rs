@@ -149,8 +149,12 @@ enum Choice {
     Probe,
 }
 
+/// Turns a jump walks looking for the period of the tracked state; a longer jump whose state has
+/// not repeated by then is refused ([`Error::OutOfRange`]) rather than walked turn by turn.
+const PERIOD_SEARCH: i64 = 1024;
+
 /// The tracked state at a turn boundary, compared to find the period of a full-turn crank.
-#[derive(Clone, Copy, PartialEq)]
+#[derive(Clone, Copy)]
 struct Snapshot<T: RealField + Copy, const N: usize> {
     sign: [i8; N],
     older: [Vec2<T>; N],
@@ -159,6 +163,29 @@ struct Snapshot<T: RealField + Copy, const N: usize> {
     hist_margin: [T; N],
     nhist: u8,
     fine_here: bool,
+}
+
+impl<T: RealField + Copy, const N: usize> Snapshot<T, N> {
+    /// Whether two states are the same, value for value, a NaN matching a NaN (a state holding
+    /// one must still be seen to repeat).
+    fn same(&self, other: &Self) -> bool {
+        #[allow(clippy::eq_op, reason = "x != x is the NaN test for a generic float")]
+        let eq = |a: T, b: T| a == b || (a != a && b != b);
+        let pts = |a: &[Vec2<T>; N], b: &[Vec2<T>; N]| {
+            a.iter().zip(b).all(|(p, q)| eq(p.x, q.x) && eq(p.y, q.y))
+        };
+        self.sign == other.sign
+            && self.nhist == other.nhist
+            && self.fine_here == other.fine_here
+            && eq(self.spacing, other.spacing)
+            && pts(&self.older, &other.older)
+            && pts(&self.newest, &other.newest)
+            && self
+                .hist_margin
+                .iter()
+                .zip(&other.hist_margin)
+                .all(|(&a, &b)| eq(a, b))
+    }
 }
 
 /// Sweeps a [`Mechanism`] over driver angles, keeping each dyad on its assembly branch.
@@ -664,9 +691,13 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         // Brent's cycle finding on the states at turn boundaries.
         let (mut power, mut lam) = (1i64, 1i64);
         let mut period = None;
+        let mut walked = 1i64;
         while left > 0 {
-            if self.snapshot() == tortoise {
+            if self.snapshot().same(&tortoise) {
                 period = Some(lam);
+                break;
+            }
+            if walked >= PERIOD_SEARCH {
                 break;
             }
             if power == lam {
@@ -677,6 +708,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             walk_turn(self)?;
             left -= 1;
             lam += 1;
+            walked += 1;
         }
         if let Some(p) = period {
             let skip = left / p * p;
@@ -685,6 +717,14 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                 at.idx = at.idx.saturating_add(shift);
             }
             left -= skip;
+        } else if left > PERIOD_SEARCH {
+            // A state that does not repeat (rounding that drifts from turn to turn): walking
+            // the rest would take time in proportion to the jump.
+            return Err(Error::OutOfRange {
+                what: "turns of a jump whose tracked state does not repeat",
+                value: usize::try_from(turns).unwrap_or(usize::MAX),
+                max: usize::try_from(2 * PERIOD_SEARCH).unwrap_or(usize::MAX),
+            });
         }
         for _ in 0..left {
             walk_turn(self)?;
@@ -699,7 +739,10 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     /// # Errors
     /// [`Error::CannotAssemble`] / [`Error::Coincident`] when the sample cannot be assembled
     /// (the slices are filled with NaN); [`Error::NotFinite`] for a non-finite angle or motion;
-    /// [`Error::BufferLength`] for wrong slices, or rates requested without a motion.
+    /// [`Error::BufferLength`] for wrong slices, or rates requested without a motion;
+    /// [`Error::OutOfRange`] for a jump of more than 2048 turns whose tracked state does not
+    /// repeat within 1024 of them (rounding that drifts from turn to turn), rather than a walk
+    /// as long as the jump.
     pub fn step(
         &mut self,
         theta: T,
