@@ -189,7 +189,7 @@ class Atlas:
         if kind == ARCS:
             desc, params, _ = _core.synth_arc_atlas_build(n, h, m, 8, _threads(threads))
             return cls(desc, params, h, m, ARCS, 8)
-        k = _atlas_kind(kind)
+        k = _kind(kind, ARCS)
         build = _core.synth_atlas_build if k is FOURBAR else _core.synth_slider_atlas_build
         desc, params, _ = build(n, h, m, _threads(threads))
         return cls(desc, params, h, m, k.name)
@@ -280,19 +280,19 @@ class Atlas:
         return _core.synth_atlas_nearest(self.descriptors, q, as_count(k, "k"), _threads(threads))
 
 
-def _kind(kind: Any) -> _Kind:
+def _kind(kind: Any, also: str | None = None) -> _Kind:
+    """Return the linkage kind named ``kind``; an error names the kinds and ``also``.
+
+    ``also`` is the caller's one further choice, handled by the caller (``"any"`` for
+    :func:`path`, :data:`ARCS` for atlases), so the message lists every name it takes.
+    """
     if not isinstance(kind, str):
         raise TypeError(f"kind must be a str, got {type(kind).__name__}")
     if kind not in _KIND:
-        raise LinkageError(f"kind must be 'fourbar' or 'slider-crank', got {kind!r}")
+        names = [repr(k) for k in _KIND] + ([repr(also)] if also else [])
+        listed = ", ".join(names[:-1]) + " or " + names[-1]
+        raise LinkageError(f"kind must be {listed}, got {kind!r}")
     return _KIND[kind]
-
-
-def _atlas_kind(kind: Any) -> _Kind:
-    """Return the linkage kind of an atlas of ``kind`` other than arcs (naming all three)."""
-    if isinstance(kind, str) and kind not in _KIND:
-        raise LinkageError(f"kind must be 'fourbar', 'slider-crank' or {ARCS!r}, got {kind!r}")
-    return _kind(kind)
 
 
 def _threads(threads: int | None) -> int:
@@ -311,7 +311,7 @@ def default_atlas(
     (``kind="fourbar-arcs"``). The cache folder is ``$LINKAGE_CACHE_DIR``, else the user's
     cache folder; the atlas is memory-mapped from there afterwards.
     """
-    k = _atlas_kind("fourbar" if kind == ARCS else kind)
+    k = _kind("fourbar" if kind == ARCS else kind, ARCS)
     default = DEFAULT_ARC_ENTRIES if kind == ARCS else k.default_entries
     entries = default if entries is None else entries
     core = getattr(_core, "__file__", "") or ""
@@ -811,9 +811,7 @@ def path(
     ...
     linkage.LinkageError: the points are all collinear: a closed curve through them encloses ...
     """
-    if isinstance(kind, str) and kind != "any" and kind not in _KIND:
-        raise LinkageError(f"kind must be 'fourbar', 'slider-crank' or 'any', got {kind!r}")
-    kinds = list(_KIND.values()) if kind == "any" else [_kind(kind)]
+    kinds = list(_KIND.values()) if kind == "any" else [_kind(kind, "any")]
     closed = as_flag(closed, "closed")
     top = as_count(top, "top")
     refine = as_count(refine, "refine", 0)
