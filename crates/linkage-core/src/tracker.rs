@@ -879,6 +879,29 @@ mod tests {
         m
     }
 
+    #[test]
+    fn a_snapshot_holding_nan_repeats_and_one_differing_value_does_not() {
+        let m = parallelogram();
+        let mut t = Tracker::new(&m).unwrap();
+        let mut j = [Vec2::zeros(); 4];
+        t.step(1.0, None, &mut j, Rates::none()).unwrap();
+        t.step(1.1, None, &mut j, Rates::none()).unwrap();
+        let mut a = t.snapshot();
+        a.hist_margin[3] = f64::NAN;
+        a.newest[2].x = f64::NAN;
+        let b = a;
+        assert!(a.same(&b), "a NaN in the state must match the same NaN");
+        let mut c = a;
+        c.newest[2].y += 1e-15;
+        assert!(
+            !a.same(&c),
+            "a state differing in one value must not repeat"
+        );
+        let mut d = a;
+        d.hist_margin[3] = 0.0;
+        assert!(!a.same(&d), "a NaN must not match a number");
+    }
+
     fn sweep_parallelogram(steps: usize) -> f64 {
         let m = parallelogram();
         let mut t = Tracker::new(&m).unwrap();

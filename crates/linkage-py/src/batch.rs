@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use crate::args::named;
+use crate::args::{finite, named};
 use crate::error::{linkage_error, to_py};
 use crate::memory;
 
@@ -171,12 +171,7 @@ pub fn batch_sweep<'py>(
     if let Some((i, e)) = batch.first_invalid() {
         return Err(linkage_error(format!("linkage {i}: {e}")));
     }
-    if let Some(k) = th.iter().position(|t| !t.is_finite()) {
-        return Err(linkage_error(format!(
-            "theta must be finite: theta[{k}] is {}",
-            th[k]
-        )));
-    }
+    finite("theta", th)?;
     let (points, valid) = match out {
         Some((p, v)) => {
             let shape = |s: &[usize]| {
