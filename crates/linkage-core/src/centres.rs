@@ -3,7 +3,7 @@
 use nalgebra::RealField;
 
 use crate::bodies::{Bodies, BodyFrame, BodyId};
-use crate::motion::direction_rates;
+use crate::rates::direction_rates;
 use crate::scalar::{cross, eps, length, lit, perp, Vec2};
 
 /// A point of the projective plane: finite, at infinity in a direction, or undefined.
@@ -167,7 +167,7 @@ pub fn path_curvature<T: RealField + Copy>(p: Vec2<T>, v: Vec2<T>, a: Vec2<T>) -
 /// let mut p = [Vec2::zeros(); 5];
 /// m.pose(0.5, &mut p).unwrap();
 /// let (mut v, mut a, j) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5], [Vec2::zeros(); 5]);
-/// m.motion(&p, CrankRates::unit(), &mut v, Some(&mut a), None).unwrap();
+/// m.rates(&p, CrankRates::unit(), &mut v, Some(&mut a), None).unwrap();
 /// let bodies = Bodies::of(&m);
 /// let motion = |id| BodyMotion::of(&bodies, id, &p, &v, &a, &j);
 /// let crank = motion(BodyId { joint: 2, slot: 0 });

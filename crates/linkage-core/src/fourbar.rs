@@ -494,7 +494,7 @@ impl<T: RealField + Copy> FourBar<T> {
         let margin = m.pose(theta, &mut pos).ok()?;
         let (mut v, mut a, mut j) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5], [Vec2::zeros(); 5]);
         if !m
-            .motion(&pos, CrankRates::unit(), &mut v, Some(&mut a), Some(&mut j))
+            .rates(&pos, CrankRates::unit(), &mut v, Some(&mut a), Some(&mut j))
             .ok()?
         {
             return None;

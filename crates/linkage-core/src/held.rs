@@ -433,7 +433,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
 }
 
 /// Velocities and accelerations of a block of posed samples (structure of arrays), by the
-/// formulas of [`Mechanism::motion`] term for term for fixed joints, cranks, dyads and carried
+/// formulas of [`Mechanism::rates`] term for term for fixed joints, cranks, dyads and carried
 /// points (a block never holds a slider).
 pub(crate) struct BlockRates<T, const N: usize> {
     pub(crate) vx: [[T; BLOCK]; N],
@@ -471,7 +471,7 @@ impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
         alpha: &[T; BLOCK],
     ) {
         let zero = [T::zero(); BLOCK];
-        let m_star = crate::motion::rate_margin::<T>();
+        let m_star = crate::rates::rate_margin::<T>();
         let (lo, hi) = (
             lit::<T>(2.328_306_436_538_696_3e-10),
             lit::<T>(4_294_967_296.0),

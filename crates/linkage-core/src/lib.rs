@@ -78,10 +78,10 @@ mod inflection;
 #[cfg(feature = "alloc")]
 mod kinetostatics;
 mod mechanism;
-mod motion;
 mod motion_law;
 #[cfg(feature = "std")]
 mod parallel;
+mod rates;
 mod scalar;
 mod schedule;
 mod slider;
@@ -167,8 +167,8 @@ pub use kinetostatics::{Dynamics, ForceSolution, ForceSweep, Inertia, Load, Load
 )]
 pub use mechanism::Motion;
 pub use mechanism::{Construction, CrankRates, Mechanism};
-pub use motion::rate_margin;
 pub use motion_law::{Derivatives, Discontinuity, MotionLaw, Program, Segment};
+pub use rates::rate_margin;
 pub use scalar::Vec2;
 pub use schedule::{ScheduleTable, StanceSchedule};
 pub use slider::{LineDirection, Reach, SliderDyad, SliderPose};

@@ -212,7 +212,7 @@ pub(crate) enum Candidates<T: RealField + Copy> {
 /// let mut pos = [Vec2::zeros(); 2];
 /// m.pose(0.0, &mut pos).unwrap();
 /// let mut vel = [Vec2::zeros(); 2];
-/// let regular = m.motion(&pos, CrankRates::new(3.0, 0.0), &mut vel, None, None).unwrap();
+/// let regular = m.rates(&pos, CrankRates::new(3.0, 0.0), &mut vel, None, None).unwrap();
 /// assert!(regular && (vel[a] - Vec2::new(0.0, 6.0)).norm() < 1e-15);
 /// assert_eq!(CrankRates::<f64>::unit(), CrankRates { omega: 1.0, alpha: 0.0, jerk: 0.0 });
 /// ```
@@ -982,7 +982,7 @@ mod tests {
         m.pose(th, &mut pos).unwrap();
         let mut vel = [Vec2::zeros(); 3];
         let mut acc = [Vec2::zeros(); 3];
-        m.motion(&pos, CrankRates::new(w, al), &mut vel, Some(&mut acc), None)
+        m.rates(&pos, CrankRates::new(w, al), &mut vel, Some(&mut acc), None)
             .unwrap();
         // x(θ) = r cos θ + √(l² − r² sin² θ): x' and x'' in θ by hand, then chain rule.
         let (s, c) = th.sin_cos();
@@ -1038,7 +1038,7 @@ mod tests {
         pos[b] = Vec2::new(0.0, 0.0);
         pos[a] = Vec2::new(0.0, 1.0);
         let regular = m
-            .motion(&pos, CrankRates::unit(), &mut vel, None, None)
+            .rates(&pos, CrankRates::unit(), &mut vel, None, None)
             .unwrap();
         assert!(
             !regular && vel[b].x.is_nan(),

@@ -16,7 +16,7 @@ use crate::error::Error;
 use crate::held::{padded, BlockPoses, BlockRates, BLOCK};
 use crate::held_centres::BlockCentres;
 use crate::mechanism::{CrankRates, Mechanism};
-use crate::motion::rate_margin;
+use crate::rates::rate_margin;
 use crate::scalar::{lit, nan, Vec2};
 use crate::tracker::{Rates, Tracker};
 
@@ -389,7 +389,7 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let pos = &self.pos[..j];
         let unit_acc = self.wants_curvature.then_some(&mut self.uacc[..j]);
         self.mech
-            .motion(pos, CrankRates::unit(), &mut self.uvel[..j], unit_acc, None)?;
+            .rates(pos, CrankRates::unit(), &mut self.uvel[..j], unit_acc, None)?;
         if self.wants_centres {
             let bodies = &self.bodies;
             for id in bodies.ids() {
@@ -452,7 +452,7 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let j = self.j;
         let acc = self.wants_acc.then_some(&mut self.acc[..j]);
         self.mech
-            .motion(
+            .rates(
                 &self.pos[..j],
                 CrankRates::new(w, a),
                 &mut self.vel[..j],

@@ -786,7 +786,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             check_finite("omega", drive.omega)?;
             check_finite("alpha", drive.alpha)?;
             check_finite("jerk", drive.jerk)?;
-            regular = self.mech.motion(joints, drive, vel, acceleration, jerk)?;
+            regular = self.mech.rates(joints, drive, vel, acceleration, jerk)?;
         } else if acceleration.is_some() || jerk.is_some() {
             return Err(Error::BufferLength {
                 what: "velocities (needed for higher rates)",
@@ -794,7 +794,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                 got: 0,
             });
         } else {
-            regular = margin >= crate::motion::rate_margin::<T>();
+            regular = margin >= crate::rates::rate_margin::<T>();
         }
         Ok(Sample { margin, regular })
     }

@@ -88,7 +88,7 @@ fn hoecken_foot_golden_points() {
         let mut j = [Vec2::zeros(); 5];
         let mut v = [Vec2::zeros(); 5];
         m.pose(th, &mut j).unwrap();
-        m.motion(&j, linkage_core::CrankRates::unit(), &mut v, None, None)
+        m.rates(&j, linkage_core::CrankRates::unit(), &mut v, None, None)
             .unwrap();
         v[FourBar::<f64>::P].x
     };

@@ -27,7 +27,7 @@ fn rates<const N: usize>(m: &Mechanism<f64, N>, theta: f64) -> Option<Rates4> {
         vec![Vec2::zeros(); n],
     );
     m.pose(theta, &mut p).ok()?;
-    m.motion(&p, CrankRates::unit(), &mut v, Some(&mut a), Some(&mut j))
+    m.rates(&p, CrankRates::unit(), &mut v, Some(&mut a), Some(&mut j))
         .ok()?
         .then_some((p, v, a, j))
 }

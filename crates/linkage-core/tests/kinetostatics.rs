@@ -17,7 +17,7 @@ fn state<const N: usize>(m: &Mechanism<f64, N>, theta: f64, omega: f64, alpha: f
         vec![Vec2::zeros(); n],
     );
     m.pose(theta, &mut p).unwrap();
-    m.motion(
+    m.rates(
         &p,
         CrankRates::new(omega, alpha),
         &mut v,

@@ -205,8 +205,8 @@ fn exercise_mechanism(m: &Mechanism<f64, 8>, theta: f64, omega: f64, alpha: f64,
         alpha,
         jerk: omega,
     };
-    let _ = m.motion(&pos, drive, &mut vel, Some(&mut acc), Some(&mut jerk));
-    let _ = m.motion(&pos, drive, &mut vel, None, Some(&mut jerk));
+    let _ = m.rates(&pos, drive, &mut vel, Some(&mut acc), Some(&mut jerk));
+    let _ = m.rates(&pos, drive, &mut vel, None, Some(&mut jerk));
     let bodies = Bodies::of(m);
     let mob = bodies.mobility();
     let _ = mob.degrees_of_freedom();
@@ -715,7 +715,7 @@ fn stability_margin_does_not_depend_on_scale() {
 
 #[test]
 fn rates_scale_with_the_linkage() {
-    // Hoecken as a program at scale s, with a slider on the coupler line to reach motion.rs's
+    // Hoecken as a program at scale s, with a slider on the coupler line to reach rates.rs's
     // slider path too: velocities and accelerations per unit crank speed scale by s.
     let rates = |s: f64| {
         let mut m = Mechanism::<f64, 8>::new();

@@ -127,14 +127,14 @@ proptest! {
         let rates = |th: f64| {
             let j = pose(th);
             let (mut v, mut a) = ([Vec2::zeros(); 5], [Vec2::zeros(); 5]);
-            m.motion(&j, CrankRates::new(omega, alpha), &mut v, Some(&mut a), None).unwrap();
+            m.rates(&j, CrankRates::new(omega, alpha), &mut v, Some(&mut a), None).unwrap();
             (v, a)
         };
         let (v, a) = rates(theta);
         let h = 1e-5;
         let (pp, pm) = (pose(theta + h), pose(theta - h));
         // Unit-speed rates to difference the velocity in θ: v = ω·dP/dθ, a = ω²·d²P/dθ² + α·dP/dθ.
-        let unit = |th: f64| { let j = pose(th); let mut v = [Vec2::zeros(); 5]; m.motion(&j, CrankRates::unit(), &mut v, None, None).unwrap(); v };
+        let unit = |th: f64| { let j = pose(th); let mut v = [Vec2::zeros(); 5]; m.rates(&j, CrankRates::unit(), &mut v, None, None).unwrap(); v };
         let (up, um) = (unit(theta + h), unit(theta - h));
         let u0 = unit(theta);
         for i in 2..5 {

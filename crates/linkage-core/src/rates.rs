@@ -87,10 +87,27 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// are unbounded, `0/0`, or lost to rounding) gets NaN rates, and so does every joint built
     /// on it; the return value is then `false`.
     ///
+    /// The old name of [`Mechanism::rates`] ("motion" also names motion laws and Burmester
+    /// motion generation).
+    ///
+    /// # Errors
+    /// As [`Mechanism::rates`].
+    #[deprecated(note = "renamed Mechanism::rates")]
+    pub fn motion(
+        &self,
+        pos: &[Vec2<T>],
+        drive: CrankRates<T>,
+        vel: &mut [Vec2<T>],
+        acc: Option<&mut [Vec2<T>]>,
+        jerk: Option<&mut [Vec2<T>]>,
+    ) -> Result<bool, Error> {
+        self.rates(pos, drive, vel, acc, jerk)
+    }
+
     /// # Errors
     /// [`Error::BufferLength`] when a slice is not [`Mechanism::len`] long, or jerks are asked
     /// without accelerations.
-    pub fn motion(
+    pub fn rates(
         &self,
         pos: &[Vec2<T>],
         drive: CrankRates<T>,
@@ -319,7 +336,7 @@ mod tests {
             let mut p = [Vec2::zeros(); 3];
             m.pose(th, &mut p).unwrap();
             let (mut v, mut ac) = ([Vec2::zeros(); 3], [Vec2::zeros(); 3]);
-            m.motion(&p, CrankRates::unit(), &mut v, Some(&mut ac), None)
+            m.rates(&p, CrankRates::unit(), &mut v, Some(&mut ac), None)
                 .unwrap();
             ac[b]
         };
@@ -327,7 +344,7 @@ mod tests {
         let mut p = [Vec2::zeros(); 3];
         m.pose(th, &mut p).unwrap();
         let (mut v, mut ac, mut j) = ([Vec2::zeros(); 3], [Vec2::zeros(); 3], [Vec2::zeros(); 3]);
-        m.motion(&p, CrankRates::unit(), &mut v, Some(&mut ac), Some(&mut j))
+        m.rates(&p, CrankRates::unit(), &mut v, Some(&mut ac), Some(&mut j))
             .unwrap();
         let h = 1e-3;
         let fd = (-acc_at(th + 2.0 * h) + acc_at(th + h) * 8.0 - acc_at(th - h) * 8.0
@@ -337,13 +354,32 @@ mod tests {
     }
 
     #[test]
+    #[allow(deprecated, reason = "the old name must still give the same rates")]
+    fn the_old_name_motion_gives_the_same_rates() {
+        let mut m = Mechanism::<f64, 4>::new();
+        let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
+        let c = m.fixed(Vec2::new(4.0, 0.0)).unwrap();
+        let a = m.crank(o, 1.0, 0.0).unwrap();
+        m.dyad(a, c, 3.5, 3.0, crate::dyad::Side::Left).unwrap();
+        let mut p = [Vec2::zeros(); 4];
+        m.pose(0.7, &mut p).unwrap();
+        let drive = CrankRates::new(2.0, -0.5);
+        let (mut v1, mut a1) = ([Vec2::zeros(); 4], [Vec2::zeros(); 4]);
+        let (mut v2, mut a2) = ([Vec2::repeat(f64::NAN); 4], [Vec2::repeat(f64::NAN); 4]);
+        let r1 = m.rates(&p, drive, &mut v1, Some(&mut a1), None).unwrap();
+        let r2 = m.motion(&p, drive, &mut v2, Some(&mut a2), None).unwrap();
+        assert!(r1 && r2, "a generic pose is regular");
+        assert_eq!((v1, a1), (v2, a2), "motion forwards to rates");
+    }
+
+    #[test]
     fn jerk_needs_acceleration() {
         let mut m = Mechanism::<f64, 2>::new();
         let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
         m.crank(o, 1.0, 0.0).unwrap();
         let p = [Vec2::zeros(), Vec2::new(1.0, 0.0)];
         let (mut v, mut j) = ([Vec2::zeros(); 2], [Vec2::zeros(); 2]);
-        let got = m.motion(&p, CrankRates::unit(), &mut v, None, Some(&mut j));
+        let got = m.rates(&p, CrankRates::unit(), &mut v, None, Some(&mut j));
         assert!(
             matches!(got, Err(Error::BufferLength { .. })),
             "jerk asked without acceleration: {got:?}"
