@@ -31,7 +31,7 @@ def sweep_fourbars(
     rocker: ArrayLike | None = None,
     point: ArrayLike = (0.0, 0.0),
     theta: ArrayLike | None = None,
-    assembly: Assembly | ArrayLike = "open",
+    assembly: Assembly | Sequence[Assembly] | NDArray[np.str_] = "open",
     threads: int = 1,
     *,
     o: ArrayLike | None = None,
