@@ -171,6 +171,19 @@ def significant_digits(x: float, error: float | None) -> int:
 
     Down to one digit below the error's leading digit, between 2 and :data:`SIG_MAX`
     (:data:`SIG_UNKNOWN` without an error).
+
+    Examples
+    --------
+    >>> significant_digits(44.2523, 0.155), significant_digits(44.2523, 0.0)
+    (4, 6)
+
+    Without an error estimate (``None`` or NaN) it is :data:`SIG_UNKNOWN`; for a NaN or zero
+    value, 2:
+
+    >>> significant_digits(44.2523, None), significant_digits(44.2523, float("nan"))
+    (4, 4)
+    >>> significant_digits(float("nan"), 0.1), significant_digits(0.0, 0.1)
+    (2, 2)
     """
     if error is None or not math.isfinite(error) or error < 0:
         return SIG_UNKNOWN
@@ -216,24 +229,52 @@ def format_number(x: float, error: float | None = None, digits: int | None = Non
 
 
 def format_error(error: float | None) -> str:
-    """Format an error estimate to two significant digits (``0`` when the values agreed exactly)."""
+    """Format an error estimate to two significant digits (``0`` when the values agreed exactly).
+
+    Examples
+    --------
+    >>> format_error(0.01523), format_error(3.2e-7), format_error(0.0)
+    ('0.015', '3.2e-7', '0')
+    >>> format_error(None), format_error(float("nan"))
+    ('unknown', 'unknown')
+    """
     if error is None or not math.isfinite(error):
         return "unknown"
     return "0" if error == 0 else format_number(error, digits=2)
 
 
 def unit_label(units: str) -> str:
-    """Return a length unit as printed: ``units``, or ``length units`` when it is empty."""
+    """Return a length unit as printed: ``units``, or ``length units`` when it is empty.
+
+    Examples
+    --------
+    >>> unit_label("mm"), unit_label("")
+    ('mm', 'length units')
+    """
     return units or "length units"
 
 
 def length_unit(scene: Scene) -> str:
-    """Return the scene's length unit, or ``length units`` when the scene names none."""
+    """Return the scene's length unit, or ``length units`` when the scene names none.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> length_unit(Scene("leg", None, (), units="mm")), length_unit(Scene("leg", None, ()))
+    ('mm', 'length units')
+    """
     return unit_label(scene.units)
 
 
 def torque_unit(scene: Scene) -> str:
-    """Return the unit of a torque: force × length, with masses in kg and times in s."""
+    """Return the unit of a torque: force × length, with masses in kg and times in s.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> [torque_unit(Scene("leg", None, (), units=u)) for u in ("m", "mm", "")]
+    ['N·m', 'kg·mm²/s²', 'kg·(length unit)²/s²']
+    """
     if scene.units == "m":
         return "N·m"
     if scene.units:
@@ -242,12 +283,31 @@ def torque_unit(scene: Scene) -> str:
 
 
 def sci(x: float) -> str:
-    """Format ``x`` to two significant digits."""
+    """Format ``x`` to two significant digits (see :func:`format_number`).
+
+    Examples
+    --------
+    >>> sci(0.0123456), sci(1.23456e-5), sci(-2.5e9)
+    ('0.012', '1.2e-5', '-2.5e9')
+    >>> sci(float("nan")), sci(float("inf"))
+    ('NaN', '∞')
+    """
     return format_number(x, digits=2)
 
 
 def spread(x: float, others: Sequence[float | None]) -> float | None:
-    """Return the largest difference between ``x`` and the same figure at the other resolutions."""
+    """Return the largest difference between ``x`` and the same figure at the other resolutions.
+
+    A missing figure (``None``) is skipped; ``None`` when none is left or a difference is not
+    finite.
+
+    Examples
+    --------
+    >>> round(spread(1.0, [1.1, None, 0.95]), 12)
+    0.1
+    >>> spread(1.0, [None]), spread(1.0, [float("nan")]), spread(float("inf"), [1.0])
+    (None, None, None)
+    """
     diffs = [abs(x - o) for o in others if o is not None]
     if not diffs or not all(math.isfinite(d) for d in diffs):
         return None
@@ -255,7 +315,15 @@ def spread(x: float, others: Sequence[float | None]) -> float | None:
 
 
 def versus(ns: Sequence[int]) -> str:
-    """Say which sample counts an error estimate compares with: ``vs 360 and 1441 samples``."""
+    """Say which sample counts an error estimate compares with: ``vs 360 and 1441 samples``.
+
+    Examples
+    --------
+    >>> versus([360, 1441])
+    'vs 360 and 1441 samples'
+    >>> versus([])
+    'no second resolution within the memory limit'
+    """
     if not ns:
         return "no second resolution within the memory limit"
     return f"vs {' and '.join(map(str, ns))} samples"
@@ -273,6 +341,18 @@ def row(
 
     The error is estimated as the largest difference from ``others``, the same figure at ``ns``
     samples.
+
+    Examples
+    --------
+    >>> r = row("stride", 44.2523, "mm", [44.1, 44.3], [360, 1441])
+    >>> tuple(r), round(r.error, 4)
+    (('stride', '44.25', 'mm', '±0.15 (vs 360 and 1441 samples)'), 0.1523)
+
+    A NaN figure has neither value nor error:
+
+    >>> r = row("stride", float("nan"), "mm", [44.1], [360])
+    >>> tuple(r), r.value, r.error
+    (('stride', 'NaN', 'mm', '±unknown (vs 360 samples)'), None, None)
     """
     err = spread(x, others) if math.isfinite(x) else None
     told = f"±{format_error(err)} ({versus(ns)})"
@@ -287,7 +367,14 @@ def row(
 
 
 def exact(figure: str, x: float, unit: str, note: str = "exact", error: float = 0.0) -> Row:
-    """Make the row of a figure that does not depend on the sampling (``error``: its round-off)."""
+    """Make the row of a figure that does not depend on the sampling (``error``: its round-off).
+
+    Examples
+    --------
+    >>> r = exact("duration", 2 / 3, "s")
+    >>> tuple(r), r.exact
+    (('duration', '0.666667', 's', 'exact'), True)
+    """
     return Row(figure, format_number(x, error), unit, note, value=x, error=error, exact=True)
 
 
@@ -299,7 +386,18 @@ def pair(
     ns: Sequence[int],
     sep: str = " … ",
 ) -> Row:
-    """Make the row of a pair of sampled figures (a range, min/max): the larger error of the two."""
+    """Make the row of a pair of sampled figures (a range, min/max): the larger error of the two.
+
+    Examples
+    --------
+    >>> tuple(pair("x range", (1.0, 2.0), "mm", [(1.01, 2.0)], [360]))
+    ('x range', '1.000 … 2.000', 'mm', '±0.010 (vs 360 samples)')
+
+    Without the other resolution's pair the error is unknown:
+
+    >>> tuple(pair("x range", (1.0, 2.0), "mm", [None], [360]))
+    ('x range', '1.000 … 2.000', 'mm', '±unknown (vs 360 samples)')
+    """
     e0 = spread(pair[0], [o[0] if o else None for o in others])
     e1 = spread(pair[1], [o[1] if o else None for o in others])
     err = None if e0 is None or e1 is None else max(e0, e1)
