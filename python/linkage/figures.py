@@ -231,12 +231,17 @@ def format_number(x: float, error: float | None = None, digits: int | None = Non
 def format_error(error: float | None) -> str:
     """Format an error estimate to two significant digits (``0`` when the values agreed exactly).
 
+    As :func:`format_number` does, an error from 100 to 10⁶ is printed positionally, whole: it
+    keeps every digit of its integer part.
+
     Examples
     --------
     >>> format_error(0.01523), format_error(3.2e-7), format_error(0.0)
     ('0.015', '3.2e-7', '0')
     >>> format_error(None), format_error(float("nan"))
     ('unknown', 'unknown')
+    >>> format_error(1234.5)
+    '1234'
     """
     if error is None or not math.isfinite(error):
         return "unknown"
@@ -285,12 +290,16 @@ def torque_unit(scene: Scene) -> str:
 def sci(x: float) -> str:
     """Format ``x`` to two significant digits (see :func:`format_number`).
 
+    A value from 100 to 10⁶ is printed positionally, whole (``1234``, not ``1.2e3``).
+
     Examples
     --------
     >>> sci(0.0123456), sci(1.23456e-5), sci(-2.5e9)
     ('0.012', '1.2e-5', '-2.5e9')
     >>> sci(float("nan")), sci(float("inf"))
     ('NaN', '∞')
+    >>> sci(1234.5), sci(2.5e6)
+    ('1234', '2.5e6')
     """
     return format_number(x, digits=2)
 
