@@ -121,7 +121,18 @@ class Study:
         return self.budget // self.population
 
     def box(self) -> tuple[Array, Array]:
-        """Lower and upper bounds of every parameter (the family's, overridden)."""
+        """Lower and upper bounds of every parameter (the family's, overridden).
+
+        Examples
+        --------
+        >>> from linkage.design import family
+        >>> from linkage.design.search import Study
+        >>> lo, hi = Study(bounds={"ground": (12.0, 40.0)}).box()
+        >>> dict(zip(family("fourbar").params, zip(lo.tolist(), hi.tolist())))["ground"]
+        (12.0, 40.0)
+        >>> lo.shape, bool((lo < hi).all())
+        ((6,), True)
+        """
         fam = family(self.family)
         b = fam.bounds()
         b.update(self.bounds)
@@ -131,7 +142,15 @@ class Study:
         )
 
     def fingerprint(self) -> str:
-        """Return what a checkpoint must match to be resumed (everything but where it runs)."""
+        """Return what a checkpoint must match to be resumed (everything but where it runs).
+
+        Examples
+        --------
+        >>> from linkage.design.search import Study
+        >>> fp = Study().fingerprint()
+        >>> len(fp), fp == Study(workers=2, chunk=8).fingerprint(), fp == Study(seed=2).fingerprint()
+        (16, True, False)
+        """
         d = {
             "family": self.family,
             "objectives": self.objectives,
@@ -152,6 +171,25 @@ def objectives_and_constraints(study: Study, figs: Array) -> tuple[Array, Array]
     duty factor as it is) so that the optimiser's summed violation weighs them alike. A candidate
     without figures (no full turn) gets the worst objectives the optimiser can rank (1e12, never
     reported) and violates every constraint by 10.
+
+    Examples
+    --------
+    Hoecken's leg (the family's reference) on a 100 mm foot bar, and a four-bar that does not
+    assemble (coupler and rocker too short to reach across the ground):
+
+    >>> import numpy as np
+    >>> from linkage.design import Settings, family
+    >>> from linkage.design.search import Study, objectives_and_constraints
+    >>> study = Study(settings=Settings(samples=64, foot_bar=100.0))
+    >>> x = np.array([family("fourbar").reference, [20.0, 0.0, 5.0, 5.0, 50.0, 0.0]])
+    >>> f, g = objectives_and_constraints(study, family("fourbar").evaluate(x, study.settings))
+    >>> f.round(3)             # -stride, straightness, speed variation: all minimised
+    array([[-4.3530e+01,  5.1000e-02,  4.5200e-01],
+           [ 1.0000e+12,  1.0000e+12,  1.0000e+12]])
+    >>> (g <= 0).all(axis=1)   # feasible, infeasible
+    array([ True, False])
+    >>> g[1]                   # full turn, one stance run, then the bounds
+    array([ 1.,  1., 10., 10., 10., 10.])
     """
     col = {n: figs[:, k] for k, n in enumerate(FIGURES)}
     f = np.stack([-OBJECTIVES[o] * col[o] for o in study.objectives], axis=1)
@@ -179,7 +217,20 @@ def objectives_and_constraints(study: Study, figs: Array) -> tuple[Array, Array]
 
 
 def evaluate_chunk(family_name: str, x: Array, settings: Settings) -> Array:
-    """Figures of one chunk of candidates (what a Dask task runs)."""
+    """Figures of one chunk of candidates (what a Dask task runs).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from linkage.design import FIGURES, Settings, family
+    >>> from linkage.design.search import evaluate_chunk
+    >>> x = np.array([family("fourbar").reference, [20.0, 0.0, 5.0, 5.0, 50.0, 0.0]])
+    >>> figs = evaluate_chunk("fourbar", x, Settings(samples=64))
+    >>> figs.shape == (2, len(FIGURES)), figs[:, FIGURES.index("full_turn")]
+    (True, array([1., 0.]))
+    >>> [round(float(v), 4) for v in figs[:, FIGURES.index("duty_factor")]]
+    [0.5781, nan]
+    """
     return family(family_name).evaluate(x, settings)
 
 
@@ -216,7 +267,22 @@ class Evaluator:
         return np.concatenate(self.client.gather(futures), axis=0)
 
     def close(self) -> None:
-        """Close the client and the local cluster, if any."""
+        """Close the client and the local cluster, if any.
+
+        Examples
+        --------
+        Evaluated in this process (``workers=0``, no scheduler) there is nothing to close:
+
+        >>> import numpy as np
+        >>> from linkage.design import Settings, family
+        >>> from linkage.design.search import Evaluator, Study
+        >>> ev = Evaluator(Study(settings=Settings(samples=64)))
+        >>> ev(np.array([family("fourbar").reference])).shape
+        (1, 10)
+        >>> ev.close()
+        >>> ev.client is None and ev.cluster is None
+        True
+        """
         if self.client is not None:
             self.client.close()
         if self.cluster is not None:
@@ -245,6 +311,25 @@ def initial_population(study: Study) -> Array:
     duty factor ≥ 0.4), and a search started from the box alone converges on the first feasible
     pocket it reaches. A reference outside the study's bounds is left out (and so are its
     neighbours): the search then covers only the box.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from linkage.design import family
+    >>> from linkage.design.search import Study, initial_population
+    >>> ref = np.array(family("fourbar").reference)
+    >>> x = initial_population(Study(population=16))
+    >>> x.shape, bool((x[0] == ref).all())
+    ((16, 6), True)
+    >>> near = np.abs(x[1:3] - ref) <= 0.02 * np.subtract(*Study().box()[::-1])
+    >>> bool(near.all())                # population // 8 = 2 neighbours
+    True
+
+    With bounds that exclude the reference (its ground is 20) it is left out:
+
+    >>> x = initial_population(Study(population=16, bounds={"ground": (30.0, 40.0)}))
+    >>> bool((x == ref).all(axis=1).any()), float(x[:, 0].min()) >= 30.0
+    (False, True)
     """
     fam = family(study.family)
     xl, xu = study.box()
@@ -284,11 +369,33 @@ class Front:
     seconds: float = 0.0
 
     def front_x(self) -> Array:
-        """Return the parameters of the front's candidates, (F, params)."""
+        """Return the parameters of the front's candidates, (F, params).
+
+        Examples
+        --------
+        >>> from linkage.design import Settings
+        >>> from linkage.design.search import Study, search
+        >>> result = search(Study(population=4, budget=8, settings=Settings(samples=64)))
+        >>> result.front_x().shape == (len(result.front), 6), result.x.shape
+        (True, (8, 6))
+        """
         return self.x[self.front]
 
     def front_figures(self) -> Array:
-        """Return the figures of the front's candidates, (F, figures)."""
+        """Return the figures of the front's candidates, (F, figures).
+
+        Examples
+        --------
+        With the default constraints Hoecken's leg is infeasible (its foot is above the hip:
+        ``foot_below_hip`` is 0 and there is no foot bar), and so is every candidate of this tiny
+        search: the front is empty.
+
+        >>> from linkage.design import Settings
+        >>> from linkage.design.search import Study, search
+        >>> result = search(Study(population=4, budget=8, settings=Settings(samples=64)))
+        >>> result.front_figures().shape, result.front.tolist()
+        ((0, 10), [])
+        """
         return self.figures[self.front]
 
 
@@ -358,6 +465,28 @@ def search(
     random state is part of the checkpoint, see :func:`_uses_global_rng`). ``stop_after`` ends
     after that many generations in this call (a stopped search, for tests). ``progress`` draws
     a bar on stderr.
+
+    Examples
+    --------
+    The smallest search (two generations of four), Hoecken's leg on a 100 mm foot bar:
+
+    >>> from linkage.design import Settings
+    >>> from linkage.design.search import Study, search
+    >>> study = Study(population=4, budget=8, settings=Settings(samples=64, foot_bar=100.0),
+    ...               bounds={"ground": (15.0, 25.0), "coupler": (20.0, 30.0)})
+    >>> result = search(study)
+    >>> result.generations, result.evaluations, result.front.tolist()
+    (2, 8, [0])
+    >>> search(study).front_x().tolist() == result.front_x().tolist()   # the same for a seed
+    True
+    >>> search("study.toml")
+    Traceback (most recent call last):
+    ...
+    TypeError: study must be a Study, got str
+    >>> Study(population=2)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: population must be at least 4, got 2
     """
     if not isinstance(study, Study):
         raise TypeError(f"study must be a Study, got {type(study).__name__}")
@@ -429,6 +558,28 @@ def pareto_front(study: Study, figs: Array) -> NDArray[np.int64]:
     """Return the indices of the feasible candidates no other feasible candidate dominates.
 
     Over every candidate evaluated, in order; duplicates keep their first.
+
+    Examples
+    --------
+    Hoecken's figures, then the same again (a duplicate), with a shorter stride (dominated),
+    with a longer but less straight stride (a trade-off) and without a full turn (infeasible):
+
+    >>> import numpy as np
+    >>> from linkage.design import FIGURES, Settings
+    >>> from linkage.design.search import Study, pareto_front, reference_figures
+    >>> study = Study(settings=Settings(samples=64, foot_bar=100.0))
+    >>> figs = np.tile(reference_figures(study), (5, 1))
+    >>> figs[2, FIGURES.index("stride")] -= 1.0
+    >>> figs[3, FIGURES.index("stride")] += 1.0
+    >>> figs[3, FIGURES.index("straightness")] += 0.01
+    >>> figs[4, FIGURES.index("full_turn")] = 0.0
+    >>> pareto_front(study, figs).tolist()
+    [0, 3]
+
+    With no feasible candidate the front is empty:
+
+    >>> pareto_front(study, figs[4:])
+    array([], dtype=int64)
     """
     f, g = objectives_and_constraints(study, figs)
     ok = np.flatnonzero((g <= 0).all(axis=1))
@@ -445,7 +596,16 @@ def pareto_front(study: Study, figs: Array) -> NDArray[np.int64]:
 
 
 def reference_figures(study: Study) -> Array:
-    """Figures of the family's reference design (the sources' choice) under the study."""
+    """Figures of the family's reference design (the sources' choice) under the study.
+
+    Examples
+    --------
+    >>> from linkage.design import FIGURES, Settings
+    >>> from linkage.design.search import Study, reference_figures
+    >>> figs = reference_figures(Study(settings=Settings(samples=64)))
+    >>> {n: round(float(figs[FIGURES.index(n)]), 3) for n in ("stride", "lift", "duty_factor")}
+    {'stride': 43.53, 'lift': 8.99, 'duty_factor': 0.578}
+    """
     fam = family(study.family)
     row: Array = fam.evaluate(np.asarray([fam.reference], dtype=float), study.settings)[0]
     return row
@@ -458,6 +618,24 @@ def placement(study: Study, result: Front) -> dict[str, Any]:
     parameters is), which front designs dominate it and which it dominates (indices into
     ``result.x``; the latter is empty when the reference was a feasible candidate of the search)
     and, per objective, its rank among the front's values (0 = better than every front design).
+
+    Examples
+    --------
+    >>> from linkage.design import Settings
+    >>> from linkage.design.search import Study, placement, search
+    >>> study = Study(population=4, budget=8, settings=Settings(samples=64, foot_bar=100.0),
+    ...               bounds={"ground": (15.0, 25.0), "coupler": (20.0, 30.0)})
+    >>> place = placement(study, search(study))
+    >>> place["feasible"], place["on_front"], place["dominated_by"], place["rank"]["stride"]
+    (True, True, [], 0)
+
+    Without the foot bar the reference is infeasible (its foot is above the hip), so it dominates
+    nothing:
+
+    >>> study = Study(population=4, budget=8, settings=Settings(samples=64))
+    >>> place = placement(study, search(study))
+    >>> place["feasible"], place["dominates"], round(place["figures"]["hip_depth"], 6)
+    (False, [], -40.0)
     """
     ref = reference_figures(study)
     f_ref, g_ref = objectives_and_constraints(study, ref[None, :])
