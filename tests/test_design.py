@@ -264,6 +264,18 @@ def test_front_holds_the_reference_or_designs_dominating_it(study):
     assert place["on_front"] == bool((res.front_x() == ref_x).all(axis=1).any())
 
 
+def test_a_leg_without_a_full_turn_is_worst_and_violates_every_constraint():
+    # Coupler and rocker of 5 cannot reach across a ground of 20: no sample assembles.
+    study = small()
+    figs = design.family("fourbar").evaluate(
+        np.array([[20.0, 0.0, 5.0, 5.0, 50.0, 0.0]]), study.settings
+    )
+    f, g = design.objectives_and_constraints(study, figs)
+    np.testing.assert_array_equal(f, [[1e12, 1e12, 1e12]], err_msg="worst objectives")
+    # full turn and one stance run by 1 (figures 0 and 0), the rest (NaN figures) by 10
+    np.testing.assert_array_equal(g, [[1.0, 1.0, 10.0, 10.0, 10.0, 10.0]], err_msg="violations")
+
+
 def test_first_population_is_the_reference_its_neighbours_and_the_box():
     study = small(population=32)
     x = design.initial_population(study)

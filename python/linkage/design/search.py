@@ -170,7 +170,8 @@ def objectives_and_constraints(study: Study, figs: Array) -> tuple[Array, Array]
     Constraints are scaled to comparable sizes (angles by 90°, lengths by the family's scale, the
     duty factor as it is) so that the optimiser's summed violation weighs them alike. A candidate
     without figures (no full turn) gets the worst objectives the optimiser can rank (1e12, never
-    reported) and violates every constraint by 10.
+    reported); it violates the full-turn and one-stance-run constraints by 1 (its ``full_turn`` is
+    0 and its ``stance_runs`` 0) and every other, whose figure is NaN, by 10.
 
     Examples
     --------
