@@ -41,6 +41,23 @@ def chosen(result: Front, count: int) -> list[int]:
 
     The best in each objective in turn, then the design nearest the ideal point (objectives scaled
     to the front's range).
+
+    Examples
+    --------
+    >>> from linkage.design import Settings
+    >>> from linkage.design.report import chosen
+    >>> from linkage.design.search import Study, search
+    >>> study = Study(population=4, budget=8, settings=Settings(samples=64, foot_bar=100.0),
+    ...               bounds={"ground": (15.0, 25.0), "coupler": (20.0, 30.0)})
+    >>> result = search(study)
+    >>> result.front.tolist(), chosen(result, 3), chosen(result, 0)
+    ([0], [0], [])
+
+    An empty front (no candidate feasible: without the foot bar every foot is above the hip)
+    gives nothing to choose:
+
+    >>> chosen(search(Study(population=4, budget=8, settings=Settings(samples=64))), 3)
+    []
     """
     study = result.study
     if len(result.front) == 0 or count <= 0:
@@ -60,7 +77,21 @@ def chosen(result: Front, count: int) -> list[int]:
 
 
 def scene_text(study: Study, x: Sequence[float], name: str) -> str:
-    """Return a ready-to-run scene (TOML) of design ``x``: its joints, a constant crank speed."""
+    """Return a ready-to-run scene (TOML) of design ``x``: its joints, a constant crank speed.
+
+    Examples
+    --------
+    >>> from linkage.design import family
+    >>> from linkage.design.report import scene_text
+    >>> from linkage.design.search import Study
+    >>> from linkage.scene import parse
+    >>> text = scene_text(Study(), family("fourbar").reference, "hoecken-leg")
+    >>> print(text.splitlines()[10])
+        { name = "B", kind = "dyad", p1 = "A", p2 = "C", r1 = 25.0, r2 = 25.0, side = "left" },
+    >>> scene = parse(text)      # a valid scene: its joints build
+    >>> scene.name, scene.mechanism["trace"], scene.drive["samples"]
+    ('hoecken-leg', 'F', 361)
+    """
     fam = family(study.family)
     lines = [
         f"# Designed by `linkage design` (family {fam.name}, study {study.name!r}).",
@@ -105,6 +136,31 @@ def write_report(
     ``designs.png`` (the chosen designs' foot paths and linkages), one scene per chosen design
     (``design-<k>.toml``) and ``summary.json`` (the reference's placement: how many front designs
     dominate it and how many it dominates).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from linkage.design import Settings
+    >>> from linkage.design.report import write_report
+    >>> from linkage.design.search import Study, search
+    >>> study = Study(population=4, budget=8, settings=Settings(samples=64, foot_bar=100.0),
+    ...               bounds={"ground": (15.0, 25.0), "coupler": (20.0, 30.0)})
+    >>> result = search(study)
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> folder = os.path.join(tmp.name, "report")
+    >>> files = write_report(result, folder, choose=1)
+    >>> sorted(os.listdir(folder)) == sorted([".linkage-report"] + [p.name for p in files])
+    True
+    >>> sorted(p.name for p in files if p.suffix != ".parquet")
+    ['candidates.csv', 'design-1.toml', 'designs.png', 'front.csv', 'pareto.png', 'summary.json']
+
+    An earlier report is replaced only with ``force=True``:
+
+    >>> write_report(result, folder)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: ...an earlier report; pass --force to replace it (nothing was written)
+    >>> tmp.cleanup()
     """
     out = Path(os.path.expanduser(str(folder)))
     return report_folder.write_folder(
@@ -267,7 +323,31 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
 def main_design(
     path: str, out: str | None, force: bool, checkpoint: str | None, quiet: bool
 ) -> int:
-    """Run ``linkage design study.toml``: search, write the report, place the reference."""
+    r"""Run ``linkage design study.toml``: search, write the report, place the reference.
+
+    ``out`` is the report folder (default: :func:`linkage.report_folder.default_folder` of the
+    study's name), ``force`` replaces an earlier report, ``checkpoint`` is the search's checkpoint
+    file (default: ``.<folder name>.checkpoint`` beside the folder) and ``quiet`` prints nothing.
+    Returns the exit status, 0.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from linkage.design.report import main_design
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     study = os.path.join(tmp, "tiny.toml")
+    ...     with open(study, "w") as fh:
+    ...         _ = fh.write("[design]\nobjectives = ['stride']\npopulation = 4\nbudget = 8\n")
+    ...         _ = fh.write("samples = 64\nchoose = 0\n")
+    ...     main_design(study, os.path.join(tmp, "out"), False, None, quiet=True)
+    ...     sorted(os.listdir(tmp))
+    0
+    ['.out.checkpoint', 'out', 'tiny.toml']
+    >>> main_design("no-such-study.toml", None, False, None, quiet=True)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: no-such-study.toml: cannot read the study: No such file or directory
+    """
     sf = load_study(path)
     folder = Path(out) if out else report_folder.default_folder(sf.study.name)
     report_folder.prepare(folder, force)

@@ -148,7 +148,7 @@ class Study:
         --------
         >>> from linkage.design.search import Study
         >>> fp = Study().fingerprint()
-        >>> len(fp), fp == Study(workers=2, chunk=8).fingerprint(), fp == Study(seed=2).fingerprint()
+        >>> len(fp), fp == Study(workers=2).fingerprint(), fp == Study(seed=2).fingerprint()
         (16, True, False)
         """
         d = {

@@ -64,11 +64,33 @@ class StudyFile:
 
 
 def load_study(path: str | Path) -> StudyFile:
-    """Read a study file.
+    r"""Read a study file.
 
     The file has a ``[design]`` section (family, objectives, population, budget, seed, workers or
     scheduler, chunk, samples, stance_tol, foot_bar, choose) with ``[design.bounds]`` (``parameter =
     [lower, upper]``) and ``[design.constraints]``. Errors name ``file:line: [section] key``.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from linkage.design.study_file import load_study
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> path = os.path.join(tmp.name, "legs.toml")
+    >>> with open(path, "w") as fh:
+    ...     _ = fh.write("[design]\npopulation = 8\n[design.bounds]\nground = [15.0, 25.0]\n")
+    >>> sf = load_study(path)
+    >>> sf.study.name, sf.study.population, sf.study.budget, sf.study.bounds, sf.choose
+    ('legs', 8, 80, {'ground': (15.0, 25.0)}, 3)
+
+    A mistake is named by file, line, section and key:
+
+    >>> with open(path, "w") as fh:
+    ...     _ = fh.write("[design]\npopulation = 8\n[design.bounds]\nground = [25.0, 15.0]\n")
+    >>> load_study(path)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: ...legs.toml:4: [design.bounds] ground: must be [lower, upper]...
+    >>> tmp.cleanup()
     """
     p = Path(path)
     try:
