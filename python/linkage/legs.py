@@ -125,17 +125,57 @@ class Family:
     """The unit of the family's lengths (its reference's)."""
 
     def bounds(self) -> dict[str, tuple[float, float]]:
-        """``{parameter: (lower, upper)}``."""
+        """``{parameter: (lower, upper)}``.
+
+        Examples
+        --------
+        >>> from linkage.legs import family
+        >>> b = family("fourbar").bounds()
+        >>> list(b)[:3], b["ground"]
+        (['ground', 'ground_angle', 'coupler'], (12.0, 40.0))
+        """
         return {p: (lo, hi) for p, lo, hi in zip(self.params, self.lower, self.upper)}
 
     def mechanism(self, x: ArrayLike) -> Mechanism:
-        """Build candidate ``x`` as a :class:`linkage.Mechanism` whose trace ``F`` is the foot."""
+        """Build candidate ``x`` as a :class:`linkage.Mechanism` whose trace ``F`` is the foot.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from linkage.legs import family
+        >>> fam = family("fourbar")
+        >>> m = fam.mechanism(fam.reference)      # Hoecken's leg
+        >>> m.joint_names, m.trace
+        (('O', 'C', 'A', 'B', 'F'), 'F')
+        >>> m.sweep(np.array([0.0, np.pi / 2])).point.round(4)   # the foot, 50 along A → B
+        array([[20.    , 48.9898],
+               [40.    , 40.    ]])
+        """
         return Mechanism.from_joints(self.joints(x), trace="F")
 
     def evaluate(self, x: Array, settings: Settings, threads: int = 1) -> Array:
         """Compute the figures ``(M, len(FIGURES))`` of the candidates ``x`` ``(M, len(params))``.
 
         A candidate that does not turn fully has ``full_turn = 0`` and NaN figures.
+
+        Examples
+        --------
+        Hoecken's leg, and one whose coupler and rocker (5) cannot reach across the ground (20):
+
+        >>> import numpy as np
+        >>> from linkage.legs import FIGURES, Settings, family
+        >>> fam = family("fourbar")
+        >>> x = np.array([fam.reference, [20.0, 0.0, 5.0, 5.0, 50.0, 0.0]])
+        >>> figs = fam.evaluate(x, Settings(samples=64))
+        >>> for name in ("full_turn", "stride", "stance_runs"):
+        ...     print(name, [round(float(v), 3) for v in figs[:, FIGURES.index(name)]])
+        full_turn [1.0, 0.0]
+        stride [43.53, nan]
+        stance_runs [1.0, 0.0]
+        >>> fam.evaluate(x[:, :4], Settings())
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: family 'fourbar' takes 6 parameters, got 4
         """
         x = np.ascontiguousarray(np.atleast_2d(np.asarray(x, dtype=np.float64)))
         if x.shape[1] != len(self.params):
@@ -434,7 +474,19 @@ FAMILIES: dict[str, Family] = {
 
 
 def family(name: str) -> Family:
-    """Return a leg family by name (``fourbar``, ``jansen``, ``klann``)."""
+    """Return a leg family by name (``fourbar``, ``jansen``, ``klann``).
+
+    Examples
+    --------
+    >>> from linkage.legs import family
+    >>> fam = family("klann")
+    >>> fam.name, len(fam.params), fam.units
+    ('klann', 12, 'mm')
+    >>> family("hexapod")
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: unknown leg family 'hexapod'; choose from fourbar, jansen, klann, guided
+    """
     if not isinstance(name, str):
         raise TypeError(f"family must be a str, got {type(name).__name__}")
     if name not in FAMILIES:
