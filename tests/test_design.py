@@ -142,6 +142,12 @@ def test_families_reference_designs():
         design.family("theo")
 
 
+def test_family_docstring_names_every_family():
+    said = design.family.__doc__.splitlines()[0]
+    missing = [n for n in design.FAMILIES if f"``{n}``" not in said]
+    assert not missing, f"family's docstring does not name {missing}: {said!r}"
+
+
 def test_exported_scene_runs_and_traces_the_same_foot():
     from linkage import scene
 

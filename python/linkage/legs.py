@@ -474,7 +474,7 @@ FAMILIES: dict[str, Family] = {
 
 
 def family(name: str) -> Family:
-    """Return a leg family by name (``fourbar``, ``jansen``, ``klann``).
+    """Return a leg family by name (``fourbar``, ``jansen``, ``klann``, ``guided``).
 
     Examples
     --------
