@@ -161,13 +161,31 @@ class Scene:
     """Where the scene's keys are in its text (None for a scene built in code)."""
 
     def wants(self, *names: str) -> bool:
-        """Whether any of ``names`` is among the outputs."""
+        """Whether any of ``names`` is among the outputs.
+
+        Examples
+        --------
+        >>> from linkage.scene import Scene
+        >>> scene = Scene("leg", None, ("trajectory", "velocity"))
+        >>> scene.wants("torque", "velocity"), scene.wants("torque"), scene.wants()
+        (True, False, False)
+        """
         return any(n in self.outputs for n in names)
 
     def error(self, path: Sequence[str | int], key: str, problem: str) -> SceneError:
-        """Return a :class:`SceneError` for ``key`` under ``path`` (section names and indices).
+        r"""Return a :class:`SceneError` for ``key`` under ``path`` (section names and indices).
 
         It is located in the scene's file when the scene came from one.
+
+        Examples
+        --------
+        >>> from linkage.scene import Scene, parse
+        >>> Scene("leg", None, ()).error(["drive"], "rpm", "must be positive")
+        SceneError('[drive] rpm: must be positive')
+        >>> text = 'outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+        >>> scene = parse(text + '[drive]\nkind = "constant"\nrpm = 50.0\n')
+        >>> str(scene.error(["mechanism"], "catalog", "not this one"))
+        '<scene>:3: [mechanism] catalog: not this one'
         """
         if self.locator is not None:
             return SceneError(self.locator.message(path, key, problem))
@@ -902,6 +920,15 @@ def base_folder(scene: Scene) -> Path:
     """Return the folder a scene's relative file names are relative to.
 
     The scene file's folder, or the working directory for a scene given as text.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> from linkage.scene import Scene, base_folder
+    >>> base_folder(Scene("leg", Path("examples/hoecken.toml"), ())).as_posix()
+    'examples'
+    >>> base_folder(Scene("leg", None, ())) == Path(".")
+    True
     """
     return scene.path.parent if scene.path is not None else Path(".")
 

@@ -133,19 +133,39 @@ __all__ = [
 
 
 def load(path: str | Path) -> Scene:
-    """Read and validate a scene file.
+    r"""Read and validate a scene file.
 
     Raises
     ------
     SceneError
         With ``file:line: [section] key: problem`` for the first problem found.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from linkage.scene import load
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> path = os.path.join(tmp.name, "leg.toml")
+    >>> with open(path, "w") as fh:
+    ...     _ = fh.write('outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...                  '[drive]\nkind = "constant"\nrpm = 50.0\n')
+    >>> scene = load(path)
+    >>> scene.name, scene.outputs, scene.mechanism
+    ('leg', ('trajectory',), {'catalog': 'hoecken'})
+    >>> with open(path, "w") as fh:
+    ...     _ = fh.write('outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoeken"\n')
+    >>> load(path)
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: ...leg.toml:3: [mechanism] catalog: ... (did you mean 'hoecken'?)
+    >>> tmp.cleanup()
     """
     p = Path(path)
     return parse(_schema.read_text(p), p)
 
 
 def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene:
-    """Validate scene ``text`` and return the scene.
+    r"""Validate scene ``text`` and return the scene.
 
     ``path`` names it in messages, and a ``[synthesis]`` section's files are relative to its folder
     — else to the working directory; ``name`` is the name when the text gives none.
@@ -154,6 +174,22 @@ def parse(text: str, path: Path | None = None, name: str | None = None) -> Scene
     ------
     SceneError
         With ``file:line: [section] key: problem`` for the first problem found.
+
+    Examples
+    --------
+    >>> from linkage.scene import parse
+    >>> text = 'outputs = ["trajectory"]\n[drive]\nkind = "constant"\nrpm = 50.0\n'
+    >>> scene = parse(text + '[mechanism]\ncatalog = "hoecken"\n', name="leg")
+    >>> scene.name, scene.drive["rpm"], scene.path
+    ('leg', 50.0, None)
+
+    The study is built once (not run), so a four-bar that assembles at no crank angle is refused
+    here (coupler and rocker of 4 cannot reach across the ground of 20):
+
+    >>> parse(text + "[mechanism]\nground = 20\ncrank = 10\ncoupler = 4\nrocker = 4\n")
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: <scene>:6: [mechanism] ground: no sample assembles: ... gap 2)
     """
     scene = _schema.parse_only(text, path, name)
     # Build the study once without running it: whatever `run` would reject is rejected here.
