@@ -579,6 +579,25 @@ def cache_dir() -> Path:
     -------
     Path
         The folder (not created here).
+
+    Examples
+    --------
+    >>> import os
+    >>> from linkage.catalog import cache_dir
+    >>> saved = os.environ.pop("LINKAGE_CACHE_DIR", None)
+    >>> os.environ["LINKAGE_CACHE_DIR"] = os.path.join("somewhere", "cache")
+    >>> cache_dir().parts
+    ('somewhere', 'cache')
+
+    Unset or empty, it is the user's cache folder:
+
+    >>> os.environ["LINKAGE_CACHE_DIR"] = ""
+    >>> "linkage" in cache_dir().parts, cache_dir().is_absolute()
+    (True, True)
+    >>> if saved is None:
+    ...     del os.environ["LINKAGE_CACHE_DIR"]
+    ... else:
+    ...     os.environ["LINKAGE_CACHE_DIR"] = saved
     """
     env = os.environ.get("LINKAGE_CACHE_DIR")
     if env:
