@@ -145,7 +145,21 @@ class Drawing:
         return int(self.positions.shape[0])
 
     def frame(self, i: int) -> Array:
-        """Joint positions at sample ``i``, (J, 2)."""
+        """Joint positions at sample ``i``, (J, 2).
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> from linkage.drawing import mechanism_drawing
+        >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+        >>> d = mechanism_drawing(fb, fb.sweep(np.array([0.0, np.pi / 2])))
+        >>> d.joint_names, d.frame(1).round(3)
+        (('O', 'C', 'A', 'B', 'P'), array([[ 0.,  0.],
+               [20.,  0.],
+               [ 0., 10.],
+               [20., 25.],
+               [40., 40.]]))
+        """
         f: Array = self.positions[i]
         return f
 
@@ -154,6 +168,17 @@ class Drawing:
 
         ``margin`` is a fraction of the larger extent; centres of curvature and instant centres do
         not count.
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> from linkage.drawing import mechanism_drawing
+        >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+        >>> d = mechanism_drawing(fb, fb.sweep(np.linspace(0, 2 * np.pi, 9)))
+        >>> [round(v, 3) for v in d.bounds(margin=0)]    # the crank circle, the foot path
+        [-10.0, 42.926, -10.0, 48.99]
+        >>> [round(v, 3) for v in d.bounds()]            # 6 % of the larger extent (58.99) a side
+        [-13.539, 46.466, -13.539, 52.529]
         """
         lo, hi = self._box
         return _grow(lo, hi, margin)
@@ -190,6 +215,17 @@ def path_window(path: Array, grow: float = 0.5) -> Bounds:
 
     ``grow`` is a fraction of its larger extent: the box is the region a plot of the path (with its
     evolute) should show.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from linkage.drawing import path_window
+    >>> path_window(np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 5.0], [np.nan, np.nan]]))
+    (-5.0, 15.0, -5.0, 10.0)
+    >>> path_window(np.full((3, 2), np.nan))
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: the path has no finite point
     """
     p = np.asarray(path, dtype=float).reshape(-1, 2)
     p = p[np.isfinite(p).all(axis=1)]
@@ -199,7 +235,17 @@ def path_window(path: Array, grow: float = 0.5) -> Bounds:
 
 
 def clip_to(points: Array, bounds: Bounds) -> Array:
-    """``points`` (..., 2) with those outside ``bounds`` (or not finite) set to NaN."""
+    """``points`` (..., 2) with those outside ``bounds`` (or not finite) set to NaN.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from linkage.drawing import clip_to
+    >>> clip_to(np.array([[1.0, 1.0], [100.0, 1.0], [np.inf, 0.0]]), (0.0, 10.0, 0.0, 10.0))
+    array([[ 1.,  1.],
+           [nan, nan],
+           [nan, nan]])
+    """
     p = np.array(points, dtype=float)
     x0, x1, y0, y1 = bounds
     with np.errstate(invalid="ignore"):
@@ -306,6 +352,23 @@ def mechanism_drawing(mech: FourBar | Mechanism, sweep: Sweep, units: str = "") 
     ------
     LinkageError
         If ``sweep`` is not a sweep of ``mech`` or no sample assembled.
+
+    Examples
+    --------
+    >>> import numpy as np, linkage
+    >>> from linkage.drawing import mechanism_drawing
+    >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+    >>> d = mechanism_drawing(fb, fb.sweep(np.linspace(0, 2 * np.pi, 9)), units="mm")
+    >>> len(d), list(d.paths), d.joint_names[d.trace], d.units
+    (9, ['trace P'], 'P', 'mm')
+
+    A four-bar whose coupler and rocker cannot reach across the ground has nothing to draw:
+
+    >>> short = linkage.FourBar(ground=20, crank=10, coupler=4, rocker=4)
+    >>> mechanism_drawing(short, short.sweep(np.linspace(0.1, 1.0, 3)))
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: nothing to draw: no sample assembled
     """
     if not isinstance(mech, (FourBar, Mechanism)):
         raise TypeError(f"mech must be a FourBar or Mechanism, got {type(mech).__name__}")
@@ -360,6 +423,25 @@ def walker_drawing(
     LinkageError
         For an unknown ``view``, a ``leg_theta`` of the wrong shape, or a leg that does not
         assemble at a sample.
+
+    Examples
+    --------
+    >>> import numpy as np, linkage
+    >>> from linkage.drawing import walker_drawing
+    >>> w = linkage.catalog.quadruped_hoecken()
+    >>> sim = w.simulate(np.linspace(0, 2 * np.pi, 9))
+    >>> side = walker_drawing(w, sim, "side", units="mm")
+    >>> side.axes, side.ground, side.leg_labels, side.positions.shape
+    (('x', 'z'), -60.0, ('L1', 'R1', 'L2', 'R2'), (9, 24, 2))
+    >>> side.joint_names[:6]          # leg A's joints and its foot at the end of the foot bar
+    ('A.O', 'A.C', 'A.A', 'A.B', 'A.P', 'A.foot')
+    >>> top = walker_drawing(w, sim, "top")
+    >>> top.axes, top.cg, top.ground
+    (('x', 'y'), (0.0, 0.0), None)
+    >>> walker_drawing(w, sim, "front")
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: view must be 'side' or 'top', got 'front'
     """
     if not isinstance(walker, Walker):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
@@ -490,6 +572,26 @@ def leg_angles(walker: Walker, sim: Simulation, drive: Drive | None, per_leg_tim
     ------
     LinkageError
         With ``per_leg_time`` and a drive that has no period.
+
+    Examples
+    --------
+    Hoecken's quadruped (legs A and D in phase, B and C half a turn behind) driven by one
+    cycloidal turn a second, at a quarter of a second:
+
+    >>> import numpy as np, linkage
+    >>> from linkage.drawing import leg_angles
+    >>> from linkage.drive import Program, Segment
+    >>> w = linkage.catalog.quadruped_hoecken()
+    >>> turn = Program(0.0, [Segment(1.0, 2 * np.pi, "cycloidal")])
+    >>> sim = w.simulate(time=np.linspace(0.0, 1.0, 5), drive=turn, per_leg_time=True)
+    >>> np.degrees(leg_angles(w, sim, turn, per_leg_time=False)[1]).round(1)  # angle + phase
+    array([  32.7, -147.3, -147.3,   32.7])
+    >>> np.degrees(leg_angles(w, sim, turn, per_leg_time=True)[1]).round(1)   # time + phase
+    array([ 32.7, -32.7, -32.7,  32.7])
+    >>> leg_angles(w, w.simulate(np.linspace(0, 2 * np.pi, 5)), None, per_leg_time=True)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: per_leg_time needs a periodic drive (with a period)
     """
     if not per_leg_time:
         out: Array = sim.theta[:, None] + walker.phases[None, :]
