@@ -233,6 +233,20 @@ def test_pose_is_chosen_checked_and_recorded(tmp_path):
         export.write_cad(watt, tmp_path, pose=bad)
 
 
+def test_the_synthesis_exports_refuse_a_run_that_is_not_one(hoecken, tmp_path):
+    # candidate_rows asserted (an AssertionError, or an AttributeError under python -O).
+    res, _out, _files = hoecken
+    for call in (
+        lambda: export.candidate_rows(res),
+        lambda: export.write_candidates_csv(res, tmp_path / "candidates.csv"),
+        lambda: export.write_synthesis(res, tmp_path),
+        lambda: export.synthesis_drawing(res),
+    ):
+        with pytest.raises(LinkageError, match="not a synthesis run"):
+            call()
+    assert not (tmp_path / "candidates.csv").exists()
+
+
 def test_layer_names_are_valid_dxf_names():
     assert export.layer_name('PATH_a/b:c "d"') == "PATH_a_b_c_d"
     assert export.layer_name("///") == "_"

@@ -879,9 +879,16 @@ CANDIDATE_COLUMNS = (
 
 
 def candidate_rows(res: Result) -> tuple[list[str], list[list[Any]]]:
-    """Return the header (``name [unit]``) and one row per candidate of ``candidates.csv``."""
+    """Return the header (``name [unit]``) and one row per candidate of ``candidates.csv``.
+
+    Raises
+    ------
+    LinkageError
+        If ``res`` is not a ``[synthesis]`` run.
+    """
     run = res.synthesis
-    assert run is not None
+    if run is None:
+        raise LinkageError("not a synthesis run")
     u = length_unit(res.scene)
     head = [
         f"{name} [{u if unit == 'L' else unit}]" if unit else name
@@ -919,7 +926,13 @@ def candidate_rows(res: Result) -> tuple[list[str], list[list[Any]]]:
 
 
 def write_candidates_csv(res: Result, path: Path) -> list[str]:
-    """Write ``candidates.csv`` (full precision, units in the headers); returns the headers."""
+    """Write ``candidates.csv`` (full precision, units in the headers); returns the headers.
+
+    Raises
+    ------
+    LinkageError
+        If ``res`` is not a ``[synthesis]`` run (nothing is written).
+    """
     head, rows = candidate_rows(res)
     with open(path, "w", encoding="utf-8", newline="") as fh:
         out = csv.writer(fh, lineterminator="\n")
