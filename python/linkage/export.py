@@ -284,7 +284,7 @@ def _drawn(res: Result, pose: int | None, drawing: Drawing | None) -> tuple[Draw
 def write_dxf(
     res: Result, path: Path, pose: int | None = None, drawing: Drawing | None = None
 ) -> int:
-    """Write the mechanism at sample ``pose`` and every traced path as ``path``; return the pose.
+    r"""Write the mechanism at sample ``pose`` and every traced path as ``path``; return the pose.
 
     ``pose`` defaults to the first assembled sample; the file is DXF R2010, with ``$INSUNITS`` from
     the scene's units.
@@ -293,6 +293,25 @@ def write_dxf(
     ------
     LinkageError
         If the run has nothing to draw or ``pose`` is not an assembled sample.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from linkage.export import write_dxf
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
+    >>> res = run(scene)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_dxf(res, Path(tmp) / "hoecken.dxf"), write_dxf(res, Path(tmp) / "at.dxf", pose=9)
+    (0, 9)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_dxf(res, Path(tmp) / "bad.dxf", pose=73)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: pose 73 is not a sample of this run (0 … 72)
     """
     from ezdxf.filemanagement import new as new_dxf  # noqa: PLC0415 (ezdxf only for the cad output)
 
@@ -655,9 +674,24 @@ def summary(
 
 
 def write_cad(res: Result, folder: Path, pose: int | None = None) -> tuple[list[Path], int | None]:
-    """Write ``mechanism.dxf`` and ``mechanism.svg`` at sample ``pose`` into ``folder``.
+    r"""Write ``mechanism.dxf`` and ``mechanism.svg`` at sample ``pose`` into ``folder``.
 
     Returns the files and the pose drawn (no files and ``None`` for a run with nothing to draw).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from linkage.export import write_cad
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
+    >>> res = run(scene)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     files, pose = write_cad(res, Path(tmp), pose=12)
+    ...     [f.name for f in files], pose, "<svg" in files[1].read_text(encoding="utf-8")
+    (['mechanism.dxf', 'mechanism.svg'], 12, True)
     """
     d = drawing_of(res)
     if d is None:
@@ -673,10 +707,30 @@ def write_cad(res: Result, folder: Path, pose: int | None = None) -> tuple[list[
 
 
 def synthesis_drawing(res: Result) -> Drawing:
-    """Draw the best candidate of a ``[synthesis]`` run over its circuit.
+    r"""Draw the best candidate of a ``[synthesis]`` run over its circuit.
 
     Its coupler curve (``trace P``) and the target (``target``, closed when the target is) are its
     paths.
+
+    Raises
+    ------
+    LinkageError
+        If ``res`` is not a ``[synthesis]`` run.
+
+    Examples
+    --------
+    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run is refused:
+
+    >>> from linkage.export import synthesis_drawing
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
+    >>> res = run(scene)
+    >>> synthesis_drawing(res)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: not a synthesis run
     """
     run = res.synthesis
     if run is None:
@@ -693,6 +747,24 @@ def synthesis_pose(d: Drawing) -> int:
 
     A sixth of its circuit in (a crank along the ground line at the start hides it), or the first
     assembled one.
+
+    Examples
+    --------
+    >>> import numpy as np, linkage
+    >>> from linkage.drawing import mechanism_drawing
+    >>> from linkage.export import synthesis_pose
+    >>> theta = np.linspace(0, 2 * np.pi, 13)
+    >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25)
+    >>> synthesis_pose(mechanism_drawing(fb, fb.sweep(theta)))      # 13 // 6
+    2
+
+    A four-bar that assembles only with its crank along the ground (coupler and rocker of 5
+    just reach across the ground of 20 from the crank end at 10) is drawn there:
+
+    >>> flat = linkage.FourBar(ground=20, crank=10, coupler=5, rocker=5)
+    >>> d = mechanism_drawing(flat, flat.sweep(theta))
+    >>> np.isfinite(d.positions).all(axis=(1, 2)).nonzero()[0].tolist(), synthesis_pose(d)
+    ([0, 12], 0)
     """
     ok = np.asarray(np.isfinite(d.positions).all(axis=(1, 2)), dtype=bool)
     k = ok.shape[0] // 6
@@ -735,6 +807,24 @@ def candidate_drive(c: Candidate[FourBar]) -> tuple[float, float]:
     The crank starts at the beginning of the candidate's crank range (``phase`` in radians, the
     scene's ``phase_deg``) and turns at :data:`CANDIDATE_RPM` over that range: one turn, or from one
     limit to the other.
+
+    Examples
+    --------
+    Hoecken's four-bar as a candidate (made here by hand; :func:`linkage.synthesis.path` finds
+    them), turning fully, then rocking over one radian:
+
+    >>> import math, numpy as np, linkage
+    >>> from linkage.export import candidate_drive
+    >>> from linkage.synthesis import Candidate
+    >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+    >>> turns = Candidate(fb, 0.0, 0.0, 0.0, (0.0, 2 * math.pi), True, "crank-rocker",
+    ...                   0.4, False, "by hand", np.zeros(6))
+    >>> [round(v, 9) for v in candidate_drive(turns)]       # one turn at 60 rpm: 1 s
+    [0.0, 1.0]
+    >>> rocks = Candidate(fb, 0.0, 0.0, 0.0, (-0.5, 0.5), False, "crank-rocker",
+    ...                   0.4, False, "by hand", np.zeros(6))
+    >>> [round(v, 6) for v in candidate_drive(rocks)]       # 1 rad at 2π rad/s
+    [-0.5, 0.159155]
     """
     lo, hi = c.crank_range
     omega = CANDIDATE_RPM * 2 * math.pi / 60
@@ -747,6 +837,23 @@ def candidate_side(c: Candidate[FourBar], target: Array) -> Side:
 
     The candidate's assembly (``open`` is ``left``), except for a crank that rocks within its limits
     over a part of the curve traced on the other assembly, where the other side draws the target.
+
+    Examples
+    --------
+    An open Hoecken four-bar (made by hand) whose crank rocks over one radian: an arc traced by
+    the open assembly is drawn on its side, one traced by the crossed assembly on the other:
+
+    >>> import numpy as np, linkage
+    >>> from linkage.export import candidate_side
+    >>> from linkage.synthesis import Candidate
+    >>> kw = dict(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+    >>> fb = linkage.FourBar(**kw)
+    >>> rocks = Candidate(fb, 0.0, 0.0, 0.0, (-0.5, 0.5), False, "crank-rocker",
+    ...                   0.4, False, "by hand", np.zeros(6))
+    >>> theta = np.linspace(-0.5, 0.5, 9)
+    >>> crossed = linkage.FourBar(**kw, assembly="crossed").sweep(theta).point
+    >>> candidate_side(rocks, fb.sweep(theta).point), candidate_side(rocks, crossed)
+    ('left', 'right')
     """
     side = side_of(c.linkage.assembly)
     if c.full_turn or c.through_limit:
@@ -761,12 +868,33 @@ def candidate_side(c: Candidate[FourBar], target: Array) -> Side:
 
 
 def candidate_scene(res: Result, k: int) -> str:
-    """Write candidate ``k`` (1 = best) of a ``[synthesis]`` run as a ``[mechanism]`` scene's text.
+    r"""Write candidate ``k`` (1 = best) of a ``[synthesis]`` run as a ``[mechanism]`` scene's text.
 
     The four-bar as joints in the target's frame (ground pivots ``O``, ``C``, crank end ``A``,
     coupler–rocker joint ``B``, coupler point ``P`` traced), a constant drive over the crank range
     (one turn, or from limit to limit), its numbers kept to 1e-10 of the target's size, and comments
     with the candidate's figures. ``linkage check`` accepts it.
+
+    Raises
+    ------
+    LinkageError
+        If the run has no candidate ``k`` (or is not a ``[synthesis]`` run).
+
+    Examples
+    --------
+    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run has no
+    candidates:
+
+    >>> from linkage.export import candidate_scene
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
+    >>> res = run(scene)
+    >>> candidate_scene(res, 1)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: no candidate 1 in this run
     """
     run = res.synthesis
     if run is None or not 1 <= k <= len(run.candidates):
@@ -879,12 +1007,27 @@ CANDIDATE_COLUMNS = (
 
 
 def candidate_rows(res: Result) -> tuple[list[str], list[list[Any]]]:
-    """Return the header (``name [unit]``) and one row per candidate of ``candidates.csv``.
+    r"""Return the header (``name [unit]``) and one row per candidate of ``candidates.csv``.
 
     Raises
     ------
     LinkageError
         If ``res`` is not a ``[synthesis]`` run.
+
+    Examples
+    --------
+    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run is refused:
+
+    >>> from linkage.export import candidate_rows
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
+    >>> res = run(scene)
+    >>> candidate_rows(res)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: not a synthesis run
     """
     run = res.synthesis
     if run is None:
@@ -926,12 +1069,34 @@ def candidate_rows(res: Result) -> tuple[list[str], list[list[Any]]]:
 
 
 def write_candidates_csv(res: Result, path: Path) -> list[str]:
-    """Write ``candidates.csv`` (full precision, units in the headers); returns the headers.
+    r"""Write ``candidates.csv`` (full precision, units in the headers); returns the headers.
 
     Raises
     ------
     LinkageError
         If ``res`` is not a ``[synthesis]`` run (nothing is written).
+
+    Examples
+    --------
+    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run is refused
+    before the file is opened:
+
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from linkage.export import write_candidates_csv
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
+    >>> res = run(scene)
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> write_candidates_csv(res, Path(tmp.name) / "candidates.csv")
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: not a synthesis run
+    >>> (Path(tmp.name) / "candidates.csv").exists()
+    False
+    >>> tmp.cleanup()
     """
     head, rows = candidate_rows(res)
     with open(path, "w", encoding="utf-8", newline="") as fh:
@@ -995,10 +1160,33 @@ def _synthesis_json(res: Result) -> dict[str, Any]:
 
 
 def write_synthesis(res: Result, folder: Path, cad: bool = True) -> list[Path]:
-    """Write a ``[synthesis]`` run's files into ``folder``; return the files written.
+    r"""Write a ``[synthesis]`` run's files into ``folder``; return the files written.
 
     ``candidate-<k>.toml`` for every candidate, ``candidates.csv``, ``mechanism.dxf`` and
     ``mechanism.svg`` of the best (with ``cad``), ``data.npz`` and, last, ``summary.json``.
+
+    Raises
+    ------
+    LinkageError
+        If ``res`` is not a ``[synthesis]`` run (nothing is written).
+
+    Examples
+    --------
+    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run is refused:
+
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from linkage.export import write_synthesis
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
+    >>> res = run(scene)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_synthesis(res, Path(tmp))
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: not a synthesis run
     """
     folder = Path(folder)
     run = res.synthesis
