@@ -106,6 +106,18 @@ def build_mechanism(scene: Scene) -> FourBar | Mechanism:
     ------
     SceneError
         Located at the key that made the build fail.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import build_mechanism
+    >>> fb = build_mechanism(Scene("leg", None, (), mechanism={"catalog": "hoecken", "scale": 2.0}))
+    >>> fb.ground, fb.crank, fb.coupler, fb.rocker, fb.point
+    (40.0, 20.0, 50.0, 50.0, (100.0, 0.0))
+    >>> build_mechanism(Scene("leg", None, (), mechanism={"catalog": "hoeken"}))
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: [mechanism] catalog: unknown catalogue linkage 'hoeken'; ...
     """
     m = scene.mechanism or {}
     sec = ("mechanism",)
@@ -169,6 +181,14 @@ def build_walker(scene: Scene) -> Walker:
     ------
     SceneError
         Located at the key that made the build fail.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import build_walker
+    >>> walker = build_walker(Scene("quadruped", None, (), walker={"model": "quadruped_hoecken"}))
+    >>> [leg.name for leg in walker.legs], walker.leg_labels()
+    (['A', 'B', 'C', 'D'], ('L1', 'R1', 'L2', 'R2'))
     """
     w = scene.walker or {}
     sec = ("walker",)
@@ -249,6 +269,19 @@ def build_drive(scene: Scene, leg: FourBar | Mechanism) -> tuple[Drive, float]:
     ------
     SceneError
         Located at the key that made the build fail.
+
+    Examples
+    --------
+    Thesis 1's drive, a motor at 50 rpm through an 18/15/14 gear train: the crank turns once in
+    0.933 s:
+
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import build_drive, build_mechanism
+    >>> scene = Scene("leg", None, (), mechanism={"catalog": "hoecken"},
+    ...               drive={"kind": "constant", "rpm": 50.0, "gears": [18, 15, 14]})
+    >>> drive, period = build_drive(scene, build_mechanism(scene))
+    >>> type(drive).__name__, round(period, 6)
+    ('Geared', 0.933333)
     """
     d = scene.drive
     sec = ("drive",)
@@ -302,6 +335,17 @@ def run_duration(scene: Scene, period: float) -> float:
     ------
     SceneError
         When it is not a positive finite time of at most a million cycles.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import run_duration
+    >>> run_duration(Scene("leg", None, (), drive={"cycles": 2}), 0.5)
+    1.0
+    >>> run_duration(Scene("leg", None, (), drive={}), float("inf"))
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: [drive] cycles: the run lasts inf s; it must be at least 1e-09 s
     """
     d = scene.drive
     key = "duration" if "duration" in d else "cycles"
@@ -329,6 +373,22 @@ def build_cam(scene: Scene) -> DiscCam | None:
     ------
     SceneError
         Located at the key that made the build fail.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import build_cam
+    >>> rise = {"duration_deg": 180.0, "rise": 10.0, "law": "cycloidal"}
+    >>> fall = {"duration_deg": 180.0, "rise": -10.0, "law": "cycloidal"}
+    >>> cam = {"base_radius": 20.0, "roller_radius": 5.0, "segments": [rise, fall]}
+    >>> type(build_cam(Scene("cam", None, (), cam=cam))).__name__
+    'DiscCam'
+    >>> build_cam(Scene("no cam", None, ())) is None
+    True
+    >>> build_cam(Scene("half", None, (), cam={**cam, "segments": [rise]}))
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: [cam] base_radius: a cam program must span one turn (2π rad)...
     """
     if scene.cam is None:
         return None
@@ -357,6 +417,21 @@ def build_masses(
     ------
     SceneError
         Located at the link or load that is wrong.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> import linkage
+    >>> from linkage.build import build_masses
+    >>> hoecken = linkage.catalog.hoecken()
+    >>> masses, loads = build_masses(Scene("leg", None, (), masses={"crank": {"mass": 0.1}}),
+    ...                              hoecken)
+    >>> masses["crank"].mass, loads
+    (0.1, [])
+    >>> build_masses(Scene("leg", None, (), masses={"arm": {"mass": 0.1}}), hoecken)
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: [masses] arm: unknown link 'arm'; the moving links are crank, ...
     """
     m = mech.mechanism() if isinstance(mech, FourBar) else mech
     links = m.links
@@ -421,6 +496,18 @@ def validate(scene: Scene, samples: int | None = None) -> None:
     ------
     SceneError
         For the first problem found.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import validate
+    >>> drive = {"kind": "constant", "rpm": 50.0}
+    >>> validate(Scene("leg", None, ("trajectory",), mechanism={"catalog": "hoecken"}, drive=drive))
+    >>> short = {"ground": 20, "crank": 10, "coupler": 4, "rocker": 4}
+    >>> validate(Scene("leg", None, ("trajectory",), mechanism=short, drive=drive))
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: [mechanism] ground: no sample assembles: ... (closure gap 2)
     """
     if scene.synthesis is not None:
         # The search itself is the run's work: here only its inputs.
@@ -463,6 +550,17 @@ def build_study(scene: Scene) -> tuple[FourBar | Mechanism | Walker, FourBar | M
     """Build the scene's study and the linkage it is made of.
 
     Returns the walker and its first leg's linkage, or the mechanism twice.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import build_study
+    >>> study, leg = build_study(Scene("leg", None, (), mechanism={"catalog": "hoecken"}))
+    >>> study is leg, leg.crank
+    (True, 10.0)
+    >>> study, leg = build_study(Scene("quad", None, (), walker={"model": "quadruped_hoecken"}))
+    >>> type(study).__name__, leg is study.legs[0].linkage
+    ('Walker', True)
     """
     if scene.walker is not None:
         walker = build_walker(scene)
@@ -478,6 +576,18 @@ def sample_count(scene: Scene, samples: int | None) -> int:
     ------
     SceneError
         When it is not a whole number from 8 to :data:`SAMPLES_MAX`.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import sample_count
+    >>> scene = Scene("leg", None, (), drive={"samples": 73})
+    >>> sample_count(scene, None), sample_count(scene, 181), sample_count(Scene("", None, ()), None)
+    (73, 181, 721)
+    >>> sample_count(scene, 4)
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: samples must be a whole number from 8 to 1000000000, got 4
     """
     n = samples if samples is not None else scene.drive.get("samples", 721)
     if isinstance(n, bool) or not isinstance(n, int) or not 8 <= n <= SAMPLES_MAX:
@@ -497,7 +607,25 @@ def _blocks(n: int, duration: float) -> Iterator[Array]:
 
 
 def check_legs(scene: Scene, walker: Walker, drive: Drive, duration: float, n: int) -> None:
-    """Every leg must assemble at every crank angle of the run (else `simulate` refuses)."""
+    """Every leg must assemble at every crank angle of the run (else `simulate` refuses).
+
+    Examples
+    --------
+    Evans' linkage B rocks between its toggles: as a walker's leg, driven round, it fails:
+
+    >>> from linkage.scene import Scene
+    >>> import math, linkage
+    >>> from linkage.build import check_legs
+    >>> from linkage.drive import ConstantSpeed
+    >>> from linkage.walker import Leg, Walker
+    >>> scene = Scene("walker", None, (), walker={"model": "by hand"})
+    >>> turn = (ConstantSpeed(1.0), 2 * math.pi, 9)     # drive, duration, samples
+    >>> check_legs(scene, linkage.catalog.quadruped_hoecken(), *turn)    # assembles: None
+    >>> check_legs(scene, Walker([Leg("E", linkage.catalog.evans_b(), (0, 0, 0))]), *turn)
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: [walker] model: leg 'E' cannot be assembled at crank angle 90.0° ...
+    """
     for idx, leg in enumerate(walker.legs):
         for t in _blocks(n, duration):
             if isinstance(drive, CrankSchedule):  # one motor per leg, shifted in time
@@ -522,7 +650,21 @@ def check_legs(scene: Scene, walker: Walker, drive: Drive, duration: float, n: i
 def no_assembly(
     scene: Scene, mech: FourBar | Mechanism, drive: Drive, duration: float, n: int
 ) -> SceneError:
-    """Return the error for a run in which no sample assembles, with the reason."""
+    r"""Return the error for a run in which no sample assembles, with the reason.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> import linkage
+    >>> from linkage.build import no_assembly
+    >>> from linkage.drive import ConstantSpeed
+    >>> short = {"ground": 20, "crank": 10, "coupler": 4, "rocker": 4}
+    >>> err = no_assembly(Scene("leg", None, (), mechanism=short), linkage.FourBar(**short),
+    ...                   ConstantSpeed(1.0), 1.0, 9)
+    >>> print(str(err).replace(", ", ",\n"))
+    [mechanism] ground: no sample assembles: the crank end stays 10 … 30 from the rocker pivot,
+    the coupler and rocker reach 0 … 8 (closure gap 2)
+    """
     m = scene.mechanism or {}
     t0 = np.zeros(1)
     theta0 = float(drive.angles(t0)[0][0])
@@ -609,6 +751,17 @@ def estimate_memory(scene: Scene, study: FourBar | Mechanism | Walker, samples: 
     8). Calibrated on peak resident memory (``/usr/bin/time``, 2e5 → 6e5 samples): the Hoecken
     example without straightness and animation grows by 1065 bytes per sample, estimated 1408;
     the hexapod by 1210, estimated 1504 — an estimate about 1.3 times the measured growth.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> import linkage
+    >>> from linkage.build import estimate_memory
+    >>> scene = Scene("leg", None, ("trajectory",))
+    >>> small = estimate_memory(scene, linkage.catalog.hoecken(), 721)
+    >>> big = estimate_memory(scene, linkage.catalog.hoecken(), 7201)
+    >>> 0 < small < big
+    True
     """
     per = 4
     if isinstance(study, Walker):
@@ -641,6 +794,18 @@ def check_memory_estimate(
     ------
     SceneError
         Located at ``[drive] samples`` (unlocated when ``samples`` was given by the caller).
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> import linkage
+    >>> from linkage.build import check_memory_estimate
+    >>> scene = Scene("leg", None, ("trajectory",))
+    >>> check_memory_estimate(scene, linkage.catalog.hoecken(), 721, given=True)
+    >>> check_memory_estimate(scene, linkage.catalog.hoecken(), 10**8, given=True)
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: samples: 100000000 samples would need about ... the 2 GiB limit...
     """
     need = estimate_memory(scene, study, samples)
     if need <= MEMORY_CAP:
@@ -660,6 +825,17 @@ def affordable_checks(scene: Scene, study: FourBar | Mechanism | Walker, n: int)
     """Return the sample counts of :func:`check_counts` that fit in memory with every run alive.
 
     Both when they fit, else the half only, else none (the figures then carry no error estimate).
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> import linkage
+    >>> from linkage.build import affordable_checks
+    >>> scene = Scene("leg", None, ("trajectory",))
+    >>> affordable_checks(scene, linkage.catalog.hoecken(), 721)
+    (360, 1441)
+    >>> affordable_checks(scene, linkage.catalog.hoecken(), 7_000_000)    # none fits: no estimate
+    ()
     """
     half, double = check_counts(n)
     if estimate_memory(scene, study, n + half + double) <= MEMORY_CAP:
@@ -691,6 +867,17 @@ def check_synthesis_memory(scene: Scene, samples: int) -> None:
     ------
     SceneError
         Naming ``samples`` and the largest count that fits.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import check_synthesis_memory
+    >>> scene = Scene("fit", None, ("synthesis",), synthesis={"top": 5})
+    >>> check_synthesis_memory(scene, 721)
+    >>> check_synthesis_memory(scene, 10**9)
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: samples: 1000000000 samples of 5 coupler curves would need about...
     """
     top = int((scene.synthesis or {}).get("top", 5))
     need = top * samples * CURVE_BYTES + (64 << 20)
@@ -716,6 +903,18 @@ def synthesis_target(scene: Scene) -> Array:
     ------
     SceneError
         Located at ``[synthesis] points``, naming the file as the scene gives it.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import synthesis_target
+    >>> square = [[0, 0], [1, 0], [1, 1], [0, 1], [0.5, 1.2]]
+    >>> synthesis_target(Scene("fit", None, ("synthesis",), synthesis={"points": square})).shape
+    (5, 2)
+    >>> synthesis_target(Scene("fit", None, ("synthesis",), synthesis={"points": square[:4]}))
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: [synthesis] points: ... needs at least 5 distinct points, got 4
     """
     s = scene.synthesis or {}
     sec = ("synthesis",)
@@ -779,6 +978,17 @@ def synthesis_atlas(scene: Scene) -> synthesis.Atlas | None:
     ------
     SceneError
         Located at ``[synthesis] atlas`` when the folder is not an atlas.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import synthesis_atlas
+    >>> synthesis_atlas(Scene("fit", None, ("synthesis",), synthesis={})) is None    # the default
+    True
+    >>> synthesis_atlas(Scene("fit", None, ("synthesis",), synthesis={"atlas": "no-such-atlas"}))
+    Traceback (most recent call last):
+    ...
+    linkage._schema.SceneError: [synthesis] atlas: no atlas in 'no-such-atlas' ...
     """
     s = scene.synthesis or {}
     if "atlas" not in s:
