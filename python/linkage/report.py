@@ -68,11 +68,32 @@ __all__ = [
 
 
 def write(res: Result, folder: Path, frames: int = 48, force: bool = False) -> list[Path]:
-    """Write the report for ``res`` to ``folder``; return the files written (in ``folder``).
+    r"""Write the report for ``res`` to ``folder``; return the files written (in ``folder``).
 
     The report is written as :func:`~linkage.report_folder.write_folder` writes any folder: into
     a temporary sibling, its marker last, renamed into place; an existing ``folder`` is replaced
     only with ``force`` and only if linkage wrote it (see :mod:`linkage.report_folder`).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from linkage.report import write
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n', name="hoecken")
+    >>> res = run(scene)
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> sorted(f.name for f in write(res, Path(tmp.name) / "report"))
+    ['data.csv', 'data.npz', 'index.html', 'summary.json', 'trajectory.png']
+    >>> write(res, Path(tmp.name) / "report")
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: ...report holds an earlier report; pass --force to replace it (nothing...
+    >>> len(write(res, Path(tmp.name) / "report", force=True))
+    5
+    >>> tmp.cleanup()
     """
     return write_folder(
         folder,
@@ -116,12 +137,28 @@ PLATE = "#aec7e8"
 
 
 def line_style(k: int) -> tuple[str, str]:
-    """Colour and line style of the ``k``-th line of a plot: distinct for 28 lines."""
+    """Colour and line style of the ``k``-th line of a plot: distinct for 28 lines.
+
+    Examples
+    --------
+    >>> from linkage.report import line_style
+    >>> line_style(0), line_style(14), line_style(28)
+    (('#1f77b4', '-'), ('#1f77b4', '--'), ('#1f77b4', '-'))
+    >>> len({line_style(k) for k in range(28)})
+    28
+    """
     return PALETTE[k % len(PALETTE)], "-" if (k // len(PALETTE)) % 2 == 0 else "--"
 
 
 def leg_legend(names: Sequence[str], labels: Sequence[str]) -> list[str]:
-    """Legend text per leg: its position label, with its own name when that differs."""
+    """Legend text per leg: its position label, with its own name when that differs.
+
+    Examples
+    --------
+    >>> from linkage.report import leg_legend
+    >>> leg_legend(["A", "R2"], ["L1", "R2"])
+    ['L1 (A)', 'R2']
+    """
     return [lab if lab == name else f"{lab} ({name})" for name, lab in zip(names, labels)]
 
 

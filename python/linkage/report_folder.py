@@ -56,6 +56,16 @@ def default_folder(name: str, base: Path = DEFAULT_BASE) -> Path:
 
     Refused unless ``name`` is a single plain folder name that stays inside ``base`` (no ``.``,
     ``..``, separators, or a leading dot, which is kept for the tool's temporary folders).
+
+    Examples
+    --------
+    >>> from linkage.report_folder import default_folder
+    >>> default_folder("hoecken").as_posix()
+    'linkage-report/hoecken'
+    >>> default_folder("../hoecken")
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: scene name '../hoecken' cannot name a folder inside linkage-report/ ...
     """
     if not _SAFE_NAME.fullmatch(name) or name in (".", ".."):
         raise LinkageError(
@@ -78,6 +88,22 @@ def read_marker(folder: Path) -> dict[str, Any] | None:
 
     A marker that does not parse as a linkage marker counts as none: such a folder is treated as the
     user's.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from linkage.report_folder import MARKER, read_marker, write_folder
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> out = Path(tmp.name) / "out"
+    >>> _ = write_folder(out, "demo", lambda f: [(f / "a.txt").write_text("a") and "a.txt"])
+    >>> marker = read_marker(out)
+    >>> marker["tool"], marker["scene"], marker["files"]
+    ('linkage', 'demo', ['a.txt'])
+    >>> _ = (out / MARKER).write_text('{"tool": "other"}')
+    >>> read_marker(out), read_marker(Path(tmp.name))     # not linkage's; no marker
+    (None, None)
+    >>> tmp.cleanup()
     """
     path = folder / MARKER
     try:
@@ -188,6 +214,27 @@ def prepare(folder: Path, force: bool) -> None:
 
     Raise ``LinkageError`` naming the folder and the reason when it would lose anything. Nothing is
     created or removed here (``write`` repeats the check just before it moves anything).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from linkage.report_folder import prepare
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> prepare(Path(tmp.name) / "new", force=False)                # a new folder: fine
+    >>> (Path(tmp.name) / "new").exists()
+    False
+    >>> mine = Path(tmp.name) / "mine"
+    >>> mine.mkdir()
+    >>> prepare(mine, force=True)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: ...mine exists and is not a report written by linkage (no readable...
+    >>> prepare(Path("/"), force=True)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: ... is the root of the file system; refused (nothing was written)
+    >>> tmp.cleanup()
     """
     target = _resolve(folder)
     if os.path.lexists(target):
@@ -266,13 +313,39 @@ def _os_message(exc: OSError, tmp: Path, folder: Path) -> str:
 def write_folder(
     folder: Path, name: str, fill: Callable[[Path], Sequence[str]], force: bool = False
 ) -> list[Path]:
-    """Write a folder of results safely; return the files written (in ``folder``).
+    r"""Write a folder of results safely; return the files written (in ``folder``).
 
     ``fill(tmp)`` writes the files into a temporary sibling of ``folder`` and returns their names;
     the marker (naming them and ``name``) is written last and the folder renamed into place. An
     existing ``folder`` is replaced only with ``force`` and only if linkage wrote it. On any failure
     — an exception, ``KeyboardInterrupt``, a full disk — the temporary folder is removed and an
     earlier folder is left as it was; an ``OSError`` becomes a ``LinkageError`` naming the path.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from pathlib import Path
+    >>> from linkage.report_folder import write_folder
+    >>> def fill(folder):
+    ...     (folder / "figures.txt").write_text("stride 43.5 mm\n")
+    ...     return ["figures.txt"]
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> [p.name for p in write_folder(Path(tmp.name) / "out", "demo", fill)]
+    ['figures.txt']
+    >>> sorted(os.listdir(Path(tmp.name) / "out"))
+    ['.linkage-report', 'figures.txt']
+
+    A failure while filling leaves nothing behind (no folder, no temporary sibling):
+
+    >>> def broken(folder):
+    ...     raise ValueError("the plot failed")
+    >>> write_folder(Path(tmp.name) / "other", "demo", broken)
+    Traceback (most recent call last):
+    ...
+    ValueError: the plot failed
+    >>> sorted(os.listdir(tmp.name))
+    ['out']
+    >>> tmp.cleanup()
     """
     target = _resolve(folder)
     earlier = os.path.lexists(target)
