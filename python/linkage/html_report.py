@@ -61,7 +61,7 @@ def write_index(
     images: Sequence[Path],
     drawings: Sequence[Drawing] | None = None,
 ) -> Path:
-    """Write ``folder / "index.html"`` for the run ``res`` and return its path.
+    r"""Write ``folder / "index.html"`` for the run ``res`` and return its path.
 
     ``images`` are the report's plot files (already written), embedded in the order given;
     files of a type a browser cannot show inline are listed by name instead. ``drawings`` are
@@ -73,6 +73,23 @@ def write_index(
     ------
     LinkageError
         If a drawing given does not have one sample per sample of the run.
+
+    Examples
+    --------
+    A PDF cannot be shown inline, so it is listed by name:
+
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from linkage.html_report import write_index
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n', name="hoecken")
+    >>> res = run(scene)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = write_index(res, Path(tmp), [Path(tmp) / "notes.pdf"])
+    ...     path.name, "notes.pdf" in path.read_text(encoding="utf-8")
+    ('index.html', True)
     """
     path = Path(folder) / "index.html"
     path.write_text(page(res, images, drawings), encoding="utf-8")
@@ -82,7 +99,31 @@ def write_index(
 def page(
     res: Result, images: Sequence[Path] = (), drawings: Sequence[Drawing] | None = None
 ) -> str:
-    """Return the text of the report's ``index.html`` (see :func:`write_index`)."""
+    r"""Return the text of the report's ``index.html`` (see :func:`write_index`).
+
+    Examples
+    --------
+    >>> import re
+    >>> import numpy as np
+    >>> from linkage.drawing import mechanism_drawing
+    >>> from linkage.html_report import page
+    >>> from linkage.runner import run
+    >>> from linkage.scene import parse
+    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n', name="hoecken")
+    >>> res = run(scene)
+    >>> text = page(res)
+    >>> re.search(r"<title>(.*?)</title>", text).group(1), re.findall(r"(?:src|href)=.http", text)
+    ('hoecken — linkage report', [])
+
+    A drawing given must cover the run's samples:
+
+    >>> d = mechanism_drawing(res.mechanism, res.mechanism.sweep(np.linspace(0.0, 1.0, 5)))
+    >>> page(res, drawings=[d])
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: a drawing of 5 samples for a run of 73
+    """
     scene = res.scene
     if res.synthesis is not None:
         return _synthesis_page(res, images)
@@ -180,6 +221,12 @@ def frames(n: int, most: int = MAX_FRAMES) -> NDArray[np.intp]:
     """Return the indices of the samples the page embeds.
 
     All ``n``, or ``most`` spread evenly (first and last included).
+
+    Examples
+    --------
+    >>> from linkage.html_report import frames
+    >>> frames(5).tolist(), frames(1000, most=5).tolist(), frames(0).tolist()
+    ([0, 1, 2, 3, 4], [0, 250, 500, 749, 999], [])
     """
     if n <= most:
         return np.arange(n)
