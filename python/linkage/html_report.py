@@ -220,13 +220,16 @@ def _candidates_table(res: Result) -> str:
 def frames(n: int, most: int = MAX_FRAMES) -> NDArray[np.intp]:
     """Return the indices of the samples the page embeds.
 
-    All ``n``, or ``most`` spread evenly (first and last included).
+    All ``n``, or ``most`` spread evenly: the first and the last included (only the first when
+    ``most`` is 1; none when it is 0).
 
     Examples
     --------
     >>> from linkage.html_report import frames
     >>> frames(5).tolist(), frames(1000, most=5).tolist(), frames(0).tolist()
     ([0, 1, 2, 3, 4], [0, 250, 500, 749, 999], [])
+    >>> frames(10, most=1).tolist(), frames(10, most=0).tolist()
+    ([0], [])
     """
     if n <= most:
         return np.arange(n)
