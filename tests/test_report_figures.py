@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from linkage import figures, runner, scene, stage_figures
+from linkage import LinkageError, figures, runner, scene, stage_figures
 from linkage.figures import Row, format_number, significant_digits
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -197,3 +197,11 @@ def test_a_straight_path_is_recognised_by_the_core_line_fit():
     arc = np.c_[np.cos(t), np.sin(t)]
     assert not stage_figures._on_a_line(arc, 2.0)
     assert not stage_figures._on_a_line(line[:2], 80.0)
+
+
+def test_synthesis_rows_refuse_a_run_that_is_not_a_synthesis():
+    # synthesis_figures asserted (an AssertionError, or an AttributeError under python -O).
+    res = figures.Result(scene=scene.Scene("leg", None, ()), time=np.zeros(0), theta=np.zeros(0))
+    with pytest.raises(LinkageError, match="not a synthesis run"):
+        stage_figures.synthesis_figures(res)
+    assert res.figures == []

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._schema import Scene
@@ -74,9 +75,16 @@ def drive_label(scene: Scene, drive: Any) -> str:
 
 
 def synthesis_figures(res: Result) -> None:
-    """Append the rows of a ``[synthesis]`` search: the target, then each candidate's figures."""
+    """Append the rows of a ``[synthesis]`` search: the target, then each candidate's figures.
+
+    Raises
+    ------
+    LinkageError
+        If ``res`` is not a ``[synthesis]`` run (nothing is appended).
+    """
     run = res.synthesis
-    assert run is not None
+    if run is None:
+        raise LinkageError("not a synthesis run")
     u = length_unit(res.scene)
     rows = res.figures
     shape = "closed curve" if run.closed else "open path"
