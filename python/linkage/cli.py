@@ -38,7 +38,20 @@ MAX_FRAMES = 2000
 
 
 def print_table(title: str, rows: Sequence[tuple[str, str, str, str]]) -> None:
-    """Print rows as an aligned four-column table."""
+    """Print rows as an aligned four-column table.
+
+    Examples
+    --------
+    >>> from linkage.cli import print_table
+    >>> print_table("hoecken", [("stride", "43.53", "mm", "±0.02"), ("legs", "A, B", "", "")])
+    hoecken
+    ------  -----  ----  --------------
+    figure  value  unit  error estimate
+    ------  -----  ----  --------------
+    stride  43.53  mm    ±0.02
+    legs    A, B
+    ------  -----  ----  --------------
+    """
     head = ("figure", "value", "unit", "error estimate")
     widths = [max(len(r[i]) for r in [head, *rows]) for i in range(4)]
     line = "  ".join("-" * w for w in widths)
@@ -134,7 +147,36 @@ def _design(args: argparse.Namespace, state: dict[str, Path]) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``linkage`` console script."""
+    r"""Entry point of the ``linkage`` console script.
+
+    ``argv`` are the arguments (default: the command line's); returns the exit status (see the
+    module's docstring). Errors are one line on stderr, never a traceback.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from linkage.cli import main
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> scene = os.path.join(tmp.name, "leg.toml")
+    >>> with open(scene, "w") as fh:
+    ...     _ = fh.write('outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...                  '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
+    >>> main(["check", scene])
+    ok: leg: outputs trajectory
+    0
+    >>> main(["run", scene, "--out", os.path.join(tmp.name, "report"), "--quiet"])
+    0
+    >>> sorted(os.listdir(os.path.join(tmp.name, "report")))
+    ['.linkage-report', 'data.csv', 'data.npz', 'index.html', 'summary.json', 'trajectory.png']
+
+    A mistake is one line on stderr and exit status 2, with nothing written:
+
+    >>> main(["run", os.path.join(tmp.name, "missing.toml"), "--out", os.path.join(tmp.name, "x")])
+    2
+    >>> sorted(os.listdir(tmp.name))
+    ['leg.toml', 'report']
+    >>> tmp.cleanup()
+    """
     parser = argparse.ArgumentParser(
         prog="linkage", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
