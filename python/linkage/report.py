@@ -588,8 +588,11 @@ def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
 
 
 def _with_data(res: Result, folder: Path, files: list[Path]) -> list[Path]:
-    """Write the data files last (summary.json lists every file in the folder, and the stage
-    times up to the report's); their own time is the stage ``data files``, after the fact."""
+    """Write the data files last, their own time the stage ``data files``, measured after the fact.
+
+    Last, because summary.json lists every file in the folder and the stage times up to the
+    report's.
+    """
     started = time.perf_counter()
     files.extend(export.write_data(res, folder, cad=res.scene.wants("cad")))
     res.stages["data files"] = time.perf_counter() - started
