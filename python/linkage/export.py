@@ -719,14 +719,14 @@ def synthesis_drawing(res: Result) -> Drawing:
 
     Examples
     --------
-    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run is refused:
+    A ``[synthesis]`` run needs an atlas (see :func:`linkage.synthesis.path`); another is
+    refused:
 
     >>> from linkage.export import synthesis_drawing
-    >>> from linkage.runner import run
-    >>> from linkage.scene import parse
-    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
-    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
-    >>> res = run(scene)
+    >>> import numpy as np
+    >>> from linkage.figures import Result
+    >>> from linkage.scene import Scene
+    >>> res = Result(Scene("leg", None, ("trajectory",)), np.zeros(0), np.zeros(0))
     >>> synthesis_drawing(res)
     Traceback (most recent call last):
     ...
@@ -882,15 +882,14 @@ def candidate_scene(res: Result, k: int) -> str:
 
     Examples
     --------
-    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run has no
+    A ``[synthesis]`` run needs an atlas (see :func:`linkage.synthesis.path`); another has no
     candidates:
 
     >>> from linkage.export import candidate_scene
-    >>> from linkage.runner import run
-    >>> from linkage.scene import parse
-    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
-    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
-    >>> res = run(scene)
+    >>> import numpy as np
+    >>> from linkage.figures import Result
+    >>> from linkage.scene import Scene
+    >>> res = Result(Scene("leg", None, ("trajectory",)), np.zeros(0), np.zeros(0))
     >>> candidate_scene(res, 1)
     Traceback (most recent call last):
     ...
@@ -1016,14 +1015,14 @@ def candidate_rows(res: Result) -> tuple[list[str], list[list[Any]]]:
 
     Examples
     --------
-    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run is refused:
+    A ``[synthesis]`` run needs an atlas (see :func:`linkage.synthesis.path`); another is
+    refused:
 
     >>> from linkage.export import candidate_rows
-    >>> from linkage.runner import run
-    >>> from linkage.scene import parse
-    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
-    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
-    >>> res = run(scene)
+    >>> import numpy as np
+    >>> from linkage.figures import Result
+    >>> from linkage.scene import Scene
+    >>> res = Result(Scene("leg", None, ("trajectory",)), np.zeros(0), np.zeros(0))
     >>> candidate_rows(res)
     Traceback (most recent call last):
     ...
@@ -1078,17 +1077,16 @@ def write_candidates_csv(res: Result, path: Path) -> list[str]:
 
     Examples
     --------
-    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run is refused
-    before the file is opened:
+    A ``[synthesis]`` run needs an atlas (see :func:`linkage.synthesis.path`); another is
+    refused before the file is opened:
 
     >>> import tempfile
     >>> from pathlib import Path
     >>> from linkage.export import write_candidates_csv
-    >>> from linkage.runner import run
-    >>> from linkage.scene import parse
-    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
-    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
-    >>> res = run(scene)
+    >>> import numpy as np
+    >>> from linkage.figures import Result
+    >>> from linkage.scene import Scene
+    >>> res = Result(Scene("leg", None, ("trajectory",)), np.zeros(0), np.zeros(0))
     >>> tmp = tempfile.TemporaryDirectory()
     >>> write_candidates_csv(res, Path(tmp.name) / "candidates.csv")
     Traceback (most recent call last):
@@ -1172,16 +1170,16 @@ def write_synthesis(res: Result, folder: Path, cad: bool = True) -> list[Path]:
 
     Examples
     --------
-    A synthesis run needs an atlas (see :func:`linkage.synthesis.path`); any other run is refused:
+    A ``[synthesis]`` run needs an atlas (see :func:`linkage.synthesis.path`); another is
+    refused:
 
     >>> import tempfile
     >>> from pathlib import Path
     >>> from linkage.export import write_synthesis
-    >>> from linkage.runner import run
-    >>> from linkage.scene import parse
-    >>> scene = parse('units = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
-    ...               '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
-    >>> res = run(scene)
+    >>> import numpy as np
+    >>> from linkage.figures import Result
+    >>> from linkage.scene import Scene
+    >>> res = Result(Scene("leg", None, ("trajectory",)), np.zeros(0), np.zeros(0))
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     write_synthesis(res, Path(tmp))
     Traceback (most recent call last):
