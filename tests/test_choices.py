@@ -63,7 +63,11 @@ def test_as_choice_returns_the_value_and_refuses_others():
         (linkage.Mechanism.dyad, "side", "Side"),
         (linkage.Mechanism.slider, "reach", "Reach"),
         (linkage.SliderCrank, "reach", "Reach"),
-        (linkage.batch.sweep_fourbars, "assembly", "Assembly | Sequence[Assembly] | NDArray[np.str_]"),
+        (
+            linkage.batch.sweep_fourbars,
+            "assembly",
+            "Assembly | Sequence[Assembly] | NDArray[np.str_]",
+        ),
         (synthesis.path, "kind", "PathKind"),
         (synthesis.Atlas.build, "kind", "AtlasKind"),
         (synthesis.default_atlas, "kind", "AtlasKind"),
