@@ -519,8 +519,18 @@ fn tracked_row<T: RealField + Copy>(
 
 /// The closed form over a block of crank directions, branch-free so it vectorises; `near[k]`
 /// marks the samples within [`NEAR_TOGGLE`] of a toggle (to be solved again exactly). A sample
-/// that cannot close gets a negative Kahan product, whose square root is NaN, and `ok` false.
-/// Returns whether any sample is marked.
+/// that cannot close gets a negative product under the square root, whose root is NaN, and
+/// `ok` false. Returns whether any sample is marked.
+///
+/// With `s = |C − A|²` (no square root taken of it), `σ = r1 + r2`, `δ = |r1 − r2|`:
+/// `B − A = ((s + r1² − r2²)·(C − A) ± √((σ² − s)(s − δ²))·(C − A)⊥) / (2s)` — one square root
+/// and one division a sample, where the triangle's base `d = √s`, its unit vector and
+/// Kahan's area took two roots and a division. The two factors under the root lose digits
+/// only next to a toggle (`σ² − s` relative to `σ² + s`, `s − δ²` relative to `s + δ²`), and
+/// those samples are marked: `near` holds every sample whose triangle slack
+/// `min(σ − d, d − δ)` is within `NEAR_TOGGLE` of the longest side (the test the dyad uses for
+/// an exact base), tested on `s` against bounds squared once per linkage. Outside it the factors
+/// carry at most `3ε/NEAR_TOGGLE` of relative error, the root half of that.
 #[inline(always)]
 fn kernel<T: RealField + Copy>(
     fb: &FourBar<T>,
@@ -533,34 +543,34 @@ fn kernel<T: RealField + Copy>(
     let (r, r1, r2) = (fb.crank, fb.coupler, fb.rocker);
     let sign = fb.assembly.side().sign::<T>();
     let (along, left) = (fb.along, fb.left);
-    let (half, quarter, two) = (lit::<T>(0.5), lit::<T>(0.25), lit::<T>(2.0));
+    let one = T::one();
     let band = lit::<T>(NEAR_TOGGLE);
-    let inv_r1 = T::one() / r1;
-    let (rmax, rmin) = (r1.max(r2), r1.min(r2));
+    let (sigma, delta, rmax) = (r1 + r2, (r1 - r2).abs(), r1.max(r2));
+    let (sigma2, delta2) = (sigma * sigma, delta * delta);
     let diff = (r1 - r2) * (r1 + r2);
+    // |d − δ| < band·max(d, rmax) and |σ − d| < band·max(d, rmax), as bounds on s = d².
+    let sq = |x: T| x * x;
+    let in_lo = sq((delta - band * rmax).max(T::zero()));
+    let in_hi = sq((delta + band * rmax) / (one - band));
+    let out_lo = sq((sigma / (one + band)).min(sigma - band * rmax));
+    let out_hi = sq(sigma / (one - band));
+    let k = lit::<T>(0.5) / r1;
     let mut any = false;
     let rows = out.iter_mut().zip(ok.iter_mut()).zip(near.iter_mut());
     for (((p, v), nr), (&cs, &sn)) in rows.zip(cos.iter().zip(sin)) {
         let ax = o.x + r * cs;
         let ay = o.y + r * sn;
         let (dx, dy) = (c.x - ax, c.y - ay);
-        let d = (dx * dx + dy * dy).sqrt();
-        // Kahan's area of the triangle (d, r1, r2): with r1, r2 fixed the sorted sides are
-        // hi = max(d, rmax), lo = min(d, rmin), mid = clamp(d, rmin, rmax) — exact.
-        let (hi, mid, lo) = crate::dyad::sorted_with(d, rmin, rmax);
-        let f2 = lo - (hi - mid);
-        let close = f2.abs() < band * hi;
+        let s = dx * dx + dy * dy;
+        let close = (s > in_lo) & (s < in_hi) | (s > out_lo) & (s < out_hi);
         *nr = close;
         any |= close;
-        let prod = (hi + (mid + lo)) * f2 * (lo + (hi - mid)) * (hi + (mid - lo));
-        let area = prod.sqrt() * quarter;
-        let inv_d = T::one() / d;
-        let (ux, uy) = (dx * inv_d, dy * inv_d);
-        let x = (d + diff * inv_d) * half;
-        let h = two * area * inv_d * sign;
-        // B − A = x·u + h·u⊥; P = A + along·e + left·e⊥ with e = (B − A)/r1.
-        let ex = (x * ux - h * uy) * inv_r1;
-        let ey = (x * uy + h * ux) * inv_r1;
+        let root = ((sigma2 - s) * (s - delta2)).sqrt() * sign;
+        let w = k / s;
+        let t = s + diff;
+        // e = (B − A)/r1; P = A + along·e + left·e⊥.
+        let ex = (t * dx - root * dy) * w;
+        let ey = (t * dy + root * dx) * w;
         let (px, py) = (ax + along * ex - left * ey, ay + along * ey + left * ex);
         // Written here, not by a second pass over the points (which compiled to gathers).
         *v = px.is_finite() & py.is_finite();
