@@ -12,6 +12,7 @@ use std::time::Duration;
 use crate::args::{finite, named};
 use crate::error::{linkage_error, to_py};
 use crate::memory;
+use numpy::ndarray::{Ix2, Ix3};
 
 /// Most threads one batch sweep starts (the bits are the same for any split).
 const MAX_THREADS: usize = 256;
@@ -194,9 +195,11 @@ pub fn batch_sweep<'py>(
             let what = || format!("batch sweep of {m} linkages × {n} angles");
             let samples = (m as u128) * (n as u128);
             memory::check(&what, samples.saturating_mul(17))?;
+            // numpy's own empty arrays: the kernel writes every element (a failed call drops
+            // them unseen), and numpy asks the system for huge pages for large ones.
             (
-                PyArray3::<f64>::zeros(py, [m, n, 2], false),
-                PyArray2::<bool>::zeros(py, [m, n], false),
+                memory::uninit::<f64, Ix3>(py, &what, &[m, n, 2])?,
+                memory::uninit::<bool, Ix2>(py, &what, &[m, n])?,
             )
         }
     };
