@@ -284,7 +284,7 @@ def _assembly(value: Any) -> NDArray[np.bool_]:
                 f" {values.shape}"
             )
         shape = values.shape
-    bad = ~np.isin(values, _ASSEMBLIES)
+    bad = ~np.logical_or.reduce([values == a for a in _ASSEMBLIES])
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         where = "" if isinstance(value, str) else f"[{k}]"
@@ -298,6 +298,10 @@ def _assembly(value: Any) -> NDArray[np.bool_]:
 
 
 def _check_lengths(arr: NDArray[np.float64], name: str) -> None:
+    # Two reductions with no temporaries (a NaN makes the minimum NaN, failing the test); only
+    # a bad array is searched for the first bad length.
+    if arr.size == 0 or (arr.min() > 0.0 and arr.max() < np.inf):
+        return
     bad = ~(np.isfinite(arr) & (arr > 0.0))
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
@@ -305,6 +309,10 @@ def _check_lengths(arr: NDArray[np.float64], name: str) -> None:
 
 
 def _check_finite(arr: NDArray[np.float64], name: str) -> None:
+    # One pass over the flat array; the reduction over the last axis of 2 (slow in numpy) only
+    # for an array that holds a non-finite value.
+    if np.isfinite(arr).all():
+        return
     bad = ~np.isfinite(arr).all(axis=-1)
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
