@@ -13,7 +13,7 @@
 //! `i`. Every Grashof class appears.
 //!
 //! A candidate becomes an entry when its whole circuit assembles (a limited crank's as
-//! [`FourBar::circuit`] traces it with the tracker, by the tracker-exact [`FourBarBatch`]; a full
+//! [`FourBar::circuit`] traces it with the tracker, by [`FourBarBatch`] (the tracker's branch and validity); a full
 //! turn on the declared assembly by the [`FourBar::uniform_sweep`] fast path) at every sample, it is not a change point, and its curve
 //! has a shape ([`Efd::normalised`]). An entry keeps its normalised descriptor
 //! ([`Efd::descriptor`], `f32`) and its parameters ([`ENTRY_PARAMS`], `f64`).
