@@ -849,6 +849,19 @@ def path(
         """Return the least error of the admissible candidates (∞ if none is)."""
         return min((c.error for c in cs if admissible(c)), default=math.inf)
 
+    limit = math.inf if lengths is not None or max_link is None else max_link * size
+
+    def usable(c: Candidate[Any]) -> bool:
+        """Whether ``c`` is admissible and ranks before the long-linked (``max_link``)."""
+        return admissible(c) and _longest(c) <= limit
+
+    def best_usable(cs: list[Candidate[Any]]) -> float:
+        """Return the least error of the usable candidates.
+
+        An open target's further stages go on while its only exact fits have a link ranked last.
+        """
+        return min((c.error for c in cs if usable(c)), default=math.inf)
+
     for k in kinds:
         bounds = _bounds(lengths, pivots, size, k)
         pool = []
@@ -870,7 +883,41 @@ def path(
         mine = _finish(pool, target, closed, size, bounds, fits, nthreads, bar, top, k, admissible)
         # Restarts and the global search are judged by the candidates the constraints admit:
         # an exact fit they reject must not end the search for one they admit.
-        if not closed and mine and best(mine) > EXACT * size:
+        if not closed and name is not None and mine and best_usable(mine) > EXACT * size:
+            # An open target no match fitted exactly: long fits of the best, then more matches
+            # and long fits of theirs (docs/synthesis.md, step 4).
+            polished: list[NDArray[np.float64]] = []
+            starts = [c for c in mine if usable(c)] or mine
+            mine += _polish(starts, polished, target, size, bounds, nthreads, bar, k, usable)
+            if best_usable(mine) > EXACT * size:
+                seen = {x.tobytes() for x, _, _ in pool}
+                wider = _atlas_pool(k, at, target, placed + WIDER, 4 * many, nthreads)
+                if full_turn and k is FOURBAR:
+                    wider.sort(key=lambda entry: not _turns_fully(entry[0]))
+                wider = [w for w in wider if w[0].tobytes() not in seen][:WIDER]
+                if bar is not None and bar.total is not None:
+                    bar.total += len(wider)
+                more = _finish(
+                    wider,
+                    target,
+                    False,
+                    size,
+                    bounds,
+                    len(wider),
+                    nthreads,
+                    bar,
+                    1,
+                    k,
+                    usable,
+                    exact_at=EXACT,
+                )
+                mine += more
+                if more and best_usable(mine) > EXACT * size:
+                    starts = [c for c in more if usable(c)] or more
+                    mine += _polish(
+                        starts, polished, target, size, bounds, nthreads, bar, k, usable
+                    )
+        if not closed and mine and best_usable(mine) > EXACT * size:
             starts = [c for c in mine if admissible(c)] or mine
             mine += _hops(starts, target, size, bounds, seed, nthreads, k)
         found += mine
@@ -896,7 +943,6 @@ def path(
     if bar is not None:
         bar.close()
     ok = [c for c in found if _meets(c, full_turn, min_transmission, lengths, pivots)]
-    limit = math.inf if lengths is not None or max_link is None else max_link * size
     return _distinct(_ranked(ok, size, limit), target, closed, size, top)
 
 
@@ -910,6 +956,68 @@ def _turns_fully(x: NDArray[np.float64]) -> bool:
     r, b, c = x[4], x[5], x[6]
     slack = 1e-12 * (g + r + b + c)
     return bool(abs(g - r) >= abs(b - c) - slack and g + r <= b + c + slack)
+
+
+WIDER = 48
+"""Further arc-atlas matches refined (from four times as many nearest shapes) for an open target
+that none of the first fitted exactly."""
+
+POLISH = 6
+"""Distinct best fits of an open target refined again at length (:data:`POLISH_NFEV`) when none
+is exact."""
+
+POLISH_NFEV = 1500
+"""Evaluations in each round of a long fit (:func:`_polish`; a first fit's rounds take 60)."""
+
+
+def _polish(
+    found: list[Candidate[Any]],
+    polished: list[NDArray[np.float64]],
+    target: Float2D,
+    size: float,
+    bounds: tuple[NDArray[np.float64], NDArray[np.float64]],
+    threads: int,
+    bar: Any,
+    kind: _Kind,
+    admissible: Callable[[Candidate[Any]], bool],
+) -> list[Candidate[Any]]:
+    """Refine the best :data:`POLISH` distinct fits at length, stopping at the first exact one.
+
+    A short or near-straight arc is matched to ~1e-5 … 1e-4 of its size along a long, curved
+    valley of near-fits (the scaled Jacobian's singular values span 10⁹ on an eighth of
+    Hoecken's curve): least squares crawls along it to the exact linkage, in hundreds to
+    thousands of evaluations where a first fit's rounds stop at 60 (measured in
+    docs/synthesis.md). Fits whose parameters all lie within 1e-3 of the size of a better one's,
+    or of one in ``polished`` (the starts of earlier calls, to which this call's are added), are
+    one start.
+    """
+    picked: list[Candidate[Any]] = []
+    for c in sorted(found, key=lambda c: c.error):
+        if all(np.max(np.abs(c.params - p)) > 1e-3 * size for p in polished):
+            picked.append(c)
+            polished.append(c.params)
+        if len(picked) == POLISH:
+            break
+    if bar is not None and bar.total is not None:
+        bar.total += len(picked)
+    out: list[Candidate[Any]] = []
+    for c in picked:
+        crossed = isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
+        out += _finish(
+            [(c.params, crossed, c.source)],
+            target,
+            False,
+            size,
+            bounds,
+            1,
+            threads,
+            bar,
+            kind=kind,
+            nfev=POLISH_NFEV,
+        )
+        if any(o.error <= EXACT * size and admissible(o) for o in out):
+            break
+    return out
 
 
 HOPS = 12
@@ -1173,11 +1281,14 @@ def _finish(
     enough: int | None = None,
     kind: _Kind = FOURBAR,
     admissible: Callable[[Candidate[Any]], bool] | None = None,
+    nfev: int = 60,
+    exact_at: float = 1e-10,
 ) -> list[Candidate[Any]]:
     """Refine the first ``refine`` of ``pool``, then measure and check every one.
 
+    Each refinement is four rounds of least squares of at most ``nfev`` evaluations each.
     Stop early once ``enough`` distinct candidates that are ``admissible`` (meet the caller's
-    constraints) draw the target exactly (to 1e-10 of its size).
+    constraints) draw the target to ``exact_at`` of its size.
     """
     out: list[Candidate[Any]] = []
     exact: list[NDArray[np.float64]] = []
@@ -1206,7 +1317,7 @@ def _finish(
                 if r == 3 or not np.all(np.isfinite(feet)) or err <= 1e-10 * size:
                     break
                 try:
-                    x = _refine(x, crossed, target, feet[0], size, bounds, 60, kind)
+                    x = _refine(x, crossed, target, feet[0], size, bounds, nfev, kind)
                 except (ValueError, LinkageError):
                     break
             if bar is not None:
@@ -1221,7 +1332,7 @@ def _finish(
             if cand is not None:
                 out.append(cand)
                 if (
-                    cand.error <= 1e-10 * size
+                    cand.error <= exact_at * size
                     and (admissible is None or admissible(cand))
                     and all(np.max(np.abs(cand.params - e)) > 1e-6 * size for e in exact)
                 ):
