@@ -156,6 +156,21 @@ class Atlas:
         """Return the number of entries."""
         return int(self.descriptors.shape[0])
 
+    def __repr__(self) -> str:
+        """Return a one-line summary: kind, entries, harmonics and size (not the arrays).
+
+        Examples
+        --------
+        >>> import linkage
+        >>> linkage.synthesis.Atlas.build(1000, threads=1)
+        Atlas(kind='fourbar', entries=1,000, harmonics=8, 0.164 MB)
+        """
+        mb = (self.descriptors.nbytes + self.params.nbytes) / 1e6
+        return (
+            f"Atlas(kind={self.kind!r}, entries={len(self):,}, harmonics={self.harmonics}, "
+            f"{mb:.3g} MB)"
+        )
+
     @classmethod
     def build(
         cls,
