@@ -188,12 +188,13 @@ class Atlas:
 
         Examples
         --------
-        >>> at = Atlas.build(100, harmonics=4, threads=1)
+        >>> import linkage
+        >>> at = linkage.synthesis.Atlas.build(100, harmonics=4, threads=1)
         >>> len(at), at.descriptors.shape, at.params.shape, at.kind
         (100, (100, 13), (100, 6), 'fourbar')
-        >>> Atlas.build(100, kind="slider-crank", threads=1).params.shape
+        >>> linkage.synthesis.Atlas.build(100, kind="slider-crank", threads=1).params.shape
         (100, 4)
-        >>> Atlas.build(100, kind="crank")
+        >>> linkage.synthesis.Atlas.build(100, kind="crank")
         Traceback (most recent call last):
         ...
         linkage.LinkageError: kind must be 'fourbar', 'slider-crank' or 'fourbar-arcs', got 'crank'
@@ -215,8 +216,10 @@ class Atlas:
         Examples
         --------
         >>> import tempfile
+        >>> import linkage
         >>> with tempfile.TemporaryDirectory() as tmp:
-        ...     back = Atlas.load(Atlas.build(100, threads=1).save(tmp))
+        ...     saved = linkage.synthesis.Atlas.build(100, threads=1).save(tmp)
+        ...     back = linkage.synthesis.Atlas.load(saved)
         ...     print(len(back), back.kind, back.descriptors.dtype)
         100 fourbar float32
         """
@@ -242,8 +245,9 @@ class Atlas:
         Examples
         --------
         >>> import tempfile
+        >>> import linkage
         >>> with tempfile.TemporaryDirectory() as tmp:
-        ...     Atlas.load(tmp)
+        ...     linkage.synthesis.Atlas.load(tmp)
         Traceback (most recent call last):
         ...
         linkage.LinkageError: ... is not a readable atlas: ...
@@ -280,7 +284,8 @@ class Atlas:
         --------
         An entry's own descriptors find it, at distance 0:
 
-        >>> at = Atlas.build(100, threads=1)
+        >>> import linkage
+        >>> at = linkage.synthesis.Atlas.build(100, threads=1)
         >>> at.nearest(at.descriptors[[7]], 1, threads=1)
         (array([7]), array([0.], dtype=float32), array([0]))
         """
@@ -418,10 +423,11 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
 
     Examples
     --------
-    >>> read_points([[0, 0], [1, 2]])
+    >>> import linkage
+    >>> linkage.synthesis.read_points([[0, 0], [1, 2]])
     array([[0., 0.],
            [1., 2.]])
-    >>> read_points([[0, 0], [1, float("nan")]])
+    >>> linkage.synthesis.read_points([[0, 0], [1, float("nan")]])
     Traceback (most recent call last):
     ...
     linkage.LinkageError: points must be finite: point 1 is [1.0, nan]
@@ -473,13 +479,16 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
 
     Examples
     --------
-    >>> clean_target(np.array([[0, 0], [1, 0], [1, 0], [1, 1], [0, 1], [0.5, 2], [0, 0.0]]), True)
+    >>> import numpy as np
+    >>> import linkage
+    >>> pts = np.array([[0, 0], [1, 0], [1, 0], [1, 1], [0, 1], [0.5, 2], [0, 0.0]])
+    >>> linkage.synthesis.clean_target(pts, True)
     array([[0. , 0. ],
            [1. , 0. ],
            [1. , 1. ],
            [0. , 1. ],
            [0.5, 2. ]])
-    >>> clean_target(np.c_[np.arange(6.0), np.arange(6.0)], True)
+    >>> linkage.synthesis.clean_target(np.c_[np.arange(6.0), np.arange(6.0)], True)
     Traceback (most recent call last):
     ...
     linkage.LinkageError: the points are all collinear: ... (an open path: closed = false)
@@ -510,7 +519,9 @@ def target_size(points: Float2D) -> float:
 
     Errors of candidates are reported against it.
 
-    >>> target_size(np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]]))
+    >>> import numpy as np
+    >>> import linkage
+    >>> linkage.synthesis.target_size(np.array([[1.0, 0], [-1, 0], [0, 1], [0, -1]]))
     1.0
     """
     centred = points - points.mean(axis=0)
@@ -817,11 +828,11 @@ def path(
 
     >>> import linkage
     >>> target = linkage.catalog.hoecken().circuit(13).point[:-1]
-    >>> small = Atlas.build(200, threads=1)
-    >>> best = path(target, top=1, atlas=small, refine=0, global_search=False)
+    >>> small = linkage.synthesis.Atlas.build(200, threads=1)
+    >>> best = linkage.synthesis.path(target, top=1, atlas=small, refine=0, global_search=False)
     >>> len(best), best[0].kind, best[0].source, type(best[0].linkage).__name__
     (1, 'fourbar', 'atlas', 'FourBar')
-    >>> path([(0, 0), (1, 1), (2, 2), (3, 3), (4, 4)], atlas=small)
+    >>> linkage.synthesis.path([(0, 0), (1, 1), (2, 2), (3, 3), (4, 4)], atlas=small)
     Traceback (most recent call last):
     ...
     linkage.LinkageError: the points are all collinear: a closed curve through them encloses ...
@@ -1239,7 +1250,8 @@ def largest_distance(points: ArrayLike, path: ArrayLike) -> float:
     A sample of ``path`` that is not finite breaks the polyline (no segment is drawn across
     it; ``linkage_core::polyline_distances``); ∞ when no point or no path sample is finite.
 
-    >>> largest_distance([[1.0, 1.0], [np.nan, 0.0]], [[0.0, 0.0], [2.0, 0.0]])
+    >>> import linkage
+    >>> linkage.synthesis.largest_distance([[1.0, 1.0], [float("nan"), 0.0]], [[0, 0], [2, 0]])
     1.0
     """
     p = np.asarray(points, dtype=np.float64).reshape(-1, 2)
