@@ -1019,11 +1019,11 @@ def _polish(
     """
     picked: list[Candidate[Any]] = []
     for c in sorted(found, key=lambda c: c.error):
+        if len(picked) >= POLISH:
+            break
         if all(np.max(np.abs(c.params - p)) > 1e-3 * size for p in polished):
             picked.append(c)
             polished.append(c.params)
-        if len(picked) == POLISH:
-            break
     if bar is not None and bar.total is not None:
         bar.total += len(picked)
     out: list[Candidate[Any]] = []
