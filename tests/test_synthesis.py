@@ -384,6 +384,28 @@ def test_progress_is_reported_on_stderr(atlas: Atlas, capsys) -> None:  # type: 
     assert "synthesis: [" in err and "/2" in err, err
 
 
+def test_progress_names_a_default_atlas_build(tmp_path, monkeypatch, capsys) -> None:  # type: ignore[no-untyped-def]
+    """The first open-target search builds the default arc atlas (~5 s at the default size)
+    before its first fit: the progress bar says so first, and not once the atlas is cached."""
+    monkeypatch.setenv("LINKAGE_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(synthesis, "DEFAULT_ARC_ENTRIES", 5600)
+    # The message is under test, not the search: no further stages after the first fit.
+    for name in ("POLISH", "WIDER", "HOPS"):
+        monkeypatch.setattr(synthesis, name, 0)
+    fb = linkage.catalog.get("hoecken")
+    assert isinstance(fb, linkage.FourBar)
+    arc = fb.sweep(np.linspace(0.0, 3.0, 20)).point
+    kw = dict(closed=False, top=1, refine=1, global_search=False, progress=True)
+    synthesis.path(arc, **kw)  # type: ignore[arg-type]
+    err = capsys.readouterr().err
+    first = err.splitlines()[0] if err else ""
+    assert "building the default fourbar-arcs atlas" in first, err
+    assert str(tmp_path) in first, err
+    synthesis.path(arc, **kw)  # type: ignore[arg-type]
+    err = capsys.readouterr().err
+    assert "synthesis: [" in err and "building" not in err, err
+
+
 def _placed_reference(entry, frame_t, frame_c, flip):  # type: ignore[no-untyped-def]
     """The similarity placement written out in numpy (the former Python implementation)."""
     k = frame_t[2] / frame_c[2]

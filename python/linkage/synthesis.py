@@ -332,15 +332,7 @@ def default_atlas(
     cache folder; the atlas is memory-mapped from there afterwards.
     """
     k = _kind("fourbar" if kind == ARCS else kind, ARCS)
-    default = DEFAULT_ARC_ENTRIES if kind == ARCS else k.default_entries
-    entries = default if entries is None else entries
-    core = getattr(_core, "__file__", "") or ""
-    # The four-bar key is the one used before slider-cranks, so existing caches stay valid.
-    tag: list[Any] = [ATLAS_FORMAT, entries, harmonics, os.path.getsize(core) if core else 0]
-    if k is not FOURBAR or kind == ARCS:
-        tag.append(ARCS if kind == ARCS else k.name)
-    key = hashlib.sha256(json.dumps(tag).encode()).hexdigest()[:16]
-    folder = cache_dir() / f"atlas-{key}"
+    entries, folder = _default_folder(entries, harmonics, kind)
     if (folder / "meta.json").exists():
         try:
             return Atlas.load(folder)
@@ -354,6 +346,38 @@ def default_atlas(
     except OSError:
         pass  # a cache that cannot be written is no error: the atlas is in memory
     return atlas
+
+
+def _default_folder(entries: int | None, harmonics: int, kind: AtlasKind) -> tuple[int, Path]:
+    """Return the entries of the default atlas of ``kind`` and its cache folder."""
+    k = _kind("fourbar" if kind == ARCS else kind, ARCS)
+    default = DEFAULT_ARC_ENTRIES if kind == ARCS else k.default_entries
+    entries = default if entries is None else entries
+    core = getattr(_core, "__file__", "") or ""
+    # The four-bar key is the one used before slider-cranks, so existing caches stay valid.
+    tag: list[Any] = [ATLAS_FORMAT, entries, harmonics, os.path.getsize(core) if core else 0]
+    if k is not FOURBAR or kind == ARCS:
+        tag.append(ARCS if kind == ARCS else k.name)
+    key = hashlib.sha256(json.dumps(tag).encode()).hexdigest()[:16]
+    return entries, cache_dir() / f"atlas-{key}"
+
+
+def _note_builds(names: list[AtlasKind], given: dict[str, Atlas], bar: Bar | None) -> None:
+    """Say on the progress bar which default atlases the search is about to build.
+
+    A default atlas not yet in the cache folder is built once, a few seconds before the first
+    fit (the arc atlas about 5 s on two cores): one line names them, so the wait is not silent.
+    """
+    if bar is None:
+        return
+    missing = [
+        n
+        for n in dict.fromkeys(names)
+        if n not in given and not (_default_folder(None, 8, n)[1] / "meta.json").exists()
+    ]
+    if missing:
+        what = " and the ".join(f"{n} atlas" for n in missing)
+        bar.update(0, f"building the default {what} (once; cached in {cache_dir()})")
 
 
 AtlasArg = Union[Atlas, str, "os.PathLike[str]", None]
@@ -866,6 +890,8 @@ def path(
     fits = refine if closed else 3 * refine
     bar = _bar(progress, fits * len(kinds))
     atlases = _atlases(atlas, kinds)
+    searched = [k.name if closed else ARCS for k in kinds if closed or k is FOURBAR]
+    _note_builds(searched, atlases, bar)
     found: list[Candidate[Any]] = []
 
     def admissible(c: Candidate[Any]) -> bool:
