@@ -517,6 +517,27 @@ def test_ranking_puts_long_links_last_and_prefers_full_turns_among_exact_fits(at
         synthesis.path(pts, max_link=0.0, atlas=atlas)
 
 
+def test_exact_fits_tie_and_the_better_transmission_angle_ranks_first(atlas: Atlas) -> None:
+    """Two exact fits that do not turn fully (the rule path's docstring states): a rocker
+    passing within 0.1° of a toggle at 1e-13 of the size goes after a buildable one at 8e-7
+    (an exact linkage as the long fits of a short arc leave it); a fit just above EXACT does
+    not tie."""
+    pts = evans_b_target()
+    size = synthesis.target_size(pts)
+    exact = synthesis.path(pts, top=1, atlas=atlas)[0]
+    toggling = replace(
+        exact, error=1e-13 * size, full_turn=False, min_transmission=math.radians(0.1)
+    )
+    buildable = replace(
+        exact, error=8e-7 * size, full_turn=False, min_transmission=math.radians(40)
+    )
+    near = replace(exact, error=1.2e-6 * size, full_turn=False, min_transmission=math.radians(60))
+    ranked = synthesis._ranked([toggling, near, buildable], size, math.inf)
+    assert ranked == [buildable, toggling, near], [
+        (c.error / size, c.min_transmission_deg) for c in ranked
+    ]
+
+
 def test_evans_b_is_recovered_exactly(atlas: Atlas) -> None:
     pts = evans_b_target()
     found = synthesis.path(pts, top=1, atlas=atlas)

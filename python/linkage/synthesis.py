@@ -828,7 +828,14 @@ def path(
     Returns
     -------
     list of Candidate
-        At most ``top``, ranked by ``error`` then ``rms`` (after ``max_link``), drawing
+        At most ``top``, ranked by ``error`` then ``rms`` (after ``max_link``), except that
+        errors within the refinement's own accuracy tie: every fit to within :data:`EXACT`
+        (1e-6) of the target's size counts as exact (the long fits of short arcs end some fits
+        of the exact curve at 2e-7 … 8e-7 of the size, where well-conditioned fits reach 1e-13), and
+        among exact fits a crank that turns fully comes first, then the transmission angle
+        farthest from a toggle over the matched part (so a buildable linkage is not put after a
+        rocker that passes within 0.1° of a toggle by a difference of error nobody can see),
+        then the error. The candidates draw
         different curves: two candidates whose matched parts lie within
         ``max(1e-6·size, error/20)`` of each other both ways are one design and only the better
         is kept, so mirror images of a symmetric curve, the same linkage driven from its other
@@ -1176,9 +1183,9 @@ EXACT = 1e-6
 def _ranked(found: list[Candidate[Any]], size: float, limit: float) -> list[Candidate[Any]]:
     """Rank candidates: links longer than ``limit`` last, then by error.
 
-    Among exact fits (error ≤ :data:`EXACT` × size, where cognates and round-off differ by
-    nothing a designer can see) a crank that turns fully comes first, then the transmission
-    angle farthest from a toggle.
+    Among exact fits (error ≤ :data:`EXACT` × size: within the refinement's own accuracy,
+    where cognates and round-off differ by nothing a designer can see) a crank that turns fully
+    comes first, then the transmission angle farthest from a toggle, then the error.
     """
 
     def key(c: Candidate[Any]) -> tuple[bool, float, bool, float, float, float]:
