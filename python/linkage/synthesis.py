@@ -1346,7 +1346,7 @@ def _finish(
 ) -> list[Candidate[Any]]:
     """Refine the first ``refine`` of ``pool``, then measure and check every one.
 
-    Each refinement is four rounds of least squares of at most ``nfev`` evaluations each.
+    Each refinement is up to three rounds of least squares of at most ``nfev`` evaluations each.
     Stop early once ``enough`` distinct candidates that are ``admissible`` (meet the caller's
     constraints) draw the target to ``exact_at`` of its size.
     """
