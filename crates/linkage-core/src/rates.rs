@@ -76,17 +76,6 @@ fn carried<T: RealField + Copy>(
 }
 
 impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
-    /// Velocities of every joint of a solved pose and, when the slices are given,
-    /// accelerations and jerks (jerks need accelerations).
-    ///
-    /// Each construction's rate equations are solved in program order: the dyad's 2×2 system
-    /// `[(p − p1)ᵀ; (p − p2)ᵀ]` (see [`crate::Dyad::velocity`]) with right-hand sides
-    /// `(p − pi)·vi`, `(p − pi)·ai − |v − vi|²` and `(p − pi)·ji − 3(v − vi)·(a − ai)`; the
-    /// slider's scalar equation along its line; carried points by rigid-body kinematics. A joint
-    /// whose assembly margin is below [`rate_margin`] (at or next to a toggle, where the rates
-    /// are unbounded, `0/0`, or lost to rounding) gets NaN rates, and so does every joint built
-    /// on it; the return value is then `false`.
-    ///
     /// The old name of [`Mechanism::rates`] ("motion" also names motion laws and Burmester
     /// motion generation).
     ///
@@ -104,6 +93,17 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         self.rates(pos, drive, vel, acc, jerk)
     }
 
+    /// Velocities of every joint of a solved pose and, when the slices are given,
+    /// accelerations and jerks (jerks need accelerations).
+    ///
+    /// Each construction's rate equations are solved in program order: the dyad's 2×2 system
+    /// `[(p − p1)ᵀ; (p − p2)ᵀ]` (see [`crate::Dyad::velocity`]) with right-hand sides
+    /// `(p − pi)·vi`, `(p − pi)·ai − |v − vi|²` and `(p − pi)·ji − 3(v − vi)·(a − ai)`; the
+    /// slider's scalar equation along its line; carried points by rigid-body kinematics. A joint
+    /// whose assembly margin is below [`rate_margin`] (at or next to a toggle, where the rates
+    /// are unbounded, `0/0`, or lost to rounding) gets NaN rates, and so does every joint built
+    /// on it; the return value is then `false`.
+    ///
     /// # Errors
     /// [`Error::BufferLength`] when a slice is not [`Mechanism::len`] long, or jerks are asked
     /// without accelerations.
