@@ -118,6 +118,20 @@ def test_points_against_mpmath_within_3e_15_of_the_size() -> None:
     assert worst <= 3e-15, f"largest error {worst:.2e} of the size"
 
 
+def test_parallelograms_keep_full_accuracy_at_their_flat_positions() -> None:
+    # The coupler translates: P = A + point exactly. Lengths whose sum is not a float used to
+    # put an error of √ε (2.3e-8 of the size) on the stretched flat position (θ = π).
+    rng = np.random.default_rng(12)
+    a, b = rng.uniform(0.2, 3.0, 300), rng.uniform(0.2, 3.0, 300)
+    assert ((a + b) - a != b).sum() > 50
+    th = np.concatenate([[0.3], np.pi + np.array([-1e-8, -1e-12, 0.0, 1e-12, 1e-8])])
+    pts, ok = sweep_fourbars(a, b, a, b, (0.3, 0.7), th)
+    assert ok.all()
+    want = np.stack([b[:, None] * np.cos(th) + 0.3, b[:, None] * np.sin(th) + 0.7], -1)
+    err = np.hypot(*np.moveaxis(pts - want, -1, 0)) / np.maximum(a, b)[:, None]
+    assert err.max() <= 8 * np.finfo(float).eps, err.max()
+
+
 def test_explicit_pivots_equal_fourbar_with_pivots() -> None:
     rng = np.random.default_rng(3)
     m, th = 30, _theta(1)

@@ -404,6 +404,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
         crate::trig::sin_cos_block(&turned, &mut sb, &mut cb);
         let (delta, sigma) = ((r1 - r2).abs(), r1 + r2);
         let four_gr = lit::<T>(4.0) * g * r;
+        let (stretched, folded) = crate::mechanism::flat_products(g, r, r1, r2);
         let shrink = (g - r) / g;
         let two_r = lit::<T>(2.0) * r;
         let (lo, hi) = (
@@ -419,8 +420,8 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
             let (x, y) = if b.crank_first { (qx, qy) } else { (-qx, -qy) };
             let n2 = x * x + y * y;
             let d = n2.sqrt();
-            let stretch = ((sigma - g - r) * (sigma + g + r) + four_gr * c[k] * c[k]) / (sigma + d);
-            let fold = ((g - r - delta) * (g - r + delta) + four_gr * s[k] * s[k]) / (d + delta);
+            let stretch = (stretched + four_gr * c[k] * c[k]) / (sigma + d);
+            let fold = (folded + four_gr * s[k] * s[k]) / (d + delta);
             let f2 = if d >= rmax { stretch } else { fold };
             let top = g.max(r).max(sigma).max(d);
             if use_base[k] {

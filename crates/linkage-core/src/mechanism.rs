@@ -569,11 +569,17 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
             (g / unit, r / unit, delta / unit, sigma / unit, d / unit)
         };
         let four_gr = lit::<T>(4.0) * g * r;
+        let (r1, r2) = if unit == T::one() {
+            (dyad.r1, dyad.r2)
+        } else {
+            (dyad.r1 / unit, dyad.r2 / unit)
+        };
+        let (stretched, folded) = flat_products(g, r, r1, r2);
         let f2 = if d >= dyad.r1.max(dyad.r2) {
-            let stretch = (sigma - g - r) * (sigma + g + r) + four_gr * c * c;
+            let stretch = stretched + four_gr * c * c;
             stretch / (sigma + ds)
         } else {
-            let fold = (g - r - delta) * (g - r + delta) + four_gr * s * s;
+            let fold = folded + four_gr * s * s;
             fold / (ds + delta)
         };
         Some((dv, if unit == T::one() { f2 } else { f2 * unit }))
@@ -912,6 +918,22 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     }
 }
 
+/// `(Σ − g − r)(Σ + g + r)` and `(g − r − Δ)(g − r + Δ)` (`Σ = r1 + r2`, `Δ = |r1 − r2|`), the
+/// parts of a crank-pin dyad's vanishing factors ([`Mechanism::crank_base`]) that are zero at a
+/// change point's flat positions, with their vanishing differences formed from the lengths
+/// paired largest with largest: `Σ − g − r = (max(r1, r2) − max(g, r)) + (min(r1, r2) − min(g, r))`,
+/// `g − r ∓ Δ = (g − max(r1, r2)) + (min(r1, r2) − r)` or `(g − min(r1, r2)) + (max(r1, r2) − r)`.
+/// Each difference of near-equal lengths is exact (Sterbenz), so the product is exactly zero at
+/// a change point and accurate next to one; `Σ` or `g − r` formed first would carry a rounding
+/// of `ε·Σ` (a parallelogram whose `r1 + r2` is not a float), whose square root put an error of
+/// `√ε` of the size on the pose at the flat position.
+#[inline(always)]
+pub(crate) fn flat_products<T: RealField + Copy>(g: T, r: T, r1: T, r2: T) -> (T, T) {
+    let (hi, lo) = (r1.max(r2), r1.min(r2));
+    let stretched = ((hi - g.max(r)) + (lo - g.min(r))) * ((r1 + r2) + (g + r));
+    let folded = ((g - hi) + (lo - r)) * ((g - lo) + (hi - r));
+    (stretched, folded)
+}
 #[cfg(test)]
 mod tests {
     use super::*;
