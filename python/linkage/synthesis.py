@@ -1255,7 +1255,9 @@ def _distinct(
 
     Two candidates draw the same curve when each one's matched part lies within
     ``max(1e-6 size, error / 20)`` of the other's (a difference the target cannot tell); the
-    later (worse-ranked) one is dropped unless it is a Roberts cognate of the earlier.
+    later (worse-ranked) one is dropped unless it is a Roberts cognate of the earlier. Two
+    candidates of the same kind and assembly whose parameters agree to 1e-9 of the size are the
+    same linkage, whatever their matched curves (one that does not sample finitely included).
     """
     kept: list[tuple[Candidate[Any], Float2D]] = []
     for c in ranked:
@@ -1265,6 +1267,14 @@ def _distinct(
         same = False
         for u, ucurve in kept:
             tol = max(1e-6 * size, min(c.error, u.error) / 20)
+            if (
+                type(u.linkage) is type(c.linkage)
+                and getattr(u.linkage, "assembly", None) == getattr(c.linkage, "assembly", None)
+                and u.params.shape == c.params.shape
+                and float(np.max(np.abs(u.params - c.params), initial=0.0)) <= 1e-9 * size
+            ):
+                same = True
+                break
             if (
                 largest_distance(curve, ucurve) <= tol
                 and largest_distance(ucurve, curve) <= tol
