@@ -22,6 +22,7 @@ from linkage import (
     synthesis,  # path synthesis (scipy imported on first use)
     walker,
 )
+from linkage._choices import Assembly, Output, Reach, Side
 from linkage._core import AssemblyError, LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -43,11 +44,15 @@ from linkage.walker import Leg, Walker, gait_phases
 
 __all__ = [
     "OUTPUTS",
+    "Assembly",
     "AssemblyError",
     "FourBar",
     "Leg",
     "LinkageError",
     "Mechanism",
+    "Output",
+    "Reach",
+    "Side",
     "SliderCrank",
     "Sweep",
     "Walker",
