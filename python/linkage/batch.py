@@ -91,6 +91,7 @@ def sweep_fourbars(
     A parallelogram swept through its flat position keeps its shape, like ``FourBar.sweep``:
 
     >>> import numpy as np
+    >>> from linkage.batch import sweep_fourbars
     >>> p, ok = sweep_fourbars(3, 1, 3, 1, (1.5, 0.5), [2.0, np.pi, 4.0])
     >>> a = np.stack([np.cos([2.0, np.pi, 4.0]), np.sin([2.0, np.pi, 4.0])], axis=-1)
     >>> bool(np.allclose(p[0], a + (1.5, 0.5)))
@@ -158,7 +159,8 @@ def sweep_fourbars(
     lens = {name: flat(v) for name, v in lengths.items()}
     for name in ("crank", "coupler", "rocker", "ground"):
         if name in lens:
-            _check_lengths(lens[name], name)
+            # A scalar given for all linkages is checked, and named, as the scalar.
+            _check_lengths(lengths[name] if lengths[name].ndim == 0 else lens[name], name)
     pm, o_m = pts(pt), pts(po)
     c_given = None if pc is None else pts(pc)
     for name, arr in (("point", pm), ("o", o_m), ("c", c_given)):
@@ -281,9 +283,13 @@ def _assembly(value: Any) -> NDArray[np.bool_]:
     else:
         values = np.asarray(value)
         if values.ndim > 1 or values.dtype.kind not in "U":
+            got = (
+                f"{values.dtype} {values.shape}"
+                if isinstance(value, np.ndarray)
+                else f"{type(value).__name__} {value!r:.60}"
+            )
             raise TypeError(
-                f"assembly must be {one_of('assembly')} or a 1-D array of them, got {values.dtype}"
-                f" {values.shape}"
+                f"assembly must be {one_of('assembly')} or a 1-D array of them, got {got}"
             )
         shape = values.shape
     bad = ~np.logical_or.reduce([values == a for a in _ASSEMBLIES])
@@ -305,6 +311,8 @@ def _check_lengths(arr: NDArray[np.float64], name: str) -> None:
     if arr.size == 0 or (arr.min() > 0.0 and arr.max() < np.inf):
         return
     bad = ~(np.isfinite(arr) & (arr > 0.0))
+    if arr.ndim == 0:
+        raise LinkageError(f"{name} must be a positive finite length, got {float(arr)}")
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         raise LinkageError(f"{name}[{k}] must be a positive finite length, got {float(arr[k])}")

@@ -201,3 +201,14 @@ pub fn finite(name: &str, values: &[f64]) -> PyResult<()> {
         }
     }
 }
+
+/// `e`'s message with its first letter in lower case, to follow a colon mid-sentence
+/// (rust-numpy's borrow errors start with a capital).
+pub fn mid_sentence(e: impl std::fmt::Display) -> String {
+    let s = e.to_string();
+    let mut chars = s.chars();
+    match chars.next() {
+        Some(first) => first.to_lowercase().chain(chars).collect(),
+        None => s,
+    }
+}

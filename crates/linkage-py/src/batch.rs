@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use crate::args::{finite, named};
+use crate::args::{finite, mid_sentence, named};
 use crate::error::{linkage_error, to_py};
 use crate::memory;
 use numpy::ndarray::{Ix2, Ix3};
@@ -204,12 +204,18 @@ pub fn batch_sweep<'py>(
         }
     };
     {
-        let mut pw = points
-            .try_readwrite()
-            .map_err(|e| linkage_error(format!("out must be writeable arrays not in use: {e}")))?;
-        let mut vw = valid
-            .try_readwrite()
-            .map_err(|e| linkage_error(format!("out must be writeable arrays not in use: {e}")))?;
+        let mut pw = points.try_readwrite().map_err(|e| {
+            linkage_error(format!(
+                "out must be writeable arrays not in use: {}",
+                mid_sentence(e)
+            ))
+        })?;
+        let mut vw = valid.try_readwrite().map_err(|e| {
+            linkage_error(format!(
+                "out must be writeable arrays not in use: {}",
+                mid_sentence(e)
+            ))
+        })?;
         let flat = pw
             .as_slice_mut()
             .map_err(|_| linkage_error("internal error: output not contiguous"))?;

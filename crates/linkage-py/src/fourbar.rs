@@ -4,7 +4,7 @@ use linkage_core::{AngleMode, Assembly, FourBar as CoreFourBar, InputRange, Vec2
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use crate::args::{choice, named, xy, Real, RealPair};
+use crate::args::{choice, mid_sentence, named, xy, Real, RealPair};
 use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
 use crate::memory;
@@ -353,7 +353,10 @@ impl FourBar {
         }
         {
             let mut view = out.try_readwrite().map_err(|e| {
-                linkage_error(format!("out must be a writeable array not in use: {e}"))
+                linkage_error(format!(
+                    "out must be a writeable array not in use: {}",
+                    mid_sentence(e)
+                ))
             })?;
             let flat = view
                 .as_slice_mut()
