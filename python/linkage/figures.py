@@ -174,6 +174,7 @@ def significant_digits(x: float, error: float | None) -> int:
 
     Examples
     --------
+    >>> from linkage.figures import significant_digits
     >>> significant_digits(44.2523, 0.155), significant_digits(44.2523, 0.0)
     (4, 6)
 
@@ -201,6 +202,7 @@ def format_number(x: float, error: float | None = None, digits: int | None = Non
     Positional from 0.001 to 10⁶, else ``1.4e-4`` style; ``∞``/``−∞``/``NaN`` spelled as such. An
     exact value (``error == 0``) gets up to :data:`SIG_MAX` digits, without trailing zeros.
 
+    >>> from linkage.figures import format_number
     >>> format_number(44.2523, 0.155), format_number(0.0014, 1e-7), format_number(6.6e-4, 1.2e-4)
     ('44.25', '0.00140000', '6.6e-4')
     >>> format_number(12741226936709.7, None), format_number(3, 0), format_number(2 / 3, 0)
@@ -236,6 +238,7 @@ def format_error(error: float | None) -> str:
 
     Examples
     --------
+    >>> from linkage.figures import format_error
     >>> format_error(0.01523), format_error(3.2e-7), format_error(0.0)
     ('0.015', '3.2e-7', '0')
     >>> format_error(None), format_error(float("nan"))
@@ -253,6 +256,7 @@ def unit_label(units: str) -> str:
 
     Examples
     --------
+    >>> from linkage.figures import unit_label
     >>> unit_label("mm"), unit_label("")
     ('mm', 'length units')
     """
@@ -265,6 +269,7 @@ def length_unit(scene: Scene) -> str:
     Examples
     --------
     >>> from linkage.scene import Scene
+    >>> from linkage.figures import length_unit
     >>> length_unit(Scene("leg", None, (), units="mm")), length_unit(Scene("leg", None, ()))
     ('mm', 'length units')
     """
@@ -277,6 +282,7 @@ def torque_unit(scene: Scene) -> str:
     Examples
     --------
     >>> from linkage.scene import Scene
+    >>> from linkage.figures import torque_unit
     >>> [torque_unit(Scene("leg", None, (), units=u)) for u in ("m", "mm", "")]
     ['N·m', 'kg·mm²/s²', 'kg·(length unit)²/s²']
     """
@@ -294,6 +300,7 @@ def sci(x: float) -> str:
 
     Examples
     --------
+    >>> from linkage.figures import sci
     >>> sci(0.0123456), sci(1.23456e-5), sci(-2.5e9)
     ('0.012', '1.2e-5', '-2.5e9')
     >>> sci(float("nan")), sci(float("inf"))
@@ -312,6 +319,7 @@ def spread(x: float, others: Sequence[float | None]) -> float | None:
 
     Examples
     --------
+    >>> from linkage.figures import spread
     >>> round(spread(1.0, [1.1, None, 0.95]), 12)
     0.1
     >>> spread(1.0, [None]), spread(1.0, [float("nan")]), spread(float("inf"), [1.0])
@@ -328,6 +336,7 @@ def versus(ns: Sequence[int]) -> str:
 
     Examples
     --------
+    >>> from linkage.figures import versus
     >>> versus([360, 1441])
     'vs 360 and 1441 samples'
     >>> versus([])
@@ -353,6 +362,7 @@ def row(
 
     Examples
     --------
+    >>> from linkage.figures import row
     >>> r = row("stride", 44.2523, "mm", [44.1, 44.3], [360, 1441])
     >>> tuple(r), round(r.error, 4)
     (('stride', '44.25', 'mm', '±0.15 (vs 360 and 1441 samples)'), 0.1523)
@@ -380,6 +390,7 @@ def exact(figure: str, x: float, unit: str, note: str = "exact", error: float = 
 
     Examples
     --------
+    >>> from linkage.figures import exact
     >>> r = exact("duration", 2 / 3, "s")
     >>> tuple(r), r.exact
     (('duration', '0.666667', 's', 'exact'), True)
@@ -399,6 +410,7 @@ def pair(
 
     Examples
     --------
+    >>> from linkage.figures import pair
     >>> tuple(pair("x range", (1.0, 2.0), "mm", [(1.01, 2.0)], [360]))
     ('x range', '1.000 … 2.000', 'mm', '±0.010 (vs 360 samples)')
 
@@ -430,6 +442,7 @@ def check_counts(n: int, double: bool = True) -> tuple[int, ...]:
     aliasing (a figure that depends on where the samples fall), the second the slow convergence of
     extremes; a figure's error estimate is its largest difference from the two.
 
+    >>> from linkage.figures import check_counts
     >>> check_counts(721), check_counts(8, double=False)
     ((360, 1441), (4,))
     """

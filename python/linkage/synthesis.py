@@ -163,12 +163,12 @@ class Atlas:
         --------
         >>> import linkage
         >>> linkage.synthesis.Atlas.build(1000, threads=1)
-        Atlas(kind='fourbar', entries=1,000, harmonics=8, 0.164 MB)
+        Atlas(kind='fourbar', entries=1_000, harmonics=8, size_mb=0.164)
         """
         mb = (self.descriptors.nbytes + self.params.nbytes) / 1e6
         return (
-            f"Atlas(kind={self.kind!r}, entries={len(self):,}, harmonics={self.harmonics}, "
-            f"{mb:.3g} MB)"
+            f"Atlas(kind={self.kind!r}, entries={len(self):_}, harmonics={self.harmonics}, "
+            f"size_mb={mb:.3g})"
         )
 
     @classmethod
