@@ -95,3 +95,10 @@ def test_the_messages_name_the_choices_of_their_alias():
     with pytest.raises(linkage.LinkageError, match=r"^view must be 'side' or 'top', got 'front'"):
         linkage.drawing.walker_drawing(walker, sim, view="front")
     assert linkage.drawing.walker_drawing(walker, sim, view="top").legs
+
+
+def test_the_public_choice_types_are_the_checked_ones() -> None:
+    # linkage.Assembly etc. are the aliases whose names the tests above hold to the core's.
+    for name in ("Assembly", "Output", "Reach", "Side"):
+        assert getattr(linkage, name) is getattr(_choices, name), name
+        assert name in linkage.__all__, name
