@@ -927,7 +927,9 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
 /// a change point and accurate next to one; `Σ` or `g − r` formed first would carry a rounding
 /// of `ε·Σ` (a parallelogram whose `r1 + r2` is not a float), whose square root put an error of
 /// `√ε` of the size on the pose at the flat position.
-#[inline(always)]
+// Not inlined: called once per block of the held pass (and per near-flat sample of the
+// tracker), it made the inlined block kernels slower (instant centres 47 → 55 ns a sample).
+#[inline(never)]
 pub(crate) fn flat_products<T: RealField + Copy>(g: T, r: T, r1: T, r2: T) -> (T, T) {
     let (hi, lo) = (r1.max(r2), r1.min(r2));
     let stretched = ((hi - g.max(r)) + (lo - g.min(r))) * ((r1 + r2) + (g + r));
