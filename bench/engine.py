@@ -8,7 +8,9 @@ difference between the two (relative to the linkage size; ∞-norm). Times are C
 
 - coupler point only, 10⁶ arbitrary angles (Hoecken four-bar) — target ≥ 8×;
 - point + velocity + acceleration, 10⁶ angles — target ≥ 8×;
-- instant centres + curvature, 10⁶ angles — target ≥ 5×;
+- instant centres + curvature, 10⁶ angles — target ≥ 5×: the two secondary centres (I13, I24;
+  ``pairs=``) and the coupler point's curvature and its centre, as numpy computes them; then,
+  for reference, every pair of links (all six centres, four of them the pins);
 - Jansen's leg, all joints, 2·10⁵ angles (numpy: a chain of its five dyads) — target ≥ 4×;
   (the coupler point and Jansen rows are repeated on evenly spaced angles in order, the
   tracker's best case, for reference; the others use arbitrary angles in arbitrary order);
@@ -231,22 +233,27 @@ def main() -> None:
     )
     row("point + velocity + acceleration", t[0], t[1], 8, diff, n)
 
-    # 3. Instant centres and curvature.
+    # 3. Instant centres and curvature: the two secondary centres, as numpy computes them.
     outs = ("point", "instant_centres", "curvature")
-    s = fb.sweep(theta, outputs=outs)
+    two = [("ground", "coupler"), ("crank", "rocker")]  # I13 and I24
     secondary, kappa, cx, cy, _ = fourbar_centres_curvature(theta)
-    ic = s.instant_centres  # (n, 6, 2): pairs in link order, (ground, coupler) is 1
     ok = np.abs(kappa) > 1e-9  # inflections: the centre is at infinity
-    diff = max(
-        rel(ic[:, 1], np.stack([secondary[0], secondary[1]], -1), 1e3 * SIZE),
-        rel(ic[:, 4], np.stack([secondary[2], secondary[3]], -1), 1e3 * SIZE),
-        float(np.nanmax(np.abs(s.curvature - kappa))) * SIZE,
-        rel(s.curvature_centre[ok], np.stack([cx, cy], -1)[ok], 1e3 * SIZE),
-    )
-    t = cpu_medians(
-        [lambda: fb.sweep(theta, outputs=outs), lambda: fourbar_centres_curvature(theta)], repeat
-    )
-    row("instant centres + curvature", t[0], t[1], 5, diff, n)
+    for pairs, label in ((two, "instant centres + curvature"), (None, "  (same, every pair: 6)")):
+        s = fb.sweep(theta, outputs=outs, pairs=pairs)
+        diff = max(
+            rel(s.instant_centre(*two[0]), np.stack([secondary[0], secondary[1]], -1), 1e3 * SIZE),
+            rel(s.instant_centre(*two[1]), np.stack([secondary[2], secondary[3]], -1), 1e3 * SIZE),
+            float(np.nanmax(np.abs(s.curvature - kappa))) * SIZE,
+            rel(s.curvature_centre[ok], np.stack([cx, cy], -1)[ok], 1e3 * SIZE),
+        )
+        t = cpu_medians(
+            [
+                lambda p=pairs: fb.sweep(theta, outputs=outs, pairs=p),
+                lambda: fourbar_centres_curvature(theta),
+            ],
+            repeat,
+        )
+        row(label, t[0], t[1], 5, diff, n)
 
     # 4. Jansen, all joints.
     nj = max(n // 5, 1)

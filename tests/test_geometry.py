@@ -86,6 +86,71 @@ def test_multi_loop_links_and_kennedy():
     assert s.instant_centres.shape == (1, n * (n - 1) // 2, 2)
 
 
+@pytest.mark.parametrize("name", ["hoecken", "hart", "jansen", "parallelogram"])
+def test_chosen_pairs_are_those_of_every_pair(name):
+    """``pairs=`` computes only the pairs named, in their order, with the bits of an
+    every-pair sweep (either order within a pair), directions of centres at infinity
+    included (computed on first use); on arbitrary angles (the held pass) and few samples
+    (the tracker)."""
+    item = (
+        linkage.FourBar(ground=3, crank=1, coupler=3, rocker=1, point=(1, 0))
+        if name == "parallelogram"
+        else linkage.catalog.get(name)
+    )
+    m = item.mechanism() if isinstance(item, linkage.FourBar) else item
+    links = m.links
+    rng = np.random.default_rng(5)
+    chosen = [
+        (links[-1], links[0]),
+        (links[1], links[2]),
+        (links[0], links[2]),
+        (links[1], links[-1]),
+    ]
+    for theta in (rng.uniform(-7, 7, 3000), np.array([0.7, 1.9, math.pi / 2])):
+        every = m.sweep(theta, outputs=("instant_centres",))
+        some = m.sweep(theta, outputs=("point", "instant_centres"), pairs=chosen)
+        assert some.link_pairs == tuple(chosen)
+        assert some.instant_centres.shape == (len(theta), len(chosen), 2)
+        for q, (a, b) in enumerate(chosen):
+            np.testing.assert_array_equal(some.instant_centres[:, q], every.instant_centre(a, b))
+            np.testing.assert_array_equal(some.instant_centre(b, a), every.instant_centre(a, b))
+            k = every.link_pairs.index((a, b) if (a, b) in every.link_pairs else (b, a))
+            np.testing.assert_array_equal(
+                some.instant_centre_directions[:, q], every.instant_centre_directions[:, k]
+            )
+        np.testing.assert_array_equal(some.point, every.point)
+    if name == "parallelogram":  # the coupler translates: its centre with the ground is far
+        assert some.instant_centre_at_infinity[:, 2].all()
+
+
+def test_bad_pairs_are_named():
+    fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25)
+    ic = ("instant_centres",)
+    with pytest.raises(
+        linkage.LinkageError, match=r"pairs\[1\]: no link 'frame'; links are ground"
+    ):
+        fb.sweep([0.0], outputs=ic, pairs=[("ground", "crank"), ("frame", "crank")])
+    with pytest.raises(KeyError):  # an UnknownNameError is also a KeyError
+        fb.sweep([0.0], outputs=ic, pairs=[("ground", "frame")])
+    with pytest.raises(linkage.LinkageError, match=r"pairs\[0\]: 'crank' and 'crank' are one link"):
+        fb.sweep([0.0], outputs=ic, pairs=[("crank", "crank")])
+    with pytest.raises(linkage.LinkageError, match=r"pairs\[0\] must hold two link names, got 3"):
+        fb.sweep([0.0], outputs=ic, pairs=[("ground", "crank", "rocker")])
+    with pytest.raises(TypeError, match=r"pairs\[0\] must be a \(link, link\) pair"):
+        fb.sweep([0.0], outputs=ic, pairs=["ground"])
+    with pytest.raises(TypeError, match=r"pairs\[0\]: links must be named by str, got int"):
+        fb.sweep([0.0], outputs=ic, pairs=[(0, 2)])
+    with pytest.raises(TypeError, match="pairs must be a sequence"):
+        fb.sweep([0.0], outputs=ic, pairs="ground")
+    with pytest.raises(linkage.LinkageError, match="add 'instant_centres' to outputs"):
+        fb.sweep([0.0], outputs=("point",), pairs=[("ground", "coupler")])
+    s = fb.sweep([0.0], outputs=ic, pairs=[("ground", "coupler")])
+    with pytest.raises(linkage.LinkageError, match="'crank' and 'rocker' was not computed"):
+        s.instant_centre("crank", "rocker")
+    # No pairs at all is an empty set of centres, not an error.
+    assert fb.sweep([0.0, 1.0], outputs=ic, pairs=[]).instant_centres.shape == (2, 0, 2)
+
+
 @pytest.mark.parametrize("name", linkage.catalog.names())
 def test_every_catalogue_linkage_has_one_degree_of_freedom(name):
     """Kutzbach–Gruebler cross-checked with the constructive solver, which drives one crank."""

@@ -110,6 +110,8 @@ class Mechanism:
         curvature: bool = False,
         column: int | None = None,
         flags: bool = True,
+        pairs: list[tuple[int, int]] | None = None,
+        directions: bool = True,
     ) -> dict[str, Any]: ...
 
 @final

@@ -314,6 +314,7 @@ class FourBar:
         *,
         time: ArrayLike | None = None,
         drive: Drive | None = None,
+        pairs: Iterable[tuple[str, str]] | None = None,
     ) -> Sweep:
         """Solve at each crank angle, or at each time of a drive; see :meth:`Mechanism.sweep`.
 
@@ -321,8 +322,9 @@ class FourBar:
 
         Parameters
         ----------
-        theta, omega, alpha, outputs, time, drive
-            As for :meth:`Mechanism.sweep`.
+        theta, omega, alpha, outputs, time, drive, pairs
+            As for :meth:`Mechanism.sweep`; ``pairs`` names links ground, crank, coupler,
+            rocker.
 
         Returns
         -------
@@ -342,12 +344,21 @@ class FourBar:
         array([[       nan,        nan],
                [-12.622065,   8.104535],
                [       nan,        nan]])
+
+        The two secondary instant centres only (Kennedy: the four others are the pins):
+
+        >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25)
+        >>> s = fb.sweep([0.0], outputs=("instant_centres",),
+        ...              pairs=[("ground", "coupler"), ("crank", "rocker")])
+        >>> s.instant_centres.round(6) + 0.0
+        array([[[20.,  0.],
+                [10.,  0.]]])
         """
         sweeper = self._sweeper
         if sweeper is None:
             # A private copy, never handed out (a Mechanism can be extended by its owner).
             sweeper = self._sweeper = self.mechanism()
-        return sweeper.sweep(theta, omega, alpha, outputs, time=time, drive=drive)
+        return sweeper.sweep(theta, omega, alpha, outputs, time=time, drive=drive, pairs=pairs)
 
     def uniform_sweep(
         self,

@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 
 from linkage import _core
 from linkage._arrays import (
+    UnknownNameError,
     as_angles,
     as_choice,
     as_finite,
@@ -45,6 +46,63 @@ def _asked(out: tuple[str, ...]) -> dict[str, bool]:
 @functools.lru_cache(maxsize=64)
 def _known_outputs(out: tuple[str, ...], has_omega: bool) -> tuple[str, ...]:
     return _check_outputs(out, has_omega)
+
+
+def check_pairs(
+    pairs: Iterable[tuple[str, str]], links: tuple[str, ...]
+) -> tuple[tuple[tuple[str, str], ...], list[tuple[int, int]]]:
+    """Validate ``pairs=``: pairs of two different link names; return them and their indices.
+
+    Raises
+    ------
+    TypeError
+        When ``pairs`` is not an iterable of pairs of str.
+    LinkageError
+        When a pair does not hold two names, names no link (an ``UnknownNameError``, also a
+        ``KeyError``) or names one link twice.
+
+    Examples
+    --------
+    >>> from linkage._mechanism import check_pairs
+    >>> links = ("ground", "crank", "coupler", "rocker")
+    >>> check_pairs([("ground", "coupler"), ("rocker", "crank")], links)
+    ((('ground', 'coupler'), ('rocker', 'crank')), [(0, 2), (3, 1)])
+    >>> check_pairs([("ground", "frame")], links)
+    Traceback (most recent call last):
+    ...
+    linkage._arrays.UnknownNameError: pairs[0]: no link 'frame'; links are ground, crank, ...
+    """
+    if isinstance(pairs, (str, bytes)) or not isinstance(pairs, Iterable):
+        raise TypeError(
+            f"pairs must be a sequence of (link, link) name pairs, got {type(pairs).__name__}"
+        )
+    names: list[tuple[str, str]] = []
+    index: list[tuple[int, int]] = []
+    where = {name: k for k, name in enumerate(links)}
+    for q, pair in enumerate(pairs):
+        if isinstance(pair, (str, bytes)) or not isinstance(pair, Iterable):
+            raise TypeError(f"pairs[{q}] must be a (link, link) pair of names, got {pair!r}")
+        two = tuple(pair)
+        if len(two) != 2:
+            raise LinkageError(f"pairs[{q}] must hold two link names, got {len(two)}")
+        a, b = two
+        if not isinstance(a, str) or not isinstance(b, str):
+            raise TypeError(
+                f"pairs[{q}]: links must be named by str, got {type(a).__name__}, "
+                f"{type(b).__name__}"
+            )
+        unknown = [x for x in (a, b) if x not in where]
+        if unknown:
+            what = ", ".join(repr(x) for x in dict.fromkeys(unknown))
+            raise UnknownNameError(
+                f"pairs[{q}]: no link{'s' if len(set(unknown)) > 1 else ''} {what}; "
+                f"links are {', '.join(links)}"
+            )
+        if a == b:
+            raise LinkageError(f"pairs[{q}]: {a!r} and {b!r} are one link; give two links")
+        names.append((a, b))
+        index.append((where[a], where[b]))
+    return tuple(names), index
 
 
 def check_outputs(outputs: Iterable[str], omega: Any) -> tuple[str, ...]:
@@ -494,6 +552,7 @@ class Mechanism:
         *,
         time: ArrayLike | None = None,
         drive: Drive | None = None,
+        pairs: Iterable[tuple[str, str]] | None = None,
     ) -> Sweep:
         """Solve the mechanism at each crank angle of ``theta`` (radians, scalar or 1-D).
 
@@ -510,6 +569,8 @@ class Mechanism:
         ``outputs`` names what to compute besides positions: ``"velocity"`` and
         ``"acceleration"`` need ``omega`` (rad/s; scalar or one per angle); ``alpha`` (rad/s²)
         defaults to 0, constant crank speed. Position-only sweeps do no rate work.
+        ``"instant_centres"`` holds every pair of links, or only the ``pairs`` named (a
+        four-bar's two secondary centres, say): only those are computed and stored.
 
         In time: ``sweep(time=t, drive=d)`` takes ``θ, ω, α`` from a drive
         (:mod:`linkage.drive`) at the times ``t``; ``s.time`` keeps them.
@@ -527,7 +588,8 @@ class Mechanism:
         outputs : iterable of str, default ("point", "joints")
             Names from ``OUTPUTS``: "point", "joints", "velocity", "acceleration",
             "instant_centres", "curvature". Without "joints", every joint and the ``margin``,
-            ``gap`` and ``regular`` flags are computed on first use.
+            ``gap`` and ``regular`` flags are computed on first use, as are the directions of
+            centres at infinity (``instant_centre_directions``) always.
         time : float or array_like of float, optional
             Times of the samples (keyword only), scalar or 1-D; given with ``drive``, instead of
             ``theta``, ``omega`` and ``alpha``.
@@ -535,6 +597,10 @@ class Mechanism:
             A :class:`linkage.drive.Drive`: anything whose ``angles(t)`` method returns
             ``θ, ω, α`` at the times ``t`` (keyword only), such as ``ConstantSpeed``, a
             ``Program`` or a ``CrankSchedule``.
+        pairs : iterable of (str, str), optional
+            With ``"instant_centres"``: the pairs of :attr:`links` (by name, keyword only) whose
+            instant centres to compute, in this order; ``s.link_pairs`` holds them. Default:
+            every pair.
 
         Returns
         -------
@@ -547,8 +613,9 @@ class Mechanism:
         LinkageError
             For a mechanism without joints, an unknown output, ``"velocity"`` or
             ``"acceleration"`` without ``omega``, angles or rates of the wrong shape or not
-            finite, or ``time`` and ``drive`` given alone or with ``theta``, ``omega`` or
-            ``alpha``.
+            finite, ``time`` and ``drive`` given alone or with ``theta``, ``omega`` or
+            ``alpha``, or ``pairs`` without ``"instant_centres"``, naming no link or one
+            link twice.
         TypeError
             When neither ``theta`` nor ``time`` and ``drive`` are given, for a ``drive``
             without an ``angles`` method, or for arguments of the wrong type.
@@ -562,6 +629,16 @@ class Mechanism:
         >>> s.time, s.theta.round(6), s.point.round(6)
         (array([0.  , 0.25]), array([0.      , 1.570796]), array([[20.      , 48.989795],
                [40.      , 40.      ]]))
+
+        Only the coupler's centre with the ground (its pole) and the crank's with the rocker:
+
+        >>> pairs = [("ground", "coupler"), ("crank", "rocker")]
+        >>> s = m.sweep([0.0, 1.0], outputs=("instant_centres",), pairs=pairs)
+        >>> s.link_pairs, s.instant_centres.shape
+        ((('ground', 'coupler'), ('crank', 'rocker')), (2, 2, 2))
+        >>> s.instant_centre("coupler", "ground").round(6)
+        array([[20.      ,  0.      ],
+               [27.861847, 43.392256]])
         >>> m.sweep(0.0, outputs=("point", "velocity"))
         Traceback (most recent call last):
         ...
@@ -582,26 +659,45 @@ class Mechanism:
         elif theta is None:
             raise TypeError("sweep() needs theta (crank angles) or time= and drive=")
         out = check_outputs(outputs, omega)
+        asked: dict[str, Any] = _asked(out)
+        link_pairs = None
+        if pairs is not None:
+            if not asked["instant_centres"]:
+                raise LinkageError("pairs= names instant centres: add 'instant_centres' to outputs")
+            link_pairs, index = check_pairs(pairs, self.links)
+            asked = {**asked, "pairs": index}
         # Non-finite angles and rates are refused by the extension, with the same messages.
         th, scalar = as_angles(theta, "theta", finite=False)
         n = th.shape[0]
         w = as_rate(omega, "omega", n, finite=False)
         a = as_rate(alpha, "alpha", n, finite=False)
         trace = self._index(self.trace, "trace")
-        asked = _asked(out)
         core = self._core
         # Without "joints" the per-joint outputs hold the trace point only, and the margin,
         # gap and regular flags are left out: every joint and the flags are computed on first
         # use (Sweep.joints, .margin, ...), with the same positions bit for bit.
         full = "joints" in out
-        raw = core.sweep(th, w, a, **asked, column=None if full else trace, flags=full)
+        # The directions of centres at infinity are computed on first use too (a centre at
+        # infinity is already NaN in instant_centres): a sweep of a few centres then writes
+        # half the memory.
+        raw = core.sweep(
+            th, w, a, **asked, column=None if full else trace, flags=full, directions=False
+        )
 
         def complete() -> dict[str, Any]:
             more: dict[str, Any] = core.sweep(th, w, a, **asked, column=None, flags=True)
             return more
 
         s = Sweep(
-            th, raw, self.joint_names, trace, out, scalar, links=self.links, complete=complete
+            th,
+            raw,
+            self.joint_names,
+            trace,
+            out,
+            scalar,
+            links=self.links,
+            complete=complete,
+            link_pairs=link_pairs,
         )
         s.time = times
         return s
@@ -648,4 +744,4 @@ JOINT_KINDS: dict[str, JointKind] = {
 }
 """Every joint kind of a scene's joint table, by name (see :class:`JointKind`)."""
 
-__all__ = ["JOINT_KINDS", "JointKind", "Mechanism", "check_outputs"]
+__all__ = ["JOINT_KINDS", "JointKind", "Mechanism", "check_outputs", "check_pairs"]

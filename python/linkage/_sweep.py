@@ -54,7 +54,8 @@ class Sweep:
     joint_velocities, joint_accelerations : (N, J, 2) float64
         Rates of every joint, when requested.
     instant_centres : (N, P, 2) float64
-        With ``"instant_centres"``: the instant centre of each pair of ``link_pairs``; NaN where
+        With ``"instant_centres"``: the instant centre of each pair of ``link_pairs`` (every
+        pair of links, or those the sweep's ``pairs=`` named); NaN where
         it is at infinity (``instant_centre_at_infinity``, direction in
         ``instant_centre_directions``) or undefined.
     curvature, curvature_radius : (N,) float64
@@ -76,13 +77,14 @@ class Sweep:
         scalar: bool = False,
         links: tuple[str, ...] = (),
         complete: Callable[[], dict[str, Any]] | None = None,
+        link_pairs: tuple[tuple[str, str], ...] | None = None,
     ) -> None:
         self.joint_names = joint_names
         self.time: NDArray[np.float64] | None = None
         """Times of the samples, for a sweep driven in time (else None)."""
         self.links = links
         """Link names, the ground first (joints of each link joined by '-')."""
-        self.link_pairs = _pairs(links)
+        self.link_pairs = _pairs(links) if link_pairs is None else link_pairs
         """The pairs of links whose instant centres ``instant_centres`` holds, in order."""
         self.trace = joint_names[trace]
         self.outputs = outputs
@@ -263,7 +265,7 @@ class Sweep:
         return arr
 
     def _get(self, key: str, output: str, full: bool = False) -> NDArray[Any]:
-        if key not in self._raw:
+        if key not in self._raw and (output not in self.outputs or self._complete is None):
             raise AttributeError(f"{output} was not computed: pass outputs=(..., {output!r})")
         arr: NDArray[Any] = self._get_raw(key, full)
         return arr
@@ -275,7 +277,10 @@ class Sweep:
 
     @property
     def instant_centre_directions(self) -> NDArray[np.float64]:
-        """Unit directions of instant centres at infinity, shape (N, P, 2); NaN elsewhere."""
+        """Unit directions of instant centres at infinity, shape (N, P, 2); NaN elsewhere.
+
+        Computed on first use (with every joint and the flags; the same centres, bit for bit).
+        """
         return self._get("instant_centre_directions", "instant_centres")
 
     @property
@@ -302,7 +307,8 @@ class Sweep:
         Raises
         ------
         LinkageError
-            When ``(a, b)`` is not a pair of ``link_pairs`` in either order (an
+            When ``(a, b)`` is not a pair of ``link_pairs`` in either order: a name of no
+            link, one link twice, or a pair the sweep's ``pairs=`` left out (an
             ``UnknownNameError``, also a ``KeyError``).
         TypeError
             When ``a`` or ``b`` is not a str.
@@ -333,6 +339,12 @@ class Sweep:
             q = self.link_pairs.index(pair)
         except ValueError:
             unknown = [n for n in (a, b) if n not in self.links]
+            if not unknown and a != b:
+                asked = "; ".join(f"{x}, {y}" for x, y in self.link_pairs)
+                raise UnknownNameError(
+                    f"the centre of {a!r} and {b!r} was not computed: the sweep's pairs= "
+                    f"named {asked or 'none'}"
+                ) from None
             what = (
                 f"no link {unknown[0]!r}"
                 if len(unknown) == 1

@@ -1,7 +1,20 @@
 //! Times the core sweep engine on Hoecken's four-bar at 10^6 arbitrary angles (position only,
 //! then with rates), in-process; bench/engine.py compares the Python API with numpy.
-use linkage_core::{catalog, sweep, Columns, Rate, SweepOutputs, Vec2};
+use linkage_core::{catalog, sweep, Columns, Pairs, Rate, SweepOutputs, Vec2};
 use std::time::Instant;
+
+/// The median over `runs` calls of `run`, in ns a sample of `n`.
+fn median_ns(runs: usize, n: usize, mut run: impl FnMut()) -> f64 {
+    let mut times: Vec<f64> = (0..runs)
+        .map(|_| {
+            let t = Instant::now();
+            run();
+            t.elapsed().as_secs_f64()
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times.get(runs / 2).map_or(f64::NAN, |t| t * 1e9 / n as f64)
+}
 
 fn main() {
     let fb = catalog::hoecken::<f64>();
@@ -25,12 +38,13 @@ fn main() {
     let (mut valid, mut regular) = (vec![false; n], vec![false; n]);
     let (mut margin, mut gap) = (vec![0.0; n], vec![0.0; n]);
     let only_point = std::env::args().any(|a| a == "--point");
+    // `--centres`: only the instant-centre and curvature cases (for a profiler).
+    let only_centres = std::env::args().any(|a| a == "--centres");
     for rates in [false, true] {
-        if only_point {
+        if only_point || only_centres {
             break;
         }
-        let mut times = Vec::new();
-        for _ in 0..5 {
+        let ns = median_ns(5, n, || {
             let out = SweepOutputs {
                 columns: Columns::All,
                 joints: &mut joints,
@@ -41,51 +55,70 @@ fn main() {
                 velocity: rates.then_some(&mut vel[..]),
                 acceleration: rates.then_some(&mut acc[..]),
                 centres: None,
+                pairs: Pairs::All,
                 centre_directions: None,
                 curvature_centres: None,
                 curvature: None,
             };
-            let t = Instant::now();
-            sweep(
-                &m,
-                &theta,
-                Rate::Scalar(2.0),
-                Rate::Scalar(0.5),
-                out,
-                &mut || true,
-            )
-            .unwrap();
-            times.push(t.elapsed().as_secs_f64());
-        }
-        times.sort_by(f64::total_cmp);
+            let (w, a) = (Rate::Scalar(2.0), Rate::Scalar(0.5));
+            sweep(&m, &theta, w, a, out, &mut || true).unwrap();
+        });
         println!(
-            "all joints, flags, rates {rates:5}: {:7.2} ns/sample (checksum {:.6})",
-            times[2] * 1e9 / n as f64,
+            "all joints, flags, rates {rates:5}: {ns:7.2} ns/sample (checksum {:.6})",
             joints[4 * 7].x
         );
     }
     // The coupler point only, validity only: what `FourBar.sweep(θ, outputs=("point",))` asks.
     let mut point = vec![Vec2::zeros(); n];
-    let mut times = Vec::new();
-    for _ in 0..if only_point { 40 } else { 5 } {
-        let mut out = SweepOutputs::positions(&mut point, &mut valid);
-        out.columns = Columns::One(4);
-        let t = Instant::now();
-        sweep(
-            &m,
-            &theta,
-            Rate::Scalar(0.0),
-            Rate::Scalar(0.0),
-            out,
-            &mut || true,
-        )
-        .unwrap();
-        times.push(t.elapsed().as_secs_f64());
+    if !only_centres {
+        let ns = median_ns(if only_point { 40 } else { 5 }, n, || {
+            let mut out = SweepOutputs::positions(&mut point, &mut valid);
+            out.columns = Columns::One(4);
+            let zero = Rate::Scalar(0.0);
+            sweep(&m, &theta, zero, zero, out, &mut || true).unwrap();
+        });
+        println!(
+            "coupler point only: {ns:7.2} ns/sample (checksum {:.6})",
+            point[7].x
+        );
     }
-    times.sort_by(f64::total_cmp);
-    println!(
-        "coupler point only: {:7.2} ns/sample (checksum {:.6})",
-        times[2] * 1e9 / n as f64,
-        point[7].x
-    );
+    if only_point {
+        return;
+    }
+    // The point with instant centres (every pair, or the two secondary ones: ground–coupler
+    // and crank–rocker) and/or its path curvature, into warm buffers.
+    let two = [[0, 2], [1, 3]];
+    let mut centres = vec![Vec2::zeros(); 6 * n];
+    let mut dirs = vec![Vec2::zeros(); 6 * n];
+    let mut curv_centre = vec![Vec2::zeros(); n];
+    let mut curv = vec![0.0; n];
+    for (name, pairs, with_centres, with_curvature) in [
+        ("point + curvature", Pairs::All, false, true),
+        ("point + 2 centres", Pairs::Only(&two), true, false),
+        (
+            "point + 2 centres + curvature",
+            Pairs::Only(&two),
+            true,
+            true,
+        ),
+        ("point + 6 centres + curvature", Pairs::All, true, true),
+    ] {
+        let np = pairs.count(4);
+        let ns = median_ns(7, n, || {
+            let mut out = SweepOutputs::positions(&mut point, &mut valid);
+            out.columns = Columns::One(4);
+            out.pairs = pairs;
+            if with_centres {
+                out.centres = Some(&mut centres[..np * n]);
+                out.centre_directions = Some(&mut dirs[..np * n]);
+            }
+            if with_curvature {
+                out.curvature = Some(&mut curv);
+                out.curvature_centres = Some(&mut curv_centre);
+            }
+            let zero = Rate::Scalar(0.0);
+            sweep(&m, &theta, zero, zero, out, &mut || true).unwrap();
+        });
+        println!("{name:>30}: {ns:7.2} ns/sample");
+    }
 }

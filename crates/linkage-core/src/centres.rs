@@ -4,7 +4,7 @@ use nalgebra::RealField;
 
 use crate::bodies::{Bodies, BodyFrame, BodyId};
 use crate::rates::direction_rates;
-use crate::scalar::{cross, eps, length, lit, perp, Vec2};
+use crate::scalar::{cross, eps, length, lit, perp, size, Vec2};
 
 /// A point of the projective plane: finite, at infinity in a direction, or undefined.
 ///
@@ -126,7 +126,9 @@ pub fn path_curvature<T: RealField + Copy>(p: Vec2<T>, v: Vec2<T>, a: Vec2<T>) -
     } else {
         kappa * (sa / sv) / sv
     };
-    if c.abs() <= lit::<T>(16.0) * eps::<T>() * speed * a.norm() {
+    // |c| ≤ 16ε·|v|·|a|, squared (no root for |a|; the sizes are ordinary here).
+    let t = lit::<T>(16.0) * eps::<T>();
+    if c * c <= t * t * v2 * a.norm_squared() {
         return (T::zero(), Centre::AtInfinity(perp(v) / speed));
     }
     let offset = perp(v) * (v2 / c);
@@ -227,7 +229,8 @@ impl<T: RealField + Copy> BodyMotion<T> {
     /// instant centre is at infinity, not at a distance set by rounding.
     pub fn conditioned(mut self, margin: T) -> Self {
         let m = margin.min(T::one()).max(eps::<T>());
-        self.omega_tol /= m * m;
+        // Times 1/m² (not over m²): the held pass forms 1/m² once a sample, for every body.
+        self.omega_tol *= T::one() / (m * m);
         self
     }
 
@@ -288,7 +291,9 @@ impl<T: RealField + Copy> BodyMotion<T> {
             let d = pos(q) - pos(p);
             let (w, al, jk) =
                 direction_rates(d, vel(q) - vel(p), acc(q) - acc(p), jerk(q) - jerk(p));
-            let scale = (length(vel(p)) + length(vel(q))) / length(d);
+            // Sizes, not lengths (max-abs: within √2, no roots): this only sets a tolerance.
+            let (vp, vq) = (vel(p), vel(q));
+            let scale = (size(vp.x, vp.y) + size(vq.x, vq.y)) / size(d.x, d.y);
             (
                 w,
                 al,
@@ -331,14 +336,15 @@ pub fn instant_centre<T: RealField + Copy>(k: &BodyMotion<T>, l: &BodyMotion<T>)
     }
     if dw.abs() <= k.omega_tol + l.omega_tol {
         let n = length(dv);
-        let vscale = length(k.v) + length(l.v);
+        let vscale = size(k.v.x, k.v.y) + size(l.v.x, l.v.y);
         return if n <= lit::<T>(ZERO_RATE) * eps::<T>() * vscale || n == T::zero() {
             Centre::Undefined
         } else {
             Centre::AtInfinity(perp(dv) / n)
         };
     }
-    Centre::Finite(p + perp(dv) / dw)
+    // One division, then products (the held pass's formula, for every pair of a sample).
+    Centre::Finite(p + perp(dv) * (T::one() / dw))
 }
 
 /// Instant centre of bodies `k` and `l` of a mechanism moving with `mk`, `ml`: the pin joining

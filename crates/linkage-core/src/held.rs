@@ -513,8 +513,9 @@ impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
                         let ok = det.abs() >= bound && det != T::zero() && det.is_finite();
                         let b1 = e1x * v1x[k] + e1y * v1y[k];
                         let b2 = e2x * v2x[k] + e2y * v2y[k];
-                        let wx = (b1 * e2y - b2 * e1y) / det;
-                        let wy = (e1x * b2 - e2x * b1) / det;
+                        let inv = T::one() / det;
+                        let wx = (b1 * e2y - b2 * e1y) * inv;
+                        let wy = (e1x * b2 - e2x * b1) * inv;
                         let (w1x, w1y) = (wx - v1x[k], wy - v1y[k]);
                         let (w2x, w2y) = (wx - v2x[k], wy - v2y[k]);
                         let c1 = (e1x * a1x[k] + e1y * a1y[k]) - (w1x * w1x + w1y * w1y);
@@ -522,8 +523,8 @@ impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
                         let nan = T::zero() / T::zero();
                         vx[k] = if ok { wx } else { nan };
                         vy[k] = if ok { wy } else { nan };
-                        ax[k] = if ok { (c1 * e2y - c2 * e1y) / det } else { nan };
-                        ay[k] = if ok { (e1x * c2 - e2x * c1) / det } else { nan };
+                        ax[k] = if ok { (c1 * e2y - c2 * e1y) * inv } else { nan };
+                        ay[k] = if ok { (e1x * c2 - e2x * c1) * inv } else { nan };
                     }
                     merge(&mut self.scalar, &scalar, any);
                 }
@@ -544,9 +545,10 @@ impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
                         any |= scalar[k];
                         let l2 = dx * dx + dy * dy;
                         let sd = dx * d1x + dy * d1y;
-                        let w = (dx * d1y - dy * d1x) / l2;
+                        let inv = T::one() / l2;
+                        let w = (dx * d1y - dy * d1x) * inv;
                         let n = dx * d2y - dy * d2x;
-                        let al = (n - two * w * sd) / l2;
+                        let al = (n - two * w * sd) * inv;
                         let (rx, ry) = (px[k] - fx[k], py[k] - fy[k]);
                         vx[k] = fvx[k] + -ry * w;
                         vy[k] = fvy[k] + rx * w;

@@ -19,8 +19,8 @@ use crate::bodies::{Bodies, BodyFrame, BodyId, GROUND};
 use crate::centres::ZERO_RATE;
 use crate::dyad::unit_scale;
 use crate::held::{merge, BlockPoses, BlockRates, BLOCK};
-use crate::scalar::{eps, lit, nan, tiny_square, Vec2};
-use crate::sweep::Columns;
+use crate::scalar::{eps, lit, nan, size, tiny_square, Vec2};
+use crate::sweep::{Columns, Pairs};
 
 /// `length` of `(x, y)` as the scalar code forms it in the common case, `√(x² + y²)`, and
 /// whether the scalar code takes another branch whose result may differ (a square sum that is
@@ -32,9 +32,28 @@ fn length<T: RealField + Copy>(x: T, y: T, tiny: T) -> (T, bool) {
     (n2.sqrt(), !plain)
 }
 
+/// Writes `value(b)` into `out[start + b·stride]` for the first `m` samples `b` of a block: a
+/// plain loop, inlined into the kernel (an iterator's `for_each` was not, and checked bounds at
+/// every sample).
+#[inline(always)]
+fn scatter<V>(
+    out: &mut [V],
+    (start, stride): (usize, usize),
+    m: usize,
+    value: impl Fn(usize) -> V,
+) {
+    if m == 0 {
+        return;
+    }
+    let out = &mut out[start..=start + (m - 1) * stride];
+    for b in 0..m.min(BLOCK) {
+        out[b * stride] = value(b);
+    }
+}
+
 /// The unit-drive angular velocity of every body over a block, with its zero tolerance
 /// conditioned on the sample's margin ([`BodyMotion::conditioned`](crate::centres::BodyMotion::conditioned)).
-pub(crate) struct BlockCentres<T, const N: usize> {
+pub(crate) struct BlockCentres<'p, T, const N: usize> {
     /// `ω` of body `(joint, slot)` per sample.
     w: [[[T; BLOCK]; 2]; N],
     /// Its tolerance for "no relative turn".
@@ -43,10 +62,45 @@ pub(crate) struct BlockCentres<T, const N: usize> {
     zero: [T; BLOCK],
     /// Samples the kernel cannot vouch for (see the module): redo them one by one.
     pub(crate) scalar: [bool; BLOCK],
-    /// The joint each of the first [`PAIRS`] pairs of bodies shares ([`NO_PIN`] if none),
-    /// looked up once a sweep.
+    /// The first [`PAIRS`] pairs of bodies asked for ([`pack`]ed; [`UNKNOWN`] for a body whose
+    /// joint does not fit), and the joint each shares ([`NO_PIN`] if none), looked up once a
+    /// sweep (4 KiB less stack than whole ids: firmware runs this too).
+    ids: [[u16; 2]; PAIRS],
     pins: [u16; PAIRS],
+    /// The pairs asked for.
+    pairs: Pairs<'p>,
 }
+
+/// Body `id` in 16 bits: `2·joint + slot`, the ground [`GROUND_ID`]; [`UNKNOWN`] if it does
+/// not fit.
+#[inline(always)]
+fn pack(id: BodyId) -> u16 {
+    if id == GROUND {
+        return GROUND_ID;
+    }
+    id.joint
+        .checked_mul(2)
+        .and_then(|j| j.checked_add(usize::from(id.slot)))
+        .and_then(|v| u16::try_from(v).ok())
+        .filter(|&v| v < UNKNOWN)
+        .unwrap_or(UNKNOWN)
+}
+
+/// The body [`pack`] packed (not [`UNKNOWN`]).
+#[inline(always)]
+fn unpack(v: u16) -> BodyId {
+    if v == GROUND_ID {
+        GROUND
+    } else {
+        BodyId {
+            joint: usize::from(v / 2),
+            slot: u8::from(v % 2 == 1),
+        }
+    }
+}
+
+/// The ground, packed.
+const GROUND_ID: u16 = u16::MAX;
 
 /// Pairs of bodies whose shared joint is looked up once a sweep (further ones once a block).
 const PAIRS: usize = 256;
@@ -65,37 +119,36 @@ struct Body<'a, T> {
     tol: &'a [T; BLOCK],
 }
 
-impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
-    /// An empty block for the bodies `bodies`.
-    pub(crate) fn new(bodies: &Bodies<N>) -> Self {
+impl<'p, T: RealField + Copy, const N: usize> BlockCentres<'p, T, N> {
+    /// An empty block for the bodies `bodies`, whose centres are asked for the pairs `pairs`.
+    pub(crate) fn new(bodies: &Bodies<N>, pairs: Pairs<'p>) -> Self {
         let z = [[[T::zero(); BLOCK]; 2]; N];
-        let mut pins = [NO_PIN; PAIRS];
-        let mut q = 0;
-        for (a, ka) in bodies.ids().enumerate() {
-            for kb in bodies.ids().skip(a + 1) {
-                if q == PAIRS {
-                    break;
-                }
-                pins[q] = match bodies.shared_joint(ka, kb) {
+        let (mut ids, mut pins) = ([[UNKNOWN; 2]; PAIRS], [NO_PIN; PAIRS]);
+        pairs.each(bodies, |q, ka, kb| {
+            if let (Some(id), Some(pin)) = (ids.get_mut(q), pins.get_mut(q)) {
+                *id = [pack(ka), pack(kb)];
+                *pin = match bodies.shared_joint(ka, kb) {
                     None => NO_PIN,
                     Some(j) => u16::try_from(j)
                         .ok()
                         .filter(|&j| j < UNKNOWN)
                         .unwrap_or(UNKNOWN),
                 };
-                q += 1;
             }
-        }
+        });
         BlockCentres {
             w: z,
             tol: z,
             zero: [T::zero(); BLOCK],
             scalar: [false; BLOCK],
+            ids,
             pins,
+            pairs,
         }
     }
 
     /// The joint bodies `ka` and `kb`, pair `q`, share.
+    #[inline(always)]
     fn pin(&self, bodies: &Bodies<N>, q: usize, (ka, kb): (BodyId, BodyId)) -> Option<usize> {
         match self.pins.get(q) {
             Some(&NO_PIN) => None,
@@ -114,9 +167,15 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
         pos: &BlockPoses<T, N>,
         unit: &BlockRates<T, N>,
     ) {
-        let tiny = tiny_square::<T>();
         let (one, e) = (T::one(), eps::<T>());
         let zr = lit::<T>(ZERO_RATE) * e;
+        // conditioned(margin): the tolerance times 1/m², m = margin within [ε, 1], once a
+        // sample for every body.
+        let mut inv_m2 = [T::zero(); BLOCK];
+        for (k, r) in inv_m2.iter_mut().enumerate() {
+            let m = pos.margin[k].min(one).max(e);
+            *r = one / (m * m);
+        }
         for id in bodies.ids() {
             let BodyFrame::Link {
                 origin: o,
@@ -139,16 +198,13 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                 let (dx, dy) = (xt[k] - xo[k], yt[k] - yo[k]);
                 let (d1x, d1y) = (vxt[k] - vxo[k], vyt[k] - vyo[k]);
                 let l2 = dx * dx + dy * dy;
-                let wk = (dx * d1y - dy * d1x) / l2;
-                let (lo, bo) = length(vxo[k], vyo[k], tiny);
-                let (lt, bt) = length(vxt[k], vyt[k], tiny);
-                let (ld, bd) = length(dx, dy, tiny);
-                scalar[k] = !unit_scale(dx.abs().max(dy.abs())) | bo | bt | bd;
+                let wk = (dx * d1y - dy * d1x) * (one / l2);
+                // Sizes (max-abs), as `BodyMotion::of` takes them for the tolerance.
+                let (lo, lt, ld) = (size(vxo[k], vyo[k]), size(vxt[k], vyt[k]), size(dx, dy));
+                scalar[k] = !unit_scale(ld);
                 any |= scalar[k];
                 let scale = (lo + lt) / ld;
-                // conditioned(margin): the tolerance over m², m = margin within [ε, 1].
-                let m = pos.margin[k].min(one).max(e);
-                tol[k] = zr * (wk.abs() + scale) / (m * m);
+                tol[k] = zr * (wk.abs() + scale) * inv_m2[k];
                 w[k] = wk;
             }
             let s = usize::from(id.slot);
@@ -163,6 +219,7 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
     }
 
     /// The motion of body `id` (after [`Self::bodies`]).
+    #[inline(always)]
     fn body<'a>(
         &'a self,
         bodies: &Bodies<N>,
@@ -190,9 +247,10 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
         }
     }
 
-    /// Writes the instant centres of every pair of bodies (in [`Bodies::ids`] order, `np` a
-    /// sample) of the block's first `m` samples, from sample `k0` on: finite ones into
-    /// `centres`, directions of those at infinity into `directions`, NaN otherwise.
+    /// Writes the instant centres of the pairs of bodies [`Self::new`] was given (`np` a
+    /// sample, the order of [`Pairs::each`]) of the block's first `m` samples, from sample `k0`
+    /// on: finite ones into `centres`, directions of those at infinity into `directions`, NaN
+    /// otherwise.
     #[allow(
         clippy::too_many_arguments,
         reason = "the block, its bodies and where the centres go"
@@ -211,73 +269,82 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
         let nan2 = Vec2::new(nan_t, nan_t);
         let tiny = tiny_square::<T>();
         let zr = lit::<T>(ZERO_RATE) * eps::<T>();
-        let mut q = 0;
-        for (a, ka) in bodies.ids().enumerate() {
-            for kb in bodies.ids().skip(a + 1) {
-                let rows = (0..m).map(|b| (k0 + b) * np + q);
-                if let Some(jt) = self.pin(bodies, q, (ka, kb)) {
-                    // A pin: the centre is the joint.
-                    if let Some(c) = centres.as_deref_mut() {
-                        for (b, r) in rows.clone().enumerate() {
-                            c[r] = Vec2::new(pos.x[jt][b], pos.y[jt][b]);
-                        }
-                    }
-                    if let Some(d) = directions.as_deref_mut() {
-                        rows.for_each(|r| d[r] = nan2);
-                    }
-                    q += 1;
-                    continue;
+        for q in 0..np {
+            let pair = match self.ids.get(q) {
+                Some(&[a, b]) if a != UNKNOWN && b != UNKNOWN => Some((unpack(a), unpack(b))),
+                _ => self.pairs.at(bodies, q),
+            };
+            let Some((ka, kb)) = pair else {
+                continue;
+            };
+            let rows = (k0 * np + q, np);
+            if let Some(jt) = self.pin(bodies, q, (ka, kb)) {
+                // A pin: the centre is the joint.
+                if let Some(c) = centres.as_deref_mut() {
+                    scatter(c, rows, m, |b| Vec2::new(pos.x[jt][b], pos.y[jt][b]));
                 }
-                let (k, l) = (
-                    self.body(bodies, ka, pos, unit),
-                    self.body(bodies, kb, pos, unit),
-                );
-                let (mut cx, mut cy) = ([nan_t; BLOCK], [nan_t; BLOCK]);
-                let (mut ex, mut ey) = ([nan_t; BLOCK], [nan_t; BLOCK]);
-                let (mut scalar, mut any) = ([false; BLOCK], false);
+                if let Some(d) = directions.as_deref_mut() {
+                    scatter(d, rows, m, |_| nan2);
+                }
+                continue;
+            }
+            let (k, l) = (
+                self.body(bodies, ka, pos, unit),
+                self.body(bodies, kb, pos, unit),
+            );
+            let (mut cx, mut cy) = ([nan_t; BLOCK], [nan_t; BLOCK]);
+            let (mut ex, mut ey) = ([nan_t; BLOCK], [nan_t; BLOCK]);
+            let (mut dx, mut dy) = ([nan_t; BLOCK], [nan_t; BLOCK]);
+            let (mut flat, mut any_flat) = ([false; BLOCK], false);
+            for b in 0..BLOCK {
+                // instant_centre(k, l) at p = k's origin.
+                let (px, py) = (k.ox[b], k.oy[b]);
+                let (rx, ry) = (px - k.ox[b], py - k.oy[b]);
+                let (kvx, kvy) = (k.vx[b] + -ry * k.w[b], k.vy[b] + rx * k.w[b]);
+                let (sx, sy) = (px - l.ox[b], py - l.oy[b]);
+                let (lvx, lvy) = (l.vx[b] + -sy * l.w[b], l.vy[b] + sx * l.w[b]);
+                let (dvx, dvy) = (kvx - lvx, kvy - lvy);
+                let dw = k.w[b] - l.w[b];
+                let finite = dvx.is_finite() & dvy.is_finite() & dw.is_finite();
+                let parallel = dw.abs() <= k.tol[b] + l.tol[b];
+                let at = finite & !parallel;
+                let inv = T::one() / dw;
+                (cx[b], cy[b]) = if at {
+                    (px + -dvy * inv, py + dvx * inv)
+                } else {
+                    (nan_t, nan_t)
+                };
+                (dx[b], dy[b]) = (dvx, dvy);
+                flat[b] = finite & parallel;
+                any_flat |= flat[b];
+            }
+            // Centres at infinity (rare: a translating link, parallel cranks): their direction,
+            // only in the blocks that have one.
+            let (mut scalar, mut any) = ([false; BLOCK], false);
+            if any_flat {
                 for b in 0..BLOCK {
-                    // instant_centre(k, l) at p = k's origin.
-                    let (px, py) = (k.ox[b], k.oy[b]);
-                    let (rx, ry) = (px - k.ox[b], py - k.oy[b]);
-                    let (kvx, kvy) = (k.vx[b] + -ry * k.w[b], k.vy[b] + rx * k.w[b]);
-                    let (sx, sy) = (px - l.ox[b], py - l.oy[b]);
-                    let (lvx, lvy) = (l.vx[b] + -sy * l.w[b], l.vy[b] + sx * l.w[b]);
-                    let (dvx, dvy) = (kvx - lvx, kvy - lvy);
-                    let dw = k.w[b] - l.w[b];
-                    let finite = dvx.is_finite() & dvy.is_finite() & dw.is_finite();
-                    let parallel = dw.abs() <= k.tol[b] + l.tol[b];
+                    let (dvx, dvy) = (dx[b], dy[b]);
                     let (n, bn) = length(dvx, dvy, tiny);
-                    let (lk, bk) = length(k.vx[b], k.vy[b], tiny);
-                    let (ll, bl) = length(l.vx[b], l.vy[b], tiny);
-                    scalar[b] = finite & parallel & (bn | bk | bl);
+                    let lk = size(k.vx[b], k.vy[b]);
+                    let ll = size(l.vx[b], l.vy[b]);
+                    scalar[b] = flat[b] & bn;
                     any |= scalar[b];
                     let still = n <= zr * (lk + ll) || n == T::zero();
-                    let at_infinity = finite & parallel & !still;
-                    let at = finite & !parallel;
-                    (cx[b], cy[b]) = if at {
-                        (px + -dvy / dw, py + dvx / dw)
-                    } else {
-                        (nan_t, nan_t)
-                    };
+                    let at_infinity = flat[b] & !still;
                     (ex[b], ey[b]) = if at_infinity {
                         (-dvy / n, dvx / n)
                     } else {
                         (nan_t, nan_t)
                     };
                 }
-                if let Some(c) = centres.as_deref_mut() {
-                    for (b, r) in rows.clone().enumerate() {
-                        c[r] = Vec2::new(cx[b], cy[b]);
-                    }
-                }
-                if let Some(d) = directions.as_deref_mut() {
-                    for (b, r) in rows.enumerate() {
-                        d[r] = Vec2::new(ex[b], ey[b]);
-                    }
-                }
-                merge(&mut self.scalar, &scalar, any);
-                q += 1;
             }
+            if let Some(c) = centres.as_deref_mut() {
+                scatter(c, rows, m, |b| Vec2::new(cx[b], cy[b]));
+            }
+            if let Some(d) = directions.as_deref_mut() {
+                scatter(d, rows, m, |b| Vec2::new(ex[b], ey[b]));
+            }
+            merge(&mut self.scalar, &scalar, any);
         }
     }
 
@@ -299,7 +366,8 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
         mut centres: Option<&mut [Vec2<T>]>,
     ) {
         let nan_t = nan::<T>();
-        let sixteen_eps = lit::<T>(16.0) * eps::<T>();
+        let t = lit::<T>(16.0) * eps::<T>();
+        let t2 = t * t;
         let (first, last, width) = match columns {
             Columns::All => (0, j, j),
             Columns::One(t) => (t, t + 1, 1),
@@ -325,8 +393,8 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                 let c = vx[b] * ay[b] - vy[b] * ax[b];
                 let speed = v2.sqrt();
                 let k = c / (v2 * speed);
-                let a_norm = (ax[b] * ax[b] + ay[b] * ay[b]).sqrt();
-                let straight = c.abs() <= sixteen_eps * speed * a_norm;
+                let a2 = ax[b] * ax[b] + ay[b] * ay[b];
+                let straight = c * c <= t2 * v2 * a2;
                 let f = v2 / c;
                 let (x, y) = (px[b] + -vy[b] * f, py[b] + vx[b] * f);
                 let round = moving & !straight;
@@ -340,12 +408,12 @@ impl<T: RealField + Copy, const N: usize> BlockCentres<T, N> {
                 let here = round & x.is_finite() & y.is_finite();
                 (cx[b], cy[b]) = if here { (x, y) } else { (nan_t, nan_t) };
             }
-            let e = |b: usize| (k0 + b) * width + (i - first);
+            let (start, stride) = (k0 * width + (i - first), width);
             if let Some(out) = kappa.as_deref_mut() {
-                (0..m).for_each(|b| out[e(b)] = kap[b]);
+                scatter(out, (start, stride), m, |b| kap[b]);
             }
             if let Some(out) = centres.as_deref_mut() {
-                (0..m).for_each(|b| out[e(b)] = Vec2::new(cx[b], cy[b]));
+                scatter(out, (start, stride), m, |b| Vec2::new(cx[b], cy[b]));
             }
             merge(&mut self.scalar, &scalar, any);
         }

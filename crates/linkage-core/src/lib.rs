@@ -177,8 +177,8 @@ pub use support::{convex_hull, stability_margin, support_margins};
 #[cfg(feature = "std")]
 pub use sweep::sweep_mechanisms;
 pub use sweep::{
-    sweep, sweep_pairs, sweep_planned, Columns, Plan, Rate, SweepOutputs, Swept, SWEEP_CHUNK,
-    SWEEP_WORK_CHUNK,
+    sweep, sweep_pairs, sweep_planned, Columns, Pairs, Plan, Rate, SweepOutputs, Swept,
+    SWEEP_CHUNK, SWEEP_WORK_CHUNK,
 };
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
 pub use trig::{sin_cos_f64, sin_cos_f64_slice};

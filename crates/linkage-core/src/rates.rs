@@ -47,14 +47,16 @@ pub(crate) fn direction_rates<T: RealField + Copy>(
     };
     let two = lit::<T>(2.0);
     let l2 = d.norm_squared();
+    // Times 1/|d|², formed once (the held pass's kernels form it once a sample too).
+    let inv = T::one() / l2;
     let s = d.dot(&d1);
-    let w = cross(d, d1) / l2;
+    let w = cross(d, d1) * inv;
     let n = cross(d, d2);
-    let al = (n - two * w * s) / l2;
+    let al = (n - two * w * s) * inv;
     let ds = d1.norm_squared() + d.dot(&d2);
-    let jk = (cross(d1, d2) + cross(d, d3) - two * n * s / l2 - two * (al * s + w * ds)
-        + lit::<T>(4.0) * w * s * s / l2)
-        / l2;
+    let jk = (cross(d1, d2) + cross(d, d3) - two * n * s * inv - two * (al * s + w * ds)
+        + lit::<T>(4.0) * w * s * s * inv)
+        * inv;
     (w, al, jk)
 }
 

@@ -61,6 +61,13 @@ pub(crate) fn tiny_square<T: RealField + Copy>() -> T {
     }
 }
 
+/// The max-abs size `max(|x|, |y|)` of a vector: within `√2` of its length, with no square
+/// root and no squares to overflow. For tolerances, which need a size, not a distance.
+#[inline(always)]
+pub(crate) fn size<T: RealField + Copy>(x: T, y: T) -> T {
+    x.abs().max(y.abs())
+}
+
 /// Euclidean length without overflow or underflow of the squares: `√(x² + y²)` when the sum
 /// of squares is a normal number, else the same formula on the vector divided by a power of two
 /// near its size, times that power ([`crate::dyad::pow2_scale`]: exact, so a linkage scaled by

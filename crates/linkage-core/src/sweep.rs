@@ -108,8 +108,133 @@ impl Columns {
     }
 }
 
-/// Where a sweep of `n` samples of a mechanism of `j` joints and `p` link pairs
-/// ([`sweep_pairs`]) writes its results, row-major by sample, `w` entries per sample in the
+/// Which pairs of bodies a sweep writes instant centres for: by default every pair, or the
+/// few a user needs (a four-bar's two secondary centres, the coupler's pole), so that a sweep
+/// computes and writes only those.
+///
+/// Bodies are numbered in [`Bodies::ids`] order, the ground `0` (a four-bar's are ground,
+/// crank, coupler, rocker).
+///
+/// ```
+/// use linkage_core::{catalog, sweep, Pairs, Rate, SweepOutputs, Vec2};
+/// let m = catalog::hoecken::<f64>().mechanism();
+/// let theta = [0.3, 1.1];
+/// let (mut joints, mut valid) = ([Vec2::zeros(); 10], [false; 2]);
+/// // Every pair: 6 a sample. Hoecken's crank-rocker: ground 0, crank 1, coupler 2, rocker 3.
+/// let (mut all, mut all_dirs) = ([Vec2::zeros(); 12], [Vec2::zeros(); 12]);
+/// let mut out = SweepOutputs::positions(&mut joints, &mut valid);
+/// (out.centres, out.centre_directions) = (Some(&mut all[..]), Some(&mut all_dirs[..]));
+/// sweep(&m, &theta, Rate::Scalar(0.0), Rate::Scalar(0.0), out, &mut || true).unwrap();
+/// // Only ground–coupler (pair 1 of all) and crank–rocker (pair 4): 2 a sample, same bits.
+/// let (mut two, mut two_dirs) = ([Vec2::zeros(); 4], [Vec2::zeros(); 4]);
+/// let mut out = SweepOutputs::positions(&mut joints, &mut valid);
+/// (out.centres, out.centre_directions) = (Some(&mut two[..]), Some(&mut two_dirs[..]));
+/// out.pairs = Pairs::Only(&[[0, 2], [1, 3]]);
+/// sweep(&m, &theta, Rate::Scalar(0.0), Rate::Scalar(0.0), out, &mut || true).unwrap();
+/// assert_eq!([two[0], two[1], two[2], two[3]], [all[1], all[4], all[6 + 1], all[6 + 4]]);
+/// assert_eq!(Pairs::All.count(4), 6);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Pairs<'a> {
+    /// Every pair `(k, l)`, `k < l`: `B(B − 1)/2` a sample for `B` bodies ([`sweep_pairs`]).
+    #[default]
+    All,
+    /// These pairs of body indices, in this order (either order within a pair: a centre is
+    /// the same for both, computed as for the lower index first, so the bits are those of
+    /// [`Pairs::All`]). Each index must name a body, and the two must differ.
+    Only(&'a [[usize; 2]]),
+}
+
+impl Pairs<'_> {
+    /// Pairs a sample for a mechanism of `bodies` bodies, the ground included.
+    pub fn count(self, bodies: usize) -> usize {
+        match self {
+            Pairs::All => bodies * bodies.saturating_sub(1) / 2,
+            Pairs::Only(p) => p.len(),
+        }
+    }
+
+    /// Checks that every pair names two different bodies of `bodies`.
+    fn check(self, bodies: usize) -> Result<(), Error> {
+        if let Pairs::Only(p) = self {
+            for &[a, b] in p {
+                if a.max(b) >= bodies {
+                    return Err(Error::OutOfRange {
+                        what: "body of an instant-centre pair",
+                        value: a.max(b),
+                        max: bodies.saturating_sub(1),
+                    });
+                }
+                if a == b {
+                    return Err(Error::InvalidChoice {
+                        what: "instant-centre pair",
+                        choices: "two different bodies",
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Pair `q`'s bodies, the lower index first (after [`Self::check`]; None past the end).
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn at<const N: usize>(
+        self,
+        bodies: &Bodies<N>,
+        q: usize,
+    ) -> Option<(BodyId, BodyId)> {
+        let (a, b) = match self {
+            Pairs::All => {
+                // Pairs (a, b), a < b, in order: a's run of `nb − 1 − a` pairs.
+                let nb = bodies.count();
+                let (mut a, mut r) = (0, q);
+                while a + 1 < nb && r >= nb - 1 - a {
+                    r -= nb - 1 - a;
+                    a += 1;
+                }
+                (a, a + 1 + r)
+            }
+            Pairs::Only(p) => {
+                let [a, b] = *p.get(q)?;
+                (a.min(b), a.max(b))
+            }
+        };
+        Some((bodies.ids().nth(a)?, bodies.ids().nth(b)?))
+    }
+
+    /// Calls `f(q, k, l)` for each pair `q` in output order (after [`Self::check`]).
+    #[inline(always)]
+    pub(crate) fn each<const N: usize>(
+        self,
+        bodies: &Bodies<N>,
+        mut f: impl FnMut(usize, BodyId, BodyId),
+    ) {
+        match self {
+            Pairs::All => {
+                let mut q = 0;
+                for (a, ka) in bodies.ids().enumerate() {
+                    for kb in bodies.ids().skip(a + 1) {
+                        f(q, ka, kb);
+                        q += 1;
+                    }
+                }
+            }
+            Pairs::Only(p) => {
+                for (q, &[a, b]) in p.iter().enumerate() {
+                    // The lower index first, as in `All`: the same bits for either order.
+                    let (a, b) = (a.min(b), a.max(b));
+                    if let (Some(ka), Some(kb)) = (bodies.ids().nth(a), bodies.ids().nth(b)) {
+                        f(q, ka, kb);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Where a sweep of `n` samples of a mechanism of `j` joints and `p` body pairs
+/// ([`Pairs::count`]) writes its results, row-major by sample, `w` entries per sample in the
 /// per-joint outputs (`w = columns.width(j)`). `joints` and `valid` are always written; an
 /// output left `None` is not computed at all.
 ///
@@ -149,7 +274,9 @@ pub struct SweepOutputs<'a, T> {
     pub velocity: Option<&'a mut [Vec2<T>]>,
     /// `n·w` joint accelerations for the drive.
     pub acceleration: Option<&'a mut [Vec2<T>]>,
-    /// `n·p` finite instant centres of every pair of bodies (NaN otherwise).
+    /// Which pairs of bodies `centres` and `centre_directions` hold (default: every pair).
+    pub pairs: Pairs<'a>,
+    /// `n·p` finite instant centres of the pairs `pairs` names (NaN otherwise).
     pub centres: Option<&'a mut [Vec2<T>]>,
     /// `n·p` directions of the instant centres at infinity (NaN otherwise).
     pub centre_directions: Option<&'a mut [Vec2<T>]>,
@@ -171,6 +298,7 @@ impl<'a, T> SweepOutputs<'a, T> {
             gap: None,
             velocity: None,
             acceleration: None,
+            pairs: Pairs::All,
             centres: None,
             centre_directions: None,
             curvature_centres: None,
@@ -401,29 +529,21 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
                     self.motions.of[id.joint][usize::from(id.slot)] = m;
                 }
             }
-            let mut q = k * np;
-            for (a, ka) in bodies.ids().enumerate() {
-                for kb in bodies.ids().skip(a + 1) {
-                    let ic = relative_centre(
-                        bodies,
-                        (ka, self.motions.get(ka)),
-                        (kb, self.motions.get(kb)),
-                        pos,
-                    );
-                    let (finite, far) = match ic {
-                        Centre::Finite(p) => (p, nan2),
-                        Centre::AtInfinity(d) => (nan2, d),
-                        Centre::Undefined => (nan2, nan2),
-                    };
-                    if let Some(c) = out.centres.as_deref_mut() {
-                        c[q] = finite;
-                    }
-                    if let Some(d) = out.centre_directions.as_deref_mut() {
-                        d[q] = far;
-                    }
-                    q += 1;
+            let motions = &self.motions;
+            out.pairs.each(bodies, |q, ka, kb| {
+                let ic = relative_centre(bodies, (ka, motions.get(ka)), (kb, motions.get(kb)), pos);
+                let (finite, far) = match ic {
+                    Centre::Finite(p) => (p, nan2),
+                    Centre::AtInfinity(d) => (nan2, d),
+                    Centre::Undefined => (nan2, nan2),
+                };
+                if let Some(c) = out.centres.as_deref_mut() {
+                    c[k * np + q] = finite;
                 }
-            }
+                if let Some(d) = out.centre_directions.as_deref_mut() {
+                    d[k * np + q] = far;
+                }
+            });
         }
         if self.wants_curvature {
             let mut write = |i: usize, e: usize| {
@@ -673,7 +793,7 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         let mut scratch = (self.wants_centres || self.wants_curvature).then(|| {
             (
                 BlockRates::<T, N>::new(),
-                BlockCentres::<T, N>::new(&self.bodies),
+                BlockCentres::<T, N>::new(&self.bodies, out.pairs),
             )
         });
         // Margins are needed for the watched dyads always, for the others only when written
@@ -798,8 +918,9 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
 ///
 /// # Errors
 /// [`Error::NoDriver`] for a mechanism without a crank; [`Error::BufferLength`] for an output
-/// slice or per-sample rate of the wrong length, or [`Columns::One`] naming no joint. Nothing
-/// is written then.
+/// slice or per-sample rate of the wrong length, or [`Columns::One`] naming no joint;
+/// [`Error::OutOfRange`] for a pair of [`Pairs::Only`] naming no body, [`Error::InvalidChoice`]
+/// for one naming the same body twice. Nothing is written then.
 // Inlined into its caller, so a caller compiled for wider vectors (the binding's AVX builds)
 // gets the block kernel compiled for them too.
 #[inline(always)]
@@ -845,7 +966,8 @@ pub fn sweep_planned<T: RealField + Copy, const N: usize>(
     let mut tracker = Tracker::new(mech)?;
     let bodies = Bodies::of(mech);
     let nb = bodies.count();
-    let np = nb * nb.saturating_sub(1) / 2;
+    out.pairs.check(nb)?;
+    let np = out.pairs.count(nb);
     if let Columns::One(t) = out.columns {
         if t >= j {
             return Err(Error::BufferLength {
@@ -1019,4 +1141,30 @@ pub fn sweep_mechanisms<T: RealField + Copy, const N: usize>(
         valid[i * n..(i + 1) * n].copy_from_slice(&v);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::catalog;
+
+    /// `Pairs::at` (the lookup past the block kernel's table of 256 pairs) gives the pairs of
+    /// `each`, in order, for every pair of Jansen's leg and for chosen pairs given in either
+    /// order.
+    #[test]
+    fn pair_lookup_matches_the_walk() {
+        let m = catalog::jansen::<f64>().mechanism;
+        let bodies = Bodies::of(&m);
+        let nb = bodies.count();
+        let chosen = [[3, 0], [1, 2], [nb - 1, 0]];
+        for pairs in [Pairs::All, Pairs::Only(&chosen)] {
+            let mut seen = 0;
+            pairs.each(&bodies, |q, ka, kb| {
+                assert_eq!(pairs.at(&bodies, q), Some((ka, kb)), "pair {q}");
+                seen += 1;
+            });
+            assert_eq!(seen, pairs.count(nb), "pairs walked, {pairs:?}");
+            assert_eq!(pairs.at(&bodies, seen), None, "past the end");
+        }
+    }
 }

@@ -13,8 +13,8 @@
 //! Cases per property: `LINKAGE_PROPTEST_CASES` (default 2000).
 
 use linkage_core::{
-    catalog, sweep, sweep_pairs, sweep_planned, Assembly, Columns, CrankRates, Error, FourBar,
-    Mechanism, Plan, Rate, Rates, SweepOutputs, Swept, Tracker, Vec2, SWEEP_CHUNK,
+    catalog, sweep, sweep_pairs, sweep_planned, Assembly, Bodies, Columns, CrankRates, Error,
+    FourBar, Mechanism, Pairs, Plan, Rate, Rates, SweepOutputs, Swept, Tracker, Vec2, SWEEP_CHUNK,
 };
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -84,6 +84,7 @@ fn engine_with<const N: usize>(
         velocity: Some(&mut b.velocity),
         acceleration: Some(&mut b.acceleration),
         centres: Some(&mut b.centres),
+        pairs: Pairs::All,
         centre_directions: Some(&mut b.directions),
         curvature_centres: Some(&mut b.curvature_centres),
         curvature: Some(&mut b.curvature),
@@ -480,6 +481,7 @@ proptest! {
             velocity: None,
             acceleration: None,
             centres: Some(&mut b.centres),
+            pairs: Pairs::All,
             centre_directions: None,
             curvature_centres: None,
             curvature: Some(&mut b.curvature),
@@ -491,6 +493,94 @@ proptest! {
         prop_assert!(same_floats(&b.margin, &all.margin), "margins with fewer outputs asked: {}", float_difference(&b.margin, &all.margin));
         // Untouched outputs stay untouched.
         prop_assert!(b.velocity.iter().all(|q| q.x == -12345.0), "velocity written though not asked for: {:?}", b.velocity.iter().find(|q| q.x != -12345.0));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Centres asked for some pairs only (any order, either order within a pair, repeats) are
+    /// the bits of those pairs in an every-pair sweep, on the held pass and on the tracker, on
+    /// four-bars and on the catalogue's multi-loop linkages; and nothing else is written.
+    #[test]
+    fn chosen_pairs_are_those_of_every_pair(
+        fb in fourbar(),
+        theta in prop_oneof![angles(), prop::collection::vec(-7.0f64..7.0, 1..80)],
+        which in 0usize..5,
+        picks in prop::collection::vec((0usize..64, 0usize..64), 1..6),
+        plan in prop_oneof![Just(Plan::Auto), Just(Plan::Tracked), Just(Plan::Held)],
+    ) {
+        let m = if which == 4 {
+            fb.mechanism().resized::<16>().unwrap()
+        } else {
+            catalog::linkage_by_name::<f64>(catalog::MULTI_LOOP[which]).unwrap().mechanism
+        };
+        let nb = Bodies::of(&m).count();
+        let pairs: Vec<[usize; 2]> = picks
+            .iter()
+            .map(|&(a, d)| [a % nb, (a + 1 + d % (nb - 1)) % nb])
+            .collect();
+        let (all, _) = engine_with(plan, &m, &theta, Rate::Scalar(0.7), Rate::Scalar(0.0));
+        let np_all = sweep_pairs(&m);
+        let index = |[a, b]: [usize; 2]| {
+            let (k, l) = (a.min(b), a.max(b));
+            k * nb - k * (k + 1) / 2 + (l - k - 1)
+        };
+        let n = theta.len();
+        let mut b = buffers(n, m.len(), pairs.len());
+        let mut out = SweepOutputs::positions(&mut b.joints, &mut b.valid);
+        out.centres = Some(&mut b.centres);
+        out.centre_directions = Some(&mut b.directions);
+        out.pairs = Pairs::Only(&pairs);
+        sweep_planned(&m, &theta, Rate::Scalar(0.7), Rate::Scalar(0.0), out, &mut || true, plan).unwrap();
+        for k in 0..n {
+            for (q, &pair) in pairs.iter().enumerate() {
+                let e = k * np_all + index(pair);
+                let got = (b.centres[k * pairs.len() + q], b.directions[k * pairs.len() + q]);
+                let want = (all.centres[e], all.directions[e]);
+                prop_assert!(same_points(&[got.0, got.1], &[want.0, want.1]), "sample {k}, pair {pair:?}: {got:?}, every-pair sweep {want:?}");
+            }
+        }
+        prop_assert!(same_points(&b.joints, &all.joints), "joints: {}", point_difference(&b.joints, &all.joints));
+        prop_assert!(b.velocity.iter().all(|q| q.x == -12345.0), "velocity written though not asked for");
+    }
+}
+
+/// A pair naming no body, or one body twice, is an error and nothing is written.
+#[test]
+fn bad_pairs_are_errors() {
+    let m = catalog::hoecken::<f64>().mechanism();
+    for (pairs, want) in [
+        (
+            [[0, 4]],
+            Error::OutOfRange {
+                what: "body of an instant-centre pair",
+                value: 4,
+                max: 3,
+            },
+        ),
+        (
+            [[2, 2]],
+            Error::InvalidChoice {
+                what: "instant-centre pair",
+                choices: "two different bodies",
+            },
+        ),
+    ] {
+        let mut b = buffers(2, 5, 1);
+        let mut out = SweepOutputs::positions(&mut b.joints, &mut b.valid);
+        out.centres = Some(&mut b.centres);
+        out.pairs = Pairs::Only(&pairs);
+        let r = sweep(
+            &m,
+            &[0.0, 1.0],
+            Rate::Scalar(0.0),
+            Rate::Scalar(0.0),
+            out,
+            &mut || true,
+        );
+        assert_eq!(r.unwrap_err(), want, "pairs {pairs:?}");
+        assert!(b.joints.iter().all(|p| p.x == -12345.0), "joints written");
     }
 }
 
@@ -848,6 +938,7 @@ fn go_on_stops_between_chunks() {
         velocity: None,
         acceleration: None,
         centres: None,
+        pairs: Pairs::All,
         centre_directions: None,
         curvature_centres: None,
         curvature: None,
@@ -914,6 +1005,7 @@ fn wrong_slices_are_errors_and_nothing_is_written() {
             velocity,
             acceleration: None,
             centres: None,
+            pairs: Pairs::All,
             centre_directions: None,
             curvature_centres: None,
             curvature: None,
@@ -943,6 +1035,7 @@ fn wrong_slices_are_errors_and_nothing_is_written() {
         velocity: None,
         acceleration: None,
         centres: None,
+        pairs: Pairs::All,
         centre_directions: None,
         curvature_centres: None,
         curvature: None,
@@ -981,6 +1074,7 @@ fn runs_in_f32() {
         velocity: Some(&mut vel),
         acceleration: None,
         centres: None,
+        pairs: Pairs::All,
         centre_directions: None,
         curvature_centres: None,
         curvature: None,

@@ -2,8 +2,8 @@
 //! the sweep over numpy arrays (checked and allocated here, computed by the core).
 
 use linkage_core::{
-    sweep_pairs, Bodies, Columns, Construction, LineDirection, Mechanism as CoreMechanism, Rate,
-    Reach, Side, SweepOutputs, Vec2,
+    Bodies, Columns, Construction, LineDirection, Mechanism as CoreMechanism, Pairs, Rate, Reach,
+    Side, SweepOutputs, Vec2,
 };
 use numpy::{
     Ix1, Ix2, Ix3, PyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3,
@@ -273,8 +273,11 @@ impl Mechanism {
     /// per angle. `column`: the one joint the per-joint outputs hold (None: every joint);
     /// `flags`: whether to return `margin`, `regular` and `gap`. Returns a dict of numpy arrays
     /// (per-joint ones shaped `(n, w, 2)` or `(n, w)`, `w` joints or 1).
+    /// `pairs`: the body index pairs whose instant centres are asked for (None: every pair);
+    /// `directions`: whether the directions of centres at infinity come with the centres.
     #[pyo3(signature = (theta, omega=None, alpha=None, velocity=false, acceleration=false,
-                        instant_centres=false, curvature=false, column=None, flags=true))]
+                        instant_centres=false, curvature=false, column=None, flags=true,
+                        pairs=None, directions=true))]
     #[allow(
         clippy::too_many_arguments,
         reason = "mirrors the keywords of Mechanism.sweep's outputs"
@@ -291,6 +294,8 @@ impl Mechanism {
         curvature: bool,
         column: Option<usize>,
         flags: bool,
+        pairs: Option<Vec<[usize; 2]>>,
+        directions: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let th = theta
             .as_slice()
@@ -304,7 +309,12 @@ impl Mechanism {
         // The program on arrays sized to it (the same bits at any capacity), copied under the
         // lock.
         let mech = Sweepable::of(&self.lock());
-        let (j, np) = mech.shape(instant_centres);
+        let (j, nb) = mech.shape();
+        let pairs = match pairs.as_deref() {
+            None => Pairs::All,
+            Some(p) => Pairs::Only(p),
+        };
+        let np = if instant_centres { pairs.count(nb) } else { 0 };
         let columns = match column {
             None => Columns::All,
             Some(c) if c < j => Columns::One(c),
@@ -323,7 +333,7 @@ impl Mechanism {
         let on = |b: bool| u128::from(b);
         let floats = nu * wu * 2 * (1 + on(rates) + on(acceleration) + on(curvature))
             + nu * 2 * on(flags)
-            + nu * pu * 4 * on(instant_centres)
+            + nu * pu * 2 * (on(instant_centres) + on(instant_centres && directions))
             + nu * wu * on(curvature);
         let what = || format!("sweep of {n} samples");
         memory::check(
@@ -351,7 +361,7 @@ impl Mechanism {
         let vel = points(rates, width)?;
         let acc = points(acceleration, width)?;
         let centres = points(instant_centres, np)?;
-        let directions = points(instant_centres, np)?;
+        let directions = points(instant_centres && directions, np)?;
         let curv_centres = points(curvature, width)?;
         let curv = curvature
             .then(|| memory::uninit::<f64, Ix2>(py, &what, &[n, width]))
@@ -366,6 +376,7 @@ impl Mechanism {
                 gap: flag_arrays.as_ref().map(|f| fresh(&f.2)).transpose()?,
                 velocity: fresh_opt(&vel)?,
                 acceleration: fresh_opt(&acc)?,
+                pairs,
                 centres: fresh_opt(&centres)?,
                 centre_directions: fresh_opt(&directions)?,
                 curvature_centres: fresh_opt(&curv_centres)?,
@@ -547,15 +558,14 @@ impl Sweepable {
         }
     }
 
-    /// Joints and (when `pairs`, else 0) body pairs.
-    fn shape(&self, pairs: bool) -> (usize, usize) {
-        let (j, p) = match self {
-            Sweepable::S8(m) => (m.len(), pairs.then(|| sweep_pairs(m))),
-            Sweepable::S16(m) => (m.len(), pairs.then(|| sweep_pairs(m))),
-            Sweepable::S32(m) => (m.len(), pairs.then(|| sweep_pairs(m))),
-            Sweepable::S64(m) => (m.len(), pairs.then(|| sweep_pairs(m.as_ref()))),
-        };
-        (j, p.unwrap_or(0))
+    /// Joints and bodies (the ground included).
+    fn shape(&self) -> (usize, usize) {
+        match self {
+            Sweepable::S8(m) => (m.len(), Bodies::of(m).count()),
+            Sweepable::S16(m) => (m.len(), Bodies::of(m).count()),
+            Sweepable::S32(m) => (m.len(), Bodies::of(m).count()),
+            Sweepable::S64(m) => (m.len(), Bodies::of(m.as_ref()).count()),
+        }
     }
 }
 
