@@ -384,6 +384,36 @@ def test_progress_is_reported_on_stderr(atlas: Atlas, capsys) -> None:  # type: 
     assert "synthesis: [" in err and "/2" in err, err
 
 
+def test_progress_stages_never_run_backwards(monkeypatch, capsys) -> None:  # type: ignore[no-untyped-def]
+    """A stage added as a run goes (long fits, more matches, the global search) is a line of
+    its own on a terminal, counted from zero: no line's count goes down (a bar that showed
+    24/24 and then 25/30 read as going backwards)."""
+    from linkage._progress import Bar
+
+    monkeypatch.setattr(Bar, "__init__", _tty_bar_init(Bar.__init__))
+    monkeypatch.setattr("time.monotonic", iter(range(0, 10**6, 1)).__next__)
+    b = Bar("synthesis", total=3)
+    for _ in range(3):
+        b.update()
+    b.stage("long fits", 2)
+    for _ in range(2):
+        b.update()
+    b.close()
+    lines = [seg.split("\r")[-1].strip() for seg in capsys.readouterr().err.split("\n")]
+    assert lines[:2] == [
+        "synthesis: [##############################] 3/3",
+        "synthesis, long fits: [##############################] 2/2",
+    ], lines
+
+
+def _tty_bar_init(init):  # type: ignore[no-untyped-def]
+    def tty_init(self, *args, **kwargs):  # type: ignore[no-untyped-def]
+        init(self, *args, **kwargs)
+        self.tty = True
+
+    return tty_init
+
+
 def test_progress_names_a_default_atlas_build(tmp_path, monkeypatch, capsys) -> None:  # type: ignore[no-untyped-def]
     """The first open-target search builds the default arc atlas (~5 s at the default size)
     before its first fit: the progress bar says so first, and not once the atlas is cached."""

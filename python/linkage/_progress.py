@@ -10,16 +10,22 @@ class Bar:
     """A one-line progress bar redrawn in place on a terminal; elsewhere a line every tenth.
 
     ``total`` steps (``None``: unknown, a counter is shown). Draws at most ten times a second.
+    A run that finds it needs more work than it planned adds a :meth:`stage`: a line of its own,
+    so a bar never runs backwards.
 
     >>> b = Bar("demo", total=4, enabled=False)
     >>> for _ in range(4):
     ...     b.update()
     >>> b.done
     4
+    >>> b.stage("more", 2)
+    >>> b.desc, b.done, b.total
+    ('demo, more', 0, 2)
     """
 
     def __init__(self, desc: str, total: int | None = None, enabled: bool = True) -> None:
         self.desc, self.total, self.done = desc, total, 0
+        self._base = desc
         self.enabled = enabled
         self.tty = enabled and sys.stderr.isatty()
         self._last = 0.0
@@ -43,6 +49,17 @@ class Bar:
                 self._tenth = tenth
                 sys.stderr.write(text + "\n")
                 sys.stderr.flush()
+
+    def stage(self, name: str, steps: int) -> None:
+        """Start a further stage of ``steps`` steps, named ``name``, counted from zero.
+
+        On a terminal the bar so far keeps its line (it ends there) and the stage draws its own.
+        """
+        if self.enabled and self.tty and self._last:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+        self.desc = f"{self._base}, {name}"
+        self.total, self.done, self._tenth, self._last = steps, 0, -1, 0.0
 
     def _text(self, note: str) -> str:
         if self.total:

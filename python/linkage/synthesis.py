@@ -745,7 +745,7 @@ def _de(
 
         def step(*_: Any, **__: Any) -> bool:
             if bar is not None:
-                bar.update(1, "global search")
+                bar.update(1)
             return False
 
         r = differential_evolution(
@@ -954,8 +954,8 @@ def path(
                 if full_turn and k is FOURBAR:
                     wider.sort(key=lambda entry: not _turns_fully(entry[0]))
                 wider = [w for w in wider if w[0].tobytes() not in seen][:WIDER]
-                if bar is not None and bar.total is not None:
-                    bar.total += len(wider)
+                if bar is not None:
+                    bar.stage("more matches", len(wider))
                 more = _finish(
                     wider,
                     target,
@@ -983,9 +983,9 @@ def path(
     run_global = global_search if global_search is not None else best(found) > tol * size
     if run_global:
         for k in kinds:
-            if bar is not None and bar.total is not None:
+            if bar is not None:
                 # Generations (of both assemblies for four-bars), then refinements.
-                bar.total += (2 if k is FOURBAR else 1) * maxiter + 8
+                bar.stage(f"global search ({k.name})", (2 if k is FOURBAR else 1) * maxiter + 8)
             de = _de(target, closed, size, centre, seed, maxiter, nthreads, bar, kind=k)
             found += _finish(
                 [(x, c, "global") for x, c in de],
@@ -1057,8 +1057,8 @@ def _polish(
         if all(np.max(np.abs(c.params - p)) > 1e-3 * size for p in polished):
             picked.append(c)
             polished.append(c.params)
-    if bar is not None and bar.total is not None:
-        bar.total += len(picked)
+    if bar is not None:
+        bar.stage("long fits", len(picked))
     out: list[Candidate[Any]] = []
     for c in picked:
         crossed = isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
