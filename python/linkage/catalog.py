@@ -98,7 +98,8 @@ def watt() -> FourBar:
     --------
     The crank rocks between its toggles; beyond them a sample is NaN:
 
-    >>> fb = watt()
+    >>> import linkage
+    >>> fb = linkage.catalog.watt()
     >>> fb.grashof(), [round(float(x), 4) for x in fb.input_limits()]
     ('triple-rocker', [-0.8128, 0.8128])
     >>> s = fb.sweep([0.0, 1.0])
@@ -118,7 +119,8 @@ def roberts() -> FourBar:
 
     Examples
     --------
-    >>> fb = roberts()
+    >>> import linkage
+    >>> fb = linkage.catalog.roberts()
     >>> fb.grashof(), [round(x, 4) for x in fb.input_limits()]
     ('double-rocker', [0.5054, 1.6961])
     """
@@ -135,7 +137,8 @@ def chebyshev() -> FourBar:
 
     Examples
     --------
-    >>> fb = chebyshev()
+    >>> import linkage
+    >>> fb = linkage.catalog.chebyshev()
     >>> fb.grashof(), fb.assembly, [round(x, 4) for x in fb.input_limits()]
     ('double-rocker', 'crossed', [0.6435, 1.7722])
     """
@@ -152,7 +155,8 @@ def hoecken() -> FourBar:
 
     Examples
     --------
-    >>> fb = hoecken()
+    >>> import linkage
+    >>> fb = linkage.catalog.hoecken()
     >>> fb.grashof(), fb.input_limits(), round(float(fb.sweep([0.0]).point[0, 1]), 6)
     ('crank-rocker', None, 48.989795)
     """
@@ -169,7 +173,8 @@ def evans_a() -> FourBar:
 
     Examples
     --------
-    >>> fb = evans_a()
+    >>> import linkage
+    >>> fb = linkage.catalog.evans_a()
     >>> fb.grashof(), [round(x, 4) for x in fb.input_limits()]
     ('triple-rocker', [0.4832, 5.8])
     """
@@ -186,7 +191,8 @@ def evans_b() -> FourBar:
 
     Examples
     --------
-    >>> fb = evans_b()
+    >>> import linkage
+    >>> fb = linkage.catalog.evans_b()
     >>> fb.grashof(), [round(x, 4) for x in fb.input_limits()]
     ('triple-rocker', [-1.4161, 1.4161])
     """
@@ -203,7 +209,8 @@ def evans_c() -> FourBar:
 
     Examples
     --------
-    >>> fb = evans_c()
+    >>> import linkage
+    >>> fb = linkage.catalog.evans_c()
     >>> fb.grashof(), [round(x, 4) for x in fb.input_limits()]
     ('triple-rocker', [-1.3181, 1.3181])
     """
@@ -222,7 +229,8 @@ def peaucellier() -> Mechanism:
 
     Examples
     --------
-    >>> peaucellier().sweep(np.linspace(-1, 1, 5)).point[:, 0]
+    >>> import numpy as np, linkage
+    >>> linkage.catalog.peaucellier().sweep(np.linspace(-1, 1, 5)).point[:, 0]
     array([40., 40., 40., 40., 40.])
     """
     return _linkage("peaucellier")
@@ -240,7 +248,8 @@ def hart() -> Mechanism:
     --------
     The crank cannot reach every angle: at 0 the sample is NaN.
 
-    >>> m = hart()
+    >>> import linkage
+    >>> m = linkage.catalog.hart()
     >>> s = m.sweep([0.0, 1.0])
     >>> m.trace, s.valid, s.point[1].round(4)
     ('P', array([False,  True]), array([ 7.5   , 13.7287]))
@@ -270,9 +279,10 @@ def hoecken_pantograph(scale: float = 2.0) -> Mechanism:
 
     Examples
     --------
-    >>> hoecken_pantograph(2.0).sweep([0.0]).point
+    >>> import linkage
+    >>> linkage.catalog.hoecken_pantograph(2.0).sweep([0.0]).point
     array([[20.        , 17.97958971]])
-    >>> hoecken_pantograph(1.0)
+    >>> linkage.catalog.hoecken_pantograph(1.0)
     Traceback (most recent call last):
     ...
     linkage.LinkageError: pantograph scale (must exceed 1, with 30·scale finite) must be ...
@@ -292,7 +302,8 @@ def jansen() -> Mechanism:
 
     Examples
     --------
-    >>> m = jansen()
+    >>> import linkage
+    >>> m = linkage.catalog.jansen()
     >>> m.joint_names, m.trace, m.mobility().degrees_of_freedom
     (('O', 'Q', 'A', 'B', 'C', 'D', 'E', 'F'), 'F', 1)
     """
@@ -306,10 +317,11 @@ def hoecken_guided() -> Mechanism:
     the foot ``F`` sits at the coupler point, so it draws thesis 1's Hoecken foot path, and the
     guide link swings with it.
 
-    >>> import numpy as np
-    >>> m = hoecken_guided()
+    >>> import numpy as np, linkage
+    >>> m = linkage.catalog.hoecken_guided()
     >>> th = np.linspace(0, 2 * np.pi, 13)
-    >>> bool(np.allclose(m.sweep(th).point, hoecken().sweep(th).point, atol=1e-12))
+    >>> hoecken = linkage.catalog.hoecken()
+    >>> bool(np.allclose(m.sweep(th).point, hoecken.sweep(th).point, atol=1e-12))
     True
 
     Returns
@@ -335,7 +347,8 @@ def klann() -> Mechanism:
 
     Examples
     --------
-    >>> m = klann()
+    >>> import linkage
+    >>> m = linkage.catalog.klann()
     >>> m.joint_names, m.trace, bool(m.sweep([0.0, 1.0]).valid.all())
     (('O', 'PA', 'PB', 'C', 'D', 'M', 'E', 'F'), 'F', True)
     """
@@ -354,7 +367,8 @@ def names() -> tuple[str, ...]:
 
     Examples
     --------
-    >>> names()[:4], names()[-2:]
+    >>> from linkage import catalog
+    >>> catalog.names()[:4], catalog.names()[-2:]
     (('watt', 'roberts', 'chebyshev', 'hoecken'), ('hoecken_pantograph', 'jansen'))
     """
     return FOUR_BARS + MULTI_LOOP
@@ -382,9 +396,10 @@ def get(name: str) -> FourBar | Mechanism:
 
     Examples
     --------
-    >>> get("evans_b").input_limits() == evans_b().input_limits()
+    >>> from linkage import catalog
+    >>> catalog.get("evans_b").input_limits() == catalog.evans_b().input_limits()
     True
-    >>> get(3)
+    >>> catalog.get(3)
     Traceback (most recent call last):
     ...
     TypeError: name must be a str, got int
@@ -461,10 +476,11 @@ def figures(rel_tol: float = 1e-3, samples: int = 20001) -> list[Figures]:
 
     Examples
     --------
-    >>> hoecken_row = figures(samples=2001)[3]
+    >>> import linkage
+    >>> hoecken_row = linkage.catalog.figures(samples=2001)[3]
     >>> hoecken_row.name, round(hoecken_row.straight_length, 2), hoecken_row.tolerance
     ('hoecken', 16.14, 0.025)
-    >>> figures(rel_tol=0)
+    >>> linkage.catalog.figures(rel_tol=0)
     Traceback (most recent call last):
     ...
     linkage.LinkageError: rel_tol must be positive, got 0.0
@@ -543,6 +559,7 @@ def check_count(samples: int) -> int:
 
     Examples
     --------
+    >>> from linkage.catalog import check_count
     >>> check_count(4001), check_count(721), check_count(3)
     (2000, 360, 3)
     """
@@ -713,7 +730,8 @@ def table(rel_tol: float = 1e-3, samples: int = TABLE_SAMPLES, cache: bool = Tru
 
     Examples
     --------
-    >>> rows = table(samples=73, cache=False)
+    >>> import linkage
+    >>> rows = linkage.catalog.table(samples=73, cache=False)
     >>> rows[0].name, rows[0].samples, rows[0].straight_length_error is not None
     ('watt', 73, True)
     """
@@ -752,7 +770,9 @@ def format_table(rows: list[Figures], rel_tol: float) -> list[str]:
 
     Examples
     --------
-    >>> for line in format_table(figures(samples=2001)[3:4], 1e-3)[1:3]:
+    >>> from linkage import catalog
+    >>> rows = catalog.figures(samples=2001)[3:4]
+    >>> for line in catalog.format_table(rows, 1e-3)[1:3]:
     ...     print(line)
     linkage  class         input (deg)  size  straight  max dev   speed var
     hoecken  crank-rocker  full turn    25    16.140    2.50e-02  4.1%
@@ -828,7 +848,8 @@ def quadruped_hoecken() -> Walker:
 
     Examples
     --------
-    >>> q = quadruped_hoecken()
+    >>> import linkage
+    >>> q = linkage.catalog.quadruped_hoecken()
     >>> [leg.name for leg in q.legs], q.leg_labels()
     (['A', 'B', 'C', 'D'], ('L1', 'R1', 'L2', 'R2'))
     """
@@ -866,7 +887,8 @@ def hexapod_tripod() -> Walker:
 
     Examples
     --------
-    >>> h = hexapod_tripod()
+    >>> import linkage
+    >>> h = linkage.catalog.hexapod_tripod()
     >>> h.leg_labels()
     ('L1', 'L2', 'L3', 'R1', 'R2', 'R3')
     >>> [round(abs(float(p)), 6) for p in h.phases]     # {L1, R2, L3} against {R1, L2, R3}
