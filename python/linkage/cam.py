@@ -80,6 +80,8 @@ class CamProfile:
         --------
         A 10 mm cycloidal rise over a quarter turn on a 5 mm base circle is too steep:
 
+        >>> import math
+        >>> from linkage.cam import DiscCam
         >>> from linkage.drive import Program, Segment
         >>> rise = Program(0.0, [Segment(math.pi / 2, 10.0, "cycloidal"), Segment(math.pi),
         ...                      Segment(math.pi / 2, -10.0, "cycloidal")])
@@ -169,6 +171,8 @@ class DiscCam:
 
         Examples
         --------
+        >>> import math
+        >>> from linkage.cam import leg_lift_cam
         >>> p = leg_lift_cam().profile(361)
         >>> p.profile.shape, round(math.degrees(p.max_pressure_angle), 3), p.problems
         ((361, 2), 8.677, [])
@@ -249,6 +253,8 @@ def leg_lift(height: float = 1.4) -> Program:
 
     Examples
     --------
+    >>> import math
+    >>> from linkage.cam import leg_lift
     >>> p = leg_lift()
     >>> [round(float(x), 6) for x in p.eval([0.0, math.pi / 2, math.pi, 2 * math.pi])[0]]
     [1.4, 0.0, 0.0, 1.4]
@@ -293,6 +299,7 @@ def leg_lift_cam(roller_radius: float = 2.0, base_radius: float = 6.5) -> DiscCa
 
     Examples
     --------
+    >>> from linkage.cam import leg_lift_cam
     >>> leg_lift_cam().profile().undercut
     False
     >>> leg_lift_cam(roller_radius=0.0)
