@@ -88,6 +88,8 @@ def motion_law(name: Law, u: ArrayLike) -> tuple[Array, Array, Array, Array]:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from linkage.drive import motion_law
     >>> s, v, a, j = motion_law("cycloidal", [0.25])
     >>> round(float(a[0]), 12) == round(2 * np.pi, 12)   # peak 2π·L/β²
     True
@@ -143,6 +145,7 @@ class Drive(Protocol):
         --------
         Every drive of this module is one, e.g. :class:`ConstantSpeed`:
 
+        >>> from linkage.drive import ConstantSpeed
         >>> ConstantSpeed(omega=2.0, theta0=1.0).angles([0.0, 0.5])
         (array([1., 2.]), array([2., 2.]), array([0., 0.]))
         """
@@ -155,6 +158,7 @@ class Program:
     The output advances by the sum of the rises each period. As a drive its output is the crank
     angle in radians against time in seconds.
 
+    >>> from linkage.drive import Program, Segment
     >>> rdr = Program(0.0, [Segment(1.0, 2.0, "simple-harmonic"), Segment(0.5),
     ...                     Segment(1.0, -2.0, "simple-harmonic"), Segment(0.5)])
     >>> [(after, order) for after, order, _ in rdr.discontinuities()]
@@ -212,6 +216,7 @@ class Program:
         --------
         A rise of 2 over 1 s, then a dwell of 0.5 s; the next period starts 2 higher:
 
+        >>> from linkage.drive import Program, Segment
         >>> p = Program(0.0, [Segment(1.0, 2.0, "simple-harmonic"), Segment(0.5)])
         >>> value, rate, _, _ = p.eval([0.0, 0.5, 1.25, 1.5])
         >>> value, rate.round(6)
@@ -229,6 +234,7 @@ class Program:
         --------
         A rise of 2 rad over 1 s and a dwell of 0.5 s; the next period starts 2 rad further:
 
+        >>> from linkage.drive import Program, Segment
         >>> p = Program(0.0, [Segment(1.0, 2.0, "simple-harmonic"), Segment(0.5)])
         >>> theta, omega, alpha = p.angles([0.5, 1.25, 2.0])
         >>> theta, omega.round(6), alpha.round(6) + 0.0
@@ -246,6 +252,7 @@ class Program:
         --------
         Simple-harmonic rises jump in acceleration at both ends, cycloidal ones only in jerk:
 
+        >>> from linkage.drive import Program, Segment
         >>> harmonic = Program(0.0, [Segment(1.0, 2.0, "simple-harmonic"), Segment(0.5)])
         >>> [(after, order, round(jump, 6)) for after, order, jump in harmonic.discontinuities()]
         [(0, 2, -9.869604), (1, 2, -9.869604)]
@@ -284,6 +291,7 @@ class ConstantSpeed:
 
         Examples
         --------
+        >>> from linkage.drive import ConstantSpeed
         >>> ConstantSpeed(2.0).angles([0.0, 1.0])
         (array([0., 2.]), array([2., 2.]), array([0., 0.]))
         >>> ConstantSpeed(2.0).angles([1e308])
@@ -339,6 +347,7 @@ class GearTrain:
         --------
         Thesis 1's train: two meshes, so the output turns the motor's way:
 
+        >>> from linkage.drive import GearTrain
         >>> GearTrain.simple([18, 15, 14])
         GearTrain(ratio=1.28571, sign=+1)
         >>> GearTrain.simple([18, 0])
@@ -374,6 +383,7 @@ class GearTrain:
 
         Examples
         --------
+        >>> from linkage.drive import GearTrain
         >>> GearTrain.compound([(10, 30), (12, 36)])
         GearTrain(ratio=0.111111, sign=+1)
         """
@@ -410,6 +420,7 @@ class GearTrain:
 
         Examples
         --------
+        >>> from linkage.drive import GearTrain
         >>> GearTrain.simple([10, 20]).output_speed(50.0)     # one mesh: reversed
         -25.0
         """
@@ -492,6 +503,7 @@ class Geared:
 
         Examples
         --------
+        >>> from linkage.drive import ConstantSpeed, Geared, GearTrain
         >>> Geared(ConstantSpeed(50.0), GearTrain.simple([18, 15, 14])).angles([1.0])
         (array([64.28571429]), array([64.28571429]), array([0.]))
         """
@@ -566,8 +578,8 @@ class CrankSchedule:
         --------
         One period later the crank is a turn further; f32 interpolation stays within 1e-6 rad:
 
-        >>> import linkage
-        >>> sched = crank_schedule(linkage.catalog.hoecken(), 80.0, 0.6)
+        >>> import numpy as np, linkage
+        >>> sched = linkage.drive.crank_schedule(linkage.catalog.hoecken(), 80.0, 0.6)
         >>> theta, omega, _ = sched.angles([0.0, sched.period])
         >>> round(float(theta[1] - theta[0]), 6), bool(omega[0] == omega[1])
         (6.283185, True)
@@ -639,14 +651,14 @@ def stance_profile(
     --------
     The Hoecken leg's stance spans the crank angles 75.2° to 287°:
 
-    >>> import linkage
-    >>> st = stance_profile(linkage.catalog.hoecken())
+    >>> import numpy as np, linkage
+    >>> st = linkage.drive.stance_profile(linkage.catalog.hoecken())
     >>> np.degrees(st.theta[[0, -1]]).round(3)
     array([ 75.2, 287. ])
 
     A leg with a limited crank range has no stance to schedule:
 
-    >>> stance_profile(linkage.catalog.evans_b())
+    >>> linkage.drive.stance_profile(linkage.catalog.evans_b())
     Traceback (most recent call last):
     ...
     linkage.LinkageError: the leg must assemble over a whole crank turn
@@ -728,13 +740,13 @@ def crank_schedule(
     --------
     >>> import linkage
     >>> leg = linkage.catalog.hoecken()
-    >>> sched = crank_schedule(leg, 80.0, 0.6)
+    >>> sched = linkage.drive.crank_schedule(leg, 80.0, 0.6)
     >>> round(sched.period, 4), sched.speed_ripple < 1e-3, sched.theta.dtype
     (0.9314, True, dtype('float32'))
 
     Too short a swing would need the crank to run backwards:
 
-    >>> crank_schedule(leg, 80.0, 0.3)
+    >>> linkage.drive.crank_schedule(leg, 80.0, 0.3)
     Traceback (most recent call last):
     ...
     linkage.LinkageError: the duty factor needs the crank to stop during the swing ...
