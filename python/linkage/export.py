@@ -113,6 +113,7 @@ _LAYER_BAD = re.compile(r"[<>/\\\":;?*|=`,\s]+")
 def layer_name(name: str) -> str:
     """``name`` as a DXF layer name: characters DXF forbids replaced by ``_``.
 
+    >>> from linkage.export import layer_name
     >>> layer_name("PATH_trace P"), layer_name("LEG_L1")
     ('PATH_trace_P', 'LEG_L1')
     """
@@ -131,9 +132,9 @@ def drawing_of(res: Result) -> Drawing | None:
 
     Examples
     --------
-    >>> from linkage import runner, scene
+    >>> from linkage import export, runner, scene
     >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
-    >>> d = drawing_of(res)
+    >>> d = export.drawing_of(res)
     >>> d.leg_labels, d.frame(0).shape  # four legs of six joints (the foot last)
     (('L1', 'R1', 'L2', 'R2'), (24, 2))
     """
@@ -164,9 +165,9 @@ def default_pose(d: Drawing) -> int:
 
     Examples
     --------
-    >>> from linkage import runner, scene
+    >>> from linkage import export, runner, scene
     >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
-    >>> default_pose(drawing_of(res))
+    >>> export.default_pose(export.drawing_of(res))
     0
     """
     ok = np.isfinite(d.positions).all(axis=(1, 2))
@@ -370,12 +371,12 @@ def svg_text(
 
     Examples
     --------
-    >>> from linkage import runner, scene
+    >>> from linkage import export, runner, scene
     >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
-    >>> svg, pose = svg_text(res)
+    >>> svg, pose = export.svg_text(res)
     >>> pose, svg.count("<polyline") > 0, svg.rstrip().endswith("</svg>")
     (0, True, True)
-    >>> svg_text(res, pose=99)
+    >>> export.svg_text(res, pose=99)
     Traceback (most recent call last):
     ...
     linkage.LinkageError: pose 99 is not a sample of this run (0 … 36)
@@ -477,9 +478,9 @@ def csv_columns(res: Result) -> dict[str, Array]:
 
     Examples
     --------
-    >>> from linkage import runner, scene
+    >>> from linkage import export, runner, scene
     >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
-    >>> cols = csv_columns(res)
+    >>> cols = export.csv_columns(res)
     >>> list(cols)[:6]
     ['time [s]', 'theta [rad]', 'omega [rad/s]', 'alpha [rad/s²]', 'foot_A_x [mm]', 'foot_A_y [mm]']
     >>> cols["stance_A [1 = down]"][:8]
@@ -529,10 +530,11 @@ def write_csv(res: Result, path: Path) -> list[str]:
     Examples
     --------
     >>> import tempfile
-    >>> from linkage import runner, scene
+    >>> from pathlib import Path
+    >>> from linkage import export, runner, scene
     >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
     >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     headers = write_csv(res, Path(tmp) / "data.csv")
+    ...     headers = export.write_csv(res, Path(tmp) / "data.csv")
     >>> headers[:3]
     ['time [s]', 'theta [rad]', 'omega [rad/s]']
     """
@@ -558,10 +560,12 @@ def write_npz(res: Result, path: Path) -> None:
     Examples
     --------
     >>> import tempfile
-    >>> from linkage import runner, scene
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> from linkage import export, runner, scene
     >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
     >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     write_npz(res, Path(tmp) / "data.npz")
+    ...     export.write_npz(res, Path(tmp) / "data.npz")
     ...     print(sorted(np.load(Path(tmp) / "data.npz").files))
     ['alpha', 'body_position', 'closure', 'feet', 'margin', 'omega', 'stance', 'theta', 'time']
     """
@@ -587,11 +591,11 @@ def figure_json(row: Sequence[str]) -> dict[str, Any]:
 
     Examples
     --------
-    >>> from linkage import figures
-    >>> figure_json(figures.exact("crank", 10.0, "mm"))
+    >>> from linkage import export, figures
+    >>> export.figure_json(figures.exact("crank", 10.0, "mm"))
     {'figure': 'crank', 'value': 10.0, 'text': '10', 'unit': 'mm', 'error': 0.0,
      'error_note': 'exact', 'exact': True}
-    >>> figure_json(["note", "n/a", "", ""])  # a plain row: its text only
+    >>> export.figure_json(["note", "n/a", "", ""])  # a plain row: its text only
     {'figure': 'note', 'value': 'n/a', 'text': 'n/a', 'unit': '', 'error': None,
      'error_note': '', 'exact': False}
     """
@@ -624,9 +628,9 @@ def summary(
 
     Examples
     --------
-    >>> from linkage import runner, scene
+    >>> from linkage import export, runner, scene
     >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
-    >>> s = summary(res, ["data.csv"], list(csv_columns(res)), 0)
+    >>> s = export.summary(res, ["data.csv"], list(export.csv_columns(res)), 0)
     >>> s["schema"], s["scene"], s["samples"], s["check_samples"]
     ('linkage-summary/1', 'quadruped-hoecken', 37, [18, 73])
     >>> s["pose"]
@@ -1229,10 +1233,11 @@ def write_data(res: Result, folder: Path, pose: int | None = None, cad: bool = T
     Examples
     --------
     >>> import tempfile
-    >>> from linkage import runner, scene
+    >>> from pathlib import Path
+    >>> from linkage import export, runner, scene
     >>> res = runner.run(scene.parse(scene.DEFAULT_SCENE), samples=37)  # the quadruped
     >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     print([f.name for f in write_data(res, Path(tmp), cad=False)])
+    ...     print([f.name for f in export.write_data(res, Path(tmp), cad=False)])
     ['data.npz', 'data.csv', 'summary.json']
     """
     if res.synthesis is not None:
