@@ -123,6 +123,7 @@ class Forces:
         Examples
         --------
         >>> import linkage
+        >>> from linkage.forces import LinkMass, joint_forces
         >>> m = {name: LinkMass(1.0) for name in ("crank", "coupler", "rocker")}
         >>> f = joint_forces(linkage.catalog.hoecken(), [0.0], omega=1.0, masses=m)
         >>> f.reaction_links[2], f.reaction("A", "coupler")
@@ -226,6 +227,7 @@ def joint_forces(
     Evans B turns only within ±1.42 rad: at 3 rad it cannot be assembled and its row is NaN.
 
     >>> import linkage
+    >>> from linkage.forces import LinkMass, joint_forces
     >>> m = {name: LinkMass(1.0) for name in ("crank", "coupler", "rocker")}
     >>> f = joint_forces(linkage.catalog.evans_b(), [0.0, 3.0], omega=1.0, masses=m)
     >>> f.torque.round(6), f.valid
@@ -369,11 +371,12 @@ def forces(
     Examples
     --------
     >>> import warnings, numpy as np, linkage
+    >>> from linkage.forces import LinkMass, joint_forces
     >>> fb = linkage.FourBar(ground=0.02, crank=0.01, coupler=0.025, rocker=0.025)
     >>> masses = {k: LinkMass(0.01, (0.005, 0), 1e-7) for k in ("crank", "coupler", "rocker")}
     >>> with warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
-    ...     old = forces(fb, [0.0, 1.0], omega=1.0, masses=masses)
+    ...     old = linkage.forces.forces(fb, [0.0, 1.0], omega=1.0, masses=masses)
     >>> new = joint_forces(fb, [0.0, 1.0], omega=1.0, masses=masses)
     >>> caught[0].category.__name__, bool(np.array_equal(old.torque, new.torque))
     ('DeprecationWarning', True)
