@@ -101,7 +101,8 @@ def search_phases(
     --------
     Thesis 1's quadruped on a quarter-turn grid keeps its diagonal gait:
 
-    >>> import linkage
+    >>> import math, numpy as np, linkage
+    >>> from linkage.gait_search import search_phases
     >>> phases, margin = search_phases(linkage.catalog.quadruped_hoecken(), step=math.pi / 2,
     ...                                samples=64)
     >>> np.degrees(phases).round(6), round(margin, 3)
@@ -227,6 +228,7 @@ def search_duty_factor(
     Examples
     --------
     >>> import linkage
+    >>> from linkage.gait_search import search_duty_factor
     >>> q = linkage.catalog.quadruped_hoecken()
     >>> beta, margin = search_duty_factor(q, 80.0, duty_factors=(0.5, 0.6, 0.7), samples=121)
     >>> beta, round(margin, 3)
