@@ -86,6 +86,7 @@ def curvature_centre(
     --------
     On a circle of radius 2 about the origin; at an inflection; at rest:
 
+    >>> from linkage.geometry import curvature_centre
     >>> c, k = curvature_centre([[2, 0], [0, 0], [0, 0]], [[0, 3], [1, 0], [0, 0]],
     ...                         [[-4.5, 0], [0, 0], [1, 0]])
     >>> c
@@ -128,6 +129,7 @@ def circumcentre(p0: ArrayLike, p1: ArrayLike, p2: ArrayLike) -> Points:
     --------
     The second triple is collinear:
 
+    >>> from linkage.geometry import circumcentre
     >>> circumcentre([[1, 0], [0, 0]], [[0, 1], [1, 1]], [[-1, 0], [2, 2]])
     array([[ 0.,  0.],
            [nan, nan]])
@@ -171,6 +173,8 @@ def three_point_centres(path: ArrayLike, step: int = 1) -> Points:
     --------
     Every triple of a circle has the circle's centre:
 
+    >>> import numpy as np
+    >>> from linkage.geometry import three_point_centres
     >>> t = np.linspace(0, np.pi, 7)
     >>> arc = np.c_[2 * np.cos(t), 2 * np.sin(t)]
     >>> c = three_point_centres(arc)
@@ -260,10 +264,12 @@ def straightness(
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from linkage.geometry import straightness
     >>> x = np.linspace(0, 10, 11)
     >>> part = straightness(np.c_[x, 0.01 * (x - 5) ** 2], tol=0.1)
-    >>> part.count, round(part.length, 6)
-    (9, 8.0)
+    >>> part.count, round(part.length, 4)
+    (9, 8.0016)
 
     A NaN sample breaks the run; a circle has no straight part at a tight tolerance:
 
@@ -357,7 +363,8 @@ def foot_path(path: ArrayLike, tol: float, velocity: ArrayLike | None = None) ->
     --------
     The Hoecken leg's foot path within 0.025 mm:
 
-    >>> import linkage
+    >>> import numpy as np, linkage
+    >>> from linkage.geometry import foot_path
     >>> s = linkage.catalog.hoecken().sweep(np.linspace(0, 2 * np.pi, 360, endpoint=False))
     >>> fp = foot_path(s.point, 0.025)
     >>> round(fp.stride, 3), round(fp.lift_height, 3), fp.stance.count
@@ -448,7 +455,8 @@ def inflection_circle(fb: FourBar, theta: float) -> Inflection:
     --------
     The Ball point lies on the circle:
 
-    >>> import linkage
+    >>> import numpy as np, linkage
+    >>> from linkage.geometry import inflection_circle
     >>> inf = inflection_circle(linkage.catalog.hoecken(), 3.14159)
     >>> round(float(np.hypot(*np.subtract(inf.ball_point, inf.centre))) - inf.radius, 9)
     0.0
@@ -526,8 +534,8 @@ def ball_point(fb: FourBar, theta: float) -> Inflection:
     >>> fb = linkage.catalog.hoecken()
     >>> with warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
-    ...     old = ball_point(fb, 1.0)
-    >>> caught[0].category.__name__, old == inflection_circle(fb, 1.0)
+    ...     old = linkage.ball_point(fb, 1.0)
+    >>> caught[0].category.__name__, old == linkage.inflection_circle(fb, 1.0)
     ('DeprecationWarning', True)
     """
     warnings.warn(
