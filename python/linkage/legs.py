@@ -10,6 +10,7 @@ legs by a sweep and :func:`linkage._core.leg_gait`. Used by :mod:`linkage.design
 search) and :mod:`linkage.catalog` (the reference legs); needs no optional package.
 
 >>> import numpy as np
+>>> from linkage.legs import FIGURES, Settings, family
 >>> fam = family("fourbar")
 >>> figs = dict(zip(FIGURES, fam.evaluate(np.array([fam.reference]), Settings())[0]))
 >>> round(float(figs["duty_factor"]), 3), round(float(figs["min_transmission"]), 2)
