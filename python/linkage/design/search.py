@@ -185,8 +185,8 @@ def objectives_and_constraints(study: Study, figs: Array) -> tuple[Array, Array]
     >>> x = np.array([family("fourbar").reference, [20.0, 0.0, 5.0, 5.0, 50.0, 0.0]])
     >>> f, g = objectives_and_constraints(study, family("fourbar").evaluate(x, study.settings))
     >>> f.round(3)             # -stride, straightness, speed variation: all minimised
-    array([[-4.3530e+01,  5.1000e-02,  4.5200e-01],
-           [ 1.0000e+12,  1.0000e+12,  1.0000e+12]])
+    array([[-4.353e+01,  5.100e-02,  4.520e-01],
+           [ 1.000e+12,  1.000e+12,  1.000e+12]])
     >>> (g <= 0).all(axis=1)   # feasible, infeasible
     array([ True, False])
     >>> g[1]                   # full turn, one stance run, then the bounds
