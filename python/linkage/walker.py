@@ -349,9 +349,9 @@ class Walker:
         --------
         Thesis 1's quadruped in a crawl instead of its trot, which it cannot hold statically:
 
-        >>> import linkage
+        >>> import numpy as np, linkage
         >>> q = linkage.catalog.quadruped_hoecken()
-        >>> crawl = q.with_phases(gait_phases("crawl", ["A", "B", "C", "D"]))
+        >>> crawl = q.with_phases(linkage.gait_phases("crawl", ["A", "B", "C", "D"]))
         >>> round(crawl.simulate(np.linspace(0, 2 * np.pi, 721)).min_margin, 3)
         -40.0
         >>> q.with_phases([0.0, 1.0])
@@ -439,7 +439,7 @@ class Walker:
 
         Examples
         --------
-        >>> import linkage
+        >>> import numpy as np, linkage
         >>> q = linkage.catalog.quadruped_hoecken()
         >>> sim = q.simulate(np.linspace(0, 2 * np.pi, 721))
         >>> sim.feet.shape, round(sim.min_margin, 3)
@@ -447,7 +447,7 @@ class Walker:
 
         A leg that cannot turn fully cannot walk:
 
-        >>> evans = Walker([Leg("E", linkage.catalog.evans_b(), (0, 0, 0))])
+        >>> evans = linkage.Walker([linkage.Leg("E", linkage.catalog.evans_b(), (0, 0, 0))])
         >>> evans.simulate(np.linspace(0, 2 * np.pi, 9))
         Traceback (most recent call last):
         ...
@@ -612,7 +612,7 @@ class Walker:
 
         Examples
         --------
-        >>> import math, linkage
+        >>> import math, numpy as np, linkage
         >>> q = linkage.catalog.quadruped_hoecken()
         >>> phases, slip = q.search_phases("slip", step=math.pi / 2, samples=64)
         >>> np.degrees(phases).round(6), round(slip, 3)
@@ -658,6 +658,7 @@ def leg_labels(mounts: Sequence[Sequence[float]]) -> tuple[str, ...]:
 
     Examples
     --------
+    >>> from linkage.walker import leg_labels
     >>> leg_labels([(0.04, 0.02, 0), (-0.02, 0.02, 0), (0.04, -0.02, 0), (-0.08, 0.02, 0)])
     ('L1', 'L2', 'R1', 'L3')
     >>> leg_labels([(0, 0)])
@@ -737,9 +738,10 @@ def gait_phases(gait: str, legs: Sequence[str]) -> Array:
 
     Examples
     --------
-    >>> gait_phases("diagonal", ["A", "B", "C", "D"]).round(6)
+    >>> import linkage
+    >>> linkage.gait_phases("diagonal", ["A", "B", "C", "D"]).round(6)
     array([-0.      , -3.141593, -3.141593, -0.      ])
-    >>> gait_phases("tripod", ["A"])
+    >>> linkage.gait_phases("tripod", ["A"])
     Traceback (most recent call last):
     ...
     linkage.LinkageError: gait 'tripod' has no phase for legs ['A']
