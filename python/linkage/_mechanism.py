@@ -294,7 +294,8 @@ class Mechanism:
 
         Examples
         --------
-        >>> m = Mechanism()
+        >>> import linkage
+        >>> m = linkage.Mechanism()
         >>> m.fixed("O", (0, 0))
         >>> m.fixed("O", (1, 0))
         Traceback (most recent call last):
@@ -320,8 +321,8 @@ class Mechanism:
 
         Examples
         --------
-        >>> import numpy as np
-        >>> m = Mechanism()
+        >>> import numpy as np, linkage
+        >>> m = linkage.Mechanism()
         >>> m.fixed("O", (0, 0)); m.crank("A", "O", radius=2, phase=np.pi / 2)
         >>> m.sweep(0.0).point.round(12) + 0.0
         array([0., 2.])
@@ -353,8 +354,8 @@ class Mechanism:
 
         Examples
         --------
-        >>> import numpy as np
-        >>> m = Mechanism()
+        >>> import numpy as np, linkage
+        >>> m = linkage.Mechanism()
         >>> m.fixed("O", (0, 0)); m.fixed("C", (2, 0)); m.crank("A", "O", 1)
         >>> m.dyad("B", "A", "C", 2, 2, side="right")
         >>> m.sweep(np.pi / 2).point.round(6)
@@ -410,8 +411,8 @@ class Mechanism:
         --------
         A slider-crank: ``B`` slides along the x axis through ``O``.
 
-        >>> import numpy as np
-        >>> m = Mechanism()
+        >>> import numpy as np, linkage
+        >>> m = linkage.Mechanism()
         >>> m.fixed("O", (0, 0)); m.crank("A", "O", 1)
         >>> m.slider("B", "A", 3, origin="O", direction=(1, 0))
         >>> m.sweep([0.0, np.pi]).point.round(12) + 0.0
@@ -454,8 +455,8 @@ class Mechanism:
 
         Examples
         --------
-        >>> import numpy as np
-        >>> m = Mechanism()
+        >>> import numpy as np, linkage
+        >>> m = linkage.Mechanism()
         >>> m.fixed("O", (0, 0)); m.crank("A", "O", 1)
         >>> m.point("P", on=("O", "A"), at=(2, 1))  # 2 along the crank, 1 to its left
         >>> m.sweep(np.pi / 2).point.round(12) + 0.0
@@ -489,7 +490,8 @@ class Mechanism:
 
         Examples
         --------
-        >>> m = Mechanism()
+        >>> import linkage
+        >>> m = linkage.Mechanism()
         >>> m.add_joint({"kind": "fixed", "name": "O", "at": (0, 0)})
         >>> m.add_joint({"kind": "crank", "name": "A", "centre": "O", "radius": 1, "phase_deg": 90})
         >>> m.sweep([0.0], outputs=("joints",)).joint("A").round(12).tolist()
@@ -524,7 +526,8 @@ class Mechanism:
 
         Examples
         --------
-        >>> m = Mechanism.from_joints(
+        >>> import linkage
+        >>> m = linkage.Mechanism.from_joints(
         ...     [
         ...         {"kind": "fixed", "name": "O", "at": (0, 0)},
         ...         {"kind": "crank", "name": "A", "centre": "O", "radius": 1},
