@@ -54,6 +54,7 @@ def mobility(links: int, lower_pairs: int, higher_pairs: int = 0) -> Mobility:
 
     Examples
     --------
+    >>> from linkage import mobility
     >>> mobility(4, 4).degrees_of_freedom        # four-bar (thesis 2: F = 3(4 − 1) − 2·4)
     1
     >>> mobility(3, 2, 1).degrees_of_freedom     # cam, follower, frame: 2 pins + the contact

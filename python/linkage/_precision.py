@@ -384,6 +384,7 @@ def chebyshev_points(x0: float, x1: float, n: int) -> NDArray[np.float64]:
 
     ``(x0 + x1)/2 − (x1 − x0)/2 · cos((2j + 1)π / 2n)``.
 
+    >>> from linkage.synthesis import chebyshev_points
     >>> chebyshev_points(0.0, 1.0, 3).round(6)
     array([0.066987, 0.5     , 0.933013])
     """
