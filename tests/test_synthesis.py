@@ -572,20 +572,3 @@ def test_evans_b_is_recovered_exactly(atlas: Atlas) -> None:
     pts = evans_b_target()
     found = synthesis.path(pts, top=1, atlas=atlas)
     assert found[0].error <= 1e-6 * synthesis.target_size(pts)
-
-
-def test_docstring_examples_run_pasted_into_a_fresh_session() -> None:
-    """Every example in ``linkage.synthesis`` runs in an empty namespace (as pasted after
-    ``import linkage``), not only with the module's own names at hand as ``--doctest-modules``
-    runs them."""
-    import doctest
-
-    finder = doctest.DocTestFinder(exclude_empty=True)
-    flags = doctest.NORMALIZE_WHITESPACE | doctest.ELLIPSIS
-    runner = doctest.DocTestRunner(optionflags=flags)
-    tests = [t for t in finder.find(synthesis, globs={}) if t.name.startswith("linkage.synthesis")]
-    assert len(tests) >= 10, [t.name for t in tests]
-    for t in tests:
-        t.globs = {}
-        runner.run(t)
-    assert runner.failures == 0, f"{runner.failures} example(s) failed in a fresh namespace"
