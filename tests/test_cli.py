@@ -90,6 +90,23 @@ def test_default_run_writes_its_report(tmp_path, capsys):
     assert figures["minimum stability margin"] > 0
 
 
+@pytest.mark.parametrize("columns", [100, 80])
+def test_the_table_fits_the_terminal(tmp_path, capsys, monkeypatch, columns):
+    """The default run's table (a long drive description, long error estimates: 160 columns
+    unwrapped) fits the terminal's width, its long cells wrapped at spaces onto lines of their
+    own; every figure's name is still printed whole on the first line of its row."""
+    monkeypatch.setenv("COLUMNS", str(columns))
+    code, _ = run(tmp_path)
+    assert code == 0
+    lines = capsys.readouterr().out.splitlines()
+    rule = [k for k, line in enumerate(lines) if line.startswith("----")]
+    table = lines[rule[0] : rule[-1] + 1]
+    assert max(len(line) for line in table) <= columns, table
+    assert any(line.startswith("drive ") for line in table)
+    joined = " ".join(" ".join(line.split()) for line in table)
+    assert "constant 50 rpm through 18→15→14 gears" in joined, table
+
+
 @pytest.mark.parametrize("scene", EXAMPLES, ids=lambda p: p.stem)
 def test_every_example_scene(scene, tmp_path):
     code, out = run(tmp_path, str(scene))

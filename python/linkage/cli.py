@@ -13,7 +13,9 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+import shutil
 import sys
+import textwrap
 import time
 import traceback
 from collections.abc import Sequence
@@ -37,8 +39,15 @@ MAX_FRAMES = 2000
 """The most animation frames a run draws: each is a full figure render, so more is only slower."""
 
 
-def print_table(title: str, rows: Sequence[tuple[str, str, str, str]]) -> None:
-    """Print rows as an aligned four-column table.
+def print_table(
+    title: str, rows: Sequence[tuple[str, str, str, str]], width: int | None = None
+) -> None:
+    """Print rows as an aligned four-column table, at most ``width`` columns wide.
+
+    ``width`` defaults to the terminal's (100 when the output is not a terminal). A table
+    wider than that wraps its longest cells at spaces (a drive's description, an error
+    estimate) onto lines of their own in the same column; a word longer than its column
+    stays whole.
 
     Examples
     --------
@@ -51,16 +60,58 @@ def print_table(title: str, rows: Sequence[tuple[str, str, str, str]]) -> None:
     stride  43.53  mm    ±0.02
     legs    A, B
     ------  -----  ----  --------------
+    >>> drive = ("drive", "constant 50 rpm through 18→15→14 gears", "", "exact")
+    >>> stride = ("stride", "44.25", "mm", "±0.12 (vs 360 and 1441 samples)")
+    >>> print_table("quadruped", [drive, stride], width=50)
+    quadruped
+    ------  -----------------  ----  -----------------
+    figure  value              unit  error estimate
+    ------  -----------------  ----  -----------------
+    drive   constant 50 rpm          exact
+            through 18→15→14
+            gears
+    stride  44.25              mm    ±0.12 (vs 360 and
+                                     1441 samples)
+    ------  -----------------  ----  -----------------
     """
     head = ("figure", "value", "unit", "error estimate")
+    limit = width if width is not None else shutil.get_terminal_size((100, 24)).columns
     widths = [max(len(r[i]) for r in [head, *rows]) for i in range(4)]
+    # The narrowest each column may get: its longest word (never split inside a word).
+    floor = [max(len(w) for r in [head, *rows] for w in (r[i].split() or [""])) for i in range(4)]
+
+    def height(ws: list[int]) -> int:
+        """Lines the table's rows take at column widths ``ws``."""
+        return sum(
+            max(len(textwrap.wrap(c, w, break_long_words=False)) for c, w in zip(r, ws))
+            for r in rows
+        )
+
+    while sum(widths) + 6 > limit:
+        # Narrow the column (value, error or figure) that adds the fewest lines, the widest of
+        # those: a long drive description wraps, not every error estimate.
+        give = [i for i in (1, 3, 0) if widths[i] > floor[i]]
+        if not give:
+            break
+
+        def cost(i: int) -> tuple[int, int]:
+            return height([w - (k == i) for k, w in enumerate(widths)]), -widths[i]
+
+        widths[min(give, key=cost)] -= 1
     line = "  ".join("-" * w for w in widths)
+
+    def emit(cells: Sequence[str]) -> None:
+        parts = [textwrap.wrap(c, w, break_long_words=False) or [""] for c, w in zip(cells, widths)]
+        for k in range(max(len(p) for p in parts)):
+            row = [p[k] if k < len(p) else "" for p in parts]
+            print("  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip())
+
     print(title)
     print(line)
-    print("  ".join(h.ljust(w) for h, w in zip(head, widths)).rstrip())
+    emit(head)
     print(line)
     for r in rows:
-        print("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
+        emit(r)
     print(line)
 
 
