@@ -142,6 +142,14 @@ def test_bad_pairs_are_named():
         fb.sweep([0.0], outputs=ic, pairs=[(0, 2)])
     with pytest.raises(TypeError, match="pairs must be a sequence"):
         fb.sweep([0.0], outputs=ic, pairs="ground")
+    # Ordered pairs only: a set's order is not the caller's, a dict is no sequence of pairs.
+    with pytest.raises(TypeError, match=r"pairs must be a sequence of .* got dict"):
+        fb.sweep([0.0], outputs=ic, pairs={"ground": "crank"})
+    with pytest.raises(TypeError, match=r"pairs\[0\] must be a \(link, link\) pair"):
+        fb.sweep([0.0], outputs=ic, pairs=[{"ground", "crank"}])
+    # numpy's strings are names too.
+    s = fb.sweep([0.0], outputs=ic, pairs=np.array([["ground", "crank"]]))
+    assert s.link_pairs == (("ground", "crank"),) and type(s.link_pairs[0][0]) is str
     with pytest.raises(linkage.LinkageError, match="add 'instant_centres' to outputs"):
         fb.sweep([0.0], outputs=("point",), pairs=[("ground", "coupler")])
     s = fb.sweep([0.0], outputs=ic, pairs=[("ground", "coupler")])

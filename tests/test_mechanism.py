@@ -270,3 +270,49 @@ def test_rate_margin_is_the_cores() -> None:
 
     assert linkage._core.RATE_MARGIN == 32 * math.sqrt(np.finfo(np.float64).eps) == 2.0**-21
     assert _sweep.RATE_MARGIN is linkage._core.RATE_MARGIN
+
+
+def test_the_rest_of_a_sweep_is_computed_from_unchanged_inputs_or_refused() -> None:
+    """Every joint, the flags and the directions of centres at infinity of a sweep that did not
+    ask for them are computed on first use by sweeping the caller's arrays again: with them
+    unchanged, the same bits as asking at once; changed since, a LinkageError naming what came
+    out different, never a silent overwrite of what was already returned."""
+    fb = linkage.catalog.hoecken()
+    pairs = [("ground", "coupler"), ("crank", "rocker")]
+    theta = np.linspace(0.1, 6.0, 50)
+    at_once = fb.sweep(theta, omega=1.0, outputs=("joints", "velocity", "instant_centres"))
+    s = fb.sweep(theta.copy(), omega=1.0, outputs=("point", "velocity"))
+    np.testing.assert_array_equal(s.joints, at_once.joints)
+    np.testing.assert_array_equal(s.margin, at_once.margin)
+    s = fb.sweep(theta.copy(), outputs=("instant_centres",), pairs=pairs)
+    np.testing.assert_array_equal(
+        s.instant_centre_directions[:, 0],
+        at_once.instant_centre_directions[:, at_once.link_pairs.index(pairs[0])],
+    )
+    # The caller reuses its buffers before the first use.
+    mine = theta.copy()
+    s = fb.sweep(mine, outputs=("instant_centres",), pairs=pairs)
+    centres = s.instant_centres.copy()
+    mine += 1.0
+    with pytest.raises(linkage.LinkageError, match="joints came out different"):
+        s.instant_centre_at_infinity  # noqa: B018
+    np.testing.assert_array_equal(s.instant_centres, centres)
+    w = np.ones(50)
+    s = fb.sweep(theta, omega=w, outputs=("point", "velocity"))
+    velocity = s.velocity.copy()
+    w *= 3.0
+    with pytest.raises(linkage.LinkageError, match="velocity came out different"):
+        s.joints  # noqa: B018
+    np.testing.assert_array_equal(s.velocity, velocity)
+
+
+def test_a_scalar_time_gives_one_sample_without_a_sample_axis() -> None:
+    from linkage.drive import ConstantSpeed
+
+    fb = linkage.catalog.hoecken()
+    drive = ConstantSpeed(omega=1.0)
+    one = fb.sweep(time=0.3, drive=drive, outputs=("point", "instant_centres"))
+    many = fb.sweep(time=[0.3], drive=drive, outputs=("point", "instant_centres"))
+    assert one.point.shape == (2,) and one.instant_centres.shape == (6, 2)
+    assert one.time is not None and one.time.shape == () and float(one.time) == 0.3
+    np.testing.assert_array_equal(one.point, many.point[0])

@@ -162,6 +162,66 @@ class FourBar:
         )
 
     # -- analyses -------------------------------------------------------------------------
+    def cognates(self) -> tuple[FourBar, FourBar]:
+        """Return the two Roberts–Chebyshev cognates: the other four-bars that draw this one's
+        coupler curve with the same coupler point, placed in the same frame.
+
+        The third pivot is ``D = O + z (C − O)``, ``z = (P − A)/(B − A)`` as complex numbers
+        (triangle ``O C D`` similar to the coupler triangle ``A B P``). The first cognate turns
+        about ``O`` and ``D``: its crank turns with this coupler (parallel to ``P − A``). The
+        second turns about ``C`` and ``D``: its crank is parallel to ``P − B``. A cognate's
+        crank is another link than this crank, so its Grashof class is its own; one that rocks
+        may turn fully driven at its other pivot (:meth:`reversed`).
+
+        Returns
+        -------
+        (FourBar, FourBar)
+            The cognate about ``O`` and ``D``, then the one about ``C`` and ``D``.
+
+        Raises
+        ------
+        LinkageError
+            When the coupler point is at ``A`` or ``B`` (a cognate's link would have no length)
+            or the linkage never assembles.
+
+        Examples
+        --------
+        Hoecken's crank-rocker has a cognate that is Chebyshev's lambda mechanism, driven at its
+        other pivot:
+
+        >>> import linkage
+        >>> fb = linkage.catalog.hoecken()
+        >>> first, second = fb.cognates()
+        >>> first.grashof(), first.o, first.c
+        ('double-rocker', (0.0, 0.0), (40.0, 0.0))
+        >>> lam = second.reversed()
+        >>> lam.grashof(), lam.o, lam.c, round(lam.crank, 9), round(lam.coupler, 9)
+        ('crank-rocker', (40.0, 0.0), (20.0, 0.0), 10.0, 25.0)
+        """
+        a, b = self._core.cognates()
+        return FourBar._from_core(a), FourBar._from_core(b)
+
+    def reversed(self) -> FourBar:
+        """Return the same linkage driven at its rocker: crank pivot ``C``, rocker pivot ``O``.
+
+        Crank and rocker lengths swap and the coupler point stays where it is; the assembly is
+        the one that keeps the linkage as it is.
+
+        Raises
+        ------
+        LinkageError
+            When the linkage never assembles.
+
+        Examples
+        --------
+        >>> import linkage
+        >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+        >>> r = fb.reversed()
+        >>> r.o, r.c, r.crank, r.rocker, r.grashof()
+        ((20.0, 0.0), (0.0, 0.0), 25.0, 10.0, 'rocker-crank')
+        """
+        return FourBar._from_core(self._core.reversed())
+
     def grashof(self) -> str:
         """Grashof class of the linkage.
 

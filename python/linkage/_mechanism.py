@@ -5,9 +5,11 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from linkage import _core
@@ -48,6 +50,36 @@ def _known_outputs(out: tuple[str, ...], has_omega: bool) -> tuple[str, ...]:
     return _check_outputs(out, has_omega)
 
 
+def _same_as_before(raw: Mapping[str, Any], more: Mapping[str, Any], column: int | None) -> None:
+    """Check a completion (``more``, every joint and flag) against what the sweep returned.
+
+    The completion sweeps the caller's ``theta``, ``omega`` and ``alpha`` arrays again (a copy of
+    each at every sweep would cost more than a point-only sweep); the same inputs give the same
+    bits, so an output that differs means the caller changed those arrays since.
+
+    Raises
+    ------
+    LinkageError
+        Naming the output that differs, when it does.
+    """
+    for key, old in raw.items():
+        new = more.get(key)
+        if new is None or key in ("margin", "regular", "gap"):
+            continue
+        if column is not None and key in PER_JOINT:
+            new = new[:, column : column + 1]
+        if new.shape != old.shape or not np.array_equal(new, old, equal_nan=True):
+            raise LinkageError(
+                f"cannot compute the rest of this sweep: its {key} came out different, so the "
+                "theta, omega or alpha array given to sweep() was changed since. Sweep a copy "
+                "(theta.copy()), or ask for what you need in outputs at once"
+            )
+
+
+PER_JOINT = ("joints", "velocity", "acceleration", "curvature", "curvature_centres")
+"""The outputs with a joint axis (one column in a point-only sweep)."""
+
+
 def check_pairs(
     pairs: Iterable[tuple[str, str]], links: tuple[str, ...]
 ) -> tuple[tuple[tuple[str, str], ...], list[tuple[int, int]]]:
@@ -72,7 +104,9 @@ def check_pairs(
     ...
     linkage._arrays.UnknownNameError: pairs[0]: no link 'frame'; links are ground, crank, ...
     """
-    if isinstance(pairs, (str, bytes)) or not isinstance(pairs, Iterable):
+    # Ordered collections only: the centres come in the order of the pairs (no set, no dict).
+    unordered = (str, bytes, Mapping, AbstractSet)
+    if isinstance(pairs, unordered) or not isinstance(pairs, Iterable):
         raise TypeError(
             f"pairs must be a sequence of (link, link) name pairs, got {type(pairs).__name__}"
         )
@@ -80,12 +114,14 @@ def check_pairs(
     index: list[tuple[int, int]] = []
     where = {name: k for k, name in enumerate(links)}
     for q, pair in enumerate(pairs):
-        if isinstance(pair, (str, bytes)) or not isinstance(pair, Iterable):
+        if isinstance(pair, (str, bytes)) or not isinstance(pair, (Sequence, np.ndarray)):
             raise TypeError(f"pairs[{q}] must be a (link, link) pair of names, got {pair!r}")
         two = tuple(pair)
         if len(two) != 2:
             raise LinkageError(f"pairs[{q}] must hold two link names, got {len(two)}")
         a, b = two
+        if isinstance(a, np.str_) and isinstance(b, np.str_):
+            a, b = str(a), str(b)
         if not isinstance(a, str) or not isinstance(b, str):
             raise TypeError(
                 f"pairs[{q}]: links must be named by str, got {type(a).__name__}, "
@@ -657,7 +693,7 @@ class Mechanism:
                 raise LinkageError("give either theta (with omega, alpha) or time= and drive=")
             if not hasattr(drive, "angles"):
                 raise TypeError(f"drive must have an angles(t) method, got {type(drive).__name__}")
-            times, _ = as_angles(time, "time")
+            times, scalar_time = as_angles(time, "time")
             theta, omega, alpha = drive.angles(times)
         elif theta is None:
             raise TypeError("sweep() needs theta (crank angles) or time= and drive=")
@@ -671,6 +707,8 @@ class Mechanism:
             asked = {**asked, "pairs": index}
         # Non-finite angles and rates are refused by the extension, with the same messages.
         th, scalar = as_angles(theta, "theta", finite=False)
+        if times is not None:
+            scalar = scalar_time
         n = th.shape[0]
         w = as_rate(omega, "omega", n, finite=False)
         a = as_rate(alpha, "alpha", n, finite=False)
@@ -689,6 +727,7 @@ class Mechanism:
 
         def complete() -> dict[str, Any]:
             more: dict[str, Any] = core.sweep(th, w, a, **asked, column=None, flags=True)
+            _same_as_before(raw, more, None if full else trace)
             return more
 
         s = Sweep(
@@ -702,7 +741,7 @@ class Mechanism:
             complete=complete,
             link_pairs=link_pairs,
         )
-        s.time = times
+        s.time = None if times is None else times.reshape(()) if scalar else times
         return s
 
 

@@ -53,10 +53,12 @@ class Bar:
     def stage(self, name: str, steps: int) -> None:
         """Start a further stage of ``steps`` steps, named ``name``, counted from zero.
 
-        On a terminal the bar so far keeps its line (it ends there) and the stage draws its own.
+        On a terminal the bar so far keeps its line, redrawn with its last count (a draw is at
+        most every tenth of a second, so the line may show an older one), and the stage draws
+        its own.
         """
         if self.enabled and self.tty and self._last:
-            sys.stderr.write("\n")
+            sys.stderr.write("\r" + self._text("") + " " * 4 + "\n")
             sys.stderr.flush()
         self.desc = f"{self._base}, {name}"
         self.total, self.done, self._tenth, self._last = steps, 0, -1, 0.0

@@ -452,6 +452,132 @@ impl<T: RealField + Copy> FourBar<T> {
         }
     }
 
+    /// The two Roberts–Chebyshev cognates: the other four-bars whose coupler point draws this
+    /// one's coupler curve, placed in the same frame.
+    ///
+    /// With `z = (P − A)/(B − A)` (complex: the coupler triangle's shape), the third pivot is
+    /// `D = O + z (C − O)` (triangle `O C D` similar to `A B P`). The first cognate turns about
+    /// `O` and `D`: its crank `O → A₁ = z (B − A)` turns with this coupler, its coupler
+    /// `A₁ → E₁ = z (A − O)` with this crank (`P = A₁ + (A − O)`), its rocker is
+    /// `D → E₁ = z (B − C)`. The second turns about `C` and `D`: crank `C → B₂ = (z − 1)(B − A)`,
+    /// coupler `B₂ → E₂ = (1 − z)(B − C)` (`P = B₂ + (B − C)`), rocker `D → E₂ = (1 − z)(A − O)`.
+    /// Lengths are those of this linkage times `|z|` or `|1 − z|`; each cognate's assembly is
+    /// the side its `B` is on in one assembled pose. A cognate's crank turns with another link
+    /// of this one, so its Grashof class and input range are its own: a triple-rocker's curve
+    /// may be drawn by a cognate whose crank turns fully (and the other way round).
+    ///
+    /// ```
+    /// use linkage_core::{catalog, Assembly, FourBar, Vec2};
+    /// let fb = catalog::hoecken::<f64>(); // a crank-rocker
+    /// let [first, second] = fb.cognates().unwrap();
+    /// assert_eq!((first.o, second.o), (fb.o, fb.c));
+    /// assert_eq!(first.c, second.c); // the third pivot D
+    /// // The same coupler curve: at θ the coupler point of `fb` is the first cognate's with its
+    /// // crank O → A₁ parallel to P − A, the second's with C → B₂ parallel to P − B. (Their
+    /// // cranks rock: the curve passes their toggles, so either assembly, as a circuit does.)
+    /// let on = |cog: FourBar<f64>, angle: f64, p: Vec2<f64>| {
+    ///     [Assembly::Open, Assembly::Crossed].into_iter().any(|assembly| {
+    ///         let q = FourBar { assembly, ..cog }.pose(angle);
+    ///         q.is_ok_and(|q| (q.coupler_point - p).norm() < 1e-12 * 100.0)
+    ///     })
+    /// };
+    /// for k in 0..63 {
+    ///     let p = fb.pose(k as f64 * 0.1).unwrap();
+    ///     let (da, db) = (p.coupler_point - p.a, p.coupler_point - p.b);
+    ///     assert!(on(first, da.y.atan2(da.x), p.coupler_point));
+    ///     assert!(on(second, db.y.atan2(db.x), p.coupler_point));
+    /// }
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::CannotAssemble`] when the linkage never assembles; [`Error::InvalidLength`]
+    /// when the coupler point is at `A` or `B` (a cognate's link would have no length).
+    pub fn cognates(&self) -> Result<[FourBar<T>; 2], Error> {
+        let theta = self.assembled_angle();
+        let p = self.pose(theta)?;
+        let (o, c, a, b, pt) = (self.o, self.c, p.a, p.b, p.coupler_point);
+        // Complex products and quotients on Vec2 (x + iy).
+        let mul = |z: Vec2<T>, w: Vec2<T>| Vec2::new(z.x * w.x - z.y * w.y, z.x * w.y + z.y * w.x);
+        // z = (P − A)/(B − A) = (along + i·left)/|AB|, exactly as the linkage is defined.
+        let z = Vec2::new(self.along, self.left) / self.coupler;
+        let one_minus_z = Vec2::new(T::one() - z.x, -z.y);
+        let d = o + mul(z, c - o);
+        let (u, v, w) = (a - o, b - a, b - c);
+        let first = Self::from_points(o, d, o + mul(z, v), d + mul(z, w), pt)?;
+        let second = Self::from_points(
+            c,
+            d,
+            c + mul(Vec2::new(z.x - T::one(), z.y), v),
+            d + mul(one_minus_z, u),
+            pt,
+        )?;
+        Ok([first, second])
+    }
+
+    /// The same linkage driven at its rocker: crank pivot `C`, rocker pivot `O`, the coupler
+    /// point unchanged (the crank and rocker lengths swap; the assembly is the side the old
+    /// `A` is on in one assembled pose). A cognate that draws a curve with a rocking crank may
+    /// draw it with a crank that turns fully this way round.
+    ///
+    /// ```
+    /// use linkage_core::{catalog, GrashofClass};
+    /// let fb = catalog::hoecken::<f64>();
+    /// let [_, second] = fb.cognates().unwrap();
+    /// assert_eq!(second.grashof(), GrashofClass::RockerCrank);
+    /// let driven = second.reversed().unwrap();
+    /// assert_eq!(driven.grashof(), GrashofClass::CrankRocker);
+    /// assert_eq!((driven.o, driven.c, driven.crank), (second.c, second.o, second.rocker));
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::CannotAssemble`] when the linkage never assembles.
+    pub fn reversed(&self) -> Result<FourBar<T>, Error> {
+        let p = self.pose(self.assembled_angle())?;
+        Self::from_points(self.c, self.o, p.b, p.a, p.coupler_point)
+    }
+
+    /// A crank angle at which the linkage assembles (0 for a full turn, else mid-range; 0 when
+    /// it never does, where the pose then says by how much).
+    fn assembled_angle(&self) -> T {
+        match self.input_range() {
+            InputRange::Full | InputRange::Never => T::zero(),
+            InputRange::Between { lo, hi } => (lo + hi) / lit::<T>(2.0),
+            InputRange::TwoIntervals {
+                first: (lo, hi), ..
+            } => (lo + hi) / lit::<T>(2.0),
+        }
+    }
+
+    /// The four-bar with crank pivot `o`, rocker pivot `c`, crank pin `a`, coupler–rocker joint
+    /// `b` and coupler point `p` as placed (one pose): lengths, coupler point and assembly.
+    fn from_points(
+        o: Vec2<T>,
+        c: Vec2<T>,
+        a: Vec2<T>,
+        b: Vec2<T>,
+        p: Vec2<T>,
+    ) -> Result<FourBar<T>, Error> {
+        let e = b - a;
+        let len = crate::scalar::length(e);
+        let rel = p - a;
+        let (along, left) = ((rel.x * e.x + rel.y * e.y) / len, cross(e, rel) / len);
+        // Open: B left of A → C.
+        let assembly = if cross(c - a, e) >= T::zero() {
+            Assembly::Open
+        } else {
+            Assembly::Crossed
+        };
+        FourBar::with_pivots(
+            o,
+            c,
+            crate::scalar::length(a - o),
+            len,
+            crate::scalar::length(b - c),
+            (along, left),
+            assembly,
+        )
+    }
+
     /// Transmission angle `μ ∈ [0, π]`: the angle at `B` between coupler and rocker. Force
     /// transmission is best at `μ = 90°` and fails at the toggles `μ = 0, π`. `None` when the
     /// linkage cannot assemble at `theta`.

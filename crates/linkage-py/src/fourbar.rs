@@ -183,6 +183,17 @@ impl FourBar {
         )
     }
 
+    /// The two Roberts–Chebyshev cognates (`FourBar::cognates`).
+    fn cognates(&self) -> PyResult<(FourBar, FourBar)> {
+        let [a, b] = self.inner.cognates().map_err(to_py)?;
+        Ok((FourBar::from_core(a), FourBar::from_core(b)))
+    }
+
+    /// The same linkage driven at its rocker (`FourBar::reversed`).
+    fn reversed(&self) -> PyResult<FourBar> {
+        self.inner.reversed().map(FourBar::from_core).map_err(to_py)
+    }
+
     /// Grashof class name.
     fn grashof(&self) -> &'static str {
         self.inner.grashof().name()

@@ -1,0 +1,107 @@
+//! Roberts–Chebyshev cognates and the reversed drive: every point of a four-bar's coupler
+//! curve is on each cognate's (and the reversed linkage's) at the crank angle the construction
+//! says, on one of its two assemblies; random four-bars of every class, placements and points.
+
+use linkage_core::{Assembly, FourBar, Vec2};
+use proptest::prelude::*;
+
+mod common;
+
+/// Whether `fb` (either assembly) puts its coupler point within `tol` of `p` at `angle`.
+fn draws(fb: FourBar<f64>, angle: f64, p: Vec2<f64>, tol: f64) -> bool {
+    [Assembly::Open, Assembly::Crossed]
+        .into_iter()
+        .any(|assembly| {
+            FourBar { assembly, ..fb }
+                .pose(angle)
+                .is_ok_and(|q| (q.coupler_point - p).norm() <= tol)
+        })
+}
+
+fn fourbar() -> impl Strategy<Value = FourBar<f64>> {
+    (
+        (
+            -50.0f64..50.0,
+            -50.0f64..50.0,
+            0.0f64..std::f64::consts::TAU,
+        ),
+        (0.2f64..3.0, 0.2f64..3.0, 0.2f64..3.0, 0.2f64..3.0),
+        (-3.0f64..3.0, -3.0f64..3.0),
+        any::<bool>(),
+    )
+        .prop_filter_map(
+            "assembles",
+            |((x, y, turn), (g, r, b, c), (u, v), crossed)| {
+                let o = Vec2::new(x, y);
+                let cpivot = o + Vec2::new(turn.cos(), turn.sin()) * g;
+                let assembly = if crossed {
+                    Assembly::Crossed
+                } else {
+                    Assembly::Open
+                };
+                let fb = FourBar::with_pivots(o, cpivot, r, b, c, (u * b, v * b), assembly).ok()?;
+                // A coupler point away from A and B (a cognate's link would vanish there).
+                let z = Vec2::new(u, v);
+                let away = z.norm() > 1e-3 && (z - Vec2::new(1.0, 0.0)).norm() > 1e-3;
+                (away && fb.pose(fb_angle(&fb)?).is_ok()).then_some(fb)
+            },
+        )
+}
+
+/// An angle at which `fb` assembles (mid-range), if any.
+fn fb_angle(fb: &FourBar<f64>) -> Option<f64> {
+    use linkage_core::InputRange;
+    match fb.input_range() {
+        InputRange::Full => Some(0.0),
+        InputRange::Between { lo, hi } => Some(0.5 * (lo + hi)),
+        InputRange::TwoIntervals {
+            first: (lo, hi), ..
+        } => Some(0.5 * (lo + hi)),
+        InputRange::Never => None,
+    }
+}
+
+proptest! {
+    #![proptest_config(common::config("proptest-regressions/cognates.txt"))]
+
+    #[test]
+    fn cognates_and_the_reversed_drive_draw_the_same_curve(fb in fourbar(), ts in prop::collection::vec(0.0f64..1.0, 24)) {
+        let [first, second] = fb.cognates().unwrap();
+        let reversed = fb.reversed().unwrap();
+        let size = (fb.c - fb.o).norm().max(fb.crank).max(fb.coupler).max(fb.rocker)
+            .max(fb.along.hypot(fb.left)) + fb.o.norm();
+        let tol = 1e-9 * size;
+        prop_assert_eq!(first.o, fb.o);
+        prop_assert_eq!(second.o, fb.c);
+        prop_assert_eq!((reversed.o, reversed.c), (fb.c, fb.o));
+        let (lo, hi) = match fb.input_range() {
+            linkage_core::InputRange::Full => (0.0, std::f64::consts::TAU),
+            linkage_core::InputRange::Between { lo, hi } => (lo, hi),
+            linkage_core::InputRange::TwoIntervals { first: (lo, hi), .. } => (lo, hi),
+            linkage_core::InputRange::Never => unreachable!(),
+        };
+        for t in ts {
+            let Ok(p) = fb.pose(lo + t * (hi - lo)) else { continue };
+            // Toggle poses aside (the dyad's two solutions meet there, either is the pose).
+            if p.margin < 1e-6 { continue }
+            let (pa, pb, bc) = (p.coupler_point - p.a, p.coupler_point - p.b, p.b - fb.c);
+            prop_assert!(draws(first, pa.y.atan2(pa.x), p.coupler_point, tol), "first cognate {first:?} misses {:?}", p.coupler_point);
+            prop_assert!(draws(second, pb.y.atan2(pb.x), p.coupler_point, tol), "second cognate {second:?} misses {:?}", p.coupler_point);
+            prop_assert!(draws(reversed, bc.y.atan2(bc.x), p.coupler_point, tol), "reversed {reversed:?} misses {:?}", p.coupler_point);
+        }
+    }
+}
+
+/// A coupler point at a pin has no cognate (a link of no length): an error, not a panic.
+#[test]
+fn a_point_at_a_pin_has_no_cognates() {
+    let at_a = FourBar::new(20.0, 10.0, 25.0, 25.0, (0.0, 0.0), Assembly::Open).unwrap();
+    assert!(at_a.cognates().is_err(), "P at A");
+    let at_b = FourBar::new(20.0, 10.0, 25.0, 25.0, (25.0, 0.0), Assembly::Open).unwrap();
+    assert!(at_b.cognates().is_err(), "P at B");
+    let never = FourBar::new(20.0, 1.0, 2.0, 2.0, (1.0, 1.0), Assembly::Open).unwrap();
+    assert!(
+        never.cognates().is_err() && never.reversed().is_err(),
+        "never assembles"
+    );
+}
