@@ -573,3 +573,25 @@ def test_evans_b_is_recovered_exactly(atlas: Atlas) -> None:
     pts = evans_b_target()
     found = synthesis.path(pts, top=1, atlas=atlas)
     assert found[0].error <= 1e-6 * synthesis.target_size(pts)
+
+
+def test_cognates_of_an_exact_fit_offer_its_full_turn_drives() -> None:
+    """An exact fit by a linkage whose crank rocks (Hoecken's first cognate, a double-rocker,
+    draws Hoecken's curve) brings its cognates and other drives along: Hoecken itself and
+    Chebyshev's lambda driven at D, both crank-rockers fitting to rounding, which the ranking
+    then prefers. The search may stop at its first exact fit (``top=1``)."""
+    fb = linkage.catalog.hoecken()
+    first, _ = fb.cognates()
+    target = synthesis.clean_target(np.ascontiguousarray(fb.circuit(61).point[:-1]), True)
+    size = synthesis.target_size(target)
+    x = np.array(first._p()[:9], dtype=np.float64)
+    rocking = synthesis._measure(x, first.assembly == "crossed", target, True, "atlas", 1)
+    assert rocking is not None and rocking.grashof == "double-rocker"
+    assert rocking.error <= synthesis.EXACT * size
+    more = synthesis._cognate_candidates([rocking], target, True, size, 1)
+    turning = [c for c in more if c.full_turn and c.error <= 1e-12 * size]
+    pivots = {frozenset((c.linkage.o, c.linkage.c)) for c in turning}
+    assert pivots == {frozenset({(0.0, 0.0), (20.0, 0.0)}), frozenset({(40.0, 0.0), (20.0, 0.0)})}
+    assert all(c.grashof == "crank-rocker" and c.source == "cognate" for c in turning)
+    best = synthesis._ranked([rocking, *more], size, math.inf)[0]
+    assert best.full_turn, best

@@ -163,10 +163,10 @@ class FourBar:
 
     # -- analyses -------------------------------------------------------------------------
     def cognates(self) -> tuple[FourBar, FourBar]:
-        """Return the two Roberts–Chebyshev cognates: the other four-bars that draw this one's
-        coupler curve with the same coupler point, placed in the same frame.
+        """Return the two Roberts–Chebyshev cognates, placed in the same frame.
 
-        The third pivot is ``D = O + z (C − O)``, ``z = (P − A)/(B − A)`` as complex numbers
+        They are the other four-bars whose coupler point draws this one's coupler curve. The
+        third pivot is ``D = O + z (C − O)``, ``z = (P − A)/(B − A)`` as complex numbers
         (triangle ``O C D`` similar to the coupler triangle ``A B P``). The first cognate turns
         about ``O`` and ``D``: its crank turns with this coupler (parallel to ``P − A``). The
         second turns about ``C`` and ``D``: its crank is parallel to ``P − B``. A cognate's

@@ -408,7 +408,9 @@ class Candidate(Generic[LinkageT]):
     ``grashof`` is the four-bar's Grashof class, or for a slider-crank ``"crank-slider"`` (the
     crank turns fully, ``|offset| + crank < coupler``) or ``"rocker-slider"`` (it rocks);
     ``min_transmission`` is the transmission angle's least distance from a toggle (a
-    slider-crank's: the angle between the rod and the normal to the line).
+    slider-crank's: the angle between the rod and the normal to the line). ``source`` says
+    where it came from: ``"atlas"`` (a match refined), ``"global"`` (the global search) or
+    ``"cognate"`` (a Roberts cognate of an exact fit, or one driven at its other pivot).
     """
 
     linkage: LinkageT
@@ -1001,8 +1003,54 @@ def path(
             )
     if bar is not None:
         bar.close()
+    found += _cognate_candidates(found, target, closed, size, nthreads, top)
     ok = [c for c in found if _meets(c, full_turn, min_transmission, lengths, pivots)]
     return _distinct(_ranked(ok, size, limit), target, closed, size, top)
+
+
+COGNATES_OF = 8
+"""Most exact four-bar fits whose cognates and reversed drives are measured too (the best
+``top`` of them, at most this many: each costs five measurements, about 12 ms)."""
+
+
+def _cognate_candidates(
+    found: list[Candidate[Any]],
+    target: Float2D,
+    closed: bool,
+    size: float,
+    threads: int,
+    top: int = COGNATES_OF,
+) -> list[Candidate[Any]]:
+    """Measure the Roberts cognates of the best exact four-bar fits, each driven at either pivot.
+
+    They draw the same curve, so they fit as well; the search may have stopped at the first
+    exact fit (``top=1``), and a cognate or the other drive may turn fully or transmit better,
+    which the ranking prefers. Those that do not trace the target on one circuit are dropped by
+    the measurement, as any candidate is.
+    """
+    exact = sorted(
+        (c for c in found if isinstance(c.linkage, FourBar) and c.error <= EXACT * size),
+        key=lambda c: c.error,
+    )
+    out: list[Candidate[Any]] = []
+    seen = [c.params for c in found]
+    for c in exact[: min(top, COGNATES_OF)]:
+        fb = c.linkage
+        try:
+            first, second = fb.cognates()
+            variants = [fb.reversed(), first, second, first.reversed(), second.reversed()]
+        except LinkageError:
+            continue
+        for v in variants:
+            p = v._p()
+            x = np.array(p[:9], dtype=np.float64)
+            if any(np.max(np.abs(x - q)) <= 1e-9 * size for q in seen if q.shape == x.shape):
+                continue  # found already (a search finds cognates too)
+            seen.append(x)
+            cand = _measure(x, p[9] == "crossed", target, closed, "cognate", threads)
+            if cand is not None:
+                out.append(cand)
+    return out
 
 
 def _turns_fully(x: NDArray[np.float64]) -> bool:
@@ -1257,21 +1305,23 @@ def _distinct(
     ``max(1e-6 size, error / 20)`` of the other's (a difference the target cannot tell); the
     later (worse-ranked) one is dropped unless it is a Roberts cognate of the earlier. Two
     candidates of the same kind and assembly whose parameters agree to 1e-9 of the size are the
-    same linkage, whatever their matched curves (one that does not sample finitely included).
+    same linkage, whatever their matched curves (one that does not sample finitely included);
+    so are two four-bars that are one linkage driven at either pivot (the better drive is kept).
     """
-    kept: list[tuple[Candidate[Any], Float2D]] = []
+    kept: list[tuple[Candidate[Any], Float2D, list[tuple[Any, NDArray[np.float64]]]]] = []
     for c in ranked:
         if len(kept) >= top:
             break
         curve = _matched_curve(c, target, closed)
         same = False
-        for u, ucurve in kept:
+        for u, ucurve, forms in kept:
             tol = max(1e-6 * size, min(c.error, u.error) / 20)
-            if (
-                type(u.linkage) is type(c.linkage)
-                and getattr(u.linkage, "assembly", None) == getattr(c.linkage, "assembly", None)
-                and u.params.shape == c.params.shape
-                and float(np.max(np.abs(u.params - c.params), initial=0.0)) <= 1e-9 * size
+            if any(
+                type(form) is type(c.linkage)
+                and getattr(form, "assembly", None) == getattr(c.linkage, "assembly", None)
+                and params.shape == c.params.shape
+                and float(np.max(np.abs(params - c.params), initial=0.0)) <= 1e-9 * size
+                for form, params in forms
             ):
                 same = True
                 break
@@ -1283,8 +1333,20 @@ def _distinct(
                 same = True
                 break
         if not same:
-            kept.append((c, curve))
-    return [c for c, _ in kept]
+            kept.append((c, curve, _forms(c)))
+    return [c for c, _, _ in kept]
+
+
+def _forms(c: Candidate[Any]) -> list[tuple[Any, NDArray[np.float64]]]:
+    """``c``'s linkage and parameters, and for a four-bar the same driven at its rocker."""
+    forms: list[tuple[Any, NDArray[np.float64]]] = [(c.linkage, c.params)]
+    if isinstance(c.linkage, FourBar):
+        try:
+            r = c.linkage.reversed()
+        except LinkageError:
+            return forms
+        forms.append((r, np.array(r._p()[:9], dtype=np.float64)))
+    return forms
 
 
 def largest_distance(points: ArrayLike, path: ArrayLike) -> float:

@@ -71,9 +71,9 @@ proptest! {
         let size = (fb.c - fb.o).norm().max(fb.crank).max(fb.coupler).max(fb.rocker)
             .max(fb.along.hypot(fb.left)) + fb.o.norm();
         let tol = 1e-9 * size;
-        prop_assert_eq!(first.o, fb.o);
-        prop_assert_eq!(second.o, fb.c);
-        prop_assert_eq!((reversed.o, reversed.c), (fb.c, fb.o));
+        prop_assert_eq!(first.o, fb.o, "the first cognate turns about O");
+        prop_assert_eq!(second.o, fb.c, "the second cognate turns about C");
+        prop_assert_eq!((reversed.o, reversed.c), (fb.c, fb.o), "the reversed drive swaps the pivots");
         let (lo, hi) = match fb.input_range() {
             linkage_core::InputRange::Full => (0.0, std::f64::consts::TAU),
             linkage_core::InputRange::Between { lo, hi } => (lo, hi),
