@@ -595,3 +595,23 @@ def test_cognates_of_an_exact_fit_offer_its_full_turn_drives() -> None:
     assert all(c.grashof == "crank-rocker" and c.source == "cognate" for c in turning)
     best = synthesis._ranked([rocking, *more], size, math.inf)[0]
     assert best.full_turn, best
+
+
+def test_cognate_candidates_are_exact_and_each_linkage_is_listed_once(atlas: Atlas) -> None:
+    """A new user's case: a crossed crank-rocker's curve gave the same cognate driven at either
+    pivot twice (their assemblies differ: a rocking crank's flips at its limits), and a reversed
+    double-rocker tracing its other circuit at an error of the curve's size. Every candidate is
+    now a different linkage, and every cognate fits exactly."""
+    fb = linkage.FourBar(
+        ground=30, crank=22, coupler=9, rocker=26, point=(-4, 12), assembly="crossed"
+    )
+    pts = np.ascontiguousarray(fb.circuit(60).point[:-1])
+    size = synthesis.target_size(pts)
+    found = synthesis.path(pts, top=5, atlas=atlas)
+    assert found and found[0].full_turn and found[0].error <= 1e-12 * size
+    for c in found:
+        if c.source == "cognate":
+            assert c.error <= synthesis.EXACT * size, c
+    for i, a in enumerate(found):
+        for b in found[:i]:
+            assert not synthesis._same_pivots(a, b, 1e-9 * size), (a, b)

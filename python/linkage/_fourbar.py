@@ -171,7 +171,9 @@ class FourBar:
         about ``O`` and ``D``: its crank turns with this coupler (parallel to ``P − A``). The
         second turns about ``C`` and ``D``: its crank is parallel to ``P − B``. A cognate's
         crank is another link than this crank, so its Grashof class is its own; one that rocks
-        may turn fully driven at its other pivot (:meth:`reversed`).
+        may turn fully driven at its other pivot (:meth:`reversed`). A cognate whose crank rocks
+        over two intervals may draw the curve on the circuit of its second one, where
+        :meth:`circuit` traces the first.
 
         Returns
         -------
@@ -205,7 +207,9 @@ class FourBar:
         """Return the same linkage driven at its rocker: crank pivot ``C``, rocker pivot ``O``.
 
         Crank and rocker lengths swap and the coupler point stays where it is; the assembly is
-        the one that keeps the linkage as it is.
+        the one that keeps the linkage as it is in one assembled pose. A four-bar whose crank
+        rocks does not say which of its circuits it is on (:meth:`circuit` traces the first
+        input interval's), so reversing one twice may give the other circuit's assembly.
 
         Raises
         ------

@@ -1025,8 +1025,7 @@ def _cognate_candidates(
 
     They draw the same curve, so they fit as well; the search may have stopped at the first
     exact fit (``top=1``), and a cognate or the other drive may turn fully or transmit better,
-    which the ranking prefers. Those that do not trace the target on one circuit are dropped by
-    the measurement, as any candidate is.
+    which the ranking prefers. Only those that fit exactly are kept.
     """
     exact = sorted(
         (c for c in found if isinstance(c.linkage, FourBar) and c.error <= EXACT * size),
@@ -1048,7 +1047,9 @@ def _cognate_candidates(
                 continue  # found already (a search finds cognates too)
             seen.append(x)
             cand = _measure(x, p[9] == "crossed", target, closed, "cognate", threads)
-            if cand is not None:
+            # Exact or nothing: a variant that is not exact traces the curve on another circuit (a
+            # crank that rocks over two intervals traces the first; see FourBar.cognates).
+            if cand is not None and cand.error <= EXACT * size:
                 out.append(cand)
     return out
 
@@ -1328,13 +1329,25 @@ def _distinct(
             if (
                 largest_distance(curve, ucurve) <= tol
                 and largest_distance(ucurve, curve) <= tol
-                and not _cognates(u, c, max(1e-6 * size, 1e-3 * size))
+                and (
+                    _same_pivots(u, c, 1e-9 * size)
+                    or not _cognates(u, c, max(1e-6 * size, 1e-3 * size))
+                )
             ):
                 same = True
                 break
         if not same:
             kept.append((c, curve, _forms(c)))
     return [c for c, _, _ in kept]
+
+
+def _same_pivots(a: Candidate[Any], b: Candidate[Any], tol: float) -> bool:
+    """Whether two four-bars turn about the same two ground pivots (in either order)."""
+    if not (isinstance(a.linkage, FourBar) and isinstance(b.linkage, FourBar)):
+        return False
+    pa = (complex(*a.linkage.o), complex(*a.linkage.c))
+    pb = (complex(*b.linkage.o), complex(*b.linkage.c))
+    return any(abs(pb[0] - p) <= tol and abs(pb[1] - q) <= tol for p, q in (pa, pa[::-1]))
 
 
 def _forms(c: Candidate[Any]) -> list[tuple[Any, NDArray[np.float64]]]:

@@ -489,9 +489,14 @@ impl<T: RealField + Copy> FourBar<T> {
     /// }
     /// ```
     ///
+    /// A cognate's crank may rock over two intervals (a double-rocker): the curve is then drawn
+    /// on the circuit of one of them, which need not be the first that
+    /// [`FourBar::circuit`] traces; its crank angle at a pose of this linkage is `arg(P − A)`
+    /// (first) or `arg(P − B)` (second).
+    ///
     /// # Errors
-    /// [`Error::CannotAssemble`] when the linkage never assembles; [`Error::InvalidLength`]
-    /// when the coupler point is at `A` or `B` (a cognate's link would have no length).
+    /// [`Error::CannotAssemble`] when the linkage never assembles; [`Error::Degenerate`] when
+    /// the coupler point is at `A` or `B` (a cognate's link would have no length).
     pub fn cognates(&self) -> Result<[FourBar<T>; 2], Error> {
         let theta = self.assembled_angle();
         let p = self.pose(theta)?;
@@ -501,6 +506,11 @@ impl<T: RealField + Copy> FourBar<T> {
         // z = (P − A)/(B − A) = (along + i·left)/|AB|, exactly as the linkage is defined.
         let z = Vec2::new(self.along, self.left) / self.coupler;
         let one_minus_z = Vec2::new(T::one() - z.x, -z.y);
+        if z == Vec2::zeros() || one_minus_z == Vec2::zeros() {
+            return Err(Error::Degenerate {
+                what: "coupler point at A or B: a cognate's link would have no length",
+            });
+        }
         let d = o + mul(z, c - o);
         let (u, v, w) = (a - o, b - a, b - c);
         let first = Self::from_points(o, d, o + mul(z, v), d + mul(z, w), pt)?;
@@ -519,6 +529,11 @@ impl<T: RealField + Copy> FourBar<T> {
     /// `A` is on in one assembled pose). A cognate that draws a curve with a rocking crank may
     /// draw it with a crank that turns fully this way round.
     ///
+    /// A `FourBar` whose crank rocks does not say which of its circuits it is on (the
+    /// assembly flips at each limit, and [`FourBar::circuit`] traces the first interval's):
+    /// the pose taken here is the declared assembly's mid-range one, so reversing such a
+    /// linkage twice may give the other circuit's assembly.
+    ///
     /// ```
     /// use linkage_core::{catalog, GrashofClass};
     /// let fb = catalog::hoecken::<f64>();
@@ -533,14 +548,30 @@ impl<T: RealField + Copy> FourBar<T> {
     /// [`Error::CannotAssemble`] when the linkage never assembles.
     pub fn reversed(&self) -> Result<FourBar<T>, Error> {
         let p = self.pose(self.assembled_angle())?;
-        Self::from_points(self.c, self.o, p.b, p.a, p.coupler_point)
+        // The lengths swap exactly; P from B towards A: along `coupler − along`, left negated.
+        let assembly = if cross(self.o - p.b, p.a - p.b) >= T::zero() {
+            Assembly::Open
+        } else {
+            Assembly::Crossed
+        };
+        FourBar::with_pivots(
+            self.c,
+            self.o,
+            self.rocker,
+            self.coupler,
+            self.crank,
+            (self.coupler - self.along, -self.left),
+            assembly,
+        )
     }
 
-    /// A crank angle at which the linkage assembles (0 for a full turn, else mid-range; 0 when
-    /// it never does, where the pose then says by how much).
+    /// A crank angle at which the linkage assembles, away from flat positions: square to the
+    /// ground line for a full turn (a change point is flat along it), else mid-range; when it
+    /// never assembles, any (the pose then says by how much).
     fn assembled_angle(&self) -> T {
+        let d = self.c - self.o;
         match self.input_range() {
-            InputRange::Full | InputRange::Never => T::zero(),
+            InputRange::Full | InputRange::Never => d.y.atan2(d.x) + T::frac_pi_2(),
             InputRange::Between { lo, hi } => (lo + hi) / lit::<T>(2.0),
             InputRange::TwoIntervals {
                 first: (lo, hi), ..
@@ -557,12 +588,21 @@ impl<T: RealField + Copy> FourBar<T> {
         b: Vec2<T>,
         p: Vec2<T>,
     ) -> Result<FourBar<T>, Error> {
-        let e = b - a;
+        // In units of a power of two near the linkage's size (exact), so the products below
+        // neither overflow nor underflow at any scale.
+        let big = [c - o, a - o, b - o, p - o]
+            .iter()
+            .fold(T::zero(), |m, v| m.max(v.x.abs()).max(v.y.abs()));
+        let s = crate::dyad::pow2_scale(big);
+        let (e, rel) = ((b - a) / s, (p - a) / s);
         let len = crate::scalar::length(e);
-        let rel = p - a;
-        let (along, left) = ((rel.x * e.x + rel.y * e.y) / len, cross(e, rel) / len);
+        let (along, left) = (
+            (rel.x * e.x + rel.y * e.y) / len * s,
+            cross(e, rel) / len * s,
+        );
+        let len = len * s;
         // Open: B left of A → C.
-        let assembly = if cross(c - a, e) >= T::zero() {
+        let assembly = if cross((c - a) / s, e) >= T::zero() {
             Assembly::Open
         } else {
             Assembly::Crossed

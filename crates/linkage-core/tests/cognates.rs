@@ -95,13 +95,68 @@ proptest! {
 /// A coupler point at a pin has no cognate (a link of no length): an error, not a panic.
 #[test]
 fn a_point_at_a_pin_has_no_cognates() {
+    let degenerate = Err(linkage_core::Error::Degenerate {
+        what: "coupler point at A or B: a cognate's link would have no length",
+    });
     let at_a = FourBar::new(20.0, 10.0, 25.0, 25.0, (0.0, 0.0), Assembly::Open).unwrap();
-    assert!(at_a.cognates().is_err(), "P at A");
+    assert_eq!(at_a.cognates(), degenerate, "P at A");
     let at_b = FourBar::new(20.0, 10.0, 25.0, 25.0, (25.0, 0.0), Assembly::Open).unwrap();
-    assert!(at_b.cognates().is_err(), "P at B");
+    assert_eq!(at_b.cognates(), degenerate, "P at B");
     let never = FourBar::new(20.0, 1.0, 2.0, 2.0, (1.0, 1.0), Assembly::Open).unwrap();
     assert!(
         never.cognates().is_err() && never.reversed().is_err(),
         "never assembles"
     );
+}
+
+/// A rhombus (a change point, flat along the ground line) has cognates and a reversed drive:
+/// the pose they are taken from is square to the ground line, not on a flat position.
+#[test]
+fn a_rhombus_has_cognates() {
+    let fb = FourBar::new(1.0, 1.0, 1.0, 1.0, (0.3, 0.2), Assembly::Open).unwrap();
+    assert!(fb.cognates().is_ok(), "{:?}", fb.cognates());
+    assert!(fb.reversed().is_ok(), "{:?}", fb.reversed());
+}
+
+/// At scales 1e±200 a cognate is the unit linkage's scaled (relative error ~ε), not a point
+/// that underflowed to zero or overflowed to NaN; reversing swaps the lengths exactly.
+#[test]
+fn cognates_at_extreme_scales() {
+    let unit = FourBar::new(2.0_f64, 1.0, 2.5, 2.5, (5.0, 0.7), Assembly::Open).unwrap();
+    let [u1, u2] = unit.cognates().unwrap();
+    for s in [1e-200_f64, 1e200] {
+        let fb = FourBar::new(
+            2.0 * s,
+            s,
+            2.5 * s,
+            2.5 * s,
+            (5.0 * s, 0.7 * s),
+            Assembly::Open,
+        )
+        .unwrap();
+        let [c1, c2] = fb.cognates().unwrap();
+        for (c, u) in [(c1, u1), (c2, u2)] {
+            for (got, want) in [
+                (c.crank, u.crank),
+                (c.coupler, u.coupler),
+                (c.rocker, u.rocker),
+                (c.along, u.along),
+                (c.left, u.left),
+                (c.c.x, u.c.x),
+                (c.c.y, u.c.y),
+            ] {
+                assert!(
+                    (got / s - want).abs() <= 1e-14 * (1.0 + want.abs()),
+                    "scale {s}: {got} against {want}"
+                );
+            }
+            assert_eq!(c.assembly, u.assembly, "scale {s}");
+        }
+        let r = fb.reversed().unwrap();
+        assert_eq!(
+            (r.crank, r.coupler, r.rocker),
+            (fb.rocker, fb.coupler, fb.crank),
+            "scale {s}"
+        );
+    }
 }
