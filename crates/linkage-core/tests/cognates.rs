@@ -7,14 +7,18 @@ use proptest::prelude::*;
 
 mod common;
 
-/// Whether `fb` (either assembly) puts its coupler point within `tol` of `p` at `angle`.
-fn draws(fb: FourBar<f64>, angle: f64, p: Vec2<f64>, tol: f64) -> bool {
+/// Whether `fb` (either assembly) puts its coupler point within `1e-9·size` of `p` at `angle`,
+/// or within the conditioning of its pose there: `angle` comes from a rounded pose of another
+/// linkage, and near `fb`'s own toggle (margin `m`) an angle error of ε moves its joints by
+/// about `ε·size/m` (16 of that allowed).
+fn draws(fb: FourBar<f64>, angle: f64, p: Vec2<f64>, size: f64) -> bool {
     [Assembly::Open, Assembly::Crossed]
         .into_iter()
         .any(|assembly| {
-            FourBar { assembly, ..fb }
-                .pose(angle)
-                .is_ok_and(|q| (q.coupler_point - p).norm() <= tol)
+            FourBar { assembly, ..fb }.pose(angle).is_ok_and(|q| {
+                let conditioning = 16.0 * f64::EPSILON * size / q.margin.max(f64::MIN_POSITIVE);
+                (q.coupler_point - p).norm() <= (1e-9 * size).max(conditioning)
+            })
         })
 }
 
@@ -70,7 +74,6 @@ proptest! {
         let reversed = fb.reversed().unwrap();
         let size = (fb.c - fb.o).norm().max(fb.crank).max(fb.coupler).max(fb.rocker)
             .max(fb.along.hypot(fb.left)) + fb.o.norm();
-        let tol = 1e-9 * size;
         prop_assert_eq!(first.o, fb.o, "the first cognate turns about O");
         prop_assert_eq!(second.o, fb.c, "the second cognate turns about C");
         prop_assert_eq!((reversed.o, reversed.c), (fb.c, fb.o), "the reversed drive swaps the pivots");
@@ -85,9 +88,9 @@ proptest! {
             // Toggle poses aside (the dyad's two solutions meet there, either is the pose).
             if p.margin < 1e-6 { continue }
             let (pa, pb, bc) = (p.coupler_point - p.a, p.coupler_point - p.b, p.b - fb.c);
-            prop_assert!(draws(first, pa.y.atan2(pa.x), p.coupler_point, tol), "first cognate {first:?} misses {:?}", p.coupler_point);
-            prop_assert!(draws(second, pb.y.atan2(pb.x), p.coupler_point, tol), "second cognate {second:?} misses {:?}", p.coupler_point);
-            prop_assert!(draws(reversed, bc.y.atan2(bc.x), p.coupler_point, tol), "reversed {reversed:?} misses {:?}", p.coupler_point);
+            prop_assert!(draws(first, pa.y.atan2(pa.x), p.coupler_point, size), "first cognate {first:?} misses {:?}", p.coupler_point);
+            prop_assert!(draws(second, pb.y.atan2(pb.x), p.coupler_point, size), "second cognate {second:?} misses {:?}", p.coupler_point);
+            prop_assert!(draws(reversed, bc.y.atan2(bc.x), p.coupler_point, size), "reversed {reversed:?} misses {:?}", p.coupler_point);
         }
     }
 }
@@ -153,6 +156,11 @@ fn cognates_at_extreme_scales() {
             assert_eq!(c.assembly, u.assembly, "scale {s}");
         }
         let r = fb.reversed().unwrap();
+        assert_eq!(
+            r.assembly,
+            unit.reversed().unwrap().assembly,
+            "scale {s}: reversed assembly"
+        );
         assert_eq!(
             (r.crank, r.coupler, r.rocker),
             (fb.rocker, fb.coupler, fb.crank),
