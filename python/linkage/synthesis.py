@@ -1041,12 +1041,11 @@ def _cognate_candidates(
         except LinkageError:
             continue
         for v in variants:
-            p = v._p()
-            x = np.array(p[:9], dtype=np.float64)
+            x = _params_of(v)
             if any(np.max(np.abs(x - q)) <= 1e-9 * size for q in seen if q.shape == x.shape):
                 continue  # found already (a search finds cognates too)
             seen.append(x)
-            cand = _measure(x, p[9] == "crossed", target, closed, "cognate", threads)
+            cand = _measure(x, v.assembly == "crossed", target, closed, "cognate", threads)
             # Exact or nothing: a variant that is not exact traces the curve on another circuit (a
             # crank that rocks over two intervals traces the first; see FourBar.cognates).
             if cand is not None and cand.error <= EXACT * size:
@@ -1358,8 +1357,13 @@ def _forms(c: Candidate[Any]) -> list[tuple[Any, NDArray[np.float64]]]:
             r = c.linkage.reversed()
         except LinkageError:
             return forms
-        forms.append((r, np.array(r._p()[:9], dtype=np.float64)))
+        forms.append((r, _params_of(r)))
     return forms
+
+
+def _params_of(fb: FourBar) -> NDArray[np.float64]:
+    """``fb`` as a placed parameter vector (:data:`FOURBAR`'s layout; its assembly apart)."""
+    return np.array(fb._p()[:9], dtype=np.float64)
 
 
 def largest_distance(points: ArrayLike, path: ArrayLike) -> float:

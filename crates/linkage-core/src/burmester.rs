@@ -37,8 +37,8 @@ use nalgebra::RealField;
 
 use crate::centres::{circumcentre, Centre};
 use crate::error::{check_finite, Error};
-use crate::fourbar::{Assembly, FourBar, GrashofClass, InputRange};
-use crate::scalar::{cross, eps, length, lit, nan, perp, Vec2};
+use crate::fourbar::{FourBar, GrashofClass, InputRange};
+use crate::scalar::{eps, length, lit, nan, perp, Vec2};
 use crate::tracker::{Rates, Tracker};
 
 /// A position of a moving body: where its reference point is and how it is turned.
@@ -702,24 +702,14 @@ impl<T: RealField + Copy> MotionCandidate<T> {
             check_finite("dyad point", v.y)?;
         }
         let (o, c, a0, b0) = (crank.centre, rocker.centre, crank.circle, rocker.circle);
-        let coupler = length(b0 - a0);
-        crate::error::check_length("coupler (distance between the circle points)", coupler)?;
-        let u = (b0 - a0) / coupler;
-        let p = poses[0].origin - a0;
-        let assembly = if cross(c - a0, b0 - a0) >= T::zero() {
-            Assembly::Open
-        } else {
-            Assembly::Crossed
-        };
-        let four_bar = FourBar::with_pivots(
-            o,
-            c,
-            crate::error::check_length("crank (circle point to centre point)", crank.radius())?,
-            coupler,
-            crate::error::check_length("rocker (circle point to centre point)", rocker.radius())?,
-            (p.dot(&u), cross(u, p)),
-            assembly,
+        // The lengths checked here, to name them; the four-bar as placed at the first pose.
+        crate::error::check_length(
+            "coupler (distance between the circle points)",
+            length(b0 - a0),
         )?;
+        crate::error::check_length("crank (circle point to centre point)", crank.radius())?;
+        crate::error::check_length("rocker (circle point to centre point)", rocker.radius())?;
+        let four_bar = FourBar::from_points(o, c, a0, b0, poses[0].origin)?;
         let check = check_motion(&four_bar, poses, crank, rocker);
         Ok(MotionCandidate {
             four_bar,

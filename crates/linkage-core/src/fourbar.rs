@@ -549,11 +549,8 @@ impl<T: RealField + Copy> FourBar<T> {
     pub fn reversed(&self) -> Result<FourBar<T>, Error> {
         let p = self.pose(self.assembled_angle())?;
         // The lengths swap exactly; P from B towards A: along `coupler − along`, left negated.
-        let assembly = if cross(self.o - p.b, p.a - p.b) >= T::zero() {
-            Assembly::Open
-        } else {
-            Assembly::Crossed
-        };
+        // Driven at C, the new B is A.
+        let assembly = Self::assembly_of(self.o - p.b, p.a - p.b);
         FourBar::with_pivots(
             self.c,
             self.o,
@@ -579,9 +576,22 @@ impl<T: RealField + Copy> FourBar<T> {
         }
     }
 
+    /// The assembly that puts `B` where it is, from `A → C` and `A → B`: open when `B` is left
+    /// of `A → C`. The sign is taken in units of a power of two near their size (exact), so it
+    /// is right at any scale (the cross product of tiny vectors underflows to 0).
+    fn assembly_of(to_c: Vec2<T>, to_b: Vec2<T>) -> Assembly {
+        let big = to_c.amax().max(to_b.amax());
+        let s = crate::dyad::pow2_scale(big);
+        if cross(to_c / s, to_b / s) >= T::zero() {
+            Assembly::Open
+        } else {
+            Assembly::Crossed
+        }
+    }
+
     /// The four-bar with crank pivot `o`, rocker pivot `c`, crank pin `a`, coupler–rocker joint
     /// `b` and coupler point `p` as placed (one pose): lengths, coupler point and assembly.
-    fn from_points(
+    pub(crate) fn from_points(
         o: Vec2<T>,
         c: Vec2<T>,
         a: Vec2<T>,
@@ -592,7 +602,7 @@ impl<T: RealField + Copy> FourBar<T> {
         // neither overflow nor underflow at any scale.
         let big = [c - o, a - o, b - o, p - o]
             .iter()
-            .fold(T::zero(), |m, v| m.max(v.x.abs()).max(v.y.abs()));
+            .fold(T::zero(), |m, v| m.max(v.amax()));
         let s = crate::dyad::pow2_scale(big);
         let (e, rel) = ((b - a) / s, (p - a) / s);
         let len = crate::scalar::length(e);
@@ -600,21 +610,14 @@ impl<T: RealField + Copy> FourBar<T> {
             (rel.x * e.x + rel.y * e.y) / len * s,
             cross(e, rel) / len * s,
         );
-        let len = len * s;
-        // Open: B left of A → C.
-        let assembly = if cross((c - a) / s, e) >= T::zero() {
-            Assembly::Open
-        } else {
-            Assembly::Crossed
-        };
         FourBar::with_pivots(
             o,
             c,
             crate::scalar::length(a - o),
-            len,
+            len * s,
             crate::scalar::length(b - c),
             (along, left),
-            assembly,
+            Self::assembly_of(c - a, b - a),
         )
     }
 

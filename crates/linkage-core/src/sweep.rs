@@ -310,8 +310,7 @@ impl<'a, T> SweepOutputs<'a, T> {
 /// Number of body pairs `(k, l)`, `k < l` in [`Bodies::ids`] order, a sweep writes instant
 /// centres for: `B(B − 1)/2` for `B` bodies, the ground included.
 pub fn sweep_pairs<T: RealField + Copy, const N: usize>(mech: &Mechanism<T, N>) -> usize {
-    let b = Bodies::of(mech).count();
-    b * b.saturating_sub(1) / 2
+    Pairs::All.count(Bodies::of(mech).count())
 }
 
 /// How a sweep ended.

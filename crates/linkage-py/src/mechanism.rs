@@ -309,7 +309,8 @@ impl Mechanism {
         // The program on arrays sized to it (the same bits at any capacity), copied under the
         // lock.
         let mech = Sweepable::of(&self.lock());
-        let (j, nb) = mech.shape();
+        // The bodies are counted only for every pair's centres (not on a plain sweep's path).
+        let (j, nb) = mech.shape(instant_centres && pairs.is_none());
         let pairs = match pairs.as_deref() {
             None => Pairs::All,
             Some(p) => Pairs::Only(p),
@@ -558,14 +559,15 @@ impl Sweepable {
         }
     }
 
-    /// Joints and bodies (the ground included).
-    fn shape(&self) -> (usize, usize) {
-        match self {
-            Sweepable::S8(m) => (m.len(), Bodies::of(m).count()),
-            Sweepable::S16(m) => (m.len(), Bodies::of(m).count()),
-            Sweepable::S32(m) => (m.len(), Bodies::of(m).count()),
-            Sweepable::S64(m) => (m.len(), Bodies::of(m.as_ref()).count()),
-        }
+    /// Joints and (when `bodies`, else 0) bodies, the ground included.
+    fn shape(&self, bodies: bool) -> (usize, usize) {
+        let (j, b) = match self {
+            Sweepable::S8(m) => (m.len(), bodies.then(|| Bodies::of(m).count())),
+            Sweepable::S16(m) => (m.len(), bodies.then(|| Bodies::of(m).count())),
+            Sweepable::S32(m) => (m.len(), bodies.then(|| Bodies::of(m).count())),
+            Sweepable::S64(m) => (m.len(), bodies.then(|| Bodies::of(m.as_ref()).count())),
+        };
+        (j, b.unwrap_or(0))
     }
 }
 
