@@ -202,7 +202,7 @@ def test_one_registry_of_joint_kinds() -> None:
     for kind, k in JOINT_KINDS.items():
         assert k.blame in k.required, kind
         assert not set(k.required) & set(k.optional), kind
-    with pytest.raises(linkage.LinkageError, match=r"\(fixed, crank, dyad, point\)"):
+    with pytest.raises(linkage.LinkageError, match=r"\(fixed, crank, dyad, slider, point\)"):
         linkage.Mechanism().add_joint({"kind": "gear", "name": "G"})
 
 

@@ -508,14 +508,18 @@ class Mechanism:
         """Add one joint given as a scene's joint table (the one reader of that form).
 
         ``{"kind": "fixed", "name", "at"}``, ``{"kind": "crank", "name", "centre", "radius",
-        "phase_deg"?}``, ``{"kind": "dyad", "name", "p1", "p2", "r1", "r2", "side"?}`` or
-        ``{"kind": "point", "name", "on", "along", "left"?}``.
+        "phase_deg"?}``, ``{"kind": "dyad", "name", "p1", "p2", "r1", "r2", "side"?}``,
+        ``{"kind": "slider", "name", "pivot", "r", "origin", "direction"? | "link"?,
+        "angle_deg"?, "reach"?}`` (:meth:`slider`) or ``{"kind": "point", "name", "on", "along",
+        "left"?}``.
 
         Parameters
         ----------
         joint : mapping
-            One joint table of the forms above (``?`` marks an optional key); ``phase_deg`` is
-            in degrees, ``side`` defaults to "left" and ``left`` to 0.
+            One joint table of the forms above (``?`` marks an optional key); ``phase_deg`` and
+            ``angle_deg`` are in degrees, ``side`` defaults to "left", ``reach`` to "ahead" and
+            ``left`` to 0. A slider gives exactly one of ``direction`` (a fixed line) and
+            ``link`` (a line carried by that link, turned by ``angle_deg``).
 
         Raises
         ------
@@ -532,10 +536,14 @@ class Mechanism:
         >>> m.add_joint({"kind": "crank", "name": "A", "centre": "O", "radius": 1, "phase_deg": 90})
         >>> m.sweep([0.0], outputs=("joints",)).joint("A").round(12).tolist()
         [[0.0, 1.0]]
-        >>> m.add_joint({"kind": "slider", "name": "B"})
+        >>> m.add_joint({"kind": "slider", "name": "B", "pivot": "A", "r": 2, "origin": "O",
+        ...              "direction": (1, 0)})
+        >>> m.sweep([0.0], outputs=("joints",)).joint("B").round(12).tolist()
+        [[1.732050807569, 0.0]]
+        >>> m.add_joint({"kind": "prism", "name": "Q"})
         Traceback (most recent call last):
         ...
-        linkage.LinkageError: unknown joint kind 'slider' (fixed, crank, dyad, point)
+        linkage.LinkageError: unknown joint kind 'prism' (fixed, crank, dyad, slider, point)
         """
         kind = joint.get("kind")
         if not isinstance(kind, str) or kind not in JOINT_KINDS:
@@ -768,6 +776,20 @@ def _add_crank(m: Mechanism, j: Mapping[str, Any]) -> None:
     m.crank(j["name"], j["centre"], j["radius"], phase)
 
 
+def _add_slider(m: Mechanism, j: Mapping[str, Any]) -> None:
+    link = j.get("link")
+    m.slider(
+        j["name"],
+        j["pivot"],
+        j["r"],
+        j["origin"],
+        direction=j.get("direction"),
+        link=(link[0], link[1]) if link is not None and len(link) == 2 else link,
+        angle=math.radians(as_finite(j.get("angle_deg", 0.0), "angle_deg")),
+        reach=j.get("reach", "ahead"),
+    )
+
+
 JOINT_KINDS: dict[str, JointKind] = {
     "fixed": JointKind(("at",), (), "at", lambda m, j: m.fixed(j["name"], j["at"])),
     "crank": JointKind(("centre", "radius"), ("phase_deg",), "radius", _add_crank),
@@ -776,6 +798,9 @@ JOINT_KINDS: dict[str, JointKind] = {
         ("side",),
         "r2",
         lambda m, j: m.dyad(j["name"], j["p1"], j["p2"], j["r1"], j["r2"], j.get("side", "left")),
+    ),
+    "slider": JointKind(
+        ("pivot", "r", "origin"), ("direction", "link", "angle_deg", "reach"), "r", _add_slider
     ),
     "point": JointKind(
         ("on", "along"),

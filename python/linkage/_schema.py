@@ -21,10 +21,11 @@ import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, get_args
 
 from linkage import catalog
 from linkage._arrays import choices, one_of
+from linkage._choices import PathKind
 from linkage._core import LinkageError
 from linkage._mechanism import JOINT_KINDS as _JOINT_KINDS
 from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
@@ -256,6 +257,13 @@ JOINT = {
     "r1": "length",
     "r2": "length",
     "side": "str",
+    "pivot": "str",
+    "r": "length",
+    "origin": "str",
+    "direction": "pair",
+    "link": "list",
+    "angle_deg": "angle",
+    "reach": "str",
     "on": "list",
     "along": "coord",
     "left": "coord",
@@ -311,6 +319,7 @@ CAM = {
 CAM_SEGMENT = {"duration_deg": "angle_span", "rise": "coord", "law": "str"}
 SYNTHESIS = {
     "points": "points",
+    "kind": "str",
     "closed": "bool",
     "top": "int",
     "full_turn": "bool",
@@ -322,9 +331,13 @@ SYNTHESIS = {
     "atlas": "str",
 }
 """Keys of ``[synthesis]``: the target (a CSV file relative to the scene's folder, or inline
-``[[x, y], …]``), whether it is closed, how many candidates, the constraints, the global
+``[[x, y], …]``), the linkage sought (``"fourbar"``, ``"slider-crank"`` or ``"any"``), whether it
+is closed, how many candidates, the constraints, the global
 search's tolerance (of the target's size) and seed, and an atlas folder (relative to the
 scene's folder; default: the one built once into the cache folder)."""
+PATH_KINDS: tuple[str, ...] = tuple(k for a in get_args(PathKind) for k in get_args(a) or (a,))
+"""The linkages a ``[synthesis]`` scene may seek (its ``kind``): ``fourbar`` (the default),
+``slider-crank`` or ``any`` (both, ranked as one list)."""
 DRIVE_KINDS = {
     "constant": {"rpm", "omega", "gears"},
     "program": {"start_deg", "segments", "gears"},
@@ -596,7 +609,7 @@ def _joints(joints: Sequence[Mapping[str, Any]], trace: Any, scene: Scene) -> No
         for k in j:
             if k not in ("name", "kind", *need, *optional):
                 raise scene.error(jp, k, f"does not apply to a {kind} joint")
-        for ref in ("centre", "p1", "p2"):
+        for ref in ("centre", "p1", "p2", "pivot", "origin"):
             if ref in j and j[ref] not in names:
                 raise scene.error(
                     jp,
@@ -616,19 +629,10 @@ def _joints(joints: Sequence[Mapping[str, Any]], trace: Any, scene: Scene) -> No
                 raise scene.error(jp, "p2", f"must differ from p1 (both {j['p1']!r})")
             if j.get("side", "left") not in choices("side"):
                 raise scene.error(jp, "side", f"must be {one_of('side')}, got {j['side']!r}")
+        if kind == "slider":
+            _slider_joint(j, names, scene, jp)
         if kind == "point":
-            on = j["on"]
-            if len(on) != 2 or not all(isinstance(v, str) for v in on):
-                raise scene.error(jp, "on", f"must be two joint names [from, to], got {on!r}")
-            for v in on:
-                if v not in names:
-                    raise scene.error(
-                        jp,
-                        "on",
-                        f"unknown joint {v!r} (defined before it: {', '.join(names) or 'none'})",
-                    )
-            if on[0] == on[1]:
-                raise scene.error(jp, "on", f"needs two different joints, got {on!r}")
+            _joint_pair(j, "on", names, scene, jp)
         names.append(j["name"])
     if crank is None:
         raise scene.error(
@@ -640,6 +644,47 @@ def _joints(joints: Sequence[Mapping[str, Any]], trace: Any, scene: Scene) -> No
             "trace",
             f"unknown joint {trace!r}{_did_you_mean(trace, names)} (joints: {', '.join(names)})",
         )
+
+
+def _slider_joint(
+    j: Mapping[str, Any], names: list[str], scene: Scene, jp: tuple[Any, ...]
+) -> None:
+    """Check a slider joint's line (a fixed ``direction`` or a carrying ``link``) and reach."""
+    if ("direction" in j) == ("link" in j):
+        raise scene.error(
+            jp,
+            "direction",
+            "give exactly one of direction = [dx, dy] (a fixed line) and link = [from, to] "
+            "(a line carried by that link)",
+        )
+    if "direction" in j:
+        if "angle_deg" in j:
+            raise scene.error(
+                jp, "angle_deg", "turns a line carried by a link: give link = [from, to]"
+            )
+        dx, dy = j["direction"]
+        if dx == 0 and dy == 0:
+            raise scene.error(jp, "direction", "must not be zero: the slider's line direction")
+    else:
+        _joint_pair(j, "link", names, scene, jp)
+    if j.get("reach", "ahead") not in choices("reach"):
+        raise scene.error(jp, "reach", f"must be {one_of('reach')}, got {j['reach']!r}")
+
+
+def _joint_pair(
+    j: Mapping[str, Any], key: str, names: list[str], scene: Scene, jp: tuple[Any, ...]
+) -> None:
+    """Check ``j[key]`` names two different joints defined before ``j`` (a link: from, to)."""
+    pair = j[key]
+    if len(pair) != 2 or not all(isinstance(v, str) for v in pair):
+        raise scene.error(jp, key, f"must be two joint names [from, to], got {pair!r}")
+    for v in pair:
+        if v not in names:
+            raise scene.error(
+                jp, key, f"unknown joint {v!r} (defined before it: {', '.join(names) or 'none'})"
+            )
+    if pair[0] == pair[1]:
+        raise scene.error(jp, key, f"needs two different joints, got {pair!r}")
 
 
 def _walker(w: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
@@ -877,6 +922,13 @@ def _synthesis(s: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
                 )
             for v in p:
                 _number(v, "coord", scene, sec, "points")
+    if s.get("kind", "fourbar") not in PATH_KINDS:
+        kinds = ", ".join(repr(k) for k in PATH_KINDS)
+        raise scene.error(
+            sec,
+            "kind",
+            f"must be one of {kinds}{_did_you_mean(s['kind'], PATH_KINDS)}, got {_show(s['kind'])}",
+        )
     top = s.get("top", 5)
     if not 1 <= top <= SYNTHESIS_TOP_MAX:
         raise scene.error(

@@ -705,6 +705,17 @@ def no_assembly(
                     f"{dist:.6g} apart, r1 and r2 reach {abs(r1 - r2):.6g} … {r1 + r2:.6g} "
                     f"(closure gap {gap:.3g})",
                 )
+            if j["kind"] == "slider" and "direction" in j:
+                (px, py), (ox, oy) = pos[j["pivot"]], pos[j["origin"]]
+                dx, dy = j["direction"]
+                dist = abs((px - ox) * dy - (py - oy) * dx) / math.hypot(dx, dy)
+                return scene.error(
+                    ("mechanism", "joints", idx),
+                    "r",
+                    f"no sample assembles: at the first sample {j['pivot']!r} is {dist:.6g} from "
+                    f"the slider's line, r reaches {j['r']:.6g} (closure gap "
+                    f"{dist - j['r']:.3g})",
+                )
             return scene.error(
                 ("mechanism", "joints", idx),
                 JOINT_KINDS[j["kind"]].blame,
@@ -1003,6 +1014,16 @@ def synthesis_atlas(scene: Scene) -> synthesis.Atlas | None:
             "linkage.synthesis.Atlas.save holds meta.json, descriptors.npy and params.npy",
         )
     try:
-        return synthesis.Atlas.load(folder)
+        atlas = synthesis.Atlas.load(folder)
     except LinkageError as exc:
         raise scene.error(("synthesis",), "atlas", str(exc).replace(str(folder), raw)) from None
+    kind = str(s.get("kind", "fourbar"))
+    serves = {"fourbar": ("fourbar", "fourbar-arcs"), "slider-crank": ("slider-crank",)}
+    if atlas.kind not in serves.get(kind, (atlas.kind,)):
+        raise scene.error(
+            ("synthesis",),
+            "atlas",
+            f"{raw!r} holds a {atlas.kind} atlas, but the scene seeks kind = {kind!r}: name an "
+            f"atlas of {' or '.join(serves[kind])}, or set kind",
+        )
+    return atlas

@@ -37,23 +37,24 @@ import json
 import math
 import re
 import textwrap
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Union, cast
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
 from numpy.typing import NDArray
 
 from linkage._arrays import choices, side_of
-from linkage._choices import Side, View
+from linkage._choices import Reach, Side, View
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage._slider_crank import SliderCrank
 from linkage._version import __version__
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
-from linkage.figures import Result, Row, length_unit, torque_unit
+from linkage.figures import Result, Row, branch_word, length_unit, torque_unit
 from linkage.synthesis import Candidate, largest_distance
 
 __all__ = [
@@ -61,6 +62,8 @@ __all__ = [
     "CANDIDATE_RPM",
     "INSUNITS",
     "SCHEMA",
+    "SLIDER_COLUMNS",
+    "candidate_columns",
     "candidate_drive",
     "candidate_rows",
     "candidate_scene",
@@ -739,7 +742,9 @@ def synthesis_drawing(res: Result) -> Drawing:
     run = res.synthesis
     if run is None:
         raise LinkageError("not a synthesis run")
-    d = mechanism_drawing(run.candidates[0].linkage, run.best, res.scene.units)
+    best = run.candidates[0].linkage
+    mech = best.mechanism() if isinstance(best, SliderCrank) else best
+    d = mechanism_drawing(mech, run.best, res.scene.units)
     target = np.asarray(run.target, dtype=float)
     if run.closed and len(target):
         target = np.vstack([target, target[:1]])
@@ -788,24 +793,77 @@ def _num_toml(x: float, decimals: int) -> str:
     return repr(round(float(x), decimals) + 0.0)
 
 
-def _mechanism_of(c: Candidate[FourBar], side: Side, phase: float) -> Mechanism:
-    """Build the candidate from the joints of its exported scene: the crank at ``theta + phase``."""
-    fb = c.linkage
-    m = Mechanism()
-    m.fixed("O", fb.o)
-    m.fixed("C", fb.c)
-    m.crank("A", "O", fb.crank, phase)
-    m.dyad("B", "A", "C", fb.coupler, fb.rocker, side)
-    m.point("P", ("A", "B"), fb.point)
-    m.trace = "P"
-    return m
+Linkage = Union[FourBar, SliderCrank]
+
+
+def _mechanism_of(c: Candidate[Linkage], branch: str, phase: float) -> Mechanism:
+    """Build the candidate from the joints of its exported scene: the crank at ``theta + phase``.
+
+    ``branch`` is the dyad's side (a four-bar) or the slider's reach (a slider-crank).
+    """
+    return Mechanism.from_joints(_joint_tables(c.linkage, branch, phase), trace="P")
+
+
+def _joint_tables(lk: Linkage, branch: str, phase: float) -> list[dict[str, Any]]:
+    """Return the exported scene's joints of ``lk``.
+
+    The one construction: the scene's text is written from these tables, and the side check
+    builds from them.
+    """
+    o = {"name": "O", "kind": "fixed", "at": lk.o}
+    crank = {"name": "A", "kind": "crank", "centre": "O", "radius": lk.crank}
+    crank["phase_deg"] = math.degrees(phase)
+    point = {"name": "P", "kind": "point", "on": ["A", "B"], "along": lk.point[0]}
+    point["left"] = lk.point[1]
+    if isinstance(lk, SliderCrank):
+        g = {"name": "G", "kind": "fixed", "at": lk.line_point}
+        b = {"name": "B", "kind": "slider", "pivot": "A", "r": lk.coupler, "origin": "G"}
+        b.update(direction=[math.cos(lk.angle), math.sin(lk.angle)], reach=branch)
+        return [o, g, crank, b, point]
+    c = {"name": "C", "kind": "fixed", "at": lk.c}
+    b = {"name": "B", "kind": "dyad", "p1": "A", "p2": "C", "r1": lk.coupler, "r2": lk.rocker}
+    b["side"] = branch
+    return [o, c, crank, b, point]
+
+
+def _branch(lk: Linkage) -> Side | Reach:
+    """Return the side of the dyad (a four-bar's assembly) or the reach of the slider."""
+    return lk.reach if isinstance(lk, SliderCrank) else side_of(lk.assembly)
+
+
+def _branches(lk: Linkage) -> tuple[str, ...]:
+    return choices("reach") if isinstance(lk, SliderCrank) else choices("side")
+
+
+def _on_branch(lk: Linkage, other: bool = False) -> str:
+    """``on the open assembly`` / ``with the slider ahead`` (``other``: the other branch)."""
+    if isinstance(lk, SliderCrank):
+        return "with the slider on its other reach" if other else f"with the slider {lk.reach}"
+    return "on the other assembly" if other else f"on the {lk.assembly} assembly"
+
+
+_EXACT_KEYS = {"phase_deg": 12, "direction": 12}
+"""Joint keys written to fixed decimals (an angle; a unit direction), not to the target's size."""
+
+
+def _toml_table(j: dict[str, Any], num: Callable[[float], str]) -> str:
+    """Write a joint table as an inline TOML table, lengths by ``num``."""
+
+    def value(key: str, v: Any) -> str:
+        if isinstance(v, str):
+            return json.dumps(v)
+        if isinstance(v, (list, tuple)):
+            return "[" + ", ".join(value(key, x) for x in v) + "]"
+        return _num_toml(v, _EXACT_KEYS[key]) if key in _EXACT_KEYS else num(v)
+
+    return "{ " + ", ".join(f"{k} = {value(k, v)}" for k, v in j.items()) + " }"
 
 
 CANDIDATE_RPM = 60.0
 """Motor speed of an exported candidate scene: one crank turn per second."""
 
 
-def candidate_drive(c: Candidate[FourBar]) -> tuple[float, float]:
+def candidate_drive(c: Candidate[Linkage]) -> tuple[float, float]:
     """Return the exported scene's crank phase and run time.
 
     The crank starts at the beginning of the candidate's crank range (``phase`` in radians, the
@@ -836,11 +894,12 @@ def candidate_drive(c: Candidate[FourBar]) -> tuple[float, float]:
     return lo, span / omega
 
 
-def candidate_side(c: Candidate[FourBar], target: Array) -> Side:
-    """Return the side of the exported scene's dyad (``B`` relative to ``A → C``).
+def candidate_side(c: Candidate[Linkage], target: Array) -> Side | Reach:
+    """Return the side of the exported scene's dyad (``B`` relative to ``A → C``), or its reach.
 
-    The candidate's assembly (``open`` is ``left``), except for a crank that rocks within its limits
-    over a part of the curve traced on the other assembly, where the other side draws the target.
+    The candidate's assembly (``open`` is ``left``), or a slider-crank's reach, except for a
+    crank that rocks within its limits over a part of the curve traced on the other branch,
+    where the other side (reach) draws the target.
 
     Examples
     --------
@@ -859,25 +918,28 @@ def candidate_side(c: Candidate[FourBar], target: Array) -> Side:
     >>> candidate_side(rocks, fb.sweep(theta).point), candidate_side(rocks, crossed)
     ('left', 'right')
     """
-    side = side_of(c.linkage.assembly)
+    side = _branch(c.linkage)
     if c.full_turn or c.through_limit:
         return side
     phase, duration = candidate_drive(c)
     theta = np.linspace(0.0, duration * CANDIDATE_RPM * 2 * math.pi / 60, 721)
     gaps = {}
-    for sd in choices("side"):
+    for sd in _branches(c.linkage):
         s = _mechanism_of(c, sd, phase).sweep(theta, outputs=("point",))
         gaps[sd] = largest_distance(target, s.point)
-    return min(choices("side"), key=lambda sd: (gaps[sd], sd != side))
+    best = min(_branches(c.linkage), key=lambda sd: (gaps[sd], sd != side))
+    return cast(Union[Side, Reach], best)
 
 
 def candidate_scene(res: Result, k: int) -> str:
     r"""Write candidate ``k`` (1 = best) of a ``[synthesis]`` run as a ``[mechanism]`` scene's text.
 
-    The four-bar as joints in the target's frame (ground pivots ``O``, ``C``, crank end ``A``,
-    coupler–rocker joint ``B``, coupler point ``P`` traced), a constant drive over the crank range
-    (one turn, or from limit to limit), its numbers kept to 1e-10 of the target's size, and comments
-    with the candidate's figures. ``linkage check`` accepts it.
+    The linkage as joints in the target's frame — a four-bar's ground pivots ``O``, ``C``, crank
+    end ``A``, coupler–rocker joint ``B``, coupler point ``P`` traced; a slider-crank's crank
+    pivot ``O``, the point ``G`` of the slider's line nearest ``O``, crank end ``A``, slider ``B``
+    (a ``kind = "slider"`` joint on the line through ``G``) and ``P`` —, a constant drive over the
+    crank range (one turn, or from limit to limit), its numbers kept to 1e-10 of the target's
+    size, and comments with the candidate's figures. ``linkage check`` accepts it.
 
     Raises
     ------
@@ -925,26 +987,41 @@ def candidate_scene(res: Result, k: int) -> str:
         )
         if c.through_limit:
             motion += (
-                f" on the {fb.assembly} assembly; the rest of the curve is traced back on the "
-                "other assembly, after the linkage passes the toggle at the limit"
+                f" {_on_branch(fb)}; the rest of the curve is traced back "
+                f"{_on_branch(fb, other=True)}, after the linkage passes the toggle at the limit"
             )
-    dyad = side_of(fb.assembly)
     header = [
         f"Candidate {k} of the synthesis scene {scene.name!r} (linkage {__version__}).",
         f"Coupler point P passes within {c.error:.3g} {u} of the target's {len(run.target)} "
         f"points (RMS {c.rms:.3g} {u}).",
-        f"{c.grashof}, {fb.assembly} assembly; least transmission angle "
-        f"{c.min_transmission_deg:.1f}° from a toggle.",
-        f"Four-bar: ground {fb.ground:.6g}, crank {fb.crank:.6g}, coupler {fb.coupler:.6g}, "
-        f"rocker {fb.rocker:.6g} {u}; P at ({fb.point[0]:.6g}, {fb.point[1]:.6g}) along and "
-        "left of A → B.",
-        f"Placed in the target's frame: O ({fb.o[0]:.6g}, {fb.o[1]:.6g}), "
-        f"C ({fb.c[0]:.6g}, {fb.c[1]:.6g}).",
-        motion[0].upper() + motion[1:] + ".",
     ]
-    if side != dyad:
+    if isinstance(fb, SliderCrank):
+        dx, dy = math.cos(fb.angle), math.sin(fb.angle)
+        header += [
+            f"{c.grashof}, reach {fb.reach}; least transmission angle "
+            f"{c.min_transmission_deg:.1f}° from a toggle (the rod square to the line).",
+            f"Slider-crank: crank {fb.crank:.6g}, rod {fb.coupler:.6g} {u}, the line "
+            f"{fb.offset:.6g} {u} left of O; P at ({fb.point[0]:.6g}, {fb.point[1]:.6g}) along "
+            "and left of A → B.",
+            f"Placed in the target's frame: O ({fb.o[0]:.6g}, {fb.o[1]:.6g}); the slider B runs "
+            f"on the line through G ({fb.line_point[0]:.6g}, {fb.line_point[1]:.6g}) along "
+            f"({dx:.6g}, {dy:.6g}), at {math.degrees(fb.angle):.6g}°.",
+        ]
+    else:
+        header += [
+            f"{c.grashof}, {fb.assembly} assembly; least transmission angle "
+            f"{c.min_transmission_deg:.1f}° from a toggle.",
+            f"Four-bar: ground {fb.ground:.6g}, crank {fb.crank:.6g}, coupler {fb.coupler:.6g}, "
+            f"rocker {fb.rocker:.6g} {u}; P at ({fb.point[0]:.6g}, {fb.point[1]:.6g}) along and "
+            "left of A → B.",
+            f"Placed in the target's frame: O ({fb.o[0]:.6g}, {fb.o[1]:.6g}), "
+            f"C ({fb.c[0]:.6g}, {fb.c[1]:.6g}).",
+        ]
+    header.append(motion[0].upper() + motion[1:] + ".")
+    if side != _branch(fb):
+        where = "the slider is" if isinstance(fb, SliderCrank) else "B is on the"
         header.append(
-            f"The target is drawn by the other assembly over this range: B is on the {side}."
+            f"The target is drawn by the other {branch_word(fb)} over this range: {where} {side}."
         )
     header.append(f"Run it: linkage run candidate-{k}.toml")
     lines = [f"# {line}" for h in header for line in textwrap.wrap(h, 94)]
@@ -961,14 +1038,7 @@ def candidate_scene(res: Result, k: int) -> str:
         "[mechanism]",
         'trace = "P"',
         "joints = [",
-        f'  {{ name = "O", kind = "fixed", at = [{num(fb.o[0])}, {num(fb.o[1])}] }},',
-        f'  {{ name = "C", kind = "fixed", at = [{num(fb.c[0])}, {num(fb.c[1])}] }},',
-        f'  {{ name = "A", kind = "crank", centre = "O", radius = {num(fb.crank)}, '
-        f"phase_deg = {_num_toml(math.degrees(phase), 12)} }},",
-        f'  {{ name = "B", kind = "dyad", p1 = "A", p2 = "C", r1 = {num(fb.coupler)}, '
-        f'r2 = {num(fb.rocker)}, side = "{side}" }},',
-        f'  {{ name = "P", kind = "point", on = ["A", "B"], along = {num(fb.point[0])}, '
-        f"left = {num(fb.point[1])} }},",
+        *(f"  {_toml_table(j, num)}," for j in _joint_tables(fb, side, phase)),
         "]",
         "",
         "[drive]",
@@ -1006,7 +1076,89 @@ CANDIDATE_COLUMNS = (
     ("source", ""),
     ("scene", ""),
 )
-"""The columns of ``candidates.csv`` and their units (``L``: the scene's length unit)."""
+"""The columns of a four-bar search's ``candidates.csv`` and their units (``L``: the scene's length
+unit)."""
+
+SLIDER_COLUMNS = (
+    ("line_angle", "deg"),
+    ("offset", "L"),
+    ("line_point_x", "L"),
+    ("line_point_y", "L"),
+    ("reach", ""),
+)
+"""A slider-crank's own columns: its line's direction, signed distance left of ``O`` and point
+nearest ``O``, and the slider's reach (a slider-crank's row leaves the four-bar's own columns,
+``pivot_C_*``, ``ground``, ``rocker`` and ``assembly``, empty)."""
+
+_FOURBAR_ONLY = ("pivot_C_x", "pivot_C_y", "ground", "rocker", "assembly")
+
+
+def candidate_columns(kind: str) -> tuple[tuple[str, str], ...]:
+    """Return the columns of ``candidates.csv`` for a search of ``kind`` (the scene's ``kind``).
+
+    A four-bar search has :data:`CANDIDATE_COLUMNS`; a slider-crank search the same without the
+    four-bar's own columns, with :data:`SLIDER_COLUMNS` after the pivot; ``"any"`` has both and a
+    ``linkage`` column after the rank.
+
+    Examples
+    --------
+    >>> from linkage.export import candidate_columns
+    >>> [name for name, _ in candidate_columns("slider-crank")][10:]
+    ['pivot_O_x', 'pivot_O_y', 'line_angle', 'offset', 'line_point_x', 'line_point_y', 'crank',
+     'coupler', 'point_along', 'point_left', 'reach', 'source', 'scene']
+    >>> [name for name, _ in candidate_columns("any")][:3]
+    ['rank', 'linkage', 'error']
+    """
+    cols = list(CANDIDATE_COLUMNS)
+    if kind != "fourbar":
+        names = [name for name, _ in cols]
+        # The line after the pivots, the reach after the assembly.
+        at, branch = names.index("pivot_C_x"), names.index("assembly")
+        cols[branch + 1 : branch + 1] = SLIDER_COLUMNS[-1:]
+        cols[at:at] = SLIDER_COLUMNS[:-1]
+        cols.insert(1, ("linkage", ""))
+        if kind == "slider-crank":
+            cols = [col for col in cols if col[0] not in (*_FOURBAR_ONLY, "linkage")]
+    return tuple(cols)
+
+
+def _candidate_cells(c: Candidate[Linkage], k: int) -> dict[str, Any]:
+    """Every column's value for candidate ``k`` (the columns of the other kind absent)."""
+    lk = c.linkage
+    lo, hi = (math.degrees(v) for v in c.crank_range)
+    cells: dict[str, Any] = {
+        "rank": k,
+        "linkage": c.kind,
+        "error": c.error,
+        "rms": c.rms,
+        "back": c.back,
+        "grashof": c.grashof,
+        "full_turn": str(c.full_turn).lower(),
+        "through_limit": str(c.through_limit).lower(),
+        "crank_from": lo,
+        "crank_to": hi,
+        "min_transmission": c.min_transmission_deg,
+        "pivot_O_x": lk.o[0],
+        "pivot_O_y": lk.o[1],
+        "crank": lk.crank,
+        "coupler": lk.coupler,
+        "point_along": lk.point[0],
+        "point_left": lk.point[1],
+        "source": c.source,
+        "scene": f"candidate-{k}.toml",
+    }
+    if isinstance(lk, SliderCrank):
+        cells.update(
+            line_angle=math.degrees(lk.angle),
+            offset=lk.offset,
+            line_point_x=lk.line_point[0],
+            line_point_y=lk.line_point[1],
+            reach=lk.reach,
+        )
+    else:
+        cells.update(pivot_C_x=lk.c[0], pivot_C_y=lk.c[1], ground=lk.ground, rocker=lk.rocker)
+        cells["assembly"] = lk.assembly
+    return cells
 
 
 def candidate_rows(res: Result) -> tuple[list[str], list[list[Any]]]:
@@ -1036,38 +1188,12 @@ def candidate_rows(res: Result) -> tuple[list[str], list[list[Any]]]:
     if run is None:
         raise LinkageError("not a synthesis run")
     u = length_unit(res.scene)
-    head = [
-        f"{name} [{u if unit == 'L' else unit}]" if unit else name
-        for name, unit in CANDIDATE_COLUMNS
-    ]
+    columns = candidate_columns(str((res.scene.synthesis or {}).get("kind", "fourbar")))
+    head = [f"{name} [{u if unit == 'L' else unit}]" if unit else name for name, unit in columns]
     rows = []
     for k, c in enumerate(run.candidates, 1):
-        fb = c.linkage
-        lo, hi = (math.degrees(v) for v in c.crank_range)
-        rows.append(
-            [
-                k,
-                c.error,
-                c.rms,
-                c.back,
-                c.grashof,
-                str(c.full_turn).lower(),
-                str(c.through_limit).lower(),
-                lo,
-                hi,
-                c.min_transmission_deg,
-                *fb.o,
-                *fb.c,
-                fb.ground,
-                fb.crank,
-                fb.coupler,
-                fb.rocker,
-                *fb.point,
-                fb.assembly,
-                c.source,
-                f"candidate-{k}.toml",
-            ]
-        )
+        cells = _candidate_cells(c, k)
+        rows.append([cells.get(name, "") for name, _ in columns])
     return head, rows
 
 
@@ -1116,31 +1242,44 @@ def _synthesis_json(res: Result) -> dict[str, Any]:
     points = s.get("points")
     cands = []
     for k, c in enumerate(run.candidates, 1):
-        fb = c.linkage
-        cands.append(
-            {
-                "rank": k,
-                "error": _json_number(c.error),
-                "rms": _json_number(c.rms),
-                "back": _json_number(c.back),
-                "grashof": c.grashof,
-                "full_turn": bool(c.full_turn),
-                "through_limit": bool(c.through_limit),
-                "crank_range_deg": [_json_number(math.degrees(v)) for v in c.crank_range],
-                "min_transmission_deg": _json_number(c.min_transmission_deg),
-                "o": [_json_number(v) for v in fb.o],
-                "c": [_json_number(v) for v in fb.c],
-                "ground": _json_number(fb.ground),
-                "crank": _json_number(fb.crank),
-                "coupler": _json_number(fb.coupler),
-                "rocker": _json_number(fb.rocker),
-                "point": [_json_number(v) for v in fb.point],
-                "assembly": fb.assembly,
-                "source": c.source,
-                "scene": f"candidate-{k}.toml",
-            }
-        )
+        lk = c.linkage
+        entry: dict[str, Any] = {
+            "rank": k,
+            "linkage": c.kind,
+            "error": _json_number(c.error),
+            "rms": _json_number(c.rms),
+            "back": _json_number(c.back),
+            "grashof": c.grashof,
+            "full_turn": bool(c.full_turn),
+            "through_limit": bool(c.through_limit),
+            "crank_range_deg": [_json_number(math.degrees(v)) for v in c.crank_range],
+            "min_transmission_deg": _json_number(c.min_transmission_deg),
+            "o": [_json_number(v) for v in lk.o],
+        }
+        if isinstance(lk, SliderCrank):
+            entry.update(
+                line_angle_deg=_json_number(math.degrees(lk.angle)),
+                offset=_json_number(lk.offset),
+                line_point=[_json_number(v) for v in lk.line_point],
+                crank=_json_number(lk.crank),
+                coupler=_json_number(lk.coupler),
+                point=[_json_number(v) for v in lk.point],
+                reach=lk.reach,
+            )
+        else:
+            entry.update(
+                c=[_json_number(v) for v in lk.c],
+                ground=_json_number(lk.ground),
+                crank=_json_number(lk.crank),
+                coupler=_json_number(lk.coupler),
+                rocker=_json_number(lk.rocker),
+                point=[_json_number(v) for v in lk.point],
+                assembly=lk.assembly,
+            )
+        entry.update(source=c.source, scene=f"candidate-{k}.toml")
+        cands.append(entry)
     return {
+        "kind": str(s.get("kind", "fourbar")),
         "target": {
             "points": len(run.target),
             "closed": run.closed,

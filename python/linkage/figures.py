@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._schema import Scene
+from linkage._slider_crank import SliderCrank
 from linkage._sweep import Sweep
 from linkage.cam import CamProfile
 from linkage.drive import Drive
@@ -31,6 +32,8 @@ __all__ = [
     "Result",
     "Row",
     "SynthesisRun",
+    "branch_text",
+    "branch_word",
     "check_counts",
     "exact",
     "format_error",
@@ -115,7 +118,7 @@ class SynthesisRun:
     target: Array
     """The target points, ``(n, 2)``, as read."""
     closed: bool
-    candidates: list[Candidate[FourBar]]
+    candidates: list[Candidate[FourBar | SliderCrank]]
     """Best (smallest largest error) first; each placed in the target's frame."""
     curves: list[Array]
     """Each candidate's coupler curve over its whole circuit, ``(samples, 2)``."""
@@ -261,6 +264,32 @@ def unit_label(units: str) -> str:
     ('mm', 'length units')
     """
     return units or "length units"
+
+
+def branch_word(lk: FourBar | SliderCrank) -> str:
+    """Return what names a linkage's branch: a four-bar's ``assembly``, a slider's ``reach``.
+
+    Examples
+    --------
+    >>> import linkage
+    >>> from linkage.figures import branch_word
+    >>> branch_word(linkage.catalog.hoecken()), branch_word(linkage.SliderCrank(2, 5))
+    ('assembly', 'reach')
+    """
+    return "reach" if isinstance(lk, SliderCrank) else "assembly"
+
+
+def branch_text(lk: FourBar | SliderCrank) -> str:
+    """Return the branch a linkage is on, in words: ``open assembly``, ``slider ahead``.
+
+    Examples
+    --------
+    >>> import linkage
+    >>> from linkage.figures import branch_text
+    >>> branch_text(linkage.catalog.hoecken()), branch_text(linkage.SliderCrank(2, 5))
+    ('open assembly', 'slider ahead')
+    """
+    return f"slider {lk.reach}" if isinstance(lk, SliderCrank) else f"{lk.assembly} assembly"
 
 
 def length_unit(scene: Scene) -> str:

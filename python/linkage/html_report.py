@@ -30,10 +30,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage._core import LinkageError
+from linkage._slider_crank import SliderCrank
 from linkage.build import build_drive
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.drive import CrankSchedule
-from linkage.figures import Result, format_number, length_unit
+from linkage.figures import Result, branch_text, format_number, length_unit
 
 __all__ = ["MAX_FRAMES", "PAGE_SIZE", "PATH_POINTS", "frames", "page", "write_index"]
 
@@ -172,14 +173,24 @@ def _synthesis_page(res: Result, images: Sequence[Path]) -> str:
         figures=_figures_table(res),
         candidates=_candidates_table(res),
         plots=_plots(images),
+        sought=_SOUGHT[str((scene.synthesis or {}).get("kind", "fourbar"))],
     )
+
+
+_SOUGHT = {
+    "fourbar": "four-bars",
+    "slider-crank": "slider-cranks",
+    "any": "four-bars and slider-cranks",
+}
+"""What a synthesis page says its scene searched, by the scene's ``kind``."""
 
 
 def _candidates_table(res: Result) -> str:
     """Return the candidates as an HTML table.
 
-    Rank, errors, class, crank range, transmission, pivots, lengths, coupler point, assembly and the
-    scene file that runs it.
+    Rank, errors, class, crank range, transmission, pivots (and a slider's line), lengths, coupler
+    point, assembly (or reach) and the scene file that runs it; the columns name the lengths of
+    the kind the scene searched (``"any"``: each cell names its own).
     """
     run = res.synthesis
     assert run is not None
@@ -189,26 +200,50 @@ def _candidates_table(res: Result) -> str:
         # Lengths to six digits without trailing zeros; errors to ``digits``.
         return html.escape(format_number(float(x), 0 if digits is None else None, digits))
 
+    kind = str((res.scene.synthesis or {}).get("kind", "fourbar"))
+    if kind == "fourbar":
+        frame, links, branch = "pivots O, C", f"ground, crank, coupler, rocker ({u})", "assembly"
+    elif kind == "slider-crank":
+        frame, links, branch = "pivot O; slider line", f"crank, rod; offset ({u})", "reach"
+    else:
+        frame, links, branch = "pivots; slider line", f"links ({u})", "branch"
     head = (
         f"<tr><th>#</th><th>max error ({u})</th><th>RMS ({u})</th><th>class</th>"
-        "<th>crank range (°)</th><th>min transmission (°)</th><th>pivots O, C</th>"
-        f"<th>ground, crank, coupler, rocker ({u})</th><th>coupler point</th>"
-        "<th>assembly</th><th>scene</th></tr>"
+        f"<th>crank range (°)</th><th>min transmission (°)</th><th>{frame}</th>"
+        f"<th>{links}</th><th>coupler point</th><th>{branch}</th><th>scene</th></tr>"
     )
     rows = []
     for k, c in enumerate(run.candidates, 1):
-        fb = c.linkage
+        lk = c.linkage
         lo, hi = (math.degrees(v) for v in c.crank_range)
         turn = " (full turn)" if c.full_turn else ""
+        o = f"({n(lk.o[0])}, {n(lk.o[1])})"
+        if isinstance(lk, SliderCrank):
+            g = f"({n(lk.line_point[0])}, {n(lk.line_point[1])})"
+            at = html.escape(format_number(math.degrees(lk.angle), 0, 6))
+            where = f"{o}; through {g} at {at}°"
+            lengths = f"{n(lk.crank)}, {n(lk.coupler)}; {n(lk.offset)}"
+            side = lk.reach if kind == "slider-crank" else branch_text(lk)
+        else:
+            where = f"{o}, ({n(lk.c[0])}, {n(lk.c[1])})"
+            lengths = f"{n(lk.ground)}, {n(lk.crank)}, {n(lk.coupler)}, {n(lk.rocker)}"
+            side = lk.assembly if kind == "fourbar" else branch_text(lk)
+        if kind == "any":
+            where = f"O {where}" if isinstance(lk, SliderCrank) else f"O, C {where}"
+            names = (
+                "crank, rod; offset"
+                if isinstance(lk, SliderCrank)
+                else "ground, crank, coupler, rocker"
+            )
+            lengths = f"{names}: {lengths}"
         rows.append(
             f"<tr><td>{k}</td><td class=num>{n(c.error, 3)}</td><td class=num>{n(c.rms, 3)}</td>"
             f"<td>{html.escape(c.grashof)}</td>"
             f"<td class=num>{lo + 0.0:.1f} … {hi + 0.0:.1f}{turn}</td>"
             f"<td class=num>{c.min_transmission_deg:.1f}</td>"
-            f"<td class=num>({n(fb.o[0])}, {n(fb.o[1])}), ({n(fb.c[0])}, {n(fb.c[1])})</td>"
-            f"<td class=num>{n(fb.ground)}, {n(fb.crank)}, {n(fb.coupler)}, {n(fb.rocker)}</td>"
-            f"<td class=num>({n(fb.point[0])}, {n(fb.point[1])})</td>"
-            f"<td>{html.escape(fb.assembly)}</td><td><code>candidate-{k}.toml</code></td></tr>"
+            f"<td class=num>{where}</td><td class=num>{lengths}</td>"
+            f"<td class=num>({n(lk.point[0])}, {n(lk.point[1])})</td>"
+            f"<td>{html.escape(side)}</td><td><code>candidate-{k}.toml</code></td></tr>"
         )
     return (
         f"<table class=figures id=candidates><thead>{head}</thead><tbody>"
@@ -750,7 +785,7 @@ style-src 'unsafe-inline'">
 #candidates td{{white-space:nowrap}}</style></head>
 <body>
 <header><h1>{title}</h1>{description}
-<p class=meta>{units}; angles in degrees. Path synthesis: four-bars whose coupler point passes \
+<p class=meta>{units}; angles in degrees. Path synthesis: {sought} whose coupler point passes \
 through the target points, best first.</p></header>
 <main>
 <h2>Figures</h2>

@@ -12,16 +12,18 @@ import math
 import time
 from collections.abc import Callable
 from functools import partial
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
 
 from linkage import synthesis
+from linkage._choices import PathKind
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._schema import Scene
+from linkage._slider_crank import SliderCrank
 from linkage._sweep import Sweep
 from linkage.build import (
     ARITHMETIC,
@@ -212,7 +214,7 @@ CONSTRAINTS = ("full_turn", "min_transmission_deg", "lengths", "pivots")
 
 
 def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], Any]) -> Result:
-    """Search for a ``[synthesis]`` scene's four-bars: candidates, coupler curves and figures.
+    """Search for a ``[synthesis]`` scene's linkages: candidates, coupler curves and figures.
 
     Each candidate's coupler curve is over its circuit in ``n`` samples; the figures' errors have
     three significant digits (they are distances measured to ~1e-3 of themselves, not sampled
@@ -225,10 +227,14 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
     lengths = s.get("lengths")
     pivots = s.get("pivots")
 
-    def search() -> list[synthesis.Candidate[FourBar]]:
+    kind = str(s.get("kind", "fourbar"))
+    sought = {"fourbar": "four-bar", "slider-crank": "slider-crank"}.get(kind, "linkage")
+
+    def search() -> list[synthesis.Candidate[FourBar | SliderCrank]]:
         return synthesis.path(
             target,
             closed=closed,
+            kind=cast(PathKind, kind),
             top=int(s.get("top", 5)),
             atlas=atlas,
             full_turn=bool(s.get("full_turn", False)),
@@ -253,13 +259,13 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
             raise scene.error(
                 ("synthesis",),
                 given[0],
-                f"no four-bar found that meets the constraints ({', '.join(given)}): "
+                f"no {sought} found that meets the constraints ({', '.join(given)}): "
                 "loosen them, or give more candidates room (top)",
             )
         raise scene.error(
             ("synthesis",),
             "points",
-            "no valid four-bar found for these points (every linkage tried failed to "
+            f"no valid {sought} found for these points (every linkage tried failed to "
             "assemble over its circuit or switched branch)",
         )
     circuits = [c.linkage.circuit(n) for c in found]

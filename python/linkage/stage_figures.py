@@ -19,12 +19,15 @@ from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._schema import Scene
+from linkage._slider_crank import SliderCrank
 from linkage._sweep import Sweep
 from linkage.cam import CamProfile
 from linkage.drive import Geared
 from linkage.figures import (
     Result,
     Row,
+    branch_text,
+    branch_word,
     exact,
     format_error,
     format_number,
@@ -159,17 +162,18 @@ def synthesis_figures(res: Result) -> None:
         )
         rows.append(
             Row(
-                f"{name}: Grashof class",
+                f"{name}: {'class' if isinstance(c.linkage, SliderCrank) else 'Grashof class'}",
                 c.grashof,
                 "",
-                f"{c.linkage.assembly} assembly, from the {c.source} search",
+                f"{branch_text(c.linkage)}, from the {c.source} search",
             )
         )
         lo, hi = (round(math.degrees(v), 1) + 0.0 for v in c.crank_range)
         how = (
             "full turn"
             if c.full_turn
-            else "rocks between its limits, through one (the assembly changes there)"
+            else f"rocks between its limits, through one (the {branch_word(c.linkage)} changes "
+            "there)"
             if c.through_limit
             else "rocks within its limits"
         )

@@ -1511,6 +1511,10 @@ def _measure(
     fb: FourBar | SliderCrank
     try:
         if kind is SLIDER:
+            # The line's direction as fitted may have turned past a full turn: the same
+            # linkage, reported with its angle in [-π, π] (so are its crank range and scene).
+            x = x.copy()
+            x[2] = math.remainder(float(x[2]), 2 * math.pi)
             problem, full, th_lo, th_hi, mu, through = _core.synth_slider_info(x, lo_s, hi_s)
             ox, oy, angle, offset, crank, coupler, along, left = (float(v) for v in x)
             fb = SliderCrank(crank, coupler, offset, (along, left), (ox, oy), angle)
