@@ -2,6 +2,7 @@
 finds a linkage for to within 1e-6 of the target's size, and in what time.
 
     .venv/bin/python bench/open_arcs.py [--random 40] [--seed 0] [--entries N] [--out rows.csv]
+    .venv/bin/python bench/open_arcs.py --kind slider-crank [--random 30] [--seed 0]
 
 Targets: arcs of the catalogue four-bars (Hoecken, Chebyshev, Watt, Roberts, Evans A and B) and
 of random four-bars (the test suite's ``random_fourbar``: ground 1, crank, coupler, rocker
@@ -12,6 +13,10 @@ distance target point → coupler curve, the true point-to-curve distance at the
 the target's RMS radius; the search runs with its defaults (``top=1``, default atlas). The arc
 atlas is built (or loaded from the cache) before any target is timed, and its build is timed
 on its own.
+
+``--kind slider-crank``: arcs of random slider-cranks instead (the tests' ``random_slider_crank``:
+crank 1, rod 0.3 … 4, any offset at which it moves, any point, line and reach), matched in the
+slider-crank arc atlas (``kind="slider-crank-arcs"``); there is no catalogue part.
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ import linkage
 from linkage import synthesis
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+from test_slider_synthesis import random_slider_crank
 from test_synthesis import arc_of, random_fourbar  # the tests' generators
 
 
@@ -40,28 +46,34 @@ def arc(fb: linkage.FourBar, rng: np.random.Generator) -> np.ndarray:
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--random", type=int, default=40)
+    ap.add_argument("--kind", choices=("fourbar", "slider-crank"), default="fourbar")
+    ap.add_argument("--random", type=int, default=None, help="random linkages (40; sliders 30)")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--entries", type=int, default=None, help="arc atlas entries (default)")
     ap.add_argument("--out", default=None)
     args = ap.parse_args()
     rng = np.random.default_rng(args.seed)
     cases = []
-    for name in ("hoecken", "chebyshev", "watt", "roberts", "evans_a", "evans_b"):
-        fb = linkage.catalog.get(name)
-        assert isinstance(fb, linkage.FourBar)
-        for k in range(3):
-            cases.append((f"{name}#{k}", arc(fb, rng)))
-    for k in range(args.random):
-        cases.append((f"random#{k}", arc(random_fourbar(rng), rng)))
+    slider = args.kind == "slider-crank"
+    if slider:
+        for k in range(30 if args.random is None else args.random):
+            cases.append((f"random#{k}", arc(random_slider_crank(rng), rng)))
+    else:
+        for name in ("hoecken", "chebyshev", "watt", "roberts", "evans_a", "evans_b"):
+            fb = linkage.catalog.get(name)
+            assert isinstance(fb, linkage.FourBar)
+            for k in range(3):
+                cases.append((f"{name}#{k}", arc(fb, rng)))
+        for k in range(40 if args.random is None else args.random):
+            cases.append((f"random#{k}", arc(random_fourbar(rng), rng)))
 
     has_arcs = hasattr(synthesis, "ARCS")
     atlas = None
     if has_arcs:
         t0 = time.perf_counter()
-        fresh = synthesis.Atlas.build(
-            args.entries or synthesis.DEFAULT_ARC_ENTRIES, kind=synthesis.ARCS
-        )
+        arcs = synthesis.SLIDER_ARCS if slider else synthesis.ARCS
+        default = synthesis.DEFAULT_SLIDER_ARC_ENTRIES if slider else synthesis.DEFAULT_ARC_ENTRIES
+        fresh = synthesis.Atlas.build(args.entries or default, kind=arcs)
         build = time.perf_counter() - t0
         mb = (fresh.descriptors.nbytes + fresh.params.nbytes) / 1e6
         print(f"arc atlas: {len(fresh):,} entries built in {build:.1f} s, {mb:.0f} MB")
@@ -73,7 +85,7 @@ def main() -> None:
         size = synthesis.target_size(target)
         t0 = time.perf_counter()
         kw = {"atlas": atlas} if atlas is not None else {}
-        found = synthesis.path(target, closed=False, top=1, **kw)
+        found = synthesis.path(target, closed=False, top=1, kind=args.kind, **kw)
         dt = time.perf_counter() - t0
         e = found[0].error / size if found else math.inf
         errs.append(e)
@@ -83,6 +95,8 @@ def main() -> None:
     errs_a = np.array(errs)
     cat = np.array([not n.startswith("random") for n, _, _ in rows])
     for label, mask in (("catalogue", cat), ("random", ~cat), ("all", np.ones_like(cat))):
+        if not mask.any():
+            continue
         ok = int(np.sum(errs_a[mask] <= 1e-6))
         print(
             f"{label:9s}: {ok}/{int(mask.sum())} within 1e-6 of the size; median error "

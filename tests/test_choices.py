@@ -35,7 +35,7 @@ def test_the_motion_laws_alias_names_the_cores_laws():
 def test_the_python_choice_tuples_are_read_from_their_alias():
     assert OUTPUTS == get_args(_choices.Output) == linkage.OUTPUTS
     assert synthesis.KINDS == get_args(_choices.LinkageKind) == ("fourbar", "slider-crank")
-    assert get_args(_choices.AtlasKind) == (*synthesis.KINDS, synthesis.ARCS)
+    assert get_args(_choices.AtlasKind) == (*synthesis.KINDS, synthesis.ARCS, synthesis.SLIDER_ARCS)
     assert walker.PLANES == get_args(_choices.Plane) == ("sagittal", "horizontal")
 
 

@@ -31,8 +31,9 @@ Output = Literal["point", "joints", "velocity", "acceleration", "instant_centres
 LinkageKind = Literal["fourbar", "slider-crank"]
 """A kind of linkage an atlas holds and :func:`linkage.synthesis.path` searches."""
 
-AtlasKind = Literal[LinkageKind, "fourbar-arcs"]
-"""The ``kind`` of a :class:`linkage.synthesis.Atlas`: a linkage kind, or open arcs of four-bars."""
+AtlasKind = Literal[LinkageKind, "fourbar-arcs", "slider-crank-arcs"]
+"""The ``kind`` of a :class:`linkage.synthesis.Atlas`: a linkage kind, or open arcs of its
+circuits."""
 
 PathKind = Literal[LinkageKind, "any"]
 """The ``kind`` of :func:`linkage.synthesis.path`: one kind, or ``"any"`` for both."""

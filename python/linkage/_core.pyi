@@ -318,10 +318,15 @@ def synth_atlas_build(
     entries: int, harmonics: int = 8, samples: int = 64, threads: int = 1
 ) -> tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.uint64]]: ...
 def synth_arc_atlas_build(
-    entries: int, harmonics: int = 8, samples: int = 128, phases: int = 8, threads: int = 1
+    entries: int,
+    harmonics: int = 8,
+    samples: int = 128,
+    phases: int = 8,
+    threads: int = 1,
+    slider: bool = False,
 ) -> tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.uint64]]: ...
 def synth_arc_frame(
-    entry: NDArray[np.float64], harmonics: int, samples: int, phases: int
+    entry: NDArray[np.float64], harmonics: int, samples: int, phases: int, slider: bool = False
 ) -> NDArray[np.float64]: ...
 def synth_atlas_nearest(
     descriptors: NDArray[np.float32], targets: NDArray[np.float32], k: int, threads: int = 1

@@ -86,7 +86,15 @@ matches open targets against it (``linkage_core::Atlas::build_arcs``)."""
 DEFAULT_ARC_ENTRIES = 560_000
 """Entries of the default arc atlas: 10,000 circuits × 8 starts × 7 fractions of a circuit."""
 
-_ENTRY_WIDTH = {"fourbar": 6, "slider-crank": 4, ARCS: 8}
+SLIDER_ARCS: AtlasKind = "slider-crank-arcs"
+"""The kind of :class:`Atlas` whose entries are open arcs of slider-crank circuits: :func:`path`
+matches open slider-crank targets against it (``linkage_core::Atlas::build_slider_arcs``)."""
+
+DEFAULT_SLIDER_ARC_ENTRIES = 280_000
+"""Entries of the default slider-crank arc atlas: 5,000 circuits × 8 starts × 7 fractions (four
+shape numbers against the four-bar's five)."""
+
+_ENTRY_WIDTH = {"fourbar": 6, "slider-crank": 4, ARCS: 8, SLIDER_ARCS: 6}
 
 ATLAS_FORMAT = 3
 """Bumped whenever the stored atlas's content or meaning changes."""
@@ -109,16 +117,38 @@ class _Kind:
     angles: tuple[int, ...]  # indices of angles (radians, not lengths)
     pivots: tuple[tuple[int, int], ...]  # indices of the ground pivots' (x, y)
     default_entries: int
+    arcs: AtlasKind  # the kind of its arc atlas, for open targets
+    arc_entries: int  # entries of the default arc atlas
 
 
-FOURBAR = _Kind("fourbar", 9, 6, (4, 5, 6), (), ((0, 1), (2, 3)), DEFAULT_ENTRIES)
+FOURBAR = _Kind(
+    "fourbar", 9, 6, (4, 5, 6), (), ((0, 1), (2, 3)), DEFAULT_ENTRIES, ARCS, DEFAULT_ARC_ENTRIES
+)
 """Placed ``[ox, oy, cx, cy, crank, coupler, rocker, along, left]`` (with an assembly flag)."""
 
-SLIDER = _Kind("slider-crank", 8, 4, (4, 5), (2,), ((0, 1),), DEFAULT_SLIDER_ENTRIES)
+SLIDER = _Kind(
+    "slider-crank",
+    8,
+    4,
+    (4, 5),
+    (2,),
+    ((0, 1),),
+    DEFAULT_SLIDER_ENTRIES,
+    SLIDER_ARCS,
+    DEFAULT_SLIDER_ARC_ENTRIES,
+)
 """Placed ``[ox, oy, angle, offset, crank, coupler, along, left]`` (reach ahead: the other reach
 is the same linkage with the line reversed, so no flag)."""
 
 _KIND = {k.name: k for k in (FOURBAR, SLIDER)}
+_ARC_KIND = {k.arcs: k for k in (FOURBAR, SLIDER)}
+
+
+def _atlas_kind(kind: Any) -> tuple[_Kind, bool]:
+    """Return the linkage kind of an atlas kind and whether its entries are open arcs."""
+    if isinstance(kind, str) and kind in _ARC_KIND:
+        return _ARC_KIND[kind], True
+    return _kind(kind, *_ARC_KIND), False
 
 
 # -- the atlas ------------------------------------------------------------------------------
@@ -142,7 +172,9 @@ class Atlas:
     An atlas of ``kind="fourbar-arcs"`` (:data:`ARCS`) holds open arcs of the four-bars'
     circuits, ``phases`` starts on each times fractions ⅛ … ¾ of the circuit, described as
     open curves; its ``params`` are ``(N, 8)``: the four-bar's six, the arc's start and the
-    index of its fraction.
+    index of its fraction. One of ``kind="slider-crank-arcs"`` (:data:`SLIDER_ARCS`) holds the
+    same arcs of the slider-cranks' circuits; its ``params`` are ``(N, 6)``: the slider-crank's
+    four, the start and the fraction.
     """
 
     descriptors: NDArray[np.float32]
@@ -182,8 +214,9 @@ class Atlas:
     ) -> Atlas:
         """Build an atlas of ``entries`` entries on ``threads`` threads (default: every core).
 
-        ``kind`` is ``"fourbar"``, ``"slider-crank"`` or ``"fourbar-arcs"`` (then ``samples``
-        are the circuit's, at least 32, and every circuit gives 8 starts × 7 fractions).
+        ``kind`` is ``"fourbar"``, ``"slider-crank"``, ``"fourbar-arcs"`` or
+        ``"slider-crank-arcs"`` (arcs: then ``samples`` are the circuit's, at least 32, and every
+        circuit gives 8 starts × 7 fractions).
         ``samples`` defaults to 64 (128 for arcs). The result does not depend on ``threads``.
 
         Examples
@@ -197,15 +230,17 @@ class Atlas:
         >>> linkage.synthesis.Atlas.build(100, kind="crank")
         Traceback (most recent call last):
         ...
-        linkage.LinkageError: kind must be 'fourbar', 'slider-crank' or 'fourbar-arcs', got 'crank'
+        linkage.LinkageError: kind must be 'fourbar', 'slider-crank', 'fourbar-arcs' or \
+'slider-crank-arcs', got 'crank'
         """
         n = as_count(entries, "entries")
         h = as_count(harmonics, "harmonics")
-        m = as_count((128 if kind == ARCS else 64) if samples is None else samples, "samples", 8)
-        if kind == ARCS:
-            desc, params, _ = _core.synth_arc_atlas_build(n, h, m, 8, _threads(threads))
-            return cls(desc, params, h, m, ARCS, 8)
-        k = _kind(kind, ARCS)
+        k, arcs = _atlas_kind(kind)
+        m = as_count((128 if arcs else 64) if samples is None else samples, "samples", 8)
+        if arcs:
+            slider = k is SLIDER
+            desc, params, _ = _core.synth_arc_atlas_build(n, h, m, 8, _threads(threads), slider)
+            return cls(desc, params, h, m, k.arcs, 8)
         build = _core.synth_atlas_build if k is FOURBAR else _core.synth_slider_atlas_build
         desc, params, _ = build(n, h, m, _threads(threads))
         return cls(desc, params, h, m, k.name)
@@ -300,16 +335,16 @@ class Atlas:
         return _core.synth_atlas_nearest(self.descriptors, q, as_count(k, "k"), _threads(threads))
 
 
-def _kind(kind: Any, also: str | None = None) -> _Kind:
+def _kind(kind: Any, *also: str) -> _Kind:
     """Return the linkage kind named ``kind``; an error names the kinds and ``also``.
 
-    ``also`` is the caller's one further choice, handled by the caller (``"any"`` for
-    :func:`path`, :data:`ARCS` for atlases), so the message lists every name it takes.
+    ``also`` are the caller's further choices, handled by the caller (``"any"`` for
+    :func:`path`, the arc kinds for atlases), so the message lists every name it takes.
     """
     if not isinstance(kind, str):
         raise TypeError(f"kind must be a str, got {type(kind).__name__}")
     if kind not in _KIND:
-        names = [repr(k) for k in _KIND] + ([repr(also)] if also else [])
+        names = [repr(k) for k in (*_KIND, *also)]
         listed = ", ".join(names[:-1]) + " or " + names[-1]
         raise LinkageError(f"kind must be {listed}, got {kind!r}")
     return _KIND[kind]
@@ -327,18 +362,19 @@ def default_atlas(
     """Return the default atlas of ``kind``, built on first use into the cache folder.
 
     ``entries`` defaults to :data:`DEFAULT_ENTRIES` four-bars,
-    :data:`DEFAULT_SLIDER_ENTRIES` slider-cranks or :data:`DEFAULT_ARC_ENTRIES` arcs
-    (``kind="fourbar-arcs"``). The cache folder is ``$LINKAGE_CACHE_DIR``, else the user's
-    cache folder; the atlas is memory-mapped from there afterwards.
+    :data:`DEFAULT_SLIDER_ENTRIES` slider-cranks, :data:`DEFAULT_ARC_ENTRIES` arcs
+    (``kind="fourbar-arcs"``) or :data:`DEFAULT_SLIDER_ARC_ENTRIES` (``"slider-crank-arcs"``).
+    The cache folder is ``$LINKAGE_CACHE_DIR``, else the user's cache folder; the atlas is
+    memory-mapped from there afterwards.
     """
-    k = _kind("fourbar" if kind == ARCS else kind, ARCS)
+    k, arcs = _atlas_kind(kind)
     entries, folder = _default_folder(entries, harmonics, kind)
     if (folder / "meta.json").exists():
         try:
             return Atlas.load(folder)
         except LinkageError:
             pass  # a corrupt cache is rebuilt
-    atlas = Atlas.build(entries, harmonics, kind=ARCS if kind == ARCS else k.name)
+    atlas = Atlas.build(entries, harmonics, kind=k.arcs if arcs else k.name)
     try:
         tmp = folder.with_name(folder.name + f".tmp{os.getpid()}")
         atlas.save(tmp)
@@ -350,14 +386,14 @@ def default_atlas(
 
 def _default_folder(entries: int | None, harmonics: int, kind: AtlasKind) -> tuple[int, Path]:
     """Return the entries of the default atlas of ``kind`` and its cache folder."""
-    k = _kind("fourbar" if kind == ARCS else kind, ARCS)
-    default = DEFAULT_ARC_ENTRIES if kind == ARCS else k.default_entries
+    k, arcs = _atlas_kind(kind)
+    default = k.arc_entries if arcs else k.default_entries
     entries = default if entries is None else entries
     core = getattr(_core, "__file__", "") or ""
     # The four-bar key is the one used before slider-cranks, so existing caches stay valid.
     tag: list[Any] = [ATLAS_FORMAT, entries, harmonics, os.path.getsize(core) if core else 0]
-    if k is not FOURBAR or kind == ARCS:
-        tag.append(ARCS if kind == ARCS else k.name)
+    if k is not FOURBAR or arcs:
+        tag.append(k.arcs if arcs else k.name)
     key = hashlib.sha256(json.dumps(tag).encode()).hexdigest()[:16]
     return entries, cache_dir() / f"atlas-{key}"
 
@@ -806,14 +842,14 @@ def path(
         ranking).
     atlas : Atlas, folder, None, or a sequence of them
         The atlas of each kind searched (default: :func:`default_atlas` of that kind); for
-        ``kind="any"`` a sequence may give one of each. Open four-bar targets search an atlas
-        of open arcs, ``kind="fourbar-arcs"`` (default: ``default_atlas(kind="fourbar-arcs")``),
-        which the sequence may give too.
+        ``kind="any"`` a sequence may give one of each. Open targets search an atlas of open
+        arcs, ``kind="fourbar-arcs"`` or ``"slider-crank-arcs"`` (default: the
+        :func:`default_atlas` of that kind), which the sequence may give too.
     refine : int
         Atlas matches refined by least squares (of each kind).
     global_search : bool or None
         Run differential evolution; ``None``: when no atlas candidate of any kind searched is
-        within ``tol`` of the target's size (open slider-crank targets have no atlas).
+        within ``tol`` of the target's size.
     full_turn, min_transmission, lengths, pivots
         Constraints: a crank that turns fully, a transmission angle at least this far from a
         toggle (radians) over the matched part, every link length within ``lengths`` (a
@@ -899,7 +935,7 @@ def path(
     fits = refine if closed else 3 * refine
     bar = _bar(progress, fits * len(kinds))
     atlases = _atlases(atlas, kinds)
-    searched = [k.name if closed else ARCS for k in kinds if closed or k is FOURBAR]
+    searched = [k.name if closed else k.arcs for k in kinds]
     _note_builds(searched, atlases, bar)
     found: list[Candidate[Any]] = []
 
@@ -926,9 +962,8 @@ def path(
     for k in kinds:
         bounds = _bounds(lengths, pivots, size, k)
         pool = []
-        # Open targets are matched against open arcs of four-bar circuits (no slider-crank
-        # arc atlas yet: the global search alone serves them).
-        name = k.name if closed else ARCS if k is FOURBAR else None
+        # Open targets are matched against open arcs of the kind's circuits.
+        name: AtlasKind | None = k.name if closed else k.arcs
         if name is not None:
             at = atlases.get(name) or default_atlas(kind=name)
             many = 4 * max(top, refine) if closed else 16 * max(top, refine)
@@ -1173,7 +1208,7 @@ def _atlases(given: Any, kinds: list[_Kind]) -> dict[str, Atlas]:
         if a is None:
             continue
         at = a if isinstance(a, Atlas) else Atlas.load(a)
-        if at.kind not in [k.name for k in kinds] + ([ARCS] if FOURBAR in kinds else []):
+        if at.kind not in [k.name for k in kinds] + [k.arcs for k in kinds]:
             searched = " or ".join(repr(k.name) for k in kinds)
             raise LinkageError(f"a {at.kind} atlas was given, but the search is for {searched}")
         out[at.kind] = at
@@ -1187,9 +1222,9 @@ def _atlas_pool(
 
     Each nearest entry is placed by the similarity between its curve's frame and the target's
     (both ends of the major axis) and scored by the polyline distance both ways (an arc atlas's
-    entries, :data:`ARCS`, against an open target: one way).
+    entries, :data:`ARCS` or :data:`SLIDER_ARCS`, against an open target: one way).
     """
-    closed = at.kind != ARCS
+    closed = at.kind not in _ARC_KIND
     variants, frame_t = _core.synth_descriptors(target, at.harmonics, closed)
     idx, _, _ = at.nearest(variants, min(max(k, 16), len(at)), threads)
     placed, crossed = [], []
@@ -1198,8 +1233,9 @@ def _atlas_pool(
         entry = np.asarray(at.params[int(i)], dtype=np.float64)
         try:
             if not closed:
-                cr = bool(entry[5])
-                frame_c = _core.synth_arc_frame(entry, at.harmonics, at.samples, at.phases)
+                slider = kind is SLIDER
+                cr = not slider and bool(entry[5])
+                frame_c = _core.synth_arc_frame(entry, at.harmonics, at.samples, at.phases, slider)
             elif kind is FOURBAR:
                 base = np.array([0.0, 0.0, 1.0, 0.0, *entry[:5]])
                 cr = bool(entry[5])

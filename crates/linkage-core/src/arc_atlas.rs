@@ -72,7 +72,7 @@ impl ArcSpec {
         self.phases.saturating_mul(ARC_FRACTIONS.len())
     }
 
-    fn check(&self) -> Result<(), Error> {
+    pub(crate) fn check(&self) -> Result<(), Error> {
         if self.phases == 0 || self.phases > self.samples {
             return Err(Error::BufferLength {
                 what: "arc phases",
@@ -91,7 +91,7 @@ impl ArcSpec {
         Ok(())
     }
 
-    fn closed(&self) -> AtlasSpec {
+    pub(crate) fn closed(&self) -> AtlasSpec {
         AtlasSpec {
             harmonics: self.harmonics,
             samples: self.samples,
@@ -120,16 +120,23 @@ impl Atlas {
     /// As [`Atlas::build`]; [`Error::BufferLength`] for fewer than 32 samples (`"arc circuit
     /// samples"`) or no phases or more phases than samples (`"arc phases"`).
     pub fn build_arcs(entries: usize, spec: ArcSpec, threads: usize) -> Result<Atlas, Error> {
+        Self::build_arcs_with(entries, spec, threads, ARC_ENTRY_PARAMS, build_arc_chunk)
+    }
+
+    /// [`Atlas::build_with`] of arcs: `chunk` gives the arcs of a range of candidates,
+    /// `params` numbers an entry.
+    pub(crate) fn build_arcs_with(
+        entries: usize,
+        spec: ArcSpec,
+        threads: usize,
+        params: usize,
+        chunk: impl Fn(core::ops::Range<u64>, ArcSpec) -> Atlas + Sync,
+    ) -> Result<Atlas, Error> {
         spec.check()?;
         let per = spec.arcs_per_circuit() as u64;
-        Self::build_with(
-            entries,
-            spec.closed(),
-            threads,
-            ARC_ENTRY_PARAMS,
-            per,
-            |r| build_arc_chunk(r, spec),
-        )
+        Self::build_with(entries, spec.closed(), threads, params, per, |r| {
+            chunk(r, spec)
+        })
     }
 }
 
@@ -139,21 +146,36 @@ fn build_arc_chunk(range: core::ops::Range<u64>, spec: ArcSpec) -> Atlas {
     each_circuit(range, spec.closed(), |part, desc, i, fb, pts| {
         let mut params = [0.0; ARC_ENTRY_PARAMS];
         params[..6].copy_from_slice(&entry_head(fb));
-        for phase in 0..spec.phases {
-            for fraction in 0..ARC_FRACTIONS.len() {
-                slice_arc(pts, spec, phase, fraction, &mut arc);
-                if shape(Efd::open(&arc, spec.harmonics), desc) {
-                    params[6..].copy_from_slice(&[phase as f64, fraction as f64]);
-                    part.push(desc, &params, i);
-                }
+        push_arcs(part, desc, i, pts, spec, &mut params, &mut arc);
+    })
+}
+
+/// Pushes every arc of candidate `i`'s sampled `circuit` that has a shape: `params` holds the
+/// entry's linkage, and its last two numbers are set to each arc's phase and fraction index.
+pub(crate) fn push_arcs(
+    part: &mut Atlas,
+    desc: &mut [f32],
+    i: u64,
+    circuit: &[Vec2<f64>],
+    spec: ArcSpec,
+    params: &mut [f64],
+    arc: &mut Vec<Vec2<f64>>,
+) {
+    let at = params.len() - 2;
+    for phase in 0..spec.phases {
+        for fraction in 0..ARC_FRACTIONS.len() {
+            slice_arc(circuit, spec, phase, fraction, arc);
+            if shape(Efd::open(arc, spec.harmonics), desc) {
+                params[at..].copy_from_slice(&[phase as f64, fraction as f64]);
+                part.push(desc, params, i);
             }
         }
-    })
+    }
 }
 
 /// The arc `(phase, fraction)` of the sampled `circuit` into `out`: `round(fraction · n) + 1`
 /// samples from sample `phase · n / phases`, wrapping round.
-fn slice_arc(
+pub(crate) fn slice_arc(
     circuit: &[Vec2<f64>],
     spec: ArcSpec,
     phase: usize,
@@ -167,6 +189,16 @@ fn slice_arc(
     out.extend((0..=segments).map(|k| circuit[(start + k) % n]));
 }
 
+/// An arc entry's index `v` (its phase or fraction) as a `usize` below `len`, or
+/// [`Error::NotRepresentable`] naming `what`.
+pub(crate) fn arc_index(v: f64, len: usize, what: &'static str) -> Result<usize, Error> {
+    if v >= 0.0 && v < len as f64 && v.fract() == 0.0 {
+        Ok(v as usize)
+    } else {
+        Err(Error::NotRepresentable { what })
+    }
+}
+
 /// The linkage of an arc entry (ground `(0, 0)`–`(1, 0)`) and its arc's `phase` and fraction
 /// index, checked.
 fn arc_entry(
@@ -175,15 +207,8 @@ fn arc_entry(
 ) -> Result<(FourBar<f64>, usize, usize), Error> {
     spec.check()?;
     let [crank, coupler, rocker, along, left, assembly, phase, fraction] = *entry;
-    let index = |v: f64, len: usize, what: &'static str| {
-        if v >= 0.0 && v < len as f64 && v.fract() == 0.0 {
-            Ok(v as usize)
-        } else {
-            Err(Error::NotRepresentable { what })
-        }
-    };
-    let phase = index(phase, spec.phases, "arc phase")?;
-    let fraction = index(fraction, ARC_FRACTIONS.len(), "arc fraction")?;
+    let phase = arc_index(phase, spec.phases, "arc phase")?;
+    let fraction = arc_index(fraction, ARC_FRACTIONS.len(), "arc fraction")?;
     let assembly = if assembly == 0.0 {
         Assembly::Open
     } else {
@@ -230,8 +255,12 @@ pub fn arc_frame(
     entry: &[f64; ARC_ENTRY_PARAMS],
     spec: ArcSpec,
 ) -> Result<Normalisation<f64>, Error> {
-    let arc = arc_points(entry, spec)?;
-    Ok(Efd::open(&arc, spec.harmonics)?.normalised()?.1)
+    open_frame(&arc_points(entry, spec)?, spec.harmonics)
+}
+
+/// The normalisation frame of an open curve ([`Efd::open`] with `harmonics`, normalised).
+pub(crate) fn open_frame(arc: &[Vec2<f64>], harmonics: usize) -> Result<Normalisation<f64>, Error> {
+    Ok(Efd::open(arc, harmonics)?.normalised()?.1)
 }
 
 #[cfg(test)]

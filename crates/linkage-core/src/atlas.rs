@@ -335,6 +335,21 @@ impl CircuitSamples {
 /// [`build_chunk`] of slider-cranks: an entry for each candidate whose circuit assembles at
 /// every sample (its closed form, [`SliderCircuit`]) and whose curve has a shape.
 fn build_slider_chunk(range: core::ops::Range<u64>, spec: AtlasSpec) -> Atlas {
+    each_slider_circuit(range, spec, |part, desc, i, sc, pts| {
+        if shape(Efd::closed(pts, spec.harmonics), desc) {
+            part.push(desc, &[sc.coupler, sc.offset, sc.along, sc.left], i);
+        }
+    })
+}
+
+/// [`each_circuit`] of the slider-crank atlas's candidates ([`slider_candidate`]): `add` gets
+/// each one whose circuit ([`SliderCircuit::polyline`] of `spec.samples` points) assembles at
+/// every sample.
+pub(crate) fn each_slider_circuit(
+    range: core::ops::Range<u64>,
+    spec: AtlasSpec,
+    mut add: impl FnMut(&mut Atlas, &mut [f32], u64, &SliderCrank<f64>, &[Vec2<f64>]),
+) -> Atlas {
     let dim = descriptor_len(spec.harmonics);
     let mut part = Atlas {
         dim,
@@ -345,18 +360,23 @@ fn build_slider_chunk(range: core::ops::Range<u64>, spec: AtlasSpec) -> Atlas {
         let Some(sc) = slider_candidate(i) else {
             continue;
         };
-        let Ok(c) = SliderCircuit::new(sc) else {
+        let Some(pts) = slider_circuit_points(sc, spec.samples) else {
             continue;
         };
-        let pts = c.polyline(spec.samples);
-        if pts.iter().any(|p| !(p.x.is_finite() && p.y.is_finite()))
-            || !shape(Efd::closed(&pts, spec.harmonics), &mut desc)
-        {
-            continue;
-        }
-        part.push(&desc, &[sc.coupler, sc.offset, sc.along, sc.left], i);
+        add(&mut part, &mut desc, i, &sc, &pts);
     }
     part
+}
+
+/// The circuit of `sc` at `samples` points, or `None` when a sample does not assemble.
+pub(crate) fn slider_circuit_points(
+    sc: SliderCrank<f64>,
+    samples: usize,
+) -> Option<Vec<Vec2<f64>>> {
+    let pts = SliderCircuit::new(sc).ok()?.polyline(samples);
+    pts.iter()
+        .all(|p| p.x.is_finite() && p.y.is_finite())
+        .then_some(pts)
 }
 
 /// The coupler curve of `fb`'s circuit into `pts` (`theta.len()` samples); `false` when a
@@ -493,7 +513,18 @@ pub fn slider_candidate(i: u64) -> Option<SliderCrank<f64>> {
     let coupler = (lo + (hi - lo) * u[0]).exp();
     let offset = (1.0 + coupler) * (2.0 * u[1] - 1.0);
     let point = (coupler * (-1.0 + 3.0 * u[2]), coupler * (-1.5 + 3.0 * u[3]));
-    let sc = SliderCrank::new(
+    let sc = slider_entry_linkage(coupler, offset, point).ok()?;
+    (!sc.is_change_point() && sc.input_range() != InputRange::Never).then_some(sc)
+}
+
+/// The slider-crank of a slider-crank atlas entry: crank pivot at the origin, crank 1, the line
+/// along `+x`, reach ahead.
+pub(crate) fn slider_entry_linkage(
+    coupler: f64,
+    offset: f64,
+    point: (f64, f64),
+) -> Result<SliderCrank<f64>, Error> {
+    SliderCrank::new(
         Vec2::zeros(),
         0.0,
         offset,
@@ -502,8 +533,6 @@ pub fn slider_candidate(i: u64) -> Option<SliderCrank<f64>> {
         point,
         Reach::Ahead,
     )
-    .ok()?;
-    (!sc.is_change_point() && sc.input_range() != InputRange::Never).then_some(sc)
 }
 
 /// The `k` entries nearest (squared Euclidean distance of descriptors) any of `targets`

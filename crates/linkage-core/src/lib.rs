@@ -102,6 +102,8 @@ mod efd;
 #[cfg(feature = "synthesis")]
 mod path_synthesis;
 #[cfg(feature = "synthesis")]
+mod slider_arc_atlas;
+#[cfg(feature = "synthesis")]
 mod slider_circuit;
 #[cfg(feature = "synthesis")]
 mod slider_crank;
@@ -122,6 +124,8 @@ pub use path_synthesis::{
     Circuit, CircuitPath, FootSearch, PathError, BRANCH_JOINT, FOOT_STARTS, PLACED_PARAMS,
     POINT_JOINT,
 };
+#[cfg(feature = "synthesis")]
+pub use slider_arc_atlas::{slider_arc_frame, slider_arc_points, SLIDER_ARC_ENTRY_PARAMS};
 #[cfg(feature = "synthesis")]
 pub use slider_circuit::{
     place_slider_entry, slider_path_errors, slider_path_residuals, SliderCircuit, SLIDER_PARAMS,

@@ -4,10 +4,10 @@
 
 use linkage_core::{
     arc_frame, covering_arc, descriptor_len, nearest, path_errors, path_residuals, place_entry,
-    place_slider_entry, polyline_distances, query_descriptors, slider_path_errors,
-    slider_path_residuals, ArcSpec, Atlas, AtlasSpec, Circuit, CircuitPath, FootSearch,
-    Normalisation, PathError, SliderCircuit, Vec2, ARC_ENTRY_PARAMS, ENTRY_PARAMS, PLACED_PARAMS,
-    QUERY_VARIANTS, SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
+    place_slider_entry, polyline_distances, query_descriptors, slider_arc_frame,
+    slider_path_errors, slider_path_residuals, ArcSpec, Atlas, AtlasSpec, Circuit, CircuitPath,
+    FootSearch, Normalisation, PathError, SliderCircuit, Vec2, ARC_ENTRY_PARAMS, ENTRY_PARAMS,
+    PLACED_PARAMS, QUERY_VARIANTS, SLIDER_ARC_ENTRY_PARAMS, SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
 };
 use numpy::ndarray::{Ix2, Ix3};
 use numpy::{
@@ -95,9 +95,11 @@ pub fn synth_slider_atlas_build<'py>(
 
 /// Builds an atlas of open arcs of four-bar circuits (`linkage_core::Atlas::build_arcs`):
 /// `(descriptors (N, D) float32, params (N, 8) float64 [crank, coupler, rocker, along, left,
-/// crossed, phase, fraction], candidate (N,))`.
+/// crossed, phase, fraction], candidate (N,))`; with `slider`, of slider-crank circuits
+/// (`Atlas::build_slider_arcs`, params `(N, 6)` `[coupler, offset, along, left, phase,
+/// fraction]`).
 #[pyfunction]
-#[pyo3(signature = (entries, harmonics=8, samples=128, phases=8, threads=1))]
+#[pyo3(signature = (entries, harmonics=8, samples=128, phases=8, threads=1, slider=false))]
 pub fn synth_arc_atlas_build<'py>(
     py: Python<'py>,
     entries: usize,
@@ -105,6 +107,7 @@ pub fn synth_arc_atlas_build<'py>(
     samples: usize,
     phases: usize,
     threads: usize,
+    slider: bool,
 ) -> PyResult<AtlasArrays<'py>> {
     let spec = ArcSpec {
         harmonics,
@@ -112,29 +115,50 @@ pub fn synth_arc_atlas_build<'py>(
         phases,
     };
     let closed = AtlasSpec { harmonics, samples };
-    atlas_arrays(py, entries, closed, ARC_ENTRY_PARAMS, || {
-        Atlas::build_arcs(entries, spec, threads_of(threads))
+    let (params, t) = (arc_params(slider), threads_of(threads));
+    atlas_arrays(py, entries, closed, params, || {
+        if slider {
+            Atlas::build_slider_arcs(entries, spec, t)
+        } else {
+            Atlas::build_arcs(entries, spec, t)
+        }
     })
 }
 
+fn arc_params(slider: bool) -> usize {
+    if slider {
+        SLIDER_ARC_ENTRY_PARAMS
+    } else {
+        ARC_ENTRY_PARAMS
+    }
+}
+
 /// The normalisation frame `[cx, cy, scale, rotation]` of an arc atlas entry's arc
-/// (`linkage_core::arc_frame`).
+/// (`linkage_core::arc_frame`; with `slider`, of a slider-crank arc entry,
+/// `linkage_core::slider_arc_frame`).
 #[pyfunction]
-#[pyo3(signature = (entry, harmonics, samples, phases))]
+#[pyo3(signature = (entry, harmonics, samples, phases, slider=false))]
 pub fn synth_arc_frame<'py>(
     py: Python<'py>,
     entry: PyReadonlyArray1<'py, f64>,
     harmonics: usize,
     samples: usize,
     phases: usize,
+    slider: bool,
 ) -> PyResult<Arr1<'py, f64>> {
-    let e = entry_head::<ARC_ENTRY_PARAMS>(&entry)?;
     let spec = ArcSpec {
         harmonics,
         samples,
         phases,
     };
-    let frame = py.detach(|| arc_frame(&e, spec)).map_err(to_py)?;
+    let frame = if slider {
+        let e = entry_head::<SLIDER_ARC_ENTRY_PARAMS>(&entry)?;
+        py.detach(|| slider_arc_frame(&e, spec))
+    } else {
+        let e = entry_head::<ARC_ENTRY_PARAMS>(&entry)?;
+        py.detach(|| arc_frame(&e, spec))
+    }
+    .map_err(to_py)?;
     Ok(frame_array(py, &frame))
 }
 
