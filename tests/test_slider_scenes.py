@@ -258,3 +258,62 @@ def test_an_atlas_of_the_other_kind_is_a_located_error(
     err = capsys.readouterr().err
     assert err.startswith(f"linkage: error: {path}:") and "[synthesis] atlas:" in err, err
     assert "slider-crank" in err and not out.exists()
+
+
+def test_a_candidate_through_a_crank_limit_is_exported_with_its_limits_and_branches(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # 40% of an offset crank-slider's curve as an open target: the best fit is a rocker-slider
+    # (a cognate, crank 15) whose matched part passes a crank limit, going on along the other
+    # reach. Its scene must say the true limits, draw the branch with most of the target, and
+    # say how many points the other reach draws.
+    sc = linkage.SliderCrank(crank=10, coupler=32, offset=6, point=(12, 9))
+    arc = sc.circuit(401).point[50:210] @ [[0.6, 0.8], [-0.8, 0.6]] + (250, 40)
+    np.savetxt(tmp_path / "open.csv", arc[::4], delimiter=",", fmt="%.12g")
+    path = tmp_path / "open.toml"
+    path.write_text(
+        'name = "open"\nunits = "mm"\n[synthesis]\npoints = "open.csv"\n'
+        'kind = "slider-crank"\nclosed = false\ntop = 2\n'
+    )
+    out = tmp_path / "report"
+    assert main(["run", str(path), "--out", str(out), "--quiet"]) == 0
+    res = runner.run(scene.load(path))
+    assert res.synthesis is not None
+    target = res.synthesis.target
+    size = res.synthesis.size
+    through = [(k, c) for k, c in enumerate(res.synthesis.candidates, 1) if c.through_limit]
+    assert through, "the search should find a rocker-slider through a limit here"
+    for k, c in through:
+        text = (out / f"candidate-{k}.toml").read_text()
+        # The comment lines, unwrapped.
+        header = " ".join(line[2:] for line in text.splitlines() if line.startswith("# "))
+        a, b = (math.degrees(v) for v in export.crank_limits(c))
+        assert f"between its limits {a:.3f}° and {b:.3f}°" in header
+        counts = export.branch_points(c, target)
+        side = export.candidate_side(c, target)
+        assert counts[side] == max(counts.values()) and sum(counts.values()) == len(target)
+        other = next(r for r in counts if r != side)
+        n = len(target)
+        assert f"this scene draws {counts[side]} of the target's {n} points" in header
+        assert f'reach = "{other}" draws the other {counts[other]}' in header
+        assert f'reach = "{side}" }}' in text
+        # Run as written, the scene draws its share of the target (and the other reach the
+        # rest), on the candidate's curve.
+        drawn = runner.run(scene.load(out / f"candidate-{k}.toml")).sweep
+        assert drawn is not None
+        near = _core_distances(target, drawn.point[drawn.valid])
+        assert int(np.sum(near <= 1e-6 * size + 2e-3 * size)) >= counts[side] - 1
+        flipped = text.replace(f'reach = "{side}" }}', f'reach = "{other}" }}')
+        rest = runner.run(scene.parse(flipped)).sweep
+        assert rest is not None
+        near = _core_distances(target, rest.point[rest.valid])
+        assert int(np.sum(near <= 1e-6 * size + 2e-3 * size)) >= counts[other] - 1
+    capsys.readouterr()
+
+
+def _core_distances(points: np.ndarray, path: np.ndarray) -> np.ndarray:
+    from linkage import _core
+
+    return _core.polyline_distance(
+        np.ascontiguousarray(points, dtype=np.float64), np.ascontiguousarray(path)
+    )

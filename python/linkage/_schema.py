@@ -920,6 +920,10 @@ def _synthesis(s: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
                 raise scene.error(
                     sec, "points", f"point {k + 1} must be a pair of numbers [x, y], got {_show(p)}"
                 )
+            if not all(math.isfinite(v) for v in p):
+                raise scene.error(
+                    sec, "points", f"point {k + 1} must be finite, got [{p[0]!r}, {p[1]!r}]"
+                )
             for v in p:
                 _number(v, "coord", scene, sec, "points")
     if s.get("kind", "fourbar") not in PATH_KINDS:

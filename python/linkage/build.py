@@ -705,9 +705,23 @@ def no_assembly(
                     f"{dist:.6g} apart, r1 and r2 reach {abs(r1 - r2):.6g} … {r1 + r2:.6g} "
                     f"(closure gap {gap:.3g})",
                 )
-            if j["kind"] == "slider" and "direction" in j:
+            if j["kind"] == "slider":
                 (px, py), (ox, oy) = pos[j["pivot"]], pos[j["origin"]]
-                dx, dy = j["direction"]
+                if "direction" in j:
+                    dx, dy = j["direction"]
+                else:
+                    (fx, fy), (tx, ty) = pos[j["link"][0]], pos[j["link"][1]]
+                    if (fx, fy) == (tx, ty):
+                        return scene.error(
+                            ("mechanism", "joints", idx),
+                            "link",
+                            f"no sample assembles: at the first sample {j['link'][0]!r} and "
+                            f"{j['link'][1]!r} coincide, so the line they carry has no direction",
+                        )
+                    turn = math.radians(j.get("angle_deg", 0.0))
+                    ux, uy = tx - fx, ty - fy
+                    dx = ux * math.cos(turn) - uy * math.sin(turn)
+                    dy = ux * math.sin(turn) + uy * math.cos(turn)
                 dist = abs((px - ox) * dy - (py - oy) * dx) / math.hypot(dx, dy)
                 return scene.error(
                     ("mechanism", "joints", idx),
@@ -1018,7 +1032,10 @@ def synthesis_atlas(scene: Scene) -> synthesis.Atlas | None:
     except LinkageError as exc:
         raise scene.error(("synthesis",), "atlas", str(exc).replace(str(folder), raw)) from None
     kind = str(s.get("kind", "fourbar"))
-    serves = {"fourbar": ("fourbar", "fourbar-arcs"), "slider-crank": ("slider-crank",)}
+    serves = {
+        "fourbar": ("fourbar", "fourbar-arcs"),
+        "slider-crank": ("slider-crank", "slider-crank-arcs"),
+    }
     if atlas.kind not in serves.get(kind, (atlas.kind,)):
         raise scene.error(
             ("synthesis",),

@@ -48,14 +48,14 @@ from numpy.typing import NDArray
 
 from linkage._arrays import choices, side_of
 from linkage._choices import Reach, Side, View
-from linkage._core import LinkageError
+from linkage._core import LinkageError, polyline_distance
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._slider_crank import SliderCrank
 from linkage._version import __version__
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.figures import Result, Row, branch_word, length_unit, torque_unit
-from linkage.synthesis import Candidate, largest_distance
+from linkage.synthesis import Candidate
 
 __all__ = [
     "CANDIDATE_COLUMNS",
@@ -63,11 +63,13 @@ __all__ = [
     "INSUNITS",
     "SCHEMA",
     "SLIDER_COLUMNS",
+    "branch_points",
     "candidate_columns",
     "candidate_drive",
     "candidate_rows",
     "candidate_scene",
     "candidate_side",
+    "crank_limits",
     "csv_columns",
     "default_pose",
     "drawing_of",
@@ -835,13 +837,6 @@ def _branches(lk: Linkage) -> tuple[str, ...]:
     return choices("reach") if isinstance(lk, SliderCrank) else choices("side")
 
 
-def _on_branch(lk: Linkage, other: bool = False) -> str:
-    """``on the open assembly`` / ``with the slider ahead`` (``other``: the other branch)."""
-    if isinstance(lk, SliderCrank):
-        return "with the slider on its other reach" if other else f"with the slider {lk.reach}"
-    return "on the other assembly" if other else f"on the {lk.assembly} assembly"
-
-
 _EXACT_KEYS = {"phase_deg": 12, "direction": 12}
 """Joint keys written to fixed decimals (an angle; a unit direction), not to the target's size."""
 
@@ -861,6 +856,44 @@ def _toml_table(j: dict[str, Any], num: Callable[[float], str]) -> str:
 
 CANDIDATE_RPM = 60.0
 """Motor speed of an exported candidate scene: one crank turn per second."""
+
+
+def crank_limits(c: Candidate[Linkage]) -> tuple[float, float]:
+    """Return the limits (radians) of the crank interval that holds a candidate's crank range.
+
+    The linkage's input interval (``input_ranges``) that contains the matched part, moved by
+    whole turns next to it; a crank that turns fully has the crank range itself.
+
+    Examples
+    --------
+    A four-bar whose crank rocks, on two intervals (its two circuits), as a candidate made by
+    hand whose matched part takes the crank from 57.3° to 85.9°:
+
+    >>> import math, numpy as np, linkage
+    >>> from linkage.export import crank_limits
+    >>> from linkage.synthesis import Candidate
+    >>> fb = linkage.FourBar(ground=20, crank=25, coupler=25, rocker=10)
+    >>> [[round(math.degrees(v), 3) for v in r] for r in fb.input_ranges()]
+    [[36.87, 101.537], [-101.537, -36.87]]
+    >>> part = Candidate(fb, 0.0, 0.0, 0.0, (1.0, 1.5), False, "rocker-crank",
+    ...                  0.4, False, "by hand", np.zeros(6))
+    >>> [round(math.degrees(v), 3) for v in crank_limits(part)]
+    [36.87, 101.537]
+    """
+    lo, hi = c.crank_range
+    if c.full_turn:
+        return lo, hi
+    mid = 0.5 * (lo + hi)
+    best = (lo, hi)
+    gap = math.inf
+    for a, b in c.linkage.input_ranges():
+        # Move the interval by whole turns so that it holds (or comes nearest) the middle.
+        k = math.floor((mid - a) / (2 * math.pi))
+        a2, b2 = a + 2 * math.pi * k, b + 2 * math.pi * k
+        miss = max(a2 - lo, hi - b2, 0.0)
+        if miss < gap:
+            best, gap = (a2, b2), miss
+    return best
 
 
 def candidate_drive(c: Candidate[Linkage]) -> tuple[float, float]:
@@ -918,17 +951,53 @@ def candidate_side(c: Candidate[Linkage], target: Array) -> Side | Reach:
     >>> candidate_side(rocks, fb.sweep(theta).point), candidate_side(rocks, crossed)
     ('left', 'right')
     """
+    counts = branch_points(c, target)
     side = _branch(c.linkage)
-    if c.full_turn or c.through_limit:
-        return side
+    best = max(counts, key=lambda sd: (counts[sd], sd == side))
+    return cast(Union[Side, Reach], best)
+
+
+def branch_points(c: Candidate[Linkage], target: Array) -> dict[str, int]:
+    """Count the target points each branch of the exported scene's drive draws.
+
+    The branches are the dyad's sides (a four-bar) or the slider's reaches, each driven over the
+    scene's crank range (:func:`candidate_drive`); a point counts for the branch whose curve
+    passes nearer it. A crank that turns fully draws every point on its own branch.
+
+    Examples
+    --------
+    Hoecken's four-bar rocked over one radian, as a candidate made by hand: five points of the
+    open assembly's arc and four of the crossed one's:
+
+    >>> import numpy as np, linkage
+    >>> from linkage.export import branch_points
+    >>> from linkage.synthesis import Candidate
+    >>> kw = dict(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+    >>> fb = linkage.FourBar(**kw)
+    >>> rocks = Candidate(fb, 0.0, 0.0, 0.0, (-0.5, 0.5), False, "crank-rocker",
+    ...                   0.4, False, "by hand", np.zeros(6))
+    >>> crossed = linkage.FourBar(**kw, assembly="crossed")
+    >>> target = np.vstack([fb.sweep(np.linspace(-0.5, 0.5, 5)).point,
+    ...                     crossed.sweep(np.linspace(-0.4, 0.4, 4)).point])
+    >>> branch_points(rocks, target)
+    {'left': 5, 'right': 4}
+    """
+    side = _branch(c.linkage)
+    pts = np.ascontiguousarray(np.asarray(target, dtype=np.float64).reshape(-1, 2))
+    pts = pts[np.all(np.isfinite(pts), axis=1)]
+    if c.full_turn:
+        return {sd: len(pts) if sd == side else 0 for sd in _branches(c.linkage)}
     phase, duration = candidate_drive(c)
     theta = np.linspace(0.0, duration * CANDIDATE_RPM * 2 * math.pi / 60, 721)
-    gaps = {}
+    gaps = []
     for sd in _branches(c.linkage):
-        s = _mechanism_of(c, sd, phase).sweep(theta, outputs=("point",))
-        gaps[sd] = largest_distance(target, s.point)
-    best = min(_branches(c.linkage), key=lambda sd: (gaps[sd], sd != side))
-    return cast(Union[Side, Reach], best)
+        curve = _mechanism_of(c, sd, phase).sweep(theta, outputs=("point",)).point
+        gaps.append(polyline_distance(pts, np.ascontiguousarray(curve, dtype=np.float64)))
+    # Ties go to the candidate's own branch.
+    own = _branches(c.linkage).index(side)
+    nearer = np.argmin(gaps, axis=0) if len(pts) else np.zeros(0, dtype=int)
+    nearer[gaps[0] == gaps[1]] = own
+    return {sd: int(np.sum(nearer == i)) for i, sd in enumerate(_branches(c.linkage))}
 
 
 def candidate_scene(res: Result, k: int) -> str:
@@ -978,17 +1047,23 @@ def candidate_scene(res: Result, k: int) -> str:
     phase, duration = candidate_drive(c)
     side = candidate_side(c, run.target)
     lo, hi = (math.degrees(v) for v in c.crank_range)
+    counts = branch_points(c, run.target)
     if c.full_turn:
         motion = "the crank turns fully: the scene drives one turn from the start of its range"
     else:
-        motion = (
-            f"the crank rocks between {lo:.3f}° and {hi:.3f}°: the scene drives it once from "
-            "one limit to the other"
-        )
+        a, b = (math.degrees(v) for v in crank_limits(c))
+        motion = f"the crank rocks between its limits {a:.3f}° and {b:.3f}°"
+        if abs(lo - a) + abs(hi - b) > 1e-9 * (1.0 + abs(a) + abs(b)):
+            motion += f"; the matched part of the curve takes it from {lo:.3f}° to {hi:.3f}°"
+        motion += ", which the scene drives once"
         if c.through_limit:
+            key = "reach" if isinstance(fb, SliderCrank) else "side"
+            other = next(b for b in counts if b != side)
+            n = len(run.target)
             motion += (
-                f" {_on_branch(fb)}; the rest of the curve is traced back "
-                f"{_on_branch(fb, other=True)}, after the linkage passes the toggle at the limit"
+                f' with {key} = "{side}"; the matched part passes a toggle at a limit and goes '
+                f"on along the other branch: this scene draws {counts[side]} of the target's {n} "
+                f'points, {key} = "{other}" draws the other {n - counts[side]}'
             )
     header = [
         f"Candidate {k} of the synthesis scene {scene.name!r} (linkage {__version__}).",
@@ -1018,7 +1093,7 @@ def candidate_scene(res: Result, k: int) -> str:
             f"C ({fb.c[0]:.6g}, {fb.c[1]:.6g}).",
         ]
     header.append(motion[0].upper() + motion[1:] + ".")
-    if side != _branch(fb):
+    if side != _branch(fb) and not c.through_limit:
         where = "the slider is" if isinstance(fb, SliderCrank) else "B is on the"
         header.append(
             f"The target is drawn by the other {branch_word(fb)} over this range: {where} {side}."

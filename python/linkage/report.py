@@ -709,7 +709,7 @@ def _synthesis(res: Result) -> Any:
     )
     ax.set_xlim(box[0], box[1])
     ax.set_ylim(box[2], box[3])
-    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_aspect("equal", adjustable="box")  # the limits stay; the figure fits them
     _tidy(ax, f"x ({u})", f"y ({u})")
     more = len(run.candidates) - len(shown)
     extra = f" (+{more} in candidates.csv)" if more > 0 else ""

@@ -252,7 +252,20 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
             seed=int(s.get("seed", 0)),
         )
 
-    found = stage("synthesis", search)
+    # A default atlas not yet in the cache is built once (seconds): its own stage, so the wait
+    # shows on the progress line and in the stage times.
+    have = {atlas.kind} if atlas is not None else set()
+    missing = [
+        a
+        for a in synthesis.atlas_kinds(cast(PathKind, kind), closed)
+        if a not in have and not synthesis.is_cached(a)
+    ]
+    if missing:
+        stage("atlas", lambda: [synthesis.default_atlas(kind=a) for a in missing])
+    try:
+        found = stage("synthesis", search)
+    except LinkageError as exc:
+        raise scene.error(("synthesis",), "points", f"the search failed: {exc}") from None
     if not found:
         given = [k for k in CONSTRAINTS if s.get(k)]
         if given:

@@ -23,7 +23,7 @@ import math
 import os
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Generic, TypeVar, Union, cast, get_args
 
@@ -57,11 +57,13 @@ __all__ = [
     "Dyad",
     "FunctionGenerator",
     "MotionCandidate",
+    "atlas_kinds",
     "centre_point_curve",
     "chebyshev_points",
     "circle_point_curve",
     "default_atlas",
     "function",
+    "is_cached",
     "motion",
     "path",
     "read_points",
@@ -119,10 +121,20 @@ class _Kind:
     default_entries: int
     arcs: AtlasKind  # the kind of its arc atlas, for open targets
     arc_entries: int  # entries of the default arc atlas
+    scaled: tuple[int, ...]  # indices of every length (links, offsets, the coupler point)
 
 
 FOURBAR = _Kind(
-    "fourbar", 9, 6, (4, 5, 6), (), ((0, 1), (2, 3)), DEFAULT_ENTRIES, ARCS, DEFAULT_ARC_ENTRIES
+    "fourbar",
+    9,
+    6,
+    (4, 5, 6),
+    (),
+    ((0, 1), (2, 3)),
+    DEFAULT_ENTRIES,
+    ARCS,
+    DEFAULT_ARC_ENTRIES,
+    (4, 5, 6, 7, 8),
 )
 """Placed ``[ox, oy, cx, cy, crank, coupler, rocker, along, left]`` (with an assembly flag)."""
 
@@ -136,6 +148,7 @@ SLIDER = _Kind(
     DEFAULT_SLIDER_ENTRIES,
     SLIDER_ARCS,
     DEFAULT_SLIDER_ARC_ENTRIES,
+    (3, 4, 5, 6, 7),
 )
 """Placed ``[ox, oy, angle, offset, crank, coupler, along, left]`` (reach ahead: the other reach
 is the same linkage with the line reversed, so no flag)."""
@@ -384,6 +397,33 @@ def default_atlas(
     return atlas
 
 
+def atlas_kinds(kind: PathKind, closed: bool) -> tuple[AtlasKind, ...]:
+    """Return the kinds of atlas :func:`path` searches for ``kind`` and a closed or open target.
+
+    Examples
+    --------
+    >>> import linkage
+    >>> linkage.synthesis.atlas_kinds("any", closed=False)
+    ('fourbar-arcs', 'slider-crank-arcs')
+    """
+    kinds = list(_KIND.values()) if kind == "any" else [_kind(kind, "any")]
+    return tuple(k.name if closed else k.arcs for k in kinds)
+
+
+def is_cached(kind: AtlasKind) -> bool:
+    """Return whether the default atlas of ``kind`` is in the cache folder.
+
+    If not, the first search that needs it builds it (a few seconds).
+
+    Examples
+    --------
+    >>> import linkage
+    >>> linkage.synthesis.is_cached("fourbar") in (True, False)
+    True
+    """
+    return (_default_folder(None, 8, kind)[1] / "meta.json").exists()
+
+
 def _default_folder(entries: int | None, harmonics: int, kind: AtlasKind) -> tuple[int, Path]:
     """Return the entries of the default atlas of ``kind`` and its cache folder."""
     k, arcs = _atlas_kind(kind)
@@ -406,11 +446,7 @@ def _note_builds(names: list[AtlasKind], given: dict[str, Atlas], bar: Bar | Non
     """
     if bar is None:
         return
-    missing = [
-        n
-        for n in dict.fromkeys(names)
-        if n not in given and not (_default_folder(None, 8, n)[1] / "meta.json").exists()
-    ]
+    missing = [n for n in dict.fromkeys(names) if n not in given and not is_cached(n)]
     if missing:
         what = " and the ".join(f"{n} atlas" for n in missing)
         bar.update(0, f"building the default {what} (once; cached in {cache_dir()})")
@@ -492,7 +528,7 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
     >>> linkage.synthesis.read_points([[0, 0], [1, float("nan")]])
     Traceback (most recent call last):
     ...
-    linkage.LinkageError: points must be finite: point 1 is [1.0, nan]
+    linkage.LinkageError: points must be finite: points[1] is [1.0, nan]
     """
     if isinstance(points, (str, os.PathLike)):
         p = Path(points)
@@ -513,6 +549,8 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
                 raise LinkageError(f"{p}:{k}: not two numbers: {line.strip()!r}") from None
             if len(row) != 2:
                 raise LinkageError(f"{p}:{k}: {len(row)} numbers, not two (x, y)")
+            if not all(math.isfinite(v) for v in row):
+                raise LinkageError(f"{p}:{k}: points must be finite, got {line.strip()!r}")
             rows.append(row)
         arr = np.array(rows, dtype=np.float64) if rows else np.zeros((0, 2))
         if arr.ndim != 2 or arr.shape[1] != 2:
@@ -523,7 +561,7 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
             raise LinkageError(f"points must have shape (n, 2), got {arr.shape}")
     if not np.all(np.isfinite(arr)):
         k = int(np.argwhere(~np.isfinite(arr))[0][0])
-        raise LinkageError(f"points must be finite: point {k} is {arr[k].tolist()}")
+        raise LinkageError(f"points must be finite: points[{k}] is {arr[k].tolist()}")
     return np.ascontiguousarray(arr)
 
 
@@ -586,8 +624,25 @@ def target_size(points: Float2D) -> float:
     >>> linkage.synthesis.target_size(np.array([[1.0, 0], [-1, 0], [0, 1], [0, -1]]))
     1.0
     """
-    centred = points - points.mean(axis=0)
-    return float(np.sqrt(np.mean(np.sum(centred**2, axis=1))))
+    centred = points - _mean(points)
+    # In units of a power of two near the largest offset: no square overflows or underflows.
+    m = float(np.max(np.abs(centred))) if centred.size else 0.0
+    if not m > 0.0 or not math.isfinite(m):
+        return m if centred.size else 0.0
+    k = math.ldexp(1.0, math.frexp(m)[1])
+    return float(np.sqrt(np.mean(np.sum((centred / k) ** 2, axis=1)))) * k
+
+
+def _mean(points: Float2D) -> NDArray[np.float64]:
+    """Return the centroid of ``points``, summed in units of a power of two.
+
+    No sum overflows, even near the largest floats.
+    """
+    m = float(np.max(np.abs(points))) if points.size else 0.0
+    if not m > 0.0 or not math.isfinite(m):
+        return np.asarray(points.mean(axis=0), dtype=np.float64)
+    k = math.ldexp(1.0, math.frexp(m)[1])
+    return np.asarray((points / k).mean(axis=0) * k, dtype=np.float64)
 
 
 # -- the search -----------------------------------------------------------------------------
@@ -929,6 +984,38 @@ def path(
             raise TypeError("pivots must be ((xmin, ymin), (xmax, ymax))")
         pivots = (as_point(pivots[0], "pivots[0]"), as_point(pivots[1], "pivots[1]"))
     target = clean_target(read_points(points), closed)
+    frame = _unit_frame(target)
+    if frame is not None:
+        # An extreme scale: search the target moved to the origin and scaled by a
+        # power of two to unit size, and move the candidates back.
+        origin, unit = frame
+        at_unit = path(
+            (target - origin) / unit,
+            closed,
+            top,
+            kind=kind,
+            atlas=atlas,
+            refine=refine,
+            global_search=global_search,
+            full_turn=full_turn,
+            min_transmission=min_transmission,
+            lengths=None if lengths is None else (lengths[0] / unit, lengths[1] / unit),
+            pivots=(
+                None
+                if pivots is None
+                else (
+                    ((pivots[0][0] - origin[0]) / unit, (pivots[0][1] - origin[1]) / unit),
+                    ((pivots[1][0] - origin[0]) / unit, (pivots[1][1] - origin[1]) / unit),
+                )
+            ),
+            max_link=max_link,
+            tol=tol,
+            maxiter=maxiter,
+            seed=seed,
+            threads=threads,
+            progress=progress,
+        )
+        return [_moved(cand, origin, unit) for cand in at_unit]
     nthreads = _threads(threads)
     centre = target.mean(axis=0)
     size = target_size(target)
@@ -1525,6 +1612,60 @@ def _finish(
     return out
 
 
+UNIT_RANGE = (2.0**-64, 2.0**64)
+"""Target sizes searched where they are; a target of a size outside is searched moved to the
+origin and scaled to unit size (:func:`path`)."""
+
+
+def _unit_frame(target: Float2D) -> tuple[NDArray[np.float64], float] | None:
+    """Return ``(centre, k)`` that take ``target`` to unit size at the origin, or None.
+
+    ``k`` is a power of two (an exact scaling); None when the target's size is within
+    :data:`UNIT_RANGE`.
+    """
+    size = target_size(target)
+    lo, hi = UNIT_RANGE
+    if lo <= size <= hi:
+        return None
+    centre = _mean(target)
+    return centre, math.ldexp(1.0, math.frexp(size)[1])
+
+
+def _moved(c: Candidate[Any], centre: NDArray[np.float64], k: float) -> Candidate[Any]:
+    """``c`` (found for a target moved by ``-centre`` and scaled by ``1/k``) moved back."""
+    x = np.array(c.params, dtype=np.float64)
+    kind = _KIND[c.kind]
+    for i, j in kind.pivots:
+        x[i], x[j] = centre[0] + k * x[i], centre[1] + k * x[j]
+    x[list(kind.scaled)] *= k
+    lk: FourBar | SliderCrank
+    if kind is SLIDER:
+        ox, oy, angle, offset, crank, coupler, along, left = (float(v) for v in x)
+        lk = SliderCrank(crank, coupler, offset, (along, left), (ox, oy), angle)
+    else:
+        fb = c.linkage
+        lk = FourBar(
+            crank=x[4],
+            coupler=x[5],
+            rocker=x[6],
+            point=(x[7], x[8]),
+            assembly=fb.assembly,
+            o=(x[0], x[1]),
+            c=(x[2], x[3]),
+        )
+    return replace(c, linkage=lk, error=c.error * k, rms=c.rms * k, back=c.back * k, params=x)
+
+
+def _turned(lo: float, hi: float) -> tuple[float, float]:
+    """Return the crank range ``(lo, hi)`` moved by whole turns so that ``lo`` is in [-π, π).
+
+    The same crank angles (a fit's angles may have turned past a full turn); every report and
+    exported scene then shows ranges near zero.
+    """
+    k = math.floor((lo + math.pi) / (2 * math.pi))
+    return lo - 2 * math.pi * k, hi - 2 * math.pi * k
+
+
 def _measure(
     x: NDArray[np.float64],
     crossed: bool,
@@ -1576,7 +1717,7 @@ def _measure(
         error=float(e[0, 0]),
         rms=float(e[0, 1]),
         back=float(e[0, 2]),
-        crank_range=(th_lo, th_hi),
+        crank_range=_turned(th_lo, th_hi),
         full_turn=full,
         grashof=grashof,
         min_transmission=mu,

@@ -20,6 +20,7 @@
 use alloc::vec::Vec;
 use nalgebra::RealField;
 
+use crate::dyad::pow2_scale;
 use crate::efd::{Efd, Normalisation};
 use crate::error::Error;
 use crate::fourbar::{Assembly, FourBar, InputRange};
@@ -815,9 +816,32 @@ pub fn polyline_distances<T: RealField + Copy>(
         });
     }
     let finite = |p: &Vec2<T>| p.x.is_finite() && p.y.is_finite();
+    // Distances are formed about the path's first finite sample, in units of a power of two
+    // near the largest offset from it (exact, and 1 at ordinary sizes): no square overflows or
+    // underflows at extreme scales.
+    let origin = path
+        .iter()
+        .copied()
+        .find(finite)
+        .unwrap_or_else(Vec2::zeros);
+    let extent = path
+        .iter()
+        .chain(points)
+        .filter(|p| finite(p))
+        .map(|p| (p.x - origin.x).abs().max((p.y - origin.y).abs()))
+        .fold(T::zero(), |m, v| if v > m { v } else { m });
+    let unit = pow2_scale(extent);
+    let local = |p: Vec2<T>| {
+        if unit == T::one() {
+            p
+        } else {
+            (p - origin) / unit
+        }
+    };
     for (q, d) in points.iter().zip(out.iter_mut()) {
         let mut best = T::max_value().unwrap_or(T::one());
         let mut any = false;
+        let q = local(*q);
         for (k, &a) in path.iter().enumerate() {
             if !finite(&a) {
                 continue;
@@ -825,10 +849,10 @@ pub fn polyline_distances<T: RealField + Copy>(
             any = true;
             // The segment to the next sample when it is finite, else the point itself.
             let b = path.get(k + 1).filter(|b| finite(b)).copied().unwrap_or(a);
-            best = best.min(segment_distance(*q, a, b));
+            best = best.min(segment_distance(q, local(a), local(b)));
         }
         *d = if any {
-            best
+            best * unit
         } else {
             T::max_value().map_or(T::one() / T::zero(), |m| m * lit::<T>(2.0))
         };
@@ -1041,6 +1065,42 @@ pub(crate) fn residuals_of<C: Circuit<f64>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The same figure at any scale and place: distances scale with it (to the last bits,
+    /// since the work is in units of a power of two), with no square overflowing or vanishing.
+    #[test]
+    fn polyline_distances_hold_at_extreme_scales() {
+        let path = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(2.0, 0.0),
+            Vec2::new(2.0, 2.0),
+        ];
+        let points = [
+            Vec2::new(1.0, 1.0),
+            Vec2::new(3.0, 1.0),
+            Vec2::new(-3.0, 4.0),
+        ];
+        let mut want = [0.0; 3];
+        polyline_distances(&points, &path, &mut want).unwrap();
+        assert_eq!(want, [1.0, 1.0, 5.0], "the unit figure");
+        for scale in [1e-300, 1e-200, 1e-100, 1e100, 1e200, 1e300] {
+            for shift in [0.0, 7.0 * scale, 1e6 * scale] {
+                let at = |p: &Vec2<f64>| Vec2::new(p.x * scale + shift, p.y * scale - shift);
+                let (path_s, points_s): (Vec<_>, Vec<_>) = (
+                    path.iter().map(at).collect(),
+                    points.iter().map(at).collect(),
+                );
+                let mut got = [0.0; 3];
+                polyline_distances(&points_s, &path_s, &mut got).unwrap();
+                for (g, w) in got.iter().zip(want) {
+                    let rel = (g / scale - w).abs() / w;
+                    // Far from the origin the points themselves carry 1e6·ε of the figure.
+                    let tol = if shift > 8.0 * scale { 1e-8 } else { 1e-14 };
+                    assert!(rel <= tol, "scale {scale:e}, shift {shift:e}: {got:?}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn limited_circuit_is_continuous_and_tracked() {

@@ -1,0 +1,64 @@
+"""Path synthesis at extreme scales: a target of size 1e±300 is searched at unit size and the
+candidates moved back, so the result is the same figure scaled; the measures of a curve (``target_size``, ``largest_distance``) hold there too,
+with no overflow warning; a ``[synthesis]`` scene of such points runs."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import linkage
+from linkage import runner, scene, synthesis
+from linkage.synthesis import largest_distance, target_size
+
+SLIDER = linkage.SliderCrank(crank=10, coupler=32, offset=6, point=(12, 9))
+FOURBAR = linkage.catalog.hoecken()
+
+
+def curve(kind: str) -> np.ndarray:
+    lk = SLIDER if kind == "slider-crank" else FOURBAR
+    return lk.circuit(61).point[:-1] @ [[0.6, 0.8], [-0.8, 0.6]] + (250.0, 40.0)
+
+
+@pytest.mark.parametrize("kind", ["fourbar", "slider-crank"])
+@pytest.mark.parametrize("scale", [1e-300, 1e-150, 1e150, 1e300])
+def test_a_target_at_an_extreme_scale_is_found_as_at_unit_scale(kind: str, scale: float) -> None:
+    unit = curve(kind)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow or underflow warning anywhere
+        ref = synthesis.path(unit, kind=kind, top=1)[0]
+        got = synthesis.path(unit * scale, kind=kind, top=1)[0]
+        size = target_size(unit * scale)
+        assert size == pytest.approx(target_size(unit) * scale, rel=1e-14)
+        assert got.error <= 1e-12 * size and ref.error <= 1e-12 * target_size(unit)
+        # The candidate is the unit one scaled: its own circuit passes through the target.
+        s = got.linkage.circuit(4001)
+        assert largest_distance(unit * scale, s.point[s.valid]) <= 1e-5 * size
+        assert got.crank_range == pytest.approx(ref.crank_range, abs=1e-9)
+        assert got.grashof == ref.grashof and got.full_turn == ref.full_turn
+
+
+def test_measures_of_a_curve_hold_at_extreme_scales() -> None:
+    square = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]])
+    for scale in (1e-308, 1e-300, 1e300, 1e307):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            assert target_size(square * scale) == pytest.approx(scale, rel=1e-15)
+            d = largest_distance(square * scale, [[2 * scale, 0.0], [2 * scale, 2 * scale]])
+            assert d == pytest.approx(3 * scale, rel=1e-15)  # from (-1, 0) to (2, 0)
+
+
+def test_a_synthesis_scene_of_huge_points_runs(tmp_path: Path) -> None:
+    np.savetxt(tmp_path / "big.csv", curve("slider-crank") * 1e200, delimiter=",")
+    path = tmp_path / "big.toml"
+    path.write_text(
+        'name = "big"\nunits = "mm"\n[synthesis]\npoints = "big.csv"\nkind = "slider-crank"\n'
+        "top = 2\n"
+    )
+    res = runner.run(scene.load(path))
+    assert res.synthesis is not None
+    best = res.synthesis.candidates[0]
+    assert best.error <= 1e-9 * res.synthesis.size
