@@ -41,6 +41,7 @@ from linkage.figures import (
 )
 from linkage.forces import Forces
 from linkage.geometry import StraightPart, straightness, three_point_centres
+from linkage.synthesis import LONG_LINK, Candidate, longest_link
 from linkage.walker import Simulation, Walker
 
 __all__ = [
@@ -165,7 +166,7 @@ def synthesis_figures(res: Result) -> None:
                 f"{name}: {'class' if isinstance(c.linkage, SliderCrank) else 'Grashof class'}",
                 c.grashof,
                 "",
-                f"{branch_text(c.linkage)}, from the {c.source} search",
+                f"{branch_text(c.linkage)}, from the {c.source} search{_long(c, run.size)}",
             )
         )
         lo, hi = (round(math.degrees(v), 1) + 0.0 for v in c.crank_range)
@@ -188,6 +189,17 @@ def synthesis_figures(res: Result) -> None:
                 value=mu,
             )
         )
+
+
+def _long(c: Candidate[FourBar | SliderCrank], size: float) -> str:
+    """Return a note for a candidate with a link over ``LONG_LINK`` target sizes, else "".
+
+    Such a link (``linkage.synthesis.LONG_LINK``, 20) makes no practical design.
+    """
+    ratio = longest_link(c) / size
+    if not ratio > LONG_LINK:
+        return ""
+    return f"; its longest link is {ratio:.0f}× the target's size"
 
 
 def _ranges(s: Sweep) -> tuple[tuple[float, float], tuple[float, float]] | None:

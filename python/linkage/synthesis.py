@@ -64,6 +64,7 @@ __all__ = [
     "default_atlas",
     "function",
     "is_cached",
+    "longest_link",
     "motion",
     "path",
     "read_points",
@@ -1371,6 +1372,25 @@ def _ranked(found: list[Candidate[Any]], size: float, limit: float) -> list[Cand
         )
 
     return sorted(found, key=key)
+
+
+def longest_link(c: Candidate[Any]) -> float:
+    """Return a candidate's longest link.
+
+    That is a link length, a side of its coupler triangle, or a slider-crank's offset (the frame
+    must reach its line). :func:`path` ranks candidates whose longest link passes ``max_link``
+    target sizes last.
+
+    Examples
+    --------
+    >>> import numpy as np, linkage
+    >>> from linkage.synthesis import Candidate, longest_link
+    >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+    >>> longest_link(Candidate(fb, 0.0, 0.0, 0.0, (0.0, 6.3), True, "crank-rocker",
+    ...                        0.4, False, "by hand", np.zeros(9)))   # A to P
+    50.0
+    """
+    return _longest(c)
 
 
 def _longest(c: Candidate[Any]) -> float:
