@@ -179,6 +179,42 @@ def test_an_arc_the_first_fits_miss_is_recovered_by_the_long_fits(arc_atlas: Atl
     assert tracked_distance(found[0].linkage, target) <= 1e-6 * size + 1e-4 * size
 
 
+CATALOGUE_ARCS = ("hoecken", "chebyshev", "watt", "roberts", "evans_a", "evans_b")
+
+
+def bench_arc(seed: int, name: str) -> np.ndarray:
+    """The target ``name`` (``"watt#1"``, ``"random#6"``) of ``bench/open_arcs.py --seed
+    seed``: the same generators drawn in the same order (three arcs of each catalogue linkage,
+    then random four-bars)."""
+    rng = np.random.default_rng(seed)
+    for cat in CATALOGUE_ARCS:
+        fb = linkage.catalog.get(cat)
+        assert isinstance(fb, linkage.FourBar)
+        for k in range(3):
+            target = arc_of(fb, rng, rng.uniform(1 / 8, 3 / 4))
+            if f"{cat}#{k}" == name:
+                return target
+    for k in range(40):
+        target = arc_of(random_fourbar(rng), rng, rng.uniform(1 / 8, 3 / 4))
+        if f"random#{k}" == name:
+            return target
+    raise KeyError(name)
+
+
+def test_a_short_arc_in_a_curved_valley_is_recovered_by_geodesic_steps(arc_atlas: Atlas) -> None:
+    """0.18 of a crossed triple-rocker's circuit (bench/open_arcs.py's random#6, seed 0): its
+    long fits crawl along a curved valley of near-fits, and MINPACK's steps ended at 1.4e-5 of
+    the size (1.5e-5 with this fixture); Levenberg-Marquardt with geodesic acceleration reaches
+    3.4e-7 (both atlases)."""
+    target = bench_arc(0, "random#6")
+    found = synthesis.path(target, closed=False, top=1, atlas=arc_atlas, global_search=False)
+    assert found
+    size = size_of(target)
+    assert found[0].error <= 1e-6 * size, found[0].error / size
+    assert_one_circuit(found[0])
+    assert tracked_distance(found[0].linkage, target) <= 1e-6 * size + 1e-4 * size
+
+
 def test_full_turn_guides_the_search_not_only_the_ranking(arc_atlas: Atlas) -> None:
     """An arc of a crank-rocker with full_turn=True: the constraint picks which matches are
     refined, so the drawing crank-rocker is found; before, an exact fit of another class ended
