@@ -134,7 +134,7 @@ def test_open_arc_is_matched(atlas: Atlas, arc_atlas: Atlas) -> None:
 
 # Arcs of 1/4 … 3/5 of a circuit that the fixture's atlas recovers, chosen among 42 tried
 # (before the long fits, arcs of 0.15 and 0.25 mostly ended at 1e-6 … 3e-4; over random arcs of
-# 1/8 … 3/4 the default atlas recovers 53 of 58, bench/open_arcs.py): they pin the method, not
+# 1/8 … 3/4 the default atlas recovers 54 of 58, bench/open_arcs.py): they pin the method, not
 # its rate.
 OPEN_ARCS = [
     ("random", 2, 0.3),
