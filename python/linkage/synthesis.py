@@ -825,6 +825,8 @@ def _geodesic_lm(
     while nfev < max_nfev:
         d2 = np.maximum(d2, np.sum(j * j, axis=0))
         d = np.sqrt(np.maximum(d2, 1e-300))
+        # A QR of a (2n + m) × m matrix (m = 49 for 40 points): small enough that the BLAS
+        # keeps it on one thread (CPU time stayed below wall time on a loaded 2-core VM).
         q, rr = np.linalg.qr(np.vstack([j / d, math.sqrt(lam) * np.eye(m)]))
         qt = q[: len(r)].T
         vy = np.linalg.solve(rr, -(qt @ r))
