@@ -62,3 +62,26 @@ def test_a_synthesis_scene_of_huge_points_runs(tmp_path: Path) -> None:
     assert res.synthesis is not None
     best = res.synthesis.candidates[0]
     assert best.error <= 1e-9 * res.synthesis.size
+
+
+def test_accept_ends_the_search_once_a_candidate_is_good_enough(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    # Hoecken's curve over crank 1 … 4 rad as an open arc: the first fits end near 1e-4 of the
+    # size, so without accept= the long fits run (to 3e-5); with accept=1e-2 of the size they
+    # must not, and the answer is within it.
+    arc = FOURBAR.sweep(np.linspace(1.0, 4.0, 40)).point
+    size = target_size(arc)
+    calls = []
+    real = synthesis._polish
+
+    def counted(*args, **kw):  # type: ignore[no-untyped-def]
+        calls.append(1)
+        return real(*args, **kw)
+
+    monkeypatch.setattr(synthesis, "_polish", counted)
+    quick = synthesis.path(arc, closed=False, top=1, accept=1e-2 * size)
+    assert quick and quick[0].error <= 1e-2 * size and not calls
+    full = synthesis.path(arc, closed=False, top=1)
+    assert calls and full[0].error <= quick[0].error
+    for bad in (-1.0, float("nan")):
+        with pytest.raises(linkage.LinkageError, match="accept"):
+            synthesis.path(arc, closed=False, accept=bad)

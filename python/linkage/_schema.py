@@ -327,6 +327,7 @@ SYNTHESIS = {
     "lengths": "list",
     "pivots": "list",
     "tol": "fraction",
+    "accept": "length",
     "seed": "int",
     "atlas": "str",
 }

@@ -298,6 +298,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         help="linkage sought (default fourbar; any: both, one ranking)",
     )
     syn.add_argument("--atlas", help="atlas folder (default: built once into the user cache)")
+    syn.add_argument(
+        "--accept",
+        type=float,
+        default=None,
+        help="an error (target units) good enough to stop the search's later stages",
+    )
     syn.add_argument("--quiet", action="store_true", help="no progress bar")
     syn.set_defaults(func=lambda a, _s: __import__("linkage.synthesis").synthesis.command(a))
     args = parser.parse_args(argv)

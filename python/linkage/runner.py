@@ -249,6 +249,7 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
                 else None
             ),
             tol=float(s.get("tol", 1e-3)),
+            accept=float(s["accept"]) if "accept" in s else None,
             seed=int(s.get("seed", 0)),
         )
 

@@ -952,6 +952,7 @@ def path(
     seed: int = 0,
     threads: int | None = None,
     progress: bool = False,
+    accept: float | None = None,
 ) -> list[Candidate[Any]]:
     """Four-bars (or slider-cranks) whose coupler curve passes through ``points``, best first.
 
@@ -983,6 +984,12 @@ def path(
         toggle (radians) over the matched part, every link length within ``lengths`` (a
         slider-crank's crank and rod), both ground pivots (a slider-crank's crank pivot) inside
         the box ``pivots = ((xmin, ymin), (xmax, ymax))``.
+    accept : float or None
+        A largest error (target units) that is good enough: the later stages — an open
+        target's long fits and further matches, and the global search when ``global_search``
+        is None — run only while no admissible candidate is within it (default: they run
+        until one is exact, :data:`EXACT` of the size, and the global search while none is
+        within ``tol``).
     max_link : float or None
         Candidates with a link (or coupler-triangle side) longer than ``max_link`` times the
         target's size (:func:`target_size`) are ranked after every other, whatever their error:
@@ -1046,6 +1053,10 @@ def path(
     progress = as_flag(progress, "progress")
     if global_search is not None:
         global_search = as_flag(global_search, "global_search")
+    if accept is not None:
+        accept = as_finite(accept, "accept")
+        if accept < 0:
+            raise LinkageError(f"accept must be a distance, at least 0, got {accept}")
     if max_link is not None:
         max_link = as_finite(max_link, "max_link")
         if max_link <= 0:
@@ -1087,6 +1098,7 @@ def path(
             seed=seed,
             threads=threads,
             progress=progress,
+            accept=None if accept is None else accept / unit,
         )
         return [_moved(cand, origin, unit) for cand in at_unit]
     nthreads = _threads(threads)
@@ -1107,6 +1119,8 @@ def path(
         return min((c.error for c in cs if admissible(c)), default=math.inf)
 
     limit = math.inf if lengths is not None or max_link is None else max_link * size
+    # The error that ends the search's later stages.
+    goal = EXACT * size if accept is None else max(EXACT * size, accept)
 
     def usable(c: Candidate[Any]) -> bool:
         """Whether ``c`` is admissible and ranks before the long-linked (``max_link``)."""
@@ -1136,16 +1150,29 @@ def path(
                 pool = pool[:placed]
             else:
                 pool = _atlas_pool(k, at, target, placed, many, nthreads)
-        mine = _finish(pool, target, closed, size, bounds, fits, nthreads, bar, top, k, admissible)
+        mine = _finish(
+            pool,
+            target,
+            closed,
+            size,
+            bounds,
+            fits,
+            nthreads,
+            bar,
+            top,
+            k,
+            admissible,
+            exact_at=1e-10 if accept is None else max(1e-10, accept / size),
+        )
         # Restarts and the global search are judged by the candidates the constraints admit:
         # an exact fit they reject must not end the search for one they admit.
-        if not closed and name is not None and mine and best_usable(mine) > EXACT * size:
+        if not closed and name is not None and mine and best_usable(mine) > goal:
             # An open target no match fitted exactly: long fits of the best, then more matches
             # and long fits of theirs (docs/synthesis.md, step 4).
             polished: list[NDArray[np.float64]] = []
             starts = [c for c in mine if usable(c)] or mine
             mine += _polish(starts, polished, target, size, bounds, nthreads, bar, k, usable)
-            if best_usable(mine) > EXACT * size:
+            if best_usable(mine) > goal:
                 seen = {x.tobytes() for x, _, _ in pool}
                 wider = _atlas_pool(k, at, target, placed + WIDER, 4 * many, nthreads)
                 if full_turn and k is FOURBAR:
@@ -1168,16 +1195,17 @@ def path(
                     exact_at=EXACT,
                 )
                 mine += more
-                if more and best_usable(mine) > EXACT * size:
+                if more and best_usable(mine) > goal:
                     starts = [c for c in more if usable(c)] or more
                     mine += _polish(
                         starts, polished, target, size, bounds, nthreads, bar, k, usable
                     )
-        if not closed and mine and best_usable(mine) > EXACT * size:
+        if not closed and mine and best_usable(mine) > goal:
             starts = [c for c in mine if admissible(c)] or mine
             mine += _hops(starts, target, size, bounds, seed, nthreads, k)
         found += mine
-    run_global = global_search if global_search is not None else best(found) > tol * size
+    enough = tol * size if accept is None else accept
+    run_global = global_search if global_search is not None else best(found) > enough
     if run_global:
         for k in kinds:
             if bar is not None:
@@ -1865,6 +1893,7 @@ def command(args: argparse.Namespace) -> int:
         full_turn=bool(args.full_turn),
         atlas=args.atlas,
         progress=not args.quiet,
+        accept=getattr(args, "accept", None),
     )
     took = time.perf_counter() - t0
     u = f" {args.units}" if args.units else ""
