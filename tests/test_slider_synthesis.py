@@ -193,7 +193,7 @@ def test_random_open_arcs_are_recovered_exactly(arc_atlas: Atlas) -> None:
     """Arcs of ⅛ … ¾ of random slider-cranks' circuits (40 points from a random start, placed
     anywhere at any scale) are found again to 1e-6 of their size. These are the first 10 of
     ``bench/open_arcs.py --kind slider-crank``'s targets (seed 0), which measured 28 of 30
-    exact (the other two 4e-6 and 4.6e-4 of the size)."""
+    exact (the other two 3.6e-6 and 4.6e-4 of the size)."""
     rng = np.random.default_rng(0)
     for k in range(10):
         sc = random_slider_crank(rng)
