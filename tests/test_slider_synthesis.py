@@ -182,7 +182,7 @@ def test_open_arc_is_matched(arc_atlas: Atlas) -> None:
     best = found[0]
     size = size_of(target)
     assert best.error <= 1e-6 * size, best.error / size
-    assert best.source == "atlas" and math.isnan(best.back)
+    assert best.source in ("atlas", "cognate") and math.isnan(best.back)  # not the global search
     assert_one_circuit(best)
     # The tracker's 20,001-sample polyline is within 6e-8 of the size of the curve here (the
     # curve runs fast near a crank limit).
@@ -329,3 +329,39 @@ def test_cli_synth_slider_crank(tmp_path, capsys, atlas: Atlas) -> None:  # type
     assert code == 0, out
     assert "slider-crank(s) for" in out and "line (deg)" in out and "offset" in out
     assert any(k in out for k in ("crank-slider", "rocker-slider")), out
+
+
+def test_the_cognate_of_an_exact_fit_is_measured(arc_atlas: Atlas) -> None:
+    """40% of an offset crank-slider's curve as an open arc. The search's exact fit is the
+    generator's cognate, a rocker-slider through a toggle (crank |AP| = 15); its cognate — the
+    generating crank-slider, which turns fully — is measured too and ranks first."""
+    sc = linkage.SliderCrank(crank=10, coupler=32, offset=6, point=(12, 9))
+    turn = np.array([[0.6, 0.8], [-0.8, 0.6]])
+    target = sc.circuit(401).point[50:210:4] @ turn + (250, 40)
+    found = synthesis.path(target, closed=False, kind="slider-crank", top=3, atlas=arc_atlas)
+    size = size_of(target)
+    best = found[0]
+    assert best.error <= 1e-9 * size and best.full_turn and best.grashof == "crank-slider"
+    assert best.linkage.crank == pytest.approx(10.0, rel=1e-7)
+    assert best.linkage.coupler == pytest.approx(32.0, rel=1e-7)
+    assert_one_circuit(best)
+    assert any(c.grashof == "rocker-slider" and c.error <= 1e-9 * size for c in found[1:])
+
+
+def test_a_slider_crank_and_its_cognate_draw_the_same_curve() -> None:
+    rng = np.random.default_rng(5)
+    for _ in range(20):
+        sc = random_slider_crank(rng)
+        cog = sc.cognate()
+        a, b = sc.circuit(2001), cog.circuit(40001)
+        size = size_of(a.point[a.valid])
+        assert synthesis.largest_distance(a.point[a.valid], b.point[b.valid]) < 1e-5 * size
+        # Its cognate is the original again (perhaps written with its line reversed: the
+        # direction turned by π, the offset negated — the same linkage).
+        back = cog.cognate()
+        assert back.crank == pytest.approx(sc.crank, rel=1e-12)
+        assert back.coupler == pytest.approx(sc.coupler, rel=1e-12)
+        assert back.point == pytest.approx(sc.point, rel=1e-12, abs=1e-12)
+        assert back.line_point == pytest.approx(sc.line_point, rel=1e-12, abs=1e-12)
+        turn = (back.angle - sc.angle) % math.pi
+        assert min(turn, math.pi - turn) < 1e-12

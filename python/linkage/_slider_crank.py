@@ -207,6 +207,41 @@ class SliderCrank:
         mu = self._core.transmission(th)
         return float(mu[0]) if scalar else mu
 
+    def cognate(self) -> SliderCrank:
+        """Return the cognate: the other slider-crank whose coupler point draws the same curve.
+
+        It keeps the crank pivot ``O``; with ``ζ = (along + i·left)/coupler`` its crank is
+        ``|AP|``, its rod ``|ζ|·crank``, its line the original's turned by ``arg ζ`` about ``O``
+        and scaled by ``|ζ|`` (offset ``|ζ|·offset``), and its coupler point
+        ``crank·(cos arg ζ, −sin arg ζ)``. Crank and rod trade roles, so the cognate of a
+        crank-slider is a rocker-slider (whose circuit passes both reaches), and conversely when
+        the crank keeps to one side of the line's normal through ``O``. The mathematics is the
+        core's (``linkage_core::SliderCrank::cognate``).
+
+        Raises
+        ------
+        LinkageError
+            When the coupler point is at the crank pin ``A`` (the cognate's crank would vanish).
+
+        Examples
+        --------
+        >>> import numpy as np, linkage
+        >>> sc = linkage.SliderCrank(crank=10, coupler=32, offset=6, point=(12, 9))
+        >>> cog = sc.cognate()
+        >>> [round(v, 9) for v in (cog.crank, cog.coupler, cog.offset, *cog.point)]
+        [15.0, 4.6875, 2.8125, 8.0, -6.0]
+        >>> a, b = sc.circuit(721), cog.circuit(20001)
+        >>> bool(linkage.synthesis.largest_distance(a.point[a.valid], b.point[b.valid]) < 1e-5)
+        True
+        >>> linkage.SliderCrank(crank=10, coupler=32).cognate()
+        Traceback (most recent call last):
+        ...
+        linkage.LinkageError: degenerate synthesis: the coupler point is at the crank pin A
+        """
+        out = SliderCrank.__new__(SliderCrank)
+        out._core = self._core.cognate()
+        return out
+
     # -- sweeping -------------------------------------------------------------------------
     def mechanism(self) -> Mechanism:
         """Return the linkage as a :class:`Mechanism` (joints O, G, A, B, P; traced at P).

@@ -1244,20 +1244,22 @@ def _cognate_candidates(
     threads: int,
     top: int = COGNATES_OF,
 ) -> list[Candidate[Any]]:
-    """Measure the Roberts cognates of the best exact four-bar fits, each driven at either pivot.
+    """Measure the cognates of the best exact fits.
 
-    They draw the same curve, so they fit as well; the search may have stopped at the first
-    exact fit (``top=1``), and a cognate or the other drive may turn fully or transmit better,
-    which the ranking prefers. Only those that fit exactly are kept.
+    A four-bar's are its Roberts cognates, each driven at either pivot; a slider-crank's is its
+    one cognate (:meth:`SliderCrank.cognate`). They draw the same curve, so they fit as well;
+    the search may have stopped at the first exact fit (``top=1``), and a cognate or the other
+    drive may turn fully or transmit better, which the ranking prefers. Only those that fit
+    exactly are kept.
     """
-    exact = sorted(
-        (c for c in found if isinstance(c.linkage, FourBar) and c.error <= EXACT * size),
-        key=lambda c: c.error,
-    )
+    exact = sorted((c for c in found if c.error <= EXACT * size), key=lambda c: c.error)
     out: list[Candidate[Any]] = []
     seen = [c.params for c in found]
     for c in exact[: min(top, COGNATES_OF)]:
         fb = c.linkage
+        if isinstance(fb, SliderCrank):
+            out += _slider_cognate(fb, seen, target, closed, size, threads)
+            continue
         try:
             first, second = fb.cognates()
             variants = [fb.reversed(), first, second, first.reversed(), second.reversed()]
@@ -1273,6 +1275,36 @@ def _cognate_candidates(
             # crank that rocks over two intervals traces the first; see FourBar.cognates).
             if cand is not None and cand.error <= EXACT * size:
                 out.append(cand)
+    return out
+
+
+def _slider_cognate(
+    sc: SliderCrank,
+    seen: list[NDArray[np.float64]],
+    target: Float2D,
+    closed: bool,
+    size: float,
+    threads: int,
+) -> list[Candidate[Any]]:
+    """Measure the cognate of an exact slider-crank fit (:meth:`SliderCrank.cognate`).
+
+    Placed on either reach (the line, or the line reversed with the offset negated: a crank
+    that turns fully draws the curve on one of them); only an exact fit is kept.
+    """
+    try:
+        cog = sc.cognate()
+    except LinkageError:
+        return []
+    (ox, oy), (along, left) = cog.o, cog.point
+    out = []
+    for angle, offset in ((cog.angle, cog.offset), (cog.angle + math.pi, -cog.offset)):
+        x = np.array([ox, oy, angle, offset, cog.crank, cog.coupler, along, left])
+        if any(np.max(np.abs(x - q)) <= 1e-9 * size for q in seen if q.shape == x.shape):
+            continue  # found already
+        seen.append(x)
+        cand = _measure(x, False, target, closed, "cognate", threads, SLIDER)
+        if cand is not None and cand.error <= EXACT * size:
+            out.append(cand)
     return out
 
 

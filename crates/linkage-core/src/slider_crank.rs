@@ -144,6 +144,75 @@ impl<T: RealField + Copy> SliderCrank<T> {
         })
     }
 
+    /// The cognate: the other slider-crank whose coupler point draws the same curve.
+    ///
+    /// With `ζ = (along + i·left)/coupler` (so `P = A + ζ(B − A)`, complex numbers), the cognate
+    /// keeps the crank pivot `O` and takes the slider to `B′ = O + ζ(B − O)`, on the line
+    /// `O + ζ(L − O)`: direction `angle + arg ζ`, offset `|ζ|·offset`. Its crank `A′ = O + ζ(B − A)`
+    /// has length `|ζ|·coupler = |AP|` and turns with the original's rod; its rod
+    /// `B′ − A′ = ζ(A − O)` has length `|ζ|·crank`, and its coupler point is
+    /// `crank·(cos arg ζ, −sin arg ζ)` (so `P = A′ + (B′ − A′)/ζ`). Crank and rod trade roles:
+    /// the cognate of a crank-slider is a rocker-slider, and conversely when the crank keeps to
+    /// one side of the line's normal through `O`.
+    ///
+    /// Its reach is where its slider is at the middle of the original's first input interval
+    /// (ahead when `(A − O)·u > 0` there). A cognate whose crank rocks traces the whole curve
+    /// over its circuit, which passes both reaches. For an original on reach behind the cognate
+    /// is written with its line reversed (direction `+ π`, offset negated: the same linkage), so
+    /// that its first input interval is the one the original's curve maps to.
+    ///
+    /// ```
+    /// use linkage_core::{Reach, SliderCrank, Vec2};
+    /// let sc =
+    ///     SliderCrank::<f64>::new(Vec2::zeros(), 0.0, 6.0, 10.0, 32.0, (12.0, 9.0), Reach::Ahead)
+    ///         .unwrap();
+    /// let cog = sc.cognate().unwrap();
+    /// // Crank |AP| = 15, rod 10·15/32, offset 6·15/32, the line turned by arg ζ = atan(9/12).
+    /// assert!((cog.crank - 15.0).abs() < 1e-12 && (cog.coupler - 4.6875).abs() < 1e-12);
+    /// assert!((cog.offset - 2.8125).abs() < 1e-12 && (cog.angle - 0.75f64.atan()).abs() < 1e-12);
+    /// assert!((cog.along - 8.0).abs() < 1e-12 && (cog.left + 6.0).abs() < 1e-12);
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Degenerate`] when the coupler point is at the crank pin `A` (the cognate's crank
+    /// would have no length); as [`SliderCrank::new`] for numbers out of range.
+    pub fn cognate(&self) -> Result<SliderCrank<T>, Error> {
+        if self.along == T::zero() && self.left == T::zero() {
+            return Err(Error::Degenerate {
+                what: "the coupler point is at the crank pin A",
+            });
+        }
+        // |ζ| and arg ζ without squaring the point's coordinates (no overflow at any scale).
+        let ap = self.along.hypot(self.left);
+        let rho = ap / self.coupler;
+        let alpha = self.left.atan2(self.along);
+        let (s, c) = alpha.sin_cos();
+        // Which reach: the sign of (A − O)·u at the middle of the first input interval.
+        let mid = match self.input_range() {
+            InputRange::Full | InputRange::Never => self.angle,
+            InputRange::Between { lo, hi } => (lo + hi) / lit(2.0),
+            InputRange::TwoIntervals { first, .. } => (first.0 + first.1) / lit(2.0),
+        };
+        let ahead = (mid - self.angle).cos() >= T::zero();
+        // The cognate's crank pin is ahead of `O` along its line where the original's rod points
+        // ahead along its own: for an original on reach behind, the cognate is written with its
+        // line reversed (the same linkage), so that its first input interval is the one the
+        // original's curve maps to.
+        let (turn, sign, ahead) = match self.reach {
+            Reach::Ahead => (T::zero(), T::one(), ahead),
+            Reach::Behind => (T::pi(), -T::one(), !ahead),
+        };
+        SliderCrank::new(
+            self.o,
+            self.angle + alpha + turn,
+            sign * self.offset * rho,
+            ap,
+            self.crank * rho,
+            (self.crank * c, -self.crank * s),
+            if ahead { Reach::Ahead } else { Reach::Behind },
+        )
+    }
+
     /// The line's unit direction `u`.
     pub fn direction(&self) -> Vec2<T> {
         let (s, c) = self.angle.sin_cos();

@@ -168,3 +168,63 @@ fn cognates_at_extreme_scales() {
         );
     }
 }
+
+/// A random offset slider-crank at any place, line and reach, its coupler point away from `A`.
+fn slider_crank() -> impl Strategy<Value = linkage_core::SliderCrank<f64>> {
+    use linkage_core::{Reach, SliderCrank};
+    (
+        (-50.0f64..50.0, -50.0f64..50.0, -3.2f64..3.2),
+        (0.2f64..3.0, 0.2f64..4.0, -0.95f64..0.95),
+        (-1.5f64..2.5, -2.0f64..2.0),
+        any::<bool>(),
+    )
+        .prop_filter_map(
+            "moves, a coupler point away from A",
+            |((x, y, angle), (r, l, e), (u, v), behind)| {
+                let reach = if behind { Reach::Behind } else { Reach::Ahead };
+                let (along, left) = (u * l, v * l);
+                let away = along.hypot(left) > 1e-3 * l;
+                let sc = SliderCrank::new(
+                    Vec2::new(x, y),
+                    angle,
+                    e * (r + l),
+                    r,
+                    l,
+                    (along, left),
+                    reach,
+                )
+                .ok()?;
+                away.then_some(sc)
+            },
+        )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(common::cases()))]
+
+    /// Every coupler point of a slider-crank is its cognate's at the crank angle `arg(B − A) +
+    /// arg ζ` (the original's rod turned), on one of the cognate's reaches.
+    #[test]
+    fn a_slider_crank_and_its_cognate_draw_the_same_curve(sc in slider_crank()) {
+        use linkage_core::Reach;
+        let cog = sc.cognate().unwrap();
+        let size = sc.crank + sc.coupler + sc.offset.abs() + sc.along.hypot(sc.left);
+        let alpha = sc.left.atan2(sc.along);
+        for k in 0..64 {
+            let theta = std::f64::consts::TAU * f64::from(k) / 64.0;
+            let Some(p) = sc.pose(theta) else { continue };
+            let rod = p.b - p.a;
+            let turned = rod.y.atan2(rod.x) + alpha;
+            let drawn = [Reach::Ahead, Reach::Behind].into_iter().any(|reach| {
+                linkage_core::SliderCrank { reach, ..cog }.pose(turned).is_some_and(|q| {
+                    // Near the cognate's toggle its pose is conditioned like the original's
+                    // rod angle there: allow the rounding of the turned angle, scaled.
+                    let slack = (q.transmission.cos().abs()).max(1e-12);
+                    (q.coupler_point - p.coupler_point).norm()
+                        <= (1e-9 * size).max(16.0 * f64::EPSILON * size / slack)
+                })
+            });
+            prop_assert!(drawn, "θ = {theta}: {:?} not drawn by the cognate {cog:?}", p.coupler_point);
+        }
+    }
+}

@@ -128,6 +128,12 @@ impl SliderCrank {
         Ok(PyArray1::from_vec(py, out))
     }
 
+    /// The cognate (`SliderCrank::cognate`).
+    fn cognate(&self) -> PyResult<SliderCrank> {
+        let inner = self.inner.cognate().map_err(to_py)?;
+        Ok(SliderCrank { inner })
+    }
+
     /// The mechanism program (joints O, G, A, B, P).
     fn mechanism(&self) -> PyResult<Mechanism> {
         let m = self
