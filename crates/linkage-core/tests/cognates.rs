@@ -200,7 +200,7 @@ fn slider_crank() -> impl Strategy<Value = linkage_core::SliderCrank<f64>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(common::cases()))]
+    #![proptest_config(common::config("proptest-regressions/cognates.txt"))]
 
     /// Every coupler point of a slider-crank is its cognate's at the crank angle `arg(B − A) +
     /// arg ζ` (the original's rod turned), on one of the cognate's reaches.
