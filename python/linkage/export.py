@@ -951,7 +951,11 @@ def candidate_side(c: Candidate[Linkage], target: Array) -> Side | Reach:
     >>> candidate_side(rocks, fb.sweep(theta).point), candidate_side(rocks, crossed)
     ('left', 'right')
     """
-    counts = branch_points(c, target)
+    return _drawing_branch(c, branch_points(c, target))
+
+
+def _drawing_branch(c: Candidate[Linkage], counts: dict[str, int]) -> Side | Reach:
+    """Return the branch that draws most target points (``counts``); a tie: the candidate's."""
     side = _branch(c.linkage)
     best = max(counts, key=lambda sd: (counts[sd], sd == side))
     return cast(Union[Side, Reach], best)
@@ -1045,9 +1049,10 @@ def candidate_scene(res: Result, k: int) -> str:
     suffix = f"-candidate-{k}"
     name = scene.name[: 64 - len(suffix)] + suffix
     phase, duration = candidate_drive(c)
-    side = candidate_side(c, run.target)
-    lo, hi = (math.degrees(v) for v in c.crank_range)
+    # The branch counts are two sweeps: once for the side and the comment.
     counts = branch_points(c, run.target)
+    side = _drawing_branch(c, counts)
+    lo, hi = (math.degrees(v) for v in c.crank_range)
     if c.full_turn:
         motion = "the crank turns fully: the scene drives one turn from the start of its range"
     else:

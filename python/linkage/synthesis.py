@@ -630,8 +630,13 @@ def target_size(points: Float2D) -> float:
     m = float(np.max(np.abs(centred))) if centred.size else 0.0
     if not m > 0.0 or not math.isfinite(m):
         return m if centred.size else 0.0
-    k = math.ldexp(1.0, math.frexp(m)[1])
+    k = _pow2(m)
     return float(np.sqrt(np.mean(np.sum((centred / k) ** 2, axis=1)))) * k
+
+
+def _pow2(m: float) -> float:
+    """Return the power of two just above the positive finite ``m`` (an exact divisor)."""
+    return math.ldexp(1.0, math.frexp(m)[1])
 
 
 def _mean(points: Float2D) -> NDArray[np.float64]:
@@ -642,7 +647,7 @@ def _mean(points: Float2D) -> NDArray[np.float64]:
     m = float(np.max(np.abs(points))) if points.size else 0.0
     if not m > 0.0 or not math.isfinite(m):
         return np.asarray(points.mean(axis=0), dtype=np.float64)
-    k = math.ldexp(1.0, math.frexp(m)[1])
+    k = _pow2(m)
     return np.asarray((points / k).mean(axis=0) * k, dtype=np.float64)
 
 
@@ -1068,7 +1073,8 @@ def path(
             raise TypeError("pivots must be ((xmin, ymin), (xmax, ymax))")
         pivots = (as_point(pivots[0], "pivots[0]"), as_point(pivots[1], "pivots[1]"))
     target = clean_target(read_points(points), closed)
-    frame = _unit_frame(target)
+    size = target_size(target)
+    frame = _unit_frame(target, size)
     if frame is not None:
         # An extreme scale: search the target moved to the origin and scaled by a
         # power of two to unit size, and move the candidates back.
@@ -1103,11 +1109,10 @@ def path(
         return [_moved(cand, origin, unit) for cand in at_unit]
     nthreads = _threads(threads)
     centre = target.mean(axis=0)
-    size = target_size(target)
     fits = refine if closed else 3 * refine
     bar = _bar(progress, fits * len(kinds))
     atlases = _atlases(atlas, kinds)
-    searched = [k.name if closed else k.arcs for k in kinds]
+    searched = list(atlas_kinds(kind, closed))
     _note_builds(searched, atlases, bar)
     found: list[Candidate[Any]] = []
 
@@ -1773,18 +1778,16 @@ UNIT_RANGE = (2.0**-64, 2.0**64)
 origin and scaled to unit size (:func:`path`)."""
 
 
-def _unit_frame(target: Float2D) -> tuple[NDArray[np.float64], float] | None:
-    """Return ``(centre, k)`` that take ``target`` to unit size at the origin, or None.
+def _unit_frame(target: Float2D, size: float) -> tuple[NDArray[np.float64], float] | None:
+    """Return ``(centre, k)`` that take ``target`` (of size ``size``) to unit size at the origin.
 
-    ``k`` is a power of two (an exact scaling); None when the target's size is within
+    ``k`` is a power of two (an exact scaling); None when the size is within
     :data:`UNIT_RANGE`.
     """
-    size = target_size(target)
     lo, hi = UNIT_RANGE
     if lo <= size <= hi:
         return None
-    centre = _mean(target)
-    return centre, math.ldexp(1.0, math.frexp(size)[1])
+    return _mean(target), _pow2(size)
 
 
 def _moved(c: Candidate[Any], centre: NDArray[np.float64], k: float) -> Candidate[Any]:
@@ -1794,22 +1797,25 @@ def _moved(c: Candidate[Any], centre: NDArray[np.float64], k: float) -> Candidat
     for i, j in kind.pivots:
         x[i], x[j] = centre[0] + k * x[i], centre[1] + k * x[j]
     x[list(kind.scaled)] *= k
-    lk: FourBar | SliderCrank
+    crossed = isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
+    lk = _linkage_of(x, crossed, kind)
+    return replace(c, linkage=lk, error=c.error * k, rms=c.rms * k, back=c.back * k, params=x)
+
+
+def _linkage_of(x: NDArray[np.float64], crossed: bool, kind: _Kind) -> FourBar | SliderCrank:
+    """Return the linkage of the placed parameters ``x`` of ``kind``."""
     if kind is SLIDER:
         ox, oy, angle, offset, crank, coupler, along, left = (float(v) for v in x)
-        lk = SliderCrank(crank, coupler, offset, (along, left), (ox, oy), angle)
-    else:
-        fb = c.linkage
-        lk = FourBar(
-            crank=x[4],
-            coupler=x[5],
-            rocker=x[6],
-            point=(x[7], x[8]),
-            assembly=fb.assembly,
-            o=(x[0], x[1]),
-            c=(x[2], x[3]),
-        )
-    return replace(c, linkage=lk, error=c.error * k, rms=c.rms * k, back=c.back * k, params=x)
+        return SliderCrank(crank, coupler, offset, (along, left), (ox, oy), angle)
+    return FourBar(
+        crank=x[4],
+        coupler=x[5],
+        rocker=x[6],
+        point=(x[7], x[8]),
+        assembly="crossed" if crossed else "open",
+        o=(x[0], x[1]),
+        c=(x[2], x[3]),
+    )
 
 
 def _turned(lo: float, hi: float) -> tuple[float, float]:
@@ -1849,21 +1855,12 @@ def _measure(
             x = x.copy()
             x[2] = math.remainder(float(x[2]), 2 * math.pi)
             problem, full, th_lo, th_hi, mu, through = _core.synth_slider_info(x, lo_s, hi_s)
-            ox, oy, angle, offset, crank, coupler, along, left = (float(v) for v in x)
-            fb = SliderCrank(crank, coupler, offset, (along, left), (ox, oy), angle)
+            fb = _linkage_of(x, crossed, kind)
             grashof = "crank-slider" if full else "rocker-slider"
         else:
             problem, full, th_lo, th_hi, mu, through = _core.synth_info(x, crossed, lo_s, hi_s)
-            fb = FourBar(
-                crank=x[4],
-                coupler=x[5],
-                rocker=x[6],
-                point=(x[7], x[8]),
-                assembly="crossed" if crossed else "open",
-                o=(x[0], x[1]),
-                c=(x[2], x[3]),
-            )
-            grashof = fb.grashof()
+            fb = _linkage_of(x, crossed, kind)
+            grashof = cast(FourBar, fb).grashof()
     except LinkageError:
         return None
     if problem is not None:
