@@ -196,7 +196,7 @@ def test_the_page_shows_the_figures_the_candidates_and_the_plot(report: Path) ->
     assert tables[0].count("<tr>") == len(s["figures"]) + 1  # and the header
     assert tables[1].startswith(" id=candidates")
     assert tables[1].count("<tr>") == len(s["synthesis"]["candidates"]) + 1
-    assert "candidate-1.toml" in tables[1]
+    assert "<code>candidate-1.toml</code>" in text  # the note names each candidate's scene
     assert 'alt="synthesis.png" src="data:image/png;base64,' in text
     assert "<script" not in text
     refs = re.findall(r"""(?:src|href|url)\s*[=(]\s*["']?([^"')\s>]*)""", text)

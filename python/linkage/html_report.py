@@ -189,8 +189,9 @@ def _candidates_table(res: Result) -> str:
     """Return the candidates as an HTML table.
 
     Rank, errors, class, crank range, transmission, pivots (and a slider's line), lengths, coupler
-    point, assembly (or reach) and the scene file that runs it; the columns name the lengths of
-    the kind the scene searched (``"any"``: each cell names its own).
+    point and assembly (or reach); the columns name the lengths of the kind the scene searched
+    (``"any"``: each cell names its own). Candidate ``k``'s scene file, ``candidate-k.toml``, is
+    named in the note above the table.
     """
     run = res.synthesis
     assert run is not None
@@ -199,6 +200,10 @@ def _candidates_table(res: Result) -> str:
     def n(x: float, digits: int | None = None) -> str:
         # Lengths to six digits without trailing zeros; errors to ``digits``.
         return html.escape(format_number(float(x), 0 if digits is None else None, digits))
+
+    def pair(x: float, y: float) -> str:
+        # A point never breaks across lines; the cells holding several break between them.
+        return f"<span class=nb>({n(x)}, {n(y)})</span>"
 
     kind = str((res.scene.synthesis or {}).get("kind", "fourbar"))
     if kind == "fourbar":
@@ -210,22 +215,22 @@ def _candidates_table(res: Result) -> str:
     head = (
         f"<tr><th>#</th><th>max error ({u})</th><th>RMS ({u})</th><th>class</th>"
         f"<th>crank range (°)</th><th>min transmission (°)</th><th>{frame}</th>"
-        f"<th>{links}</th><th>coupler point</th><th>{branch}</th><th>scene</th></tr>"
+        f"<th>{links}</th><th>coupler point</th><th>{branch}</th></tr>"
     )
     rows = []
     for k, c in enumerate(run.candidates, 1):
         lk = c.linkage
         lo, hi = (math.degrees(v) for v in c.crank_range)
-        turn = " (full turn)" if c.full_turn else ""
-        o = f"({n(lk.o[0])}, {n(lk.o[1])})"
+        turn = " <span class=nb>(full turn)</span>" if c.full_turn else ""
+        o = pair(*lk.o)
         if isinstance(lk, SliderCrank):
-            g = f"({n(lk.line_point[0])}, {n(lk.line_point[1])})"
+            g = pair(*lk.line_point)
             at = html.escape(format_number(math.degrees(lk.angle), 0, 6))
             where = f"{o}; through {g} at {at}°"
             lengths = f"{n(lk.crank)}, {n(lk.coupler)}; {n(lk.offset)}"
             side = lk.reach if kind == "slider-crank" else branch_text(lk)
         else:
-            where = f"{o}, ({n(lk.c[0])}, {n(lk.c[1])})"
+            where = f"{o}, {pair(*lk.c)}"
             lengths = f"{n(lk.ground)}, {n(lk.crank)}, {n(lk.coupler)}, {n(lk.rocker)}"
             side = lk.assembly if kind == "fourbar" else branch_text(lk)
         if kind == "any":
@@ -239,11 +244,11 @@ def _candidates_table(res: Result) -> str:
         rows.append(
             f"<tr><td>{k}</td><td class=num>{n(c.error, 3)}</td><td class=num>{n(c.rms, 3)}</td>"
             f"<td>{html.escape(c.grashof)}</td>"
-            f"<td class=num>{lo + 0.0:.1f} … {hi + 0.0:.1f}{turn}</td>"
+            f"<td class='num wrap'><span class=nb>{lo + 0.0:.1f} … {hi + 0.0:.1f}</span>{turn}</td>"
             f"<td class=num>{c.min_transmission_deg:.1f}</td>"
-            f"<td class=num>{where}</td><td class=num>{lengths}</td>"
-            f"<td class=num>({n(lk.point[0])}, {n(lk.point[1])})</td>"
-            f"<td>{html.escape(side)}</td><td><code>candidate-{k}.toml</code></td></tr>"
+            f"<td class='num wrap'>{where}</td><td class='num wrap'>{lengths}</td>"
+            f"<td class=num>{pair(*lk.point)}</td>"
+            f"<td>{html.escape(side)}</td></tr>"
         )
     return (
         f"<table class=figures id=candidates><thead>{head}</thead><tbody>"
@@ -782,7 +787,9 @@ style-src 'unsafe-inline'">
 <style>{css}
 .wide{{overflow-x:auto}}
 #candidates{{font-size:.88em}}
-#candidates td{{white-space:nowrap}}</style></head>
+#candidates td{{white-space:nowrap}}
+#candidates td.wrap{{white-space:normal;text-align:left;min-width:11em}}
+.nb{{white-space:nowrap}}</style></head>
 <body>
 <header><h1>{title}</h1>{description}
 <p class=meta>{units}; angles in degrees. Path synthesis: {sought} whose coupler point passes \
@@ -791,8 +798,9 @@ through the target points, best first.</p></header>
 <h2>Figures</h2>
 {figures}
 <h2>Candidates</h2>
-<p class=meta>Each candidate is in the target's frame; its scene file in this folder runs it \
-(<code>linkage run candidate-1.toml</code>). Pivots and lengths to 6 digits here; \
+<p class=meta>Each candidate is in the target's frame; candidate <i>k</i>'s scene file in this \
+folder runs it (<code>linkage run candidate-<i>k</i>.toml</code>, e.g. \
+<code>candidate-1.toml</code>). Pivots and lengths to 6 digits here; \
 <code>candidates.csv</code> has them in full.</p>
 <div class=wide>{candidates}</div>
 <h2>Plots</h2>
