@@ -255,12 +255,8 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
 
     # A default atlas not yet in the cache is built once (seconds): its own stage, so the wait
     # shows on the progress line and in the stage times.
-    have = {atlas.kind} if atlas is not None else set()
-    missing = [
-        a
-        for a in synthesis.atlas_kinds(cast(PathKind, kind), closed)
-        if a not in have and not synthesis.is_cached(a)
-    ]
+    given = [atlas.kind] if atlas is not None else []
+    missing = synthesis.missing_atlases(cast(PathKind, kind), closed, given)
     if missing:
         stage("atlas", lambda: [synthesis.default_atlas(kind=a) for a in missing])
     try:

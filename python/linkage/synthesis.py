@@ -22,7 +22,7 @@ import json
 import math
 import os
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Generic, TypeVar, Union, cast, get_args
@@ -65,6 +65,7 @@ __all__ = [
     "function",
     "is_cached",
     "longest_link",
+    "missing_atlases",
     "motion",
     "path",
     "read_points",
@@ -425,6 +426,22 @@ def is_cached(kind: AtlasKind) -> bool:
     return (_default_folder(None, 8, kind)[1] / "meta.json").exists()
 
 
+def missing_atlases(kind: PathKind, closed: bool, given: Iterable[str] = ()) -> list[AtlasKind]:
+    """Return the default atlases a search of ``kind`` would build first.
+
+    Those it searches (:func:`atlas_kinds`) that are neither ``given`` (kinds of atlases passed
+    in) nor in the cache folder.
+
+    Examples
+    --------
+    >>> import linkage
+    >>> linkage.synthesis.missing_atlases("fourbar", closed=True, given=["fourbar"])
+    []
+    """
+    have = set(given)
+    return [a for a in atlas_kinds(kind, closed) if a not in have and not is_cached(a)]
+
+
 def _default_folder(entries: int | None, harmonics: int, kind: AtlasKind) -> tuple[int, Path]:
     """Return the entries of the default atlas of ``kind`` and its cache folder."""
     k, arcs = _atlas_kind(kind)
@@ -439,16 +456,13 @@ def _default_folder(entries: int | None, harmonics: int, kind: AtlasKind) -> tup
     return entries, cache_dir() / f"atlas-{key}"
 
 
-def _note_builds(names: list[AtlasKind], given: dict[str, Atlas], bar: Bar | None) -> None:
+def _note_builds(missing: list[AtlasKind], bar: Bar | None) -> None:
     """Say on the progress bar which default atlases the search is about to build.
 
     A default atlas not yet in the cache folder is built once, a few seconds before the first
     fit (the arc atlas about 5 s on two cores): one line names them, so the wait is not silent.
     """
-    if bar is None:
-        return
-    missing = [n for n in dict.fromkeys(names) if n not in given and not is_cached(n)]
-    if missing:
+    if bar is not None and missing:
         what = " and the ".join(f"{n} atlas" for n in missing)
         bar.update(0, f"building the default {what} (once; cached in {cache_dir()})")
 
@@ -1112,8 +1126,7 @@ def path(
     fits = refine if closed else 3 * refine
     bar = _bar(progress, fits * len(kinds))
     atlases = _atlases(atlas, kinds)
-    searched = list(atlas_kinds(kind, closed))
-    _note_builds(searched, atlases, bar)
+    _note_builds(missing_atlases(kind, closed, atlases), bar)
     found: list[Candidate[Any]] = []
 
     def admissible(c: Candidate[Any]) -> bool:
@@ -1586,9 +1599,11 @@ def _distinct(
     Two candidates draw the same curve when each one's matched part lies within
     ``max(1e-6 size, error / 20)`` of the other's (a difference the target cannot tell); the
     later (worse-ranked) one is dropped unless it is a Roberts cognate of the earlier. Two
-    candidates of the same kind and assembly whose parameters agree to 1e-9 of the size are the
-    same linkage, whatever their matched curves (one that does not sample finitely included);
-    so are two four-bars that are one linkage driven at either pivot (the better drive is kept).
+    candidates of the same kind and assembly whose parameters agree to :data:`NEAR` of the size
+    (a slider line's direction to :data:`NEAR` radians) are one design, whatever their matched
+    curves (one that does not sample finitely included): a near-copy the optimiser left in the
+    same valley. So are two four-bars that are one linkage driven at either pivot (the better
+    drive is kept), and two rocking slider-cranks that are one linkage with its line reversed.
     """
     kept: list[tuple[Candidate[Any], Float2D, list[tuple[Any, NDArray[np.float64]]]]] = []
     for c in ranked:
@@ -1602,7 +1617,7 @@ def _distinct(
                 type(form) is type(c.linkage)
                 and getattr(form, "assembly", None) == getattr(c.linkage, "assembly", None)
                 and params.shape == c.params.shape
-                and float(np.max(np.abs(params - c.params), initial=0.0)) <= 1e-9 * size
+                and _apart(params, c.params, _KIND[c.kind], size) <= NEAR * size
                 for form, params in forms
             ):
                 same = True
@@ -1631,9 +1646,38 @@ def _same_pivots(a: Candidate[Any], b: Candidate[Any], tol: float) -> bool:
     return any(abs(pb[0] - p) <= tol and abs(pb[1] - q) <= tol for p, q in (pa, pa[::-1]))
 
 
+NEAR = 0.02
+"""Two candidates whose placed parameters all agree to this fraction of the target's size (a
+slider line's direction to this many radians) are one design: only the better is listed."""
+
+
+def _apart(a: NDArray[np.float64], b: NDArray[np.float64], kind: _Kind, size: float) -> float:
+    """Return the largest difference of two placed parameter vectors of ``kind``, as a length.
+
+    A slider line's direction counts its turn (modulo a full turn) times ``size``.
+    """
+    d = np.abs(a - b)
+    if kind is SLIDER:
+        turn = float(d[2]) % (2 * math.pi)
+        d[2] = min(turn, 2 * math.pi - turn) * size
+    return float(np.max(d, initial=0.0))
+
+
 def _forms(c: Candidate[Any]) -> list[tuple[Any, NDArray[np.float64]]]:
-    """``c``'s linkage and parameters, and for a four-bar the same driven at its rocker."""
+    """Return ``c``'s linkage and parameters, and the other forms of the same linkage.
+
+    For a four-bar the same driven at its rocker; for a slider-crank whose crank rocks (its
+    circuit passes both reaches) the same with its line reversed (direction turned by π, offset
+    negated).
+    """
     forms: list[tuple[Any, NDArray[np.float64]]] = [(c.linkage, c.params)]
+    if isinstance(c.linkage, SliderCrank):
+        if not c.linkage.full_turn:
+            x = c.params.copy()
+            x[2] += math.pi
+            x[3] = -x[3]
+            forms.append((c.linkage, x))
+        return forms
     if isinstance(c.linkage, FourBar):
         try:
             r = c.linkage.reversed()
