@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import linkage
 from linkage import LinkageError, figures, runner, scene, stage_figures
 from linkage.figures import Row, format_number, significant_digits
 
@@ -205,3 +206,30 @@ def test_synthesis_rows_refuse_a_run_that_is_not_a_synthesis():
     with pytest.raises(LinkageError, match="not a synthesis run"):
         stage_figures.synthesis_figures(res)
     assert res.figures == []
+
+
+def test_a_run_that_reaches_a_toggle_has_unbounded_peak_rates():
+    # At a double-rocker's limits the rates of a steadily driven crank are unbounded; the
+    # sampled ones are NaN there, or round-off a hair away (a rocking slider-crank's exported
+    # scene had printed a peak speed of 1.2e8 mm/s "±0").
+    from linkage.figures import Result
+    from linkage.scene import Scene
+
+    dr = linkage.FourBar(ground=20, crank=15, coupler=10, rocker=20)
+    lo, hi = dr.input_limits()
+    outs = ("point", "velocity", "acceleration")
+    res = Result(
+        Scene("dr", None, ("velocity", "acceleration"), units="mm"), np.zeros(0), np.zeros(0)
+    )
+    res.check_samples = (37,)
+    runs = [dr.sweep(np.linspace(lo, hi, n), omega=1.0, outputs=outs) for n in (73, 37)]
+    stage_figures.rate_figures(res, runs[0], runs[1:])
+    rows = {r[0]: r for r in res.figures}
+    assert rows["peak trace speed"][1:3] == ("unbounded (the run reaches a toggle)", "mm/s")
+    assert rows["peak trace acceleration"][1:3] == ("unbounded (the run reaches a toggle)", "mm/s²")
+    # Away from the limits the peaks are numbers with their error estimates.
+    res.figures.clear()
+    runs = [dr.sweep(np.linspace(lo + 0.1, hi - 0.1, n), omega=1.0, outputs=outs) for n in (73, 37)]
+    stage_figures.rate_figures(res, runs[0], runs[1:])
+    speed = {r[0]: r for r in res.figures}["peak trace speed"]
+    assert math.isfinite(float(speed[1])) and speed[3].startswith("±")

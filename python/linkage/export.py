@@ -1060,7 +1060,10 @@ def candidate_scene(res: Result, k: int) -> str:
         motion = f"the crank rocks between its limits {a:.3f}° and {b:.3f}°"
         if abs(lo - a) + abs(hi - b) > 1e-9 * (1.0 + abs(a) + abs(b)):
             motion += f"; the matched part of the curve takes it from {lo:.3f}° to {hi:.3f}°"
-        motion += ", which the scene drives once"
+        motion += (
+            ", which the scene drives once; driven steadily, a crank's speed and acceleration "
+            "grow without bound at its limits, so the scene asks for no rates"
+        )
         if c.through_limit:
             key = "reach" if isinstance(fb, SliderCrank) else "side"
             other = next(b for b in counts if b != side)
@@ -1113,7 +1116,11 @@ def candidate_scene(res: Result, k: int) -> str:
         f"name = {json.dumps(name)}",
         f"description = {json.dumps(description, ensure_ascii=False)}",
         f"units = {json.dumps(scene.units, ensure_ascii=False)}",
-        'outputs = ["trajectory", "velocity", "acceleration", "animation", "cad"]',
+        (
+            'outputs = ["trajectory", "velocity", "acceleration", "animation", "cad"]'
+            if c.full_turn
+            else 'outputs = ["trajectory", "animation", "cad"]'
+        ),
         "",
         "[mechanism]",
         'trace = "P"',

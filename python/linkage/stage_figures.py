@@ -270,7 +270,16 @@ def trajectory_figures(
 
 
 def _peaks(s: Sweep) -> tuple[float, float]:
+    """Return the run's peak trace speed and acceleration.
+
+    Both are ``inf`` when the run reaches a toggle (a valid sample whose dyad margin is below
+    1e-6, :meth:`Sweep.near_toggle`): there the rates of a steadily driven input grow without
+    bound, and the sampled ones are NaN or round-off (a rocking crank driven to its limits had
+    printed 1.2e8 mm/s ±0 on a 27 mm linkage).
+    """
     ok = s.valid
+    if np.any(s.near_toggle()):
+        return math.inf, math.inf
     speed = np.linalg.norm(s.velocity[ok], axis=1)
     accel = np.linalg.norm(s.acceleration[ok], axis=1)
     return (
@@ -302,12 +311,19 @@ def rate_figures(res: Result, s: Sweep, others: list[Sweep]) -> None:
     (speed, accel), alt = _peaks(s), [_peaks(o) for o in others]
     u = length_unit(res.scene)
     ns = res.check_samples
+    toggle = "unbounded (the run reaches a toggle)"
     if res.scene.wants("velocity"):
-        res.figures.append(row("peak trace speed", speed, f"{u}/s", [a[0] for a in alt], ns))
+        if math.isinf(speed):
+            res.figures.append(Row("peak trace speed", toggle, f"{u}/s"))
+        else:
+            others_ = [a[0] if math.isfinite(a[0]) else None for a in alt]
+            res.figures.append(row("peak trace speed", speed, f"{u}/s", others_, ns))
     if res.scene.wants("acceleration"):
-        res.figures.append(
-            row("peak trace acceleration", accel, f"{u}/s²", [a[1] for a in alt], ns)
-        )
+        if math.isinf(accel):
+            res.figures.append(Row("peak trace acceleration", toggle, f"{u}/s²"))
+        else:
+            others_ = [a[1] if math.isfinite(a[1]) else None for a in alt]
+            res.figures.append(row("peak trace acceleration", accel, f"{u}/s²", others_, ns))
 
 
 STRAIGHT_RADIUS = 1e6
