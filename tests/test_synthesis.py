@@ -331,6 +331,22 @@ def test_constraints_are_met(atlas: Atlas) -> None:
         assert_one_circuit(c)
 
 
+def test_a_looser_constraint_finds_what_a_tighter_one_does(atlas: Atlas) -> None:
+    # On the foot path, min_transmission=30° alone found nothing while adding full_turn=True
+    # found a candidate (0.245 mm, μ 67°) that meets the looser constraint too (default atlas):
+    # the matches refined first were ordered by full turns only when full_turn was asked for,
+    # least squares left the transmission bound, and the global search ignored it. With this
+    # atlas both found nothing.
+    pts = synthesis.read_points("examples/foot_path.csv")
+    mu = math.radians(30)
+    for top in (1, 4):
+        tight = synthesis.path(pts, atlas=atlas, top=top, min_transmission=mu, full_turn=True)
+        loose = synthesis.path(pts, atlas=atlas, top=top, min_transmission=mu)
+        assert len(loose) >= len(tight) >= 1
+        assert all(c.min_transmission >= mu for c in loose)
+        assert all(c.full_turn and c.min_transmission >= mu for c in tight)
+
+
 def test_csv_input(tmp_path, atlas: Atlas) -> None:  # type: ignore[no-untyped-def]
     fb = linkage.catalog.get("chebyshev")
     assert isinstance(fb, linkage.FourBar)
@@ -651,3 +667,105 @@ def test_cognate_candidates_are_exact_and_each_linkage_is_listed_once(atlas: Atl
     for i, a in enumerate(found):
         for b in found[:i]:
             assert not synthesis._same_pivots(a, b, 1e-9 * size), (a, b)
+
+
+def test_atlas_save_keeps_the_users_files(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    # Saving into a folder holding the user's own meta.json replaced it without a word, and
+    # saving onto a file raised a bare FileExistsError (a new user's trial).
+    a = Atlas.build(200, threads=1)
+    mine = tmp_path / "notes"
+    mine.mkdir()
+    (mine / "meta.json").write_text("my own notes\n")
+    with pytest.raises(linkage.LinkageError, match="not an atlas's"):
+        a.save(mine)
+    assert (mine / "meta.json").read_text() == "my own notes\n"
+    assert sorted(q.name for q in mine.iterdir()) == ["meta.json"]
+    (tmp_path / "file.txt").write_text("x")
+    with pytest.raises(linkage.LinkageError, match="is a file"):
+        a.save(tmp_path / "file.txt")
+    assert (tmp_path / "file.txt").read_text() == "x"
+    # A folder holding an atlas is replaced, and nothing is left beside it.
+    a.save(tmp_path / "atlas")
+    b = Atlas.build(300, threads=1)
+    b.save(tmp_path / "atlas")
+    assert len(Atlas.load(tmp_path / "atlas")) == 300
+    assert sorted(q.name for q in tmp_path.iterdir()) == ["atlas", "file.txt", "notes"]
+
+
+def test_points_files_in_a_spreadsheets_encodings_and_separators(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    pts = linkage.catalog.hoecken().circuit(13).point[:-1]
+    lines = [f"{float(x)!r}{{sep}}{float(y)!r}" for x, y in pts]
+    for name, sep, encoding in (
+        ("utf16.txt", "\t", "utf-16"),  # "Unicode text": UTF-16 with a byte-order mark, tabs
+        ("bom.csv", ",", "utf-8-sig"),
+        ("spaces.txt", "   ", "utf-8"),
+        ("semicolons.csv", ";", "utf-8"),
+    ):
+        f = tmp_path / name
+        f.write_text(
+            "\n".join(["x_mm,y_mm"] + [s.format(sep=sep) for s in lines]), encoding=encoding
+        )
+        np.testing.assert_array_equal(synthesis.read_points(f), pts)
+    bad = [
+        (b"\xff\xfe\x00\xd8", "utf16-lone.csv", "not UTF-8 text, nor UTF-16"),
+        (
+            b"1,2\n\xe9,3\n",
+            "latin1.csv",
+            r"nor UTF-16 with a byte-order mark \(byte 0xe9 at offset 4\)",
+        ),
+        (b"\x00\x01\x02binary", "binary.csv", "no points in it"),
+        (b"1,2\n3,4\n5\n", "short-row.csv", r"short-row.csv:3: 1 number, not two"),
+        (b"1,2\n3,abc\n", "text.csv", "separated by a comma, semicolon, tab or spaces"),
+    ]
+    for data, name, match in bad:
+        (tmp_path / name).write_bytes(data)
+        with pytest.raises(linkage.LinkageError, match=match):
+            synthesis.read_points(tmp_path / name)
+    (tmp_path / "folder.csv").mkdir()
+    with pytest.raises(linkage.LinkageError, match="is a folder"):
+        synthesis.read_points(tmp_path / "folder.csv")
+    (tmp_path / "three.csv").write_text("0,0\n1,0\n1,1\n")
+    with pytest.raises(linkage.LinkageError, match=r"three.csv: path synthesis needs at least 5"):
+        synthesis.path(tmp_path / "three.csv")
+
+
+@pytest.mark.parametrize(
+    ("kw", "match"),
+    [
+        ({"top": 51}, "top must be between 1 and 50"),
+        ({"tol": 0.0}, "tol must be positive"),
+        ({"min_transmission": 30}, r"did you mean math.radians\(30\)"),
+        ({"min_transmission": -0.1}, "between 0 and π/2"),
+    ],
+)
+def test_path_checks_what_scenes_check(kw: dict[str, object], match: str) -> None:
+    pts = linkage.catalog.hoecken().circuit(13).point[:-1]
+    with pytest.raises(linkage.LinkageError, match=match):
+        synthesis.path(pts, atlas=Atlas.build(100, threads=1), **kw)  # type: ignore[arg-type]
+    with pytest.raises(linkage.LinkageError, match="at most 10000 points"):
+        synthesis.path(np.random.default_rng(0).normal(size=(10_001, 2)))
+
+
+def test_far_from_the_origin_and_many_points(atlas: Atlas) -> None:
+    # The Hoecken curve moved 1e10 away ended at 2e-3 of its size (the fit lost its digits to
+    # the coordinates); now it is searched at the origin and ends at the input's own rounding.
+    # 1000 points had not finished in 285 s (a fit's cost grows with the cube of its points):
+    # now 120 of them are fitted and every point measured.
+    fb = linkage.catalog.hoecken()
+    pts = fb.circuit(37).point[:-1]
+    far = synthesis.path(pts + 1e10, atlas=atlas, top=1, global_search=False)[0]
+    rounding = float(np.max(np.abs((pts + 1e10) - 1e10 - pts)))
+    assert far.error <= 2 * rounding + 1e-12 * size_of(pts)
+    many = fb.circuit(1001).point[:-1] * 7 + (3, -2)
+    best = synthesis.path(many, atlas=atlas, top=1, global_search=False)[0]
+    assert best.error <= 1e-9 * size_of(many)
+    # The error is the largest over all 1000 points, as _errors measures it.
+    e, _ = synthesis._errors(
+        best.params[None, :],
+        np.array([best.linkage.assembly == "crossed"]),
+        np.ascontiguousarray(many),
+        True,
+        samples=2048,
+        exact=True,
+    )
+    assert e[0, 0] == pytest.approx(best.error, rel=1e-9, abs=1e-15 * size_of(many))

@@ -872,9 +872,9 @@ def affordable_checks(scene: Scene, study: FourBar | Mechanism | Walker, n: int)
 
 # -- synthesis scenes -------------------------------------------------------------------------
 
-POINTS_FILE_MAX = 4 << 20
+POINTS_FILE_MAX = synthesis.POINTS_FILE_MAX
 """Largest target points file (4 MiB: :data:`~linkage.scene.POINTS_MAX` lines of two numbers
-take about 0.4 MiB)."""
+take about 0.4 MiB); :func:`linkage.synthesis.read_points` holds every file to it."""
 
 
 CURVE_BYTES = 2 * 8 * (5 * 2 + 2 + 2 + 1)
@@ -968,10 +968,6 @@ def synthesis_target(scene: Scene) -> Array:
             )
         try:
             points = synthesis.read_points(where)
-        except UnicodeDecodeError as exc:
-            raise scene.error(
-                sec, "points", f"{raw}: not UTF-8 text (byte 0x{exc.object[exc.start]:02x})"
-            ) from None
         except LinkageError as exc:
             raise scene.error(sec, "points", str(exc).replace(str(where), raw)) from None
         except (ValueError, TypeError):  # rows of different lengths

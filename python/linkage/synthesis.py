@@ -21,6 +21,7 @@ import hashlib
 import json
 import math
 import os
+import re
 import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
@@ -46,6 +47,7 @@ from linkage._precision import (
     motion,
 )
 from linkage._progress import Bar
+from linkage._schema import POINTS_MAX, SYNTHESIS_TOP_MAX
 from linkage._slider_crank import SliderCrank
 from linkage.catalog import cache_dir
 
@@ -169,6 +171,19 @@ def _atlas_kind(kind: Any) -> tuple[_Kind, bool]:
 # -- the atlas ------------------------------------------------------------------------------
 
 
+ATLAS_FILES = ("descriptors.npy", "params.npy", "meta.json")
+"""The files of a saved atlas (:meth:`Atlas.save`), in the order they are moved into place."""
+
+
+def _atlas_meta(path: Path) -> bool:
+    """Whether ``path`` is an atlas's ``meta.json`` (any format: an old one is replaced)."""
+    try:
+        meta = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return isinstance(meta, dict) and "format" in meta and "entries" in meta
+
+
 @dataclass
 class Atlas:
     """Normalised four-bars and the elliptic Fourier descriptors of their coupler curves.
@@ -261,7 +276,11 @@ class Atlas:
         return cls(desc, params, h, m, k.name)
 
     def save(self, folder: str | os.PathLike[str]) -> Path:
-        """Write the atlas to ``folder`` (created; files written there only).
+        """Write the atlas to ``folder``: a new or empty folder, or one holding an atlas.
+
+        The files are written beside it first and moved in when complete, so an interrupted
+        save leaves what was there. A folder holding anything else — the user's files — is a
+        :class:`LinkageError`, as are a file or a symbolic link given as the folder.
 
         Examples
         --------
@@ -274,18 +293,45 @@ class Atlas:
         100 fourbar float32
         """
         out = Path(folder)
-        out.mkdir(parents=True, exist_ok=True)
-        np.save(out / "descriptors.npy", np.ascontiguousarray(self.descriptors))
-        np.save(out / "params.npy", np.ascontiguousarray(self.params))
-        meta = {
-            "format": ATLAS_FORMAT,
-            "harmonics": self.harmonics,
-            "samples": self.samples,
-            "entries": len(self),
-            "kind": self.kind,
-            "phases": self.phases,
-        }
-        (out / "meta.json").write_text(json.dumps(meta))
+        if out.is_symlink():
+            raise LinkageError(f"{out} is a symbolic link: save the atlas into a folder")
+        if out.exists():
+            if not out.is_dir():
+                raise LinkageError(f"{out} is a file, not a folder to save the atlas into")
+            others = sorted(q.name for q in out.iterdir() if q.name not in ATLAS_FILES)
+            if others or ((out / "meta.json").exists() and not _atlas_meta(out / "meta.json")):
+                mine = ", ".join(others[:3]) + (", ..." if len(others) > 3 else "")
+                raise LinkageError(
+                    f"{out} holds files that are not an atlas's ({mine or 'meta.json'}): "
+                    "save into a new or empty folder"
+                )
+        out.parent.mkdir(parents=True, exist_ok=True)
+        tmp = out.parent / f".{out.name}.tmp{os.getpid()}-{os.urandom(4).hex()}"
+        tmp.mkdir()
+        try:
+            np.save(tmp / "descriptors.npy", np.ascontiguousarray(self.descriptors))
+            np.save(tmp / "params.npy", np.ascontiguousarray(self.params))
+            meta = {
+                "format": ATLAS_FORMAT,
+                "harmonics": self.harmonics,
+                "samples": self.samples,
+                "entries": len(self),
+                "kind": self.kind,
+                "phases": self.phases,
+            }
+            (tmp / "meta.json").write_text(json.dumps(meta))
+            if out.exists():
+                # meta.json last: a reader that finds it finds the arrays it describes.
+                for name in ATLAS_FILES:
+                    os.replace(tmp / name, out / name)
+                tmp.rmdir()
+            else:
+                os.rename(tmp, out)
+        finally:
+            if tmp.exists():
+                for name in ATLAS_FILES:
+                    (tmp / name).unlink(missing_ok=True)
+                tmp.rmdir()
         return out
 
     @classmethod
@@ -391,10 +437,8 @@ def default_atlas(
             pass  # a corrupt cache is rebuilt
     atlas = Atlas.build(entries, harmonics, kind=k.arcs if arcs else k.name)
     try:
-        tmp = folder.with_name(folder.name + f".tmp{os.getpid()}")
-        atlas.save(tmp)
-        os.replace(tmp, folder) if not folder.exists() else None
-    except OSError:
+        atlas.save(folder)  # written beside the folder and moved in (a corrupt one replaced)
+    except (OSError, LinkageError):
         pass  # a cache that cannot be written is no error: the atlas is in memory
     return atlas
 
@@ -547,13 +591,9 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
     """
     if isinstance(points, (str, os.PathLike)):
         p = Path(points)
-        try:
-            text = p.read_text()
-        except OSError as e:
-            raise LinkageError(f"cannot read {p}: {e.strerror or e}") from None
         rows: list[list[float]] = []
-        for k, line in enumerate(text.splitlines(), 1):
-            cells = [c.strip() for c in line.replace(";", ",").split(",") if c.strip()]
+        for k, line in enumerate(_csv_text(p).splitlines(), 1):
+            cells = [c for c in _SEPARATORS.split(line.strip()) if c]
             if not cells or cells[0].startswith("#"):
                 continue
             try:
@@ -561,15 +601,19 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
             except ValueError:
                 if not rows and k == 1:
                     continue  # a header line
-                raise LinkageError(f"{p}:{k}: not two numbers: {line.strip()!r}") from None
+                raise LinkageError(
+                    f"{p}:{k}: not two numbers (x, y; separated by a comma, semicolon, tab or "
+                    f"spaces): {line.strip()!r}"
+                ) from None
             if len(row) != 2:
-                raise LinkageError(f"{p}:{k}: {len(row)} numbers, not two (x, y)")
+                noun = "number" if len(row) == 1 else "numbers"
+                raise LinkageError(f"{p}:{k}: {len(row)} {noun}, not two (x, y)")
             if not all(math.isfinite(v) for v in row):
                 raise LinkageError(f"{p}:{k}: points must be finite, got {line.strip()!r}")
             rows.append(row)
-        arr = np.array(rows, dtype=np.float64) if rows else np.zeros((0, 2))
-        if arr.ndim != 2 or arr.shape[1] != 2:
-            raise LinkageError(f"{p}: every row must hold two numbers (x, y)")
+        if not rows:
+            raise LinkageError(f"{p}: no points in it (rows of two numbers x, y)")
+        arr = np.array(rows, dtype=np.float64)
     else:
         arr = np.asarray(as_real_array(points, "points"), dtype=np.float64)
         if arr.ndim != 2 or arr.shape[1] != 2:
@@ -578,6 +622,52 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
         k = int(np.argwhere(~np.isfinite(arr))[0][0])
         raise LinkageError(f"points must be finite: points[{k}] is {arr[k].tolist()}")
     return np.ascontiguousarray(arr)
+
+
+POINTS_FILE_MAX = 4 << 20
+"""Largest target points file (4 MiB: :data:`~linkage.scene.POINTS_MAX` lines of two numbers
+take about 0.4 MiB)."""
+
+_SEPARATORS = re.compile(r"[,;\s]+")
+"""What separates x from y in a points file: commas, semicolons, tabs or spaces."""
+
+
+def _csv_text(p: Path) -> str:
+    """Return the text of the points file ``p``.
+
+    UTF-8 (a byte-order mark allowed) or UTF-16 with its byte-order mark (a spreadsheet's
+    "Unicode text").
+
+    A folder, a device or pipe, a file over :data:`POINTS_FILE_MAX` and bytes that are no such
+    text are :class:`LinkageError`.
+    """
+    try:
+        info = p.stat()
+    except OSError as e:
+        raise LinkageError(f"cannot read {p}: {e.strerror or e}") from None
+    if p.is_dir():
+        raise LinkageError(f"{p} is a folder, not a CSV file of x, y")
+    if not p.is_file():  # a device or a pipe: it may never end
+        raise LinkageError(f"{p} is not a regular file, not a CSV file of x, y")
+    if info.st_size > POINTS_FILE_MAX:
+        raise LinkageError(f"{p} is larger than {POINTS_FILE_MAX >> 20} MiB: not a file of points")
+    try:
+        data = p.read_bytes()
+    except OSError as e:
+        raise LinkageError(f"cannot read {p}: {e.strerror or e}") from None
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        encoding = "utf-16"
+    elif data.startswith(b"\xef\xbb\xbf"):
+        encoding = "utf-8-sig"
+    else:
+        encoding = "utf-8"
+    try:
+        return data.decode(encoding)
+    except UnicodeDecodeError as exc:
+        raise LinkageError(
+            f"{p}: not UTF-8 text, nor UTF-16 with a byte-order mark "
+            f"(byte 0x{data[exc.start]:02x} at offset {exc.start})"
+        ) from None
 
 
 def clean_target(points: Float2D, closed: bool) -> Float2D:
@@ -895,10 +985,14 @@ def _de(
     bar: Any,
     keep: int = 4,
     kind: _Kind = FOURBAR,
+    full_turn: bool = False,
+    min_transmission: float = 0.0,
 ) -> list[tuple[NDArray[np.float64], bool]]:
     """Search by differential evolution over placed linkages (a four-bar's both assemblies).
 
-    The population is evaluated in one batch call per generation.
+    The population is evaluated in one batch call per generation. A four-bar's shape
+    constraints add their shortfall to the cost (:func:`_shortfall`), so the search heads for
+    linkages they admit.
     """
     from scipy.optimize import differential_evolution  # noqa: PLC0415 (as above)
 
@@ -926,6 +1020,8 @@ def _de(
                 kind=kind,
             )
             f = np.maximum(e[:, 0], e[:, 2]) if closed else e[:, 0]
+            if kind is FOURBAR and (full_turn or min_transmission > 0):
+                f = f + size * _shortfall(params, size, full_turn, min_transmission, closed)
             return np.where(np.isfinite(f), f, 100.0 * size)
 
         def step(*_: Any, **__: Any) -> bool:
@@ -950,6 +1046,37 @@ def _de(
         for i in order[:keep]:
             found.append((np.asarray(r.population[i], dtype=np.float64), crossed))
     return found
+
+
+def _shortfall(
+    params: NDArray[np.float64],
+    size: float,
+    full_turn: bool,
+    min_transmission: float,
+    closed: bool,
+) -> NDArray[np.float64]:
+    """Return how far each placed four-bar (rows of ``params``) is from its shape constraints.
+
+    A crank that does not turn fully (if ``full_turn``): the lengths by which the base
+    ``|C − A|``, over ``[|g − r|, g + r]``, leaves the dyad's ``[|b − c|, b + c]``, over
+    ``size``. The transmission angle (a closed target, whose matched part is the whole
+    circuit): ``min_transmission`` less its least distance from a toggle, in radians — reached
+    at the base's extremes when the crank turns fully, zero (a toggle) when it rocks.
+    """
+    g = np.hypot(params[:, 2] - params[:, 0], params[:, 3] - params[:, 1])
+    r, b, c = params[:, 4], params[:, 5], params[:, 6]
+    lo, hi = np.abs(g - r), g + r
+    out = np.zeros(len(params))
+    turns = (lo >= np.abs(b - c)) & (hi <= b + c)
+    if full_turn:
+        out += (np.maximum(0.0, np.abs(b - c) - lo) + np.maximum(0.0, hi - (b + c))) / size
+    if closed and min_transmission > 0:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            mu_lo = np.arccos(np.clip((b * b + c * c - lo * lo) / (2 * b * c), -1.0, 1.0))
+            mu_hi = np.arccos(np.clip((b * b + c * c - hi * hi) / (2 * b * c), -1.0, 1.0))
+        least = np.where(turns, np.minimum(mu_lo, math.pi - mu_hi), 0.0)
+        out += np.maximum(0.0, min_transmission - np.nan_to_num(least))
+    return out
 
 
 def path(
@@ -1063,11 +1190,25 @@ def path(
     kinds = list(_KIND.values()) if kind == "any" else [_kind(kind, "any")]
     closed = as_flag(closed, "closed")
     top = as_count(top, "top")
+    if top > SYNTHESIS_TOP_MAX:
+        raise LinkageError(f"top must be between 1 and {SYNTHESIS_TOP_MAX}, got {top}")
     refine = as_count(refine, "refine", 0)
     maxiter = as_count(maxiter, "maxiter")
     seed = as_count(seed, "seed", 0)
     tol = as_finite(tol, "tol")
+    if tol <= 0:
+        raise LinkageError(f"tol must be positive (a fraction of the target's size), got {tol}")
     min_transmission = as_finite(min_transmission, "min_transmission")
+    if not 0 <= min_transmission <= math.pi / 2:
+        hint = (
+            f" (radians: did you mean math.radians({min_transmission:g})?)"
+            if 1 < min_transmission <= 90
+            else ""
+        )
+        raise LinkageError(
+            "min_transmission must be an angle in radians between 0 and π/2 (90°), "
+            f"got {min_transmission:g}{hint}"
+        )
     full_turn = as_flag(full_turn, "full_turn")
     progress = as_flag(progress, "progress")
     if global_search is not None:
@@ -1086,23 +1227,40 @@ def path(
         if isinstance(pivots, (str, bytes)) or np.ndim(pivots) == 0 or len(pivots) != 2:
             raise TypeError("pivots must be ((xmin, ymin), (xmax, ymax))")
         pivots = (as_point(pivots[0], "pivots[0]"), as_point(pivots[1], "pivots[1]"))
-    target = clean_target(read_points(points), closed)
+    try:
+        target = clean_target(read_points(points), closed)
+    except LinkageError as exc:
+        if isinstance(points, (str, os.PathLike)) and not str(exc).startswith(str(points)):
+            raise LinkageError(f"{points}: {exc}") from None
+        raise
+    if len(target) > POINTS_MAX:
+        raise LinkageError(f"path synthesis takes at most {POINTS_MAX} points, got {len(target)}")
     size = target_size(target)
     frame = _unit_frame(target, size)
+    # The settings a search of a moved or thinned target keeps.
+    same: dict[str, Any] = {
+        "kind": kind,
+        "atlas": atlas,
+        "refine": refine,
+        "global_search": global_search,
+        "full_turn": full_turn,
+        "min_transmission": min_transmission,
+        "max_link": max_link,
+        "tol": tol,
+        "maxiter": maxiter,
+        "seed": seed,
+        "threads": threads,
+        "progress": progress,
+    }
     if frame is not None:
-        # An extreme scale: search the target moved to the origin and scaled by a
-        # power of two to unit size, and move the candidates back.
+        # An extreme scale or a far centre: search the target moved to the origin and scaled
+        # by a power of two to unit size, and move the candidates back.
         origin, unit = frame
         at_unit = path(
             (target - origin) / unit,
             closed,
             top,
-            kind=kind,
-            atlas=atlas,
-            refine=refine,
-            global_search=global_search,
-            full_turn=full_turn,
-            min_transmission=min_transmission,
+            **same,
             lengths=None if lengths is None else (lengths[0] / unit, lengths[1] / unit),
             pivots=(
                 None
@@ -1112,16 +1270,31 @@ def path(
                     ((pivots[1][0] - origin[0]) / unit, (pivots[1][1] - origin[1]) / unit),
                 )
             ),
-            max_link=max_link,
-            tol=tol,
-            maxiter=maxiter,
-            seed=seed,
-            threads=threads,
-            progress=progress,
             accept=None if accept is None else accept / unit,
         )
         return [_moved(cand, origin, unit) for cand in at_unit]
     nthreads = _threads(threads)
+    if len(target) > FIT_POINTS:
+        # Many points: search through FIT_POINTS of them spread along the target (a fit's cost
+        # grows with the cube of the points it fits), then measure, check and rank the
+        # candidates on every point.
+        some = path(
+            target[_spread(target, closed, FIT_POINTS)],
+            closed,
+            min(SYNTHESIS_TOP_MAX, 2 * top),
+            **same,
+            lengths=lengths,
+            pivots=pivots,
+            accept=accept,
+        )
+        every = []
+        for c in some:
+            crossed = isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
+            m = _measure(c.params, crossed, target, closed, c.source, nthreads, _KIND[c.kind])
+            if m is not None and _meets(m, full_turn, min_transmission, lengths, pivots):
+                every.append(m)
+        limit = math.inf if lengths is not None or max_link is None else max_link * size
+        return _distinct(_ranked(every, size, limit), target, closed, size, top)
     centre = target.mean(axis=0)
     fits = refine if closed else 3 * refine
     bar = _bar(progress, fits * len(kinds))
@@ -1160,11 +1333,11 @@ def path(
             at = atlases.get(name) or default_atlas(kind=name)
             many = 4 * max(top, refine) if closed else 16 * max(top, refine)
             placed = max(refine, top) if closed else 3 * refine
-            if full_turn and k is FOURBAR:
-                # Refine the best matches whose crank turns fully (the constraint asked for),
-                # from four times as many, before any other.
+            if full_turn or min_transmission > 0:
+                # Refine the best matches whose circuit meets the constraints asked for (a
+                # full-turn crank, the transmission angle), from four times as many, first.
                 pool = _atlas_pool(k, at, target, 4 * placed, 4 * many, nthreads)
-                pool.sort(key=lambda entry: not _turns_fully(entry[0]))
+                pool.sort(key=lambda e: _shape_order(e, k, full_turn, min_transmission))
                 pool = pool[:placed]
             else:
                 pool = _atlas_pool(k, at, target, placed, many, nthreads)
@@ -1193,8 +1366,8 @@ def path(
             if best_usable(mine) > goal:
                 seen = {x.tobytes() for x, _, _ in pool}
                 wider = _atlas_pool(k, at, target, placed + WIDER, 4 * many, nthreads)
-                if full_turn and k is FOURBAR:
-                    wider.sort(key=lambda entry: not _turns_fully(entry[0]))
+                if full_turn or min_transmission > 0:
+                    wider.sort(key=lambda e: _shape_order(e, k, full_turn, min_transmission))
                 wider = [w for w in wider if w[0].tobytes() not in seen][:WIDER]
                 if bar is not None:
                     bar.stage("more matches", len(wider))
@@ -1229,7 +1402,19 @@ def path(
             if bar is not None:
                 # Generations (of both assemblies for four-bars), then refinements.
                 bar.stage(f"global search ({k.name})", (2 if k is FOURBAR else 1) * maxiter + 8)
-            de = _de(target, closed, size, centre, seed, maxiter, nthreads, bar, kind=k)
+            de = _de(
+                target,
+                closed,
+                size,
+                centre,
+                seed,
+                maxiter,
+                nthreads,
+                bar,
+                kind=k,
+                full_turn=full_turn,
+                min_transmission=min_transmission,
+            )
             found += _finish(
                 [(x, c, "global") for x, c in de],
                 target,
@@ -1326,16 +1511,32 @@ def _slider_cognate(
     return out
 
 
-def _turns_fully(x: NDArray[np.float64]) -> bool:
-    """Whether the crank of the placed four-bar ``x`` turns fully.
+def _shape_order(
+    entry: tuple[NDArray[np.float64], bool, str],
+    kind: _Kind,
+    full_turn: bool,
+    min_transmission: float,
+) -> tuple[int, float]:
+    """Order atlas matches by the shape constraints asked for (a sort key, least first).
 
-    Its base ``|C − A|`` runs over ``[|g − r|, g + r]``, which must lie within the dyad's
-    ``[|b − c|, b + c]`` (to rounding).
+    A match whose whole circuit meets them — its crank turns fully (if ``full_turn``) and its
+    transmission angle stays ``min_transmission`` from a toggle, properties of the shape known
+    before a fit — comes first (in match order, the sort being stable); then the full-turn
+    cranks (if asked for) nearest to meeting the transmission bound, as a fit moves the angle;
+    then the rest. A match whose circuit passes a toggle may still fit an open target's part
+    that avoids it: this only orders the matches to refine.
     """
-    g = math.hypot(x[2] - x[0], x[3] - x[1])
-    r, b, c = x[4], x[5], x[6]
-    slack = 1e-12 * (g + r + b + c)
-    return bool(abs(g - r) >= abs(b - c) - slack and g + r <= b + c + slack)
+    x, crossed, _ = entry
+    try:
+        if kind is SLIDER:
+            problem, full, _, _, mu, _ = _core.synth_slider_info(x, 0.0, 2 * math.pi, 64)
+        else:
+            problem, full, _, _, mu, _ = _core.synth_info(x, crossed, 0.0, 2 * math.pi, 64)
+    except LinkageError:
+        return (3, 0.0)
+    if problem is not None or (full_turn and not full):
+        return (2, 0.0)
+    return (0, 0.0) if mu >= min_transmission else (1, -float(mu))
 
 
 WIDER = 48
@@ -1778,6 +1979,7 @@ def _finish(
             # Least squares lowers the RMS distance, which can raise the largest: the best
             # linkage by largest distance is kept too (an earlier round or the unrefined one).
             best_x, best_e = x, math.inf
+            rounds = [x]
             for r in range(4):
                 e, feet = _errors(
                     x[None, :],
@@ -1797,15 +1999,26 @@ def _finish(
                     x = _refine(x, crossed, target, feet[0], size, bounds, nfev, kind, geodesic)
                 except (ValueError, LinkageError):
                     break
+                rounds.append(x)
             if bar is not None:
                 bar.update(1)
             # The last refinement, and the best by largest distance when that is another (an
             # earlier round or the unrefined one): both are measured, the ranking decides.
             tries = [x] + ([best_x] if best_x is not x else [])
         else:
-            tries = [x]
-        for xt in tries:
-            cand = _measure(xt, crossed, target, closed, source, threads, kind)
+            tries, rounds = [x], []
+        measured = [_measure(xt, crossed, target, closed, source, threads, kind) for xt in tries]
+        if admissible is not None and not any(c is not None and admissible(c) for c in measured):
+            # Least squares minds the fit, not the constraints: when it left what they admit,
+            # the last round (or the start) that they admit is kept too.
+            for xr in reversed(rounds):
+                if any(xr is xt for xt in tries):
+                    continue
+                c = _measure(xr, crossed, target, closed, source, threads, kind)
+                if c is not None and admissible(c):
+                    measured.append(c)
+                    break
+        for cand in measured:
             if cand is not None:
                 out.append(cand)
                 if (
@@ -1822,16 +2035,43 @@ UNIT_RANGE = (2.0**-64, 2.0**64)
 origin and scaled to unit size (:func:`path`)."""
 
 
+FAR = 2.0**10
+"""A target whose centre is farther from the origin than this many sizes is searched moved to
+the origin (:func:`_unit_frame`): coordinates that large would cost the fit their digits."""
+
+FIT_POINTS = 120
+"""Most target points a search fits; a target of more is searched through this many spread
+along it by arc length, and its candidates measured on every point (:func:`path`)."""
+
+
+def _spread(target: Float2D, closed: bool, n: int) -> NDArray[np.intp]:
+    """Return the indices of ``n`` of ``target``'s points spread evenly by arc length.
+
+    An open target keeps both its ends; a closed one is spread round its loop.
+    """
+    steps = np.hypot(*np.diff(target, axis=0, append=target[:1] if closed else None).T)
+    along = np.concatenate([[0.0], np.cumsum(steps)])
+    if closed:
+        want = np.linspace(0.0, along[-1], n, endpoint=False)
+        idx = np.searchsorted(along[:-1], want).clip(0, len(target) - 1)
+    else:
+        want = np.linspace(0.0, along[-1], n)
+        idx = np.searchsorted(along, want).clip(0, len(target) - 1)
+        idx[0], idx[-1] = 0, len(target) - 1
+    return np.unique(idx)
+
+
 def _unit_frame(target: Float2D, size: float) -> tuple[NDArray[np.float64], float] | None:
     """Return ``(centre, k)`` that take ``target`` (of size ``size``) to unit size at the origin.
 
     ``k`` is a power of two (an exact scaling); None when the size is within
-    :data:`UNIT_RANGE`.
+    :data:`UNIT_RANGE` and the centre within :data:`FAR` sizes of the origin.
     """
     lo, hi = UNIT_RANGE
-    if lo <= size <= hi:
+    centre = _mean(target)
+    if lo <= size <= hi and float(np.max(np.abs(centre))) <= FAR * size:
         return None
-    return _mean(target), _pow2(size)
+    return centre, _pow2(size)
 
 
 def _moved(c: Candidate[Any], centre: NDArray[np.float64], k: float) -> Candidate[Any]:
@@ -1954,8 +2194,8 @@ def _meets(
 
 def command(args: argparse.Namespace) -> int:
     """``linkage synth curve.csv``: print the candidates as a table with units."""
-    if int(args.top) < 1:
-        raise LinkageError(f"--top must be at least 1, got {args.top}")
+    if not 1 <= int(args.top) <= SYNTHESIS_TOP_MAX:
+        raise LinkageError(f"--top must be between 1 and {SYNTHESIS_TOP_MAX}, got {args.top}")
     kind = cast(PathKind, getattr(args, "kind", "fourbar"))
     t0 = time.perf_counter()
     found = path(
@@ -1979,47 +2219,51 @@ def command(args: argparse.Namespace) -> int:
         f"largest / RMS distance of the target points to the coupler curve{u and ', in' + u}):"
     )
     g = "{:.4g}".format
-    common = ("#", f"error{u}", f"rms{u}", "class", "crank range (deg)", "min μ (deg)", "O")
-    heads = {
-        "fourbar": (*common, "C", "crank", "coupler", "rocker", "point (along, left)", "assembly"),
+    # One table ranked as found; under "any" a column holds a four-bar's or a slider-crank's
+    # number, named by both.
+    tail = {
+        "fourbar": ("C", "crank", "coupler", "rocker", "point (along, left)", "assembly"),
         "slider-crank": (
-            *common,
             "line (deg)",
-            "offset",
             "crank",
             "coupler",
+            "offset",
             "point (along, left)",
+            "reach",
         ),
-    }
-    # One table per kind (their columns differ), numbered by the common ranking.
-    for k, head in heads.items():
-        rows = [head]
-        for rank, c in enumerate(found, 1):
-            if c.kind != k:
-                continue
-            fb = c.linkage
-            lo, hi = (math.degrees(v) for v in c.crank_range)
-            row = [
-                str(rank),
-                f"{c.error:.3g}",
-                f"{c.rms:.3g}",
-                c.grashof,
-                f"{lo:.1f} … {hi:.1f}",
-                f"{c.min_transmission_deg:.1f}",
-                f"({g(fb.o[0])}, {g(fb.o[1])})",
-            ]
-            if isinstance(fb, SliderCrank):
-                row += [f"{math.degrees(fb.angle):.2f}", g(fb.offset), g(fb.crank)]
-                row += [g(fb.coupler), f"({g(fb.point[0])}, {g(fb.point[1])})"]
-            else:
-                row += [f"({g(fb.c[0])}, {g(fb.c[1])})", g(fb.crank), g(fb.coupler)]
-                row += [g(fb.rocker), f"({g(fb.point[0])}, {g(fb.point[1])})", fb.assembly]
-            rows.append(tuple(row))
-        if len(rows) == 1:
-            continue
-        widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
-        for r in rows:
-            print("  ".join(cell.rjust(w) for cell, w in zip(r, widths)))
+        "any": (
+            "C | line (deg)",
+            "crank",
+            "coupler",
+            "rocker | offset",
+            "point (along, left)",
+            "assembly | reach",
+        ),
+    }[kind]
+    head = ("#", f"error{u}", f"rms{u}", "class", "crank range (deg)", "min μ (deg)", "O", *tail)
+    rows = [head]
+    for rank, c in enumerate(found, 1):
+        fb = c.linkage
+        lo, hi = (math.degrees(v) for v in c.crank_range)
+        row = [
+            str(rank),
+            f"{c.error:.3g}",
+            f"{c.rms:.3g}",
+            c.grashof,
+            f"{lo:.1f} … {hi:.1f}",
+            f"{c.min_transmission_deg:.1f}",
+            f"({g(fb.o[0])}, {g(fb.o[1])})",
+        ]
+        if isinstance(fb, SliderCrank):
+            row += [f"{math.degrees(fb.angle):.2f}", g(fb.crank), g(fb.coupler), g(fb.offset)]
+            row += [f"({g(fb.point[0])}, {g(fb.point[1])})", f"slider {fb.reach}"]
+        else:
+            row += [f"({g(fb.c[0])}, {g(fb.c[1])})", g(fb.crank), g(fb.coupler)]
+            row += [g(fb.rocker), f"({g(fb.point[0])}, {g(fb.point[1])})", fb.assembly]
+        rows.append(tuple(row))
+    widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
+    for r in rows:
+        print("  ".join(cell.rjust(w) for cell, w in zip(r, widths)))
     return 0
 
 
