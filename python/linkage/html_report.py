@@ -197,9 +197,15 @@ def _candidates_table(res: Result) -> str:
     assert run is not None
     u = html.escape(length_unit(res.scene))
 
+    # Coordinates and lengths to 1e-6 of the target's size, so the round-off of an exact fit (a
+    # pivot at 4.9e-7 on a 34 mm curve) prints as 0.
+    quantum = 10.0 ** (math.floor(math.log10(run.size)) - 6)
+
     def n(x: float, digits: int | None = None) -> str:
         # Lengths to six digits without trailing zeros; errors to ``digits``.
-        return html.escape(format_number(float(x), 0 if digits is None else None, digits))
+        if digits is None:
+            return html.escape(format_number(round(float(x) / quantum) * quantum + 0.0, 0))
+        return html.escape(format_number(float(x), None, digits))
 
     def pair(x: float, y: float) -> str:
         # A point never breaks across lines; the cells holding several break between them.
@@ -225,7 +231,7 @@ def _candidates_table(res: Result) -> str:
         o = pair(*lk.o)
         if isinstance(lk, SliderCrank):
             g = pair(*lk.line_point)
-            at = html.escape(format_number(math.degrees(lk.angle), 0, 6))
+            at = html.escape(format_number(round(math.degrees(lk.angle), 6) + 0.0, 0, 6))
             where = f"{o}; through {g} at {at}°"
             lengths = f"{n(lk.crank)}, {n(lk.coupler)}; {n(lk.offset)}"
             side = lk.reach if kind == "slider-crank" else branch_text(lk)
@@ -244,7 +250,8 @@ def _candidates_table(res: Result) -> str:
         rows.append(
             f"<tr><td>{k}</td><td class=num>{n(c.error, 3)}</td><td class=num>{n(c.rms, 3)}</td>"
             f"<td>{html.escape(c.grashof)}</td>"
-            f"<td class='num wrap'><span class=nb>{lo + 0.0:.1f} … {hi + 0.0:.1f}</span>{turn}</td>"
+            f"<td class='num wrap'><span class=nb>{round(lo, 1) + 0.0:.1f} … "
+            f"{round(hi, 1) + 0.0:.1f}</span>{turn}</td>"
             f"<td class=num>{c.min_transmission_deg:.1f}</td>"
             f"<td class='num wrap'>{where}</td><td class='num wrap'>{lengths}</td>"
             f"<td class=num>{pair(*lk.point)}</td>"

@@ -2103,12 +2103,14 @@ def _linkage_of(x: NDArray[np.float64], crossed: bool, kind: _Kind) -> FourBar |
 
 
 def _turned(lo: float, hi: float) -> tuple[float, float]:
-    """Return the crank range ``(lo, hi)`` moved by whole turns so that ``lo`` is in [-π, π).
+    """Return the crank range ``(lo, hi)`` moved by whole turns to start in [-180°, 180°).
 
-    The same crank angles (a fit's angles may have turned past a full turn); every report and
-    exported scene then shows ranges near zero.
+    ``lo`` in [-180.05°, 179.95°): it reads in [-180.0°, 180.0°) to the 0.1° reports print. The
+    same crank angles (a fit's angles may have turned past a full turn); every report and
+    exported scene then shows ranges near zero (179.99999797° had read "180.0 … 540.0").
     """
-    k = math.floor((lo + math.pi) / (2 * math.pi))
+    half = math.radians(0.05)
+    k = math.floor((lo + math.pi + half) / (2 * math.pi))
     return lo - 2 * math.pi * k, hi - 2 * math.pi * k
 
 
@@ -2218,7 +2220,14 @@ def command(args: argparse.Namespace) -> int:
         f"{len(found)} {what}(s) for {args.curve}, best first ({took:.1f} s; errors are the "
         f"largest / RMS distance of the target points to the coupler curve{u and ', in' + u}):"
     )
-    g = "{:.4g}".format
+    # Coordinates and lengths to 1e-5 of the target's size: round-off of an exact fit (a pivot
+    # at 4.9e-7 on a 34 mm curve) prints as 0.
+    size = target_size(clean_target(read_points(args.curve), not args.open))
+    quantum = 10.0 ** (math.floor(math.log10(size)) - 5)
+
+    def g(x: float) -> str:
+        return f"{round(x / quantum) * quantum + 0.0:.4g}"
+
     # One table ranked as found; under "any" a column holds a four-bar's or a slider-crank's
     # number, named by both.
     tail = {
@@ -2244,7 +2253,7 @@ def command(args: argparse.Namespace) -> int:
     rows = [head]
     for rank, c in enumerate(found, 1):
         fb = c.linkage
-        lo, hi = (math.degrees(v) for v in c.crank_range)
+        lo, hi = (round(math.degrees(v), 1) + 0.0 for v in c.crank_range)
         row = [
             str(rank),
             f"{c.error:.3g}",
