@@ -49,6 +49,13 @@ def test_measures_of_a_curve_hold_at_extreme_scales() -> None:
             assert target_size(square * scale) == pytest.approx(scale, rel=1e-15)
             d = largest_distance(square * scale, [[2 * scale, 0.0], [2 * scale, 2 * scale]])
             assert d == pytest.approx(3 * scale, rel=1e-15)  # from (-1, 0) to (2, 0)
+    # The target's check (collinear points?) had summed coordinates of 1e306 and overflowed.
+    hoecken = FOURBAR.circuit(37).point[:-1]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert synthesis.clean_target(hoecken * 1e306, True).shape == hoecken.shape
+        with pytest.raises(linkage.LinkageError, match="collinear"):
+            synthesis.clean_target(np.c_[np.arange(6.0), np.arange(6.0)] * 1.7e307, True)
 
 
 def test_a_synthesis_scene_of_huge_points_runs(tmp_path: Path) -> None:

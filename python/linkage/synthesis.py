@@ -707,8 +707,11 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
         raise LinkageError(
             f"path synthesis needs at least {MIN_POINTS} distinct points, got {len(pts)}"
         )
-    centred = pts - pts.mean(axis=0)
-    sv = np.linalg.svd(centred, compute_uv=False)
+    # Measured in units of a power of two near the largest coordinate: no sum overflows.
+    m = float(np.max(np.abs(pts)))
+    unit = _pow2(m) if m > 0 and math.isfinite(m) else 1.0
+    q = pts / unit
+    sv = np.linalg.svd(q - q.mean(axis=0), compute_uv=False)
     if sv[0] == 0:
         raise LinkageError("the points all coincide")
     if closed and sv[1] <= 1e-12 * sv[0]:
