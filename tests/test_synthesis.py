@@ -769,3 +769,14 @@ def test_far_from_the_origin_and_many_points(atlas: Atlas) -> None:
         exact=True,
     )
     assert e[0, 0] == pytest.approx(best.error, rel=1e-9, abs=1e-15 * size_of(many))
+
+
+def test_a_short_arc_of_fewer_points_than_unknowns_is_fitted(arc_atlas: Atlas) -> None:
+    # 5 … 7 points (fewer than a four-bar's nine parameters) of the Hoecken curve's straight
+    # stance ended at 8e-3 … 1.2e-2 of their size: MINPACK refuses a fit with fewer residuals
+    # than unknowns (2n < 9 + n), and the refusal left every match unrefined.
+    hoecken = linkage.catalog.hoecken().circuit(37).point[:-1]
+    for n in (5, 6, 7):
+        pts = hoecken[:n]
+        best = synthesis.path(pts, closed=False, top=1, atlas=arc_atlas, global_search=False)[0]
+        assert best.error <= 1e-9 * size_of(pts), (n, best.error / size_of(pts))

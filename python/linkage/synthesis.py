@@ -884,8 +884,12 @@ def _refine(
         jac=jac, x_scale="jac", ftol=1e-15, xtol=1e-15, gtol=1e-15, max_nfev=max_nfev
     )
     free = [i for i in range(q) if i not in kind.lengths]
+    # MINPACK needs a residual per unknown (2n ≥ q + n): fewer than q points (a short arc of
+    # 5 … 8) leave the fit underdetermined, which only the trust region solves (MINPACK's
+    # refusal had left such targets unrefined, at 1e-2 of their size).
     if (
-        np.all(np.isinf(lo[free]))
+        n >= q
+        and np.all(np.isinf(lo[free]))
         and np.all(np.isinf(hi[:q]))
         and np.all(lo[list(kind.lengths)] < 1e-6 * size)
     ):
