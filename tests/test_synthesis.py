@@ -425,6 +425,21 @@ def test_cli_synth(tmp_path, capsys, atlas: Atlas) -> None:  # type: ignore[no-u
     code = cli.main(["synth", str(f), "--quiet", "--atlas", str(tmp_path)])
     assert code == 2
     assert "not a readable atlas" in capsys.readouterr().err
+    # The constraints a scene sets are options too; every printed candidate meets them.
+    box = ["--pivots", "-200", "-300", "200", "100", "--lengths", "2", "200"]
+    args = ["synth", str(f), "--quiet", "--atlas", str(folder), "--full-turn", *box]
+    code = cli.main([*args, "--min-transmission-deg", "20", "--seed", "3", "--tol", "1e-4"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    rows = [line.split() for line in out.splitlines()[2:]]
+    assert rows and all(float(r[r.index("…") + 2]) >= 20.0 for r in rows), out  # min μ
+    for bad, match in (
+        (["--min-transmission-deg", "120"], "between 0 and 90, got 120"),
+        (["--lengths", "5", "2"], "0 < least < greatest"),
+        (["--top", "51"], "between 1 and 50"),
+    ):
+        assert cli.main(["synth", str(f), "--quiet", "--atlas", str(folder), *bad]) == 2
+        assert match in capsys.readouterr().err
 
 
 def test_progress_is_reported_on_stderr(atlas: Atlas, capsys) -> None:  # type: ignore[no-untyped-def]

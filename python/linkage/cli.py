@@ -292,6 +292,33 @@ def main(argv: Sequence[str] | None = None) -> int:
     syn.add_argument("--units", default="", help="length unit shown in the table, e.g. mm")
     syn.add_argument("--full-turn", action="store_true", help="only cranks that turn fully")
     syn.add_argument(
+        "--min-transmission-deg",
+        type=float,
+        default=0.0,
+        help="least distance of the transmission angle from a toggle, in degrees",
+    )
+    syn.add_argument(
+        "--lengths",
+        type=float,
+        nargs=2,
+        metavar=("LEAST", "GREATEST"),
+        help="every link's length within these (target units)",
+    )
+    syn.add_argument(
+        "--pivots",
+        type=float,
+        nargs=4,
+        metavar=("XMIN", "YMIN", "XMAX", "YMAX"),
+        help="ground pivots within this box (target units)",
+    )
+    syn.add_argument("--seed", type=int, default=0, help="the global search's seed (default 0)")
+    syn.add_argument(
+        "--tol",
+        type=float,
+        default=1e-3,
+        help="run the global search while the best error exceeds this fraction of the size",
+    )
+    syn.add_argument(
         "--kind",
         choices=("fourbar", "slider-crank", "any"),
         default="fourbar",

@@ -1209,7 +1209,7 @@ def path(
     if not 0 <= min_transmission <= math.pi / 2:
         hint = (
             f" (radians: did you mean math.radians({min_transmission:g})?)"
-            if 1 < min_transmission <= 90
+            if math.pi < min_transmission <= 90
             else ""
         )
         raise LinkageError(
@@ -2205,6 +2205,9 @@ def command(args: argparse.Namespace) -> int:
     """``linkage synth curve.csv``: print the candidates as a table with units."""
     if not 1 <= int(args.top) <= SYNTHESIS_TOP_MAX:
         raise LinkageError(f"--top must be between 1 and {SYNTHESIS_TOP_MAX}, got {args.top}")
+    mu = getattr(args, "min_transmission_deg", 0.0)
+    if not 0 <= mu <= 90:
+        raise LinkageError(f"--min-transmission-deg must be between 0 and 90, got {mu:g}")
     kind = cast(PathKind, getattr(args, "kind", "fourbar"))
     t0 = time.perf_counter()
     found = path(
@@ -2213,6 +2216,13 @@ def command(args: argparse.Namespace) -> int:
         top=int(args.top),
         kind=kind,
         full_turn=bool(args.full_turn),
+        min_transmission=math.radians(mu),
+        lengths=getattr(args, "lengths", None),
+        pivots=(
+            None if getattr(args, "pivots", None) is None else (args.pivots[:2], args.pivots[2:])
+        ),
+        seed=getattr(args, "seed", 0),
+        tol=getattr(args, "tol", 1e-3),
         atlas=args.atlas,
         progress=not args.quiet,
         accept=getattr(args, "accept", None),
