@@ -10,6 +10,7 @@ leaves no partial folder and an earlier report byte for byte as it was.
 from __future__ import annotations
 
 import errno
+import hashlib
 import json
 import os
 import signal
@@ -274,6 +275,58 @@ def test_a_report_whose_listed_file_became_a_folder_is_refused(world, capsys):
     assert snapshot(world) == before
 
 
+def test_a_report_whose_file_the_user_edited_is_refused_by_name(world, capsys):
+    # A candidate scene tuned in place, say: --force must not silently put linkage's back.
+    out = Path.cwd() / "linkage-report" / "other"
+    with (out / "data.csv").open("a") as f:
+        f.write("# my note\n")
+    before = snapshot(world)
+    assert main(["run", str(scene_file(world, "other")), *FAST, "--force"]) == 2
+    line = one_error_line(capsys.readouterr().err)
+    assert "changed since linkage wrote them (data.csv)" in line and out.name in line, line
+    assert snapshot(world) == before
+    # Moved out of the folder, the edit is kept and the report is replaced.
+    (out / "data.csv").rename(world / "mine.csv")
+    assert main(["run", str(scene_file(world, "other")), *FAST, "--force"]) == 0
+    assert (world / "mine.csv").read_text().endswith("# my note\n")
+    assert "# my note" not in (out / "data.csv").read_text()
+
+
+def test_the_marker_records_each_files_hash(world):
+    out = Path.cwd() / "linkage-report" / "other"
+    marker = json.loads((out / MARKER).read_text())
+    assert set(marker["sha256"]) == set(marker["files"])
+    for name, digest in marker["sha256"].items():
+        assert hashlib.sha256((out / name).read_bytes()).hexdigest() == digest
+
+
+def old_marker(out: Path) -> None:
+    """Make the report's marker one without hashes, as builds before them wrote it."""
+    marker = json.loads((out / MARKER).read_text())
+    marker.pop("sha256", None)
+    (out / MARKER).write_text(json.dumps(marker, indent=2) + "\n")
+
+
+def test_a_marker_without_hashes_still_lets_force_replace_the_report(world, capsys):
+    out = Path.cwd() / "linkage-report" / "other"
+    old_marker(out)
+    assert main(["run", str(scene_file(world, "other")), *FAST, "--force"]) == 0
+    assert "sha256" in json.loads((out / MARKER).read_text())
+
+
+def test_a_marker_without_hashes_counts_a_file_modified_after_it_as_edited(world, capsys):
+    out = Path.cwd() / "linkage-report" / "other"
+    old_marker(out)
+    written = (out / MARKER).stat().st_mtime_ns
+    (out / "summary.json").write_text("{}")
+    os.utime(out / "summary.json", ns=(written + 1, written + 1))
+    before = snapshot(world)
+    assert main(["run", str(scene_file(world, "other")), *FAST, "--force"]) == 2
+    line = one_error_line(capsys.readouterr().err)
+    assert "changed since linkage wrote them (summary.json)" in line, line
+    assert snapshot(world) == before
+
+
 @pytest.mark.parametrize(
     "marker",
     [
@@ -281,6 +334,7 @@ def test_a_report_whose_listed_file_became_a_folder_is_refused(world, capsys):
         json.dumps({"tool": "other", "files": []}),
         json.dumps({"tool": "linkage", "files": ["../../notes.txt"]}),
         json.dumps({"tool": "linkage", "files": "summary.json"}),
+        json.dumps({"tool": "linkage", "files": [], "sha256": ["summary.json"]}),
         json.dumps(["tool", "linkage"]),
     ],
 )

@@ -2,13 +2,15 @@
 
 A report folder is on the user's disk, so this module removes only what it wrote:
 
-- every report folder carries a marker file, ``.linkage-report`` (JSON: tool, version, scene and
-  the files written), written last;
+- every report folder carries a marker file, ``.linkage-report`` (JSON: tool, version, scene,
+  the files written and each one's SHA-256), written last;
 - a report is written into a temporary sibling (``.<name>.partial-<pid>``) and renamed into place
   when complete; any failure, ``KeyboardInterrupt`` included, removes the temporary folder and
   leaves an earlier report untouched;
 - ``force`` replaces a folder only if it carries the marker and holds nothing but the files the
-  marker lists; the old report is renamed aside, the new one renamed in, and then the old one is
+  marker lists, each as linkage wrote it (a file the user edited, a candidate scene tuned in
+  place, is refused by name; a marker without hashes, from a build before they were recorded,
+  counts a listed file modified after the marker as edited); the old report is renamed aside, the new one renamed in, and then the old one is
   removed file by file (only the listed files; never ``rmtree`` on a folder the tool did not
   create);
 - a target that is a symbolic link (dangling or not), not a folder, the file-system root, the home
@@ -25,6 +27,7 @@ from __future__ import annotations
 import contextlib
 import datetime
 import errno
+import hashlib
 import json
 import os
 import re
@@ -117,7 +120,62 @@ def read_marker(folder: Path) -> dict[str, Any] | None:
     files = data.get("files")
     if not isinstance(files, list) or not all(_plain_name(f) for f in files):
         return None
+    digests = data.get(_DIGESTS, {})
+    if not isinstance(digests, dict) or not all(
+        isinstance(k, str) and isinstance(v, str) for k, v in digests.items()
+    ):
+        return None
     return data
+
+
+_DIGESTS = "sha256"
+"""The marker's key for the SHA-256 (hex) of each file written, by name."""
+
+
+def _sha256(path: Path) -> str:
+    h = hashlib.sha256()
+    with path.open("rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _edited(folder: Path, where: str, marker: dict[str, Any]) -> list[str]:
+    """Return the listed files in ``folder`` whose content is not what linkage wrote.
+
+    A marker with hashes is compared file by file. A marker without them (written before they
+    were recorded) cannot tell, so a file modified after the marker (which is written last) counts
+    as edited. A listed file that is gone is not edited: there is nothing to lose.
+    """
+    digests = marker.get(_DIGESTS)
+    try:
+        since = None if digests is not None else (folder / MARKER).stat().st_mtime_ns
+    except OSError as exc:
+        raise LinkageError(f"{where}: cannot read {MARKER}: {exc.strerror} ({_NOTHING})") from None
+    edited = []
+    for name in marker["files"]:
+        path = folder / name
+        if not path.is_file() or path.is_symlink():
+            continue
+        try:
+            if digests is None:
+                assert since is not None
+                changed = path.stat().st_mtime_ns > since
+            else:
+                changed = digests.get(name) != _sha256(path)
+        except OSError as exc:
+            raise LinkageError(
+                f"{where}: cannot read {name}: {exc.strerror} ({_NOTHING})"
+            ) from None
+        if changed:
+            edited.append(name)
+    return edited
+
+
+def _some(names: Sequence[str]) -> str:
+    """Name at most five of ``names``, then how many more."""
+    more = f" and {len(names) - 5} more" if len(names) > 5 else ""
+    return ", ".join(names[:5]) + more
 
 
 def _plain_name(f: object) -> bool:
@@ -198,13 +256,16 @@ def _check_existing(folder: Path, target: Path, force: bool) -> dict[str, Any] |
         and (e not in listed or not (target / e).is_file() or (target / e).is_symlink())
     ]
     if foreign:
-        shown = ", ".join(foreign[:5]) + (
-            f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
-        )
         raise LinkageError(
-            f"{where} holds files linkage did not write ({shown}); --force replaces only a "
-            f"folder holding nothing but a linkage report: move them or choose another --out "
-            f"({_NOTHING})"
+            f"{where} holds files linkage did not write ({_some(foreign)}); --force replaces "
+            f"only a folder holding nothing but a linkage report: move them or choose another "
+            f"--out ({_NOTHING})"
+        )
+    edited = _edited(target, where, marker)
+    if edited:
+        raise LinkageError(
+            f"{where} holds files changed since linkage wrote them ({_some(edited)}); --force "
+            f"would lose the changes: move them out or choose another --out ({_NOTHING})"
         )
     return marker
 
@@ -345,6 +406,18 @@ def write_folder(
     ValueError: the plot failed
     >>> sorted(os.listdir(tmp.name))
     ['out']
+
+    ``force`` replaces the folder, unless a file in it is not as linkage wrote it:
+
+    >>> [p.name for p in write_folder(Path(tmp.name) / "out", "demo", fill, force=True)]
+    ['figures.txt']
+    >>> _ = (Path(tmp.name) / "out" / "figures.txt").write_text("stride 44 mm (measured)\n")
+    >>> write_folder(Path(tmp.name) / "out", "demo", fill, force=True)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: ...out holds files changed since linkage wrote them (figures.txt); ...
+    >>> (Path(tmp.name) / "out" / "figures.txt").read_text()
+    'stride 44 mm (measured)\n'
     >>> tmp.cleanup()
     """
     target = _resolve(folder)
@@ -369,6 +442,7 @@ def write_folder(
             "scene": name,
             "written": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "files": sorted(names),
+            _DIGESTS: {n: _sha256(tmp / n) for n in sorted(names)},
         }
         (tmp / MARKER).write_text(json.dumps(marker, indent=2) + "\n", encoding="utf-8")
         with _sigint_held():
