@@ -345,3 +345,39 @@ def test_frames_out_of_range_is_refused_before_anything_runs(tmp_path, capsys, f
     assert exc.value.code == 2
     assert "--frames must be between 2 and 2000" in capsys.readouterr().err
     assert not out.exists()
+
+
+def synthesis_rows(n: int) -> list[tuple[str, str, str, str]]:
+    """A synthesis run's table as the trial at 1e5 mm printed it (item 24), ``n`` candidates."""
+    rows = [
+        ("target", "40 points, closed curve", "", ""),
+        ("target size", "100150", "mm", "RMS distance of the points from their centroid"),
+        ("candidates found", str(n), "", f"best first (at most top = {n})"),
+    ]
+    for k in range(1, n + 1):
+        c = f"candidate {k}"
+        rows += [
+            (f"{c}: max error", "3.68e-9", "mm", "largest distance of a target point from the "
+             "coupler curve"),
+            (f"{c}: RMS error", "1.20e-9", "mm", "root mean square of those distances"),
+            (f"{c}: Grashof class", "crank-rocker", "", "crossed assembly, from the atlas search"),
+            (f"{c}: crank range", "-180.0 … 180.0", "deg", "full turn"),
+            (f"{c}: min transmission angle", "23.1", "deg", "least distance from a toggle over "
+             "the matched part"),
+        ]
+    return [*rows, ("search time", "0.38", "s", "wall clock")]
+
+
+def test_the_table_wraps_notes_before_values_and_names(capsys):
+    """At 100 columns (output captured to a file) the trial's table wraps its notes; the short
+    values ("-180.0 … 180.0") and the figure names stay whole on the first line of their row:
+    the notes of the long-named rows wrap anyway, so a narrower name column saves no line."""
+    from linkage.cli import print_table
+
+    rows = synthesis_rows(4)
+    print_table("macro", rows, width=100)
+    lines = capsys.readouterr().out.splitlines()
+    assert max(len(line) for line in lines) <= 100
+    for figure, value, _, _ in rows[1:]:
+        start = [line for line in lines if line.startswith(f"{figure}  ")]
+        assert len(start) == 1 and f"  {value} " in start[0] + " ", (figure, value, lines)

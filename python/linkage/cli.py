@@ -45,9 +45,9 @@ def print_table(
     """Print rows as an aligned four-column table, at most ``width`` columns wide.
 
     ``width`` defaults to the terminal's (100 when the output is not a terminal). A table
-    wider than that wraps its longest cells at spaces (a drive's description, an error
-    estimate) onto lines of their own in the same column; a word longer than its column
-    stays whole.
+    wider than that wraps cells at spaces onto lines of their own in the same column: the
+    error estimates first, the figure names next, the values last (a drive's description, where
+    that saves lines); a word longer than its column stays whole.
 
     Examples
     --------
@@ -76,28 +76,7 @@ def print_table(
     """
     head = ("figure", "value", "unit", "error estimate")
     limit = width if width is not None else shutil.get_terminal_size((100, 24)).columns
-    widths = [max(len(r[i]) for r in [head, *rows]) for i in range(4)]
-    # The narrowest each column may get: its longest word (never split inside a word).
-    floor = [max(len(w) for r in [head, *rows] for w in (r[i].split() or [""])) for i in range(4)]
-
-    def height(ws: list[int]) -> int:
-        """Lines the table's rows take at column widths ``ws``."""
-        return sum(
-            max(len(textwrap.wrap(c, w, break_long_words=False)) for c, w in zip(r, ws))
-            for r in rows
-        )
-
-    while sum(widths) + 6 > limit:
-        # Narrow the column (value, error or figure) that adds the fewest lines, the widest of
-        # those: a long drive description wraps, not every error estimate.
-        give = [i for i in (1, 3, 0) if widths[i] > floor[i]]
-        if not give:
-            break
-
-        def cost(i: int) -> tuple[int, int]:
-            return height([w - (k == i) for k, w in enumerate(widths)]), -widths[i]
-
-        widths[min(give, key=cost)] -= 1
+    widths = _column_widths([head, *rows], limit)
     line = "  ".join("-" * w for w in widths)
 
     def emit(cells: Sequence[str]) -> None:
@@ -113,6 +92,53 @@ def print_table(
     for r in rows:
         emit(r)
     print(line)
+
+
+def _column_widths(rows: Sequence[Sequence[str]], limit: int) -> list[int]:
+    """Return the widths of the four columns of ``rows`` (the heading first) within ``limit``.
+
+    Each column is as wide as its longest cell if they fit. Otherwise the figure, value and
+    error columns (not the unit) are narrowed, never below their heading or longest word, to the widths of
+    least cost, tried all: each line of the table costs 1, and each extra line of a wrapped
+    value 2 more, of a wrapped figure name 1 more. So the notes wrap first, a name next and a
+    value last; a name is not split just because its row's note takes two lines anyway.
+    """
+    widths = [max(len(r[i]) for r in rows) for i in range(4)]
+    room = limit - 6 - widths[2]
+    if sum(widths) - widths[2] <= room:
+        return widths
+    # The narrowest each column may get: its heading, its longest word (never split inside a
+    # word).
+    words = [max(len(w) for r in rows for w in (r[i].split() or [""])) for i in range(4)]
+    floor = [max(len(rows[0][i]), words[i]) for i in range(4)]
+    wrapped: dict[tuple[str, int], int] = {}
+
+    def lines(cell: str, w: int) -> int:
+        if len(cell) <= w:
+            return 1
+        if (cell, w) not in wrapped:
+            wrapped[cell, w] = len(textwrap.wrap(cell, w, break_long_words=False))
+        return wrapped[cell, w]
+
+    def counts(i: int, w: int) -> list[int]:
+        return [lines(r[i], w) for r in rows]
+
+    fig = {w: counts(0, w) for w in range(floor[0], widths[0] + 1)}
+    val = {w: counts(1, w) for w in range(floor[1], widths[1] + 1)}
+    err: dict[int, list[int]] = {}
+    best: tuple[tuple[int, int, int, int, int], list[int]] | None = None
+    for w1, n1 in val.items():
+        for w0, n0 in fig.items():
+            w3 = min(room - w0 - w1, widths[3])
+            if w3 < floor[3]:
+                continue
+            n3 = err.setdefault(w3, counts(3, w3))
+            height = sum(max(a, b, c) for a, b, c in zip(n0, n1, n3))
+            cost = (height + 2 * sum(n1) + sum(n0), sum(n1), sum(n0), -w1, -w0)
+            if best is None or cost < best[0]:
+                best = cost, [w0, w1, widths[2], w3]
+    # Nothing fits: every column at its narrowest (the table is wider than the limit).
+    return best[1] if best is not None else [floor[0], floor[1], widths[2], floor[3]]
 
 
 class _Progress:
