@@ -110,6 +110,11 @@ def test_the_figures_are_typed_with_units_and_three_digits(report: Path) -> None
         )
         mu = rows[f"candidate {k}: min transmission angle"]
         assert mu["unit"] == "deg" and mu["value"] >= 15.0
+        # The values in full, as the candidate's own record (and candidates.csv) has them; only
+        # the text is rounded.
+        cand = s["synthesis"]["candidates"][k - 1]
+        assert [lo, hi] == cand["crank_range_deg"] and mu["value"] == cand["min_transmission_deg"]
+        assert mu["text"] == f"{mu['value']:.1f}"
     time = rows["search time"]
     assert time["unit"] == "s" and time["value"] > 0
     assert set(s["stages_s"]) == {"build", "synthesis", "report"}

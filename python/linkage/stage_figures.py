@@ -169,7 +169,9 @@ def synthesis_figures(res: Result) -> None:
                 f"{branch_text(c.linkage)}, from the {c.source} search{_long(c, run.size)}",
             )
         )
-        lo, hi = (round(math.degrees(v), 1) + 0.0 for v in c.crank_range)
+        # The value in full, as candidates.csv has it; the text to 0.1° (never "-0.0").
+        lo, hi = (math.degrees(v) + 0.0 for v in c.crank_range)
+        lo_text, hi_text = (f"{round(v, 1) + 0.0:.1f}" for v in (lo, hi))
         how = (
             "full turn"
             if c.full_turn
@@ -178,12 +180,14 @@ def synthesis_figures(res: Result) -> None:
             if c.through_limit
             else "rocks within its limits"
         )
-        rows.append(Row(f"{name}: crank range", f"{lo:.1f} … {hi:.1f}", "deg", how, value=(lo, hi)))
-        mu = round(c.min_transmission_deg, 1) + 0.0
+        rows.append(
+            Row(f"{name}: crank range", f"{lo_text} … {hi_text}", "deg", how, value=(lo, hi))
+        )
+        mu = c.min_transmission_deg + 0.0
         rows.append(
             Row(
                 f"{name}: min transmission angle",
-                f"{mu:.1f}",
+                f"{round(mu, 1) + 0.0:.1f}",
                 "deg",
                 "least distance from a toggle over the matched part",
                 value=mu,
