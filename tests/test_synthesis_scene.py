@@ -330,3 +330,42 @@ def test_samples_beyond_the_memory_cap_are_refused_before_searching(tmp_path: Pa
     assert err.startswith("linkage: error: samples: 100000000 samples of 5 coupler curves")
     assert "GiB limit; at most" in err and len(err.splitlines()) == 1
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("scale", [1.0, 8e3])
+def test_the_plot_keeps_its_labels_in_the_figure_and_its_legend_in_rank_order(
+    tmp_path: Path, atlas_folder: Path, scale: float
+) -> None:
+    # At 8e3 the foot path spans −840000 … 360000 mm: the y tick labels are wide, and the
+    # axis label must still lie inside the figure (it was cut off the left edge).
+    from linkage import report as report_module
+
+    foot = np.loadtxt(ROOT / "examples" / "foot_path.csv", delimiter=",", skiprows=1)
+    np.savetxt(tmp_path / "foot.csv", foot * scale, delimiter=",")
+    path = tmp_path / "big.toml"
+    path.write_text(
+        f'name = "big"\nunits = "mm"\n[synthesis]\npoints = "foot.csv"\n'
+        f"atlas = {json.dumps(str(atlas_folder))}\ntop = 4\n"
+    )
+    fig = report_module._synthesis(runner.run(scene.load(path)))
+    renderer = fig.canvas.get_renderer()
+    fig.draw(renderer)
+    (ax,) = fig.axes
+    (x0, x1), (y0, y1) = sorted(ax.get_xlim()), sorted(ax.get_ylim())
+    texts = [
+        ax.yaxis.label,
+        ax.xaxis.label,
+        *(t for t in ax.get_yticklabels() if y0 <= t.get_position()[1] <= y1),
+        *(t for t in ax.get_xticklabels() if x0 <= t.get_position()[0] <= x1),
+    ]
+    width, height = fig.bbox.width, fig.bbox.height
+    for t in texts:
+        box = t.get_window_extent(renderer)
+        assert box.x0 >= 0 and box.x1 <= width and box.y0 >= 0, (t.get_text(), box, width)
+    # The legend reads down its columns: the target, then #1, #2, … in rank order.
+    (legend,) = fig.legends
+    entries = [(t.get_window_extent(renderer), t.get_text()) for t in legend.get_texts()]
+    down_columns = sorted(entries, key=lambda e: (round(e[0].x0), -e[0].y0))
+    ranks = [text.split(":")[0] for _, text in down_columns]
+    assert ranks[0].startswith("target") and len(ranks) == 5, ranks
+    assert ranks[1:] == [f"#{k}" for k in range(1, 5)], ranks

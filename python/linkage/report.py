@@ -190,6 +190,16 @@ def _margins(
     )
 
 
+def _y_labels_width(fig: Any, ax: Any) -> float:
+    """Return the width (inches) of the widest y tick label of ``ax`` at its current limits.
+
+    Laid out as text only (no draw of the figure).
+    """
+    renderer = fig.canvas.get_renderer()
+    widths = [t.get_window_extent(renderer).width for t in ax.get_yticklabels() if t.get_text()]
+    return max(widths, default=0.0) / fig.dpi
+
+
 def _tidy(ax: Any, xlabel: str, ylabel: str) -> None:
 
     ax.set_xlabel(xlabel)
@@ -672,12 +682,11 @@ def _synthesis(res: Result) -> Any:
     g = 0.06 * float(max(hi - lo))
     box = (float(lo[0] - g), float(hi[0] + g), float(lo[1] - g), float(hi[1] + g))
     width = 6.4
-    height = float(min(max((width - 1.05) * (box[3] - box[2]) / (box[1] - box[0]), 2.2), 6.0))
     shown = run.candidates[:SYNTHESIS_SHOWN]
     rows = len(shown) + 1 if len(shown) <= 2 else math.ceil((len(shown) + 1) / 2)
-    fig = _new_figure(width, height + 0.4 + 0.55 + 0.2 * rows)
+    bottom = 0.55 + 0.2 * rows
+    fig = _new_figure(width, 4.0)  # sized below, once the y tick labels are known
     ax = fig.subplots()
-    _margins(fig, top=0.4, bottom=0.55 + 0.2 * rows)
     size = _size(view)
     _ground_symbol(ax, view, size)
     pose = export.synthesis_pose(d)
@@ -711,6 +720,13 @@ def _synthesis(res: Result) -> Any:
     ax.set_ylim(box[2], box[3])
     ax.set_aspect("equal", adjustable="box")  # the limits stay; the figure fits them
     _tidy(ax, f"x ({u})", f"y ({u})")
+    # Room on the left for the y tick labels ("−640000" for a target 1e5 mm across) and the
+    # axis label; the plot's height follows the width that leaves, to scale.
+    left = max(0.85, _y_labels_width(fig, ax) + 0.45)
+    ratio = (box[3] - box[2]) / (box[1] - box[0])
+    height = float(min(max((width - left - 0.2) * ratio, 2.2), 6.0))
+    fig.set_size_inches(width, height + 0.4 + bottom)
+    _margins(fig, left=left, top=0.4, bottom=bottom)
     more = len(run.candidates) - len(shown)
     extra = f" (+{more} in candidates.csv)" if more > 0 else ""
     theta = math.degrees(float(run.best.theta[pose])) % 360
@@ -720,11 +736,10 @@ def _synthesis(res: Result) -> Any:
         fontsize=10,
     )
     handles, labels = ax.get_legend_handles_labels()
-    # Target first, then the candidates best first, read along the rows (matplotlib fills
-    # the columns first).
+    # Target first, then the candidates best first, down the first column and on down the
+    # second (as matplotlib fills them): read either column downwards, the ranks ascend.
     order = [len(labels) - 1, *reversed(range(len(labels) - 1))]
     ncol = 1 if len(order) <= 3 else 2
-    order = [i for c in range(ncol) for i in order[c::ncol]]
     fig.legend(
         [handles[i] for i in order],
         [labels[i] for i in order],
