@@ -357,13 +357,21 @@ def synthesis_rows(n: int) -> list[tuple[str, str, str, str]]:
     for k in range(1, n + 1):
         c = f"candidate {k}"
         rows += [
-            (f"{c}: max error", "3.68e-9", "mm", "largest distance of a target point from the "
-             "coupler curve"),
+            (
+                f"{c}: max error",
+                "3.68e-9",
+                "mm",
+                "largest distance of a target point from the coupler curve",
+            ),
             (f"{c}: RMS error", "1.20e-9", "mm", "root mean square of those distances"),
             (f"{c}: Grashof class", "crank-rocker", "", "crossed assembly, from the atlas search"),
             (f"{c}: crank range", "-180.0 … 180.0", "deg", "full turn"),
-            (f"{c}: min transmission angle", "23.1", "deg", "least distance from a toggle over "
-             "the matched part"),
+            (
+                f"{c}: min transmission angle",
+                "23.1",
+                "deg",
+                "least distance from a toggle over the matched part",
+            ),
         ]
     return [*rows, ("search time", "0.38", "s", "wall clock")]
 

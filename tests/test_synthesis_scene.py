@@ -358,7 +358,7 @@ def test_the_plot_keeps_its_labels_in_the_figure_and_its_legend_in_rank_order(
         *(t for t in ax.get_yticklabels() if y0 <= t.get_position()[1] <= y1),
         *(t for t in ax.get_xticklabels() if x0 <= t.get_position()[0] <= x1),
     ]
-    width, height = fig.bbox.width, fig.bbox.height
+    width = fig.bbox.width
     for t in texts:
         box = t.get_window_extent(renderer)
         assert box.x0 >= 0 and box.x1 <= width and box.y0 >= 0, (t.get_text(), box, width)

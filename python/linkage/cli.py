@@ -98,10 +98,11 @@ def _column_widths(rows: Sequence[Sequence[str]], limit: int) -> list[int]:
     """Return the widths of the four columns of ``rows`` (the heading first) within ``limit``.
 
     Each column is as wide as its longest cell if they fit. Otherwise the figure, value and
-    error columns (not the unit) are narrowed, never below their heading or longest word, to the widths of
-    least cost, tried all: each line of the table costs 1, and each extra line of a wrapped
-    value 2 more, of a wrapped figure name 1 more. So the notes wrap first, a name next and a
-    value last; a name is not split just because its row's note takes two lines anyway.
+    error columns (not the unit) are narrowed, never below their heading or longest word, to
+    the widths of least cost, tried all: each line of the table costs 1, and each extra line of
+    a wrapped value 2 more, of a wrapped figure name 1 more. So the notes wrap first, a name
+    next and a value last; a name is not split just because its row's note takes two lines
+    anyway.
     """
     widths = [max(len(r[i]) for r in rows) for i in range(4)]
     room = limit - 6 - widths[2]

@@ -197,7 +197,7 @@ def _y_labels_width(fig: Any, ax: Any) -> float:
     """
     renderer = fig.canvas.get_renderer()
     widths = [t.get_window_extent(renderer).width for t in ax.get_yticklabels() if t.get_text()]
-    return max(widths, default=0.0) / fig.dpi
+    return float(max(widths, default=0.0) / fig.dpi)
 
 
 def _tidy(ax: Any, xlabel: str, ylabel: str) -> None:

@@ -10,9 +10,9 @@ A report folder is on the user's disk, so this module removes only what it wrote
 - ``force`` replaces a folder only if it carries the marker and holds nothing but the files the
   marker lists, each as linkage wrote it (a file the user edited, a candidate scene tuned in
   place, is refused by name; a marker without hashes, from a build before they were recorded,
-  counts a listed file modified after the marker as edited); the old report is renamed aside, the new one renamed in, and then the old one is
-  removed file by file (only the listed files; never ``rmtree`` on a folder the tool did not
-  create);
+  counts a listed file modified after the marker as edited); the old report is renamed aside,
+  the new one renamed in, and then the old one is removed file by file (only the listed files;
+  never ``rmtree`` on a folder the tool did not create);
 - a target that is a symbolic link (dangling or not), not a folder, the file-system root, the home
   folder, the working directory or one of their ancestors is refused, force or not.
 
