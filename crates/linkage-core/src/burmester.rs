@@ -111,6 +111,52 @@ pub fn pole<T: RealField + Copy>(p: &BodyPose<T>, q: &BodyPose<T>) -> Centre<T> 
     }
 }
 
+/// The point that every displacement between `poses` leaves in place, when the poses are all
+/// rotations about that one point; `None` otherwise.
+///
+/// Such poses make every body point's centre point that point (each point moves on a circle
+/// about it), so any two dyads share their fixed pivot: no four-bar guides them, one link
+/// pinned there does. The test: the pole of poses 0 and 1 is finite and every other pose
+/// leaves it in place to `1024 ε` of the poses' size.
+///
+/// # Errors
+/// [`Error::NotFinite`], [`Error::CoincidentPositions`] for bad poses; [`Error::TooFew`] for
+/// fewer than 2.
+///
+/// ```
+/// use linkage_core::{common_pole, BodyPose, Vec2};
+/// // A body turning about (1, 2).
+/// let pose = |a: f64| {
+///     let d = Vec2::new(1.0, 2.0) + nalgebra::Rotation2::new(a) * Vec2::new(-1.0, -2.0);
+///     BodyPose::new(d.x, d.y, a).unwrap()
+/// };
+/// let centre = common_pole(&[pose(0.0), pose(0.3), pose(0.9)]).unwrap().unwrap();
+/// assert!((centre - Vec2::new(1.0, 2.0)).norm() < 1e-12);
+/// let moved = BodyPose::new(0.5, 0.0, 0.9).unwrap();
+/// assert_eq!(common_pole(&[pose(0.0), pose(0.3), moved]).unwrap(), None);
+/// ```
+pub fn common_pole<T: RealField + Copy>(poses: &[BodyPose<T>]) -> Result<Option<Vec2<T>>, Error> {
+    if poses.len() < 2 {
+        return Err(Error::TooFew {
+            what: "poses",
+            needed: 2,
+            got: poses.len(),
+        });
+    }
+    check_poses(poses)?;
+    let Centre::Finite(x) = pole(&poses[0], &poses[1]) else {
+        return Ok(None);
+    };
+    let mut size = (x - poses[0].origin).amax();
+    for p in poses {
+        size = size.max((p.origin - poses[0].origin).amax());
+    }
+    let w = poses[0].to_body(x);
+    let tol = lit::<T>(1024.0) * eps::<T>() * size;
+    let fixed = poses[2..].iter().all(|p| (p.to_world(w) - x).amax() <= tol);
+    Ok(fixed.then_some(x))
+}
+
 /// A revolute dyad found by Burmester theory: a centre point (fixed pivot) and a circle point
 /// (moving pivot, where it lies at pose 0).
 ///
@@ -372,6 +418,36 @@ impl<T: RealField + Copy> BurmesterCurve<T> {
     /// compatibility equation loses its terms: the poses are pure translations (every pole at
     /// infinity) or rotations about one point, or three of them are.
     pub fn new(poses: &[BodyPose<T>; 4]) -> Result<Self, Error> {
+        Self::build(poses, None)
+    }
+
+    /// The curves of four poses, parametrised by the crank rotation from pose 0 to pose
+    /// `free` (1, 2 or 3) rather than the best-conditioned one.
+    ///
+    /// # Errors
+    /// As [`BurmesterCurve::new`]; [`Error::InvalidChoice`] for `free` not 1, 2 or 3;
+    /// [`Error::Degenerate`] when one of the other two coefficients vanishes, so the rotation to
+    /// pose `free` does not parametrise the curve (another free pose does).
+    ///
+    /// ```
+    /// use linkage_core::{BodyPose, BurmesterCurve};
+    /// let p = |x: f64, y: f64, a: f64| BodyPose::new(x, y, a).unwrap();
+    /// let poses = [p(1.0, 1.1, 0.4), p(0.3, 1.7, 0.3), p(-0.6, 1.5, 0.5), p(-1.0, 1.0, 0.9)];
+    /// let curve = BurmesterCurve::with_free_pose(&poses, 1).unwrap();
+    /// assert_eq!(curve.free_pose(), 1);
+    /// assert!(BurmesterCurve::with_free_pose(&poses, 4).is_err());
+    /// ```
+    pub fn with_free_pose(poses: &[BodyPose<T>; 4], free: usize) -> Result<Self, Error> {
+        if !(1..=3).contains(&free) {
+            return Err(Error::InvalidChoice {
+                what: "the free pose",
+                choices: "1, 2 or 3",
+            });
+        }
+        Self::build(poses, Some(free))
+    }
+
+    fn build(poses: &[BodyPose<T>; 4], chosen: Option<usize>) -> Result<Self, Error> {
         check_poses(poses)?;
         let origin = poses[0].origin;
         let mut big = T::zero();
@@ -403,13 +479,27 @@ impl<T: RealField + Copy> BurmesterCurve<T> {
             }
         }
         let tol = lit::<T>(256.0) * eps::<T>();
+        let conditioned = best;
+        if let Some(k) = chosen {
+            let (i, j) = Self::others(k);
+            free = k;
+            best = size[i - 1].min(size[j - 1]);
+        }
         if largest <= tol || is_nan(largest) {
             return Err(Error::Degenerate {
                 what: "the four poses have no Burmester curve: they are pure translations or \
                        rotations about one point (every compatibility coefficient vanishes)",
             });
         }
-        if best <= tol * largest.max(T::one()) || is_nan(best) {
+        let small = |m: T| m <= tol * largest.max(T::one()) || is_nan(m);
+        if chosen.is_some() && small(best) && !small(conditioned) {
+            return Err(Error::Degenerate {
+                what: "the crank rotation to the chosen free pose does not parametrise the \
+                       Burmester curve of these poses (a coefficient of the compatibility \
+                       equation beside it vanishes): choose another free pose",
+            });
+        }
+        if small(best) {
             return Err(Error::Degenerate {
                 what: "the compatibility equation of the four poses has fewer than three terms \
                        (three of the poses are rotations about one point)",
@@ -675,8 +765,9 @@ impl<T: RealField + Copy> MotionCandidate<T> {
     /// # Errors
     /// [`Error::TooFew`] for fewer than 3 poses, [`Error::BufferLength`] for more than
     /// [`MAX_POSES`], [`Error::NotFinite`] / [`Error::CoincidentPositions`] for bad poses,
-    /// [`Error::InvalidLength`] when the dyads do not make a four-bar (coincident pivots, a
-    /// circle point on its centre point, coincident circle points).
+    /// [`Error::InvalidLength`] when the dyads do not make a four-bar (a circle point on its
+    /// centre point, coincident circle points); [`Error::Degenerate`] when their centre points
+    /// coincide to rounding (see [`common_pole`]).
     pub fn new(
         poses: &[BodyPose<T>],
         crank: BurmesterPair<T>,
@@ -709,6 +800,18 @@ impl<T: RealField + Copy> MotionCandidate<T> {
         )?;
         crate::error::check_length("crank (circle point to centre point)", crank.radius())?;
         crate::error::check_length("rocker (circle point to centre point)", rocker.radius())?;
+        // Centre points apart by rounding only (the dyads of poses turning about one point all
+        // have that point as centre) would make a ground link of noise, not of length zero.
+        let size = [a0 - o, b0 - o, poses[0].origin - o]
+            .iter()
+            .fold(length(c - o), |m, v| m.max(length(*v)));
+        if length(c - o) <= lit::<T>(1024.0) * eps::<T>() * size {
+            return Err(Error::Degenerate {
+                what: "the two dyads share their fixed pivot (a ground link of length zero): as \
+                       happens for every pair when the poses are rotations about one point, \
+                       which is every dyad's centre point",
+            });
+        }
         let four_bar = FourBar::from_points(o, c, a0, b0, poses[0].origin)?;
         let check = check_motion(&four_bar, poses, crank, rocker);
         Ok(MotionCandidate {

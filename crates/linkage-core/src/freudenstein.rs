@@ -19,9 +19,10 @@
 //! heap). Back from the `K`s: `a = d/K1`, `c = d/K2`, `b² = a² + c² + d² − 2ac·K3`. A negative
 //! `a` (or `c`) is a link of length `|a|` turned by `π`: the generator records that offset.
 //!
-//! Degenerate cases: two equal precision points ([`Error::CoincidentPositions`]); a singular
-//! system ([`Error::Degenerate`]: e.g. all input angles equal); `K1` or `K2` zero (a link of
-//! infinite length, [`Error::Degenerate`]); `b² ≤ 0` (no real coupler, [`Error::NoSolution`]).
+//! Degenerate cases: two equal precision points of three ([`Error::CoincidentPositions`]); a
+//! singular system ([`Error::Degenerate`]: e.g. all input angles equal, or fewer than three
+//! distinct points); `K1` or `K2` zero (a link of infinite length, [`Error::Degenerate`]);
+//! `b² ≤ 0` (no real coupler, [`Error::NoSolution`]).
 
 use nalgebra::RealField;
 
@@ -109,7 +110,8 @@ impl<T: RealField + Copy> Freudenstein<T> {
     ///
     /// # Errors
     /// [`Error::TooFew`] for fewer than 3 points; [`Error::BufferLength`] when `psi` is not as
-    /// long as `phi`; [`Error::NotFinite`]; [`Error::CoincidentPositions`] for two equal points;
+    /// long as `phi`; [`Error::NotFinite`]; [`Error::CoincidentPositions`] for two equal points
+    /// of three (of more, a repeated point weighs twice in the least squares: O(m) time);
     /// [`Error::Degenerate`] when the points do not determine the three coefficients.
     pub fn fit(phi: &[T], psi: &[T]) -> Result<Self, Error> {
         let m = phi.len();
@@ -131,14 +133,19 @@ impl<T: RealField + Copy> Freudenstein<T> {
             check_finite("input angle", f)?;
             check_finite("output angle", s)?;
         }
+        // Three points are an exact solve, which one repeated point makes singular: name the
+        // pair. More are a least-squares fit, in which a repeated point only weighs twice (and
+        // a pairwise search would cost O(m²)); too few distinct points fail the rank test below.
         let tol = lit::<T>(64.0) * eps::<T>();
-        for i in 0..m {
-            for j in i + 1..m {
-                if wrap(phi[i] - phi[j]).abs() <= tol && wrap(psi[i] - psi[j]).abs() <= tol {
-                    return Err(Error::CoincidentPositions {
-                        first: i,
-                        second: j,
-                    });
+        if m == 3 {
+            for i in 0..m {
+                for j in i + 1..m {
+                    if wrap(phi[i] - phi[j]).abs() <= tol && wrap(psi[i] - psi[j]).abs() <= tol {
+                        return Err(Error::CoincidentPositions {
+                            first: i,
+                            second: j,
+                        });
+                    }
                 }
             }
         }

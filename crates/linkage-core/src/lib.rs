@@ -147,7 +147,7 @@ pub use batch::{BatchWork, FourBarBatch, GO_ON_EVERY};
 pub use bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
 #[cfg(feature = "synthesis")]
 pub use burmester::{
-    centre_point, circle_point, pole, BodyPose, BurmesterCurve, BurmesterPair, Defect,
+    centre_point, circle_point, common_pole, pole, BodyPose, BurmesterCurve, BurmesterPair, Defect,
     MotionCandidate, MotionCheck, MAX_POSES,
 };
 pub use cam::{CamPoint, FlatFollower, RollerFollower};

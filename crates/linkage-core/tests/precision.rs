@@ -12,9 +12,9 @@ mod common;
 use core::f64::consts::{PI, TAU};
 
 use linkage_core::{
-    centre_point, chebyshev_spacing, circle_point, pole, Assembly, BodyPose, BurmesterCurve,
-    BurmesterPair, Defect, Error, FourBar, Freudenstein, FunctionGenerator, GrashofClass,
-    MotionCandidate, Rates, Tracker, Vec2,
+    centre_point, chebyshev_spacing, circle_point, common_pole, pole, Assembly, BodyPose,
+    BurmesterCurve, BurmesterPair, Defect, Error, FourBar, Freudenstein, FunctionGenerator,
+    GrashofClass, MotionCandidate, Rates, Tracker, Vec2,
 };
 use proptest::prelude::*;
 
@@ -877,4 +877,121 @@ fn generic_over_f32() {
         gen.four_bar.crank,
         gen.four_bar.rocker
     );
+}
+
+/// Three poses turning about one point (the trial's case: a body pinned at the origin): every
+/// circle point's centre is that point, so two dyads share their fixed pivot. Before the ground
+/// check, `MotionCandidate::new` assembled a four-bar with a ground of 3.5e-16 and passed it.
+#[test]
+fn rotations_about_one_point_make_no_four_bar() {
+    let p = |x: f64, y: f64, a: f64| BodyPose::new(x, y, a).unwrap();
+    let poses = [p(0.0, 0.0, 0.0), p(0.0, 0.0, 0.5), p(0.0, 0.0, 1.0)];
+    assert_eq!(
+        common_pole(&poses),
+        Ok(Some(Vec2::zeros())),
+        "pure rotation"
+    );
+    let crank = centre_point(&poses, Vec2::new(1.0, 0.0)).unwrap();
+    let rocker = centre_point(&poses, Vec2::new(0.0, 1.0)).unwrap();
+    let r = MotionCandidate::new(&poses, crank, rocker);
+    assert!(
+        matches!(r, Err(Error::Degenerate { .. })),
+        "dyads sharing their fixed pivot: {r:?}"
+    );
+    // About an off-origin point, built with rounding: the pole is found to rounding.
+    let about = Vec2::new(1.5, -2.0);
+    let turned = |a: f64| {
+        let d = about + nalgebra::Rotation2::new(a) * (-about);
+        p(d.x, d.y, a)
+    };
+    let x = common_pole(&[turned(0.1), turned(0.7), turned(1.9)])
+        .unwrap()
+        .expect("rotations about (1.5, -2)");
+    assert!((x - about).norm() < 1e-12, "pole {x:?}");
+    // A body that also moves its pole has none in common; a pure translation has none.
+    let moved = [turned(0.1), turned(0.7), p(0.3, 0.0, 1.9)];
+    assert_eq!(common_pole(&moved), Ok(None), "not one rotation");
+    let slide = [p(0.0, 0.0, 0.2), p(1.0, 0.0, 0.2), p(2.0, 1.0, 0.2)];
+    assert_eq!(common_pole(&slide), Ok(None), "translations");
+    assert!(
+        matches!(
+            common_pole(&[poses[0], poses[0], poses[1]]),
+            Err(Error::CoincidentPositions {
+                first: 0,
+                second: 1
+            })
+        ),
+        "coincident poses"
+    );
+}
+
+/// The free pose can be chosen: at the crank's own rotation to that pose, the crank dyad of the
+/// four-bar the poses came from is on the curve, for each of poses 1, 2 and 3.
+#[test]
+fn burmester_curve_at_a_chosen_free_pose() {
+    let fb = crank_rocker();
+    let thetas = [0.2, 0.9, 1.7, 2.6];
+    let poses = thetas.map(|t| coupler_pose(&fb, t, Assembly::Open).0);
+    let a0 = coupler_pose(&fb, thetas[0], Assembly::Open).1;
+    for k in 1..=3 {
+        let curve = BurmesterCurve::with_free_pose(&poses, k).unwrap();
+        assert_eq!(curve.free_pose(), k, "free pose");
+        let found = curve.dyads(thetas[k] - thetas[0]);
+        let near = |d: &BurmesterPair<f64>| (d.centre - fb.o).norm() + (d.circle - a0).norm();
+        let best = found
+            .iter()
+            .flatten()
+            .map(near)
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            best < 1e-10,
+            "free pose {k}: nearest dyad {best:e} from the crank"
+        );
+    }
+    for k in [0, 4] {
+        assert!(
+            matches!(
+                BurmesterCurve::with_free_pose(&poses, k),
+                Err(Error::InvalidChoice { .. })
+            ),
+            "free pose {k}"
+        );
+    }
+}
+
+/// More than three precision points are a least-squares fit in O(m): a repeated point weighs
+/// twice instead of being searched for pairwise (which took ~1 s at 30 000 points through
+/// Python, growing as m²), and the fit of a linkage's own function stays exact.
+#[test]
+fn freudenstein_fit_of_many_points_is_linear_time() {
+    let fb = FourBar::new(1.0_f64, 0.45, 1.1, 0.8, (0.0, 0.0), Assembly::Open).unwrap();
+    let out = |t: f64| {
+        let b = fb.pose(t).unwrap().b - fb.c;
+        b.y.atan2(b.x)
+    };
+    let m = 200_000;
+    let phi: Vec<f64> = (0..m)
+        .map(|j| 0.5 + 1.7 * j as f64 / (m - 1) as f64)
+        .collect();
+    let mut psi: Vec<f64> = phi.iter().map(|&t| out(t)).collect();
+    let (phi, psi) = {
+        let mut phi = phi;
+        phi.push(phi[0]); // a repeated point
+        psi.push(psi[0]);
+        (phi, psi)
+    };
+    let start = std::time::Instant::now();
+    let k = Freudenstein::fit(&phi, &psi).unwrap();
+    let took = start.elapsed().as_secs_f64();
+    let (d, a, b, c) = (1.0, 0.45, 1.1, 0.8);
+    let want = [
+        d / a,
+        d / c,
+        (a * a - b * b + c * c + d * d) / (2.0 * a * c),
+    ];
+    for (got, want) in [k.k1, k.k2, k.k3].into_iter().zip(want) {
+        assert!((got - want).abs() < 1e-9, "K {got} vs {want}");
+    }
+    // Linear: milliseconds; the pairwise search needed 2·10¹⁰ steps (tens of seconds).
+    assert!(took < 2.0, "fit of {m} points took {took} s");
 }
