@@ -9,6 +9,7 @@ check their numbers). Consistency tests compute one quantity two ways.
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 import pytest
@@ -265,7 +266,7 @@ def test_function_bad_input():
     rng = (0.0, 1.0)
     with pytest.raises(TypeError, match="callable"):
         function(3.0, rng, rng, rng)  # type: ignore[arg-type]
-    with pytest.raises(linkage.LinkageError, match="at least 3"):
+    with pytest.raises(linkage.LinkageError, match="points must be an int ≥ 3, got 2"):
         function(math.exp, rng, rng, (0.5, 1.5), points=2)
     with pytest.raises(linkage.LinkageError, match="distinct"):
         function(math.exp, (1.0, 1.0), rng, rng)
@@ -273,7 +274,7 @@ def test_function_bad_input():
         function(lambda x: math.nan, rng, rng, rng)
     with pytest.raises(linkage.LinkageError, match="y_range"):
         function(math.cos, (-1.0, 1.0), rng, rng)
-    with pytest.raises(linkage.LinkageError, match="coincide"):
+    with pytest.raises(linkage.LinkageError, match=r"points\[0\] and points\[2\] are the same"):
         function(math.exp, rng, (0.5, 1.5), (1.0, 2.0), points=[0.2, 0.5, 0.2])
     with pytest.raises(linkage.LinkageError, match="spacing"):
         function(math.exp, rng, (0.5, 1.5), (1.0, 2.0), spacing="random")
@@ -315,3 +316,133 @@ def test_every_candidate_reaches_or_is_flagged(lens, start, steps, crossed):
             assert reproduces(cand, poses) <= 1e-9 * size
         else:
             assert cand.defect in ("branch", "toggle", "order", "flat-position")
+
+
+# The trial's log10 generator (tests/…/FINDINGS item 4 and 17).
+LOG_ARGS = (math.log10, (1.0, 2.0), np.radians((45, 105)), np.radians((135, 225)))
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "exc", "match"),
+    [
+        ({"points": 0}, linkage.LinkageError, "points must be an int ≥ 3, got 0"),
+        ({"points": 3.0}, TypeError, "points must be an int .* got float"),
+        ({"points": np.float64(5)}, TypeError, "points must be an int .* got float64"),
+        ({"points": True}, TypeError, "points must be an int .* got bool"),
+        ({"n_check": 1}, linkage.LinkageError, "n_check must be an int ≥ 2, got 1"),
+        ({"n_check": 0}, linkage.LinkageError, "n_check must be an int ≥ 2, got 0"),
+        ({"n_check": 11.0}, TypeError, "n_check must be an int"),
+    ],
+)
+def test_function_counts_state_their_real_limits(kwargs, exc, match):
+    with pytest.raises(exc, match=match):
+        function(*LOG_ARGS, **kwargs)
+
+
+def test_function_refuses_counts_beyond_memory_before_any_work(monkeypatch):
+    def f(x: float) -> float:
+        raise AssertionError(f"f({x}) called before the memory check")
+
+    # A 10 MB budget: 10**6 precision points need ~80 MB (f is never called).
+    monkeypatch.setattr("linkage._arrays.memory_limit", lambda: 10**7)
+    with pytest.raises(MemoryError, match="1000000 precision points .*needs"):
+        function(f, (1.0, 2.0), (0.5, 1.5), (1.0, 2.0), y_range=(0.0, 1.0), points=10**6)
+    with pytest.raises(MemoryError, match="1000000 samples needs"):
+        function(f, (1.0, 2.0), (0.5, 1.5), (1.0, 2.0), y_range=(0.0, 1.0), n_check=10**6)
+    # Within the budget it runs.
+    assert function(math.log10, (1.0, 2.0), (0.5, 1.5), (1.0, 2.0), points=100).k
+
+
+def test_function_time_grows_linearly_with_points():
+    # 2·10⁵ points took ~45 s when the core compared every pair of points (3·10⁴: 1.1 s);
+    # linear, it takes ~0.2 s (f is called once a point).
+    start = time.perf_counter()
+    r = function(*LOG_ARGS, points=200_000)
+    took = time.perf_counter() - start
+    assert r.precision_points.shape == (200_000, 2) and r.reaches
+    assert took < 10.0, f"200 000 points took {took:.1f} s"
+
+
+def test_three_poses_of_one_rotation_are_refused_with_the_geometry():
+    # The trial's case: a body pinned at the origin; every dyad's centre is the origin.
+    poses = np.array([[0, 0, 0], [0, 0, 0.5], [0, 0, 1.0]])
+    with pytest.raises(linkage.LinkageError, match=r"rotations about one point, \(0, 0\)"):
+        motion(poses, circle_points=[[1, 0], [0, 1]])
+    with pytest.raises(linkage.LinkageError, match="ground link of length zero"):
+        motion(poses, centre_points=[[1, 0], [0, 1]])
+    # About another point, built with rounding.
+    c = np.array([1.5, -2.0])
+    a = np.array([0.1, 0.7, 1.9])
+    rot = np.stack([np.cos(a), -np.sin(a), np.sin(a), np.cos(a)], axis=1).reshape(3, 2, 2)
+    turned = np.column_stack([c + rot @ -c, a])
+    with pytest.raises(linkage.LinkageError, match=r"\(1\.5, -2\)"):
+        motion(turned, circle_points=[[1, 0], [0, 1]])
+    # A near miss (the body also moves that point) still gives real four-bars.
+    turned[2, 0] += 0.3
+    found = motion(turned, circle_points=[[1, 0], [0, 1]])
+    assert found and all(c.linkage.ground > 0.01 for c in found)
+
+
+def test_motion_names_the_argument_at_fault():
+    fb = crank_rocker()
+    poses, a, b = coupler_poses(fb, [0.4, 1.3, 2.5])
+    with pytest.raises(linkage.LinkageError, match=r"circle_points\[0\] driving circle_points\[1\]"):
+        motion(poses, circle_points=[a[0], a[0]])
+    poses[1] = poses[0]
+    with pytest.raises(linkage.LinkageError, match="^poses: precision positions 0 and 1 coincide"):
+        motion(poses, circle_points=[a[0], b[0]])
+
+
+@pytest.mark.parametrize("k", [1, 2, 3])
+def test_four_pose_beta_is_measured_to_the_pose_asked_and_reported(k):
+    fb = crank_rocker()
+    theta = np.array([0.2, 0.9, 1.7, 2.6])
+    poses, _a, b = coupler_poses(fb, theta)
+    rocker_angle = np.unwrap(np.arctan2(b[:, 1] - fb.c[1], b[:, 0] - fb.c[0]))
+    beta = [theta[k] - theta[0], rocker_angle[k] - rocker_angle[0]]
+    found = motion(poses, beta=beta, beta_pose=k)
+    assert found and {c.beta_pose for c in found} == {k}
+    hits = [c for c in found if same(c.linkage, fb, 1e-9)]
+    assert hits and all(c.reaches for c in hits)
+    # The crank turns by beta from pose 0 to pose k (mod 2π), as reported.
+    turn = hits[0].crank_angles[k] - hits[0].crank_angles[0]
+    assert abs((turn - beta[0] + np.pi) % TAU - np.pi) < 1e-9
+
+
+def test_four_pose_default_beta_pose_is_reported_and_consistent():
+    fb = crank_rocker()
+    theta = np.array([0.2, 0.9, 1.7, 2.6])
+    poses, _a, _b = coupler_poses(fb, theta)
+    found = motion(poses, n=12)
+    (k,) = {c.beta_pose for c in found}
+    # The default is the same as asking for that pose, and the curves agree.
+    again = motion(poses, n=12, beta_pose=k)
+    assert [c.crank.centre for c in found] == [c.crank.centre for c in again]
+    np.testing.assert_array_equal(
+        centre_point_curve(poses, n=12), centre_point_curve(poses, n=12, beta_pose=k)
+    )
+    other = 1 + k % 3
+    assert not np.array_equal(
+        circle_point_curve(poses, n=12, beta_pose=k),
+        circle_point_curve(poses, n=12, beta_pose=other),
+        equal_nan=True,
+    )
+    assert all(c.beta_pose is None for c in motion(poses[:3], circle_points=[[0, 1], [1, 0]]))
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "exc", "match"),
+    [
+        ({"beta_pose": 0}, linkage.LinkageError, "beta_pose must be 1, 2 or 3 .* got 0"),
+        ({"beta_pose": 4}, linkage.LinkageError, "beta_pose must be 1, 2 or 3 .* got 4"),
+        ({"beta_pose": 1.0}, TypeError, "beta_pose must be an int"),
+    ],
+)
+def test_beta_pose_bad_input(kwargs, exc, match):
+    poses = [(1.0, 1.1, 0.4), (0.3, 1.7, 0.3), (-0.6, 1.5, 0.5), (-1.0, 1.0, 0.9)]
+    with pytest.raises(exc, match=match):
+        motion(poses, **kwargs)
+    with pytest.raises(exc, match=match):
+        centre_point_curve(poses, **kwargs)
+    with pytest.raises(TypeError, match="beta_pose applies to four poses"):
+        motion(poses[:3], circle_points=[[0, 1], [1, 0]], beta_pose=1)

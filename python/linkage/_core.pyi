@@ -21,6 +21,7 @@ __all__ = [
     "batch_sweep",
     "burmester_centre_point",
     "burmester_circle_point",
+    "burmester_common_pole",
     "burmester_curve",
     "cam_geometry",
     "catalog_four_bar",
@@ -281,8 +282,11 @@ def burmester_centre_point(
 def burmester_circle_point(
     poses: list[tuple[float, float, float]], centre: tuple[float, float]
 ) -> tuple[float, float]: ...
+def burmester_common_pole(
+    poses: list[tuple[float, float, float]],
+) -> tuple[float, float] | None: ...
 def burmester_curve(
-    poses: list[tuple[float, float, float]], beta: NDArray[np.float64]
+    poses: list[tuple[float, float, float]], beta: NDArray[np.float64], free: int | None = None
 ) -> tuple[int, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]: ...
 def motion_candidates(
     poses: list[tuple[float, float, float]],
@@ -291,7 +295,10 @@ def motion_candidates(
 ) -> dict[str, Any]: ...
 def chebyshev_points(x0: float, x1: float, n: int) -> NDArray[np.float64]: ...
 def function_generator(
-    phi: list[float], psi: list[float], ground: float, samples: NDArray[np.float64]
+    phi: NDArray[np.float64],
+    psi: NDArray[np.float64],
+    ground: float,
+    samples: NDArray[np.float64],
 ) -> dict[str, Any]: ...
 def leg_gait(
     path: NDArray[np.float64],

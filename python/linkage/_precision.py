@@ -5,7 +5,7 @@ positions, and says whether it reaches them all on one circuit, in order, withou
 (``reaches``) — a candidate that would switch branch is flagged, never passed silently.
 
 >>> import numpy as np, linkage
->>> from linkage._precision import motion
+>>> from linkage.synthesis import motion
 >>> fb = linkage.FourBar(ground=2, crank=0.7, coupler=1.9, rocker=1.6, point=(0.8, 0.6))
 >>> s = fb.sweep([0.4, 1.3, 2.5])
 >>> a, b = s.joints[:, 2], s.joints[:, 3]
@@ -26,7 +26,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_count, as_finite, as_real_array, assembly_named, said
+from linkage._arrays import (
+    as_count,
+    as_finite,
+    as_real_array,
+    assembly_named,
+    check_memory,
+    said,
+)
 from linkage._choices import Spacing
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
@@ -75,7 +82,9 @@ class MotionCandidate:
     ``crank_angles`` are the crank angles at the poses along the travel (NaN past a defect);
     ``position_error``/``angle_error`` the largest mismatch of the tracked sweep at the poses
     reached; ``min_transmission_angle`` the smallest transmission angle over the travel, folded
-    to [0, π/2].
+    to [0, π/2]. ``beta_pose`` (four poses only, else None) is the pose ``k`` (1, 2 or 3) whose
+    crank rotation from pose 0 is the ``beta`` the dyads were found at: the crank turns by
+    ``crank_angles[k] − crank_angles[0]`` (≡ ``beta`` mod 2π) from pose 0 to pose ``k``.
     """
 
     linkage: FourBar
@@ -90,6 +99,7 @@ class MotionCandidate:
     angle_error: float
     min_transmission_angle: float
     grashof: str
+    beta_pose: int | None = None
 
 
 @dataclass(frozen=True)
@@ -149,21 +159,55 @@ def _points(value: Any, name: str) -> NDArray[np.float64]:
     return arr
 
 
-def _curve(poses: Any, n: Any) -> tuple[int, NDArray[np.float64], NDArray[np.float64]]:
+def _beta_pose(value: Any) -> int | None:
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"beta_pose must be an int (1, 2 or 3), got {type(value).__name__}")
+    k = int(value)
+    if k not in (1, 2, 3):
+        raise LinkageError(
+            f"beta_pose must be 1, 2 or 3 (the pose beta turns the crank to, from pose 0), got {k}"
+        )
+    return k
+
+
+def _not_one_rotation(p: list[tuple[float, float, float]]) -> None:
+    """Raise when the poses are rotations about one point: no four-bar guides them."""
+    try:
+        centre = _core.burmester_common_pole(p)
+    except LinkageError as exc:  # coincident poses: name the argument, not a chosen point
+        raise LinkageError(f"poses: {exc}") from None
+    if centre is not None:
+        x, y = (f"{v:.6g}" for v in centre)
+        raise LinkageError(
+            f"the {len(p)} poses are rotations about one point, ({x}, {y}): every body point "
+            f"moves on a circle about it, so every dyad's fixed pivot is that point and any two "
+            f"dyads would share it (a ground link of length zero). One link pinned at ({x}, {y}) "
+            "guides the body; a four-bar needs poses that also move that point"
+        )
+
+
+def _curve(
+    poses: Any, n: Any, beta_pose: Any
+) -> tuple[int, NDArray[np.float64], NDArray[np.float64]]:
     p = _poses(poses, (4,))
     count = as_count(n, "n")
-    if count < 1:
-        raise LinkageError(f"n must be ≥ 1, got {count}")
+    free_pose = _beta_pose(beta_pose)
+    _not_one_rotation(p)
     beta = 2.0 * np.pi * np.arange(count, dtype=np.float64) / count
-    free, centres, circles, _ = _core.burmester_curve(p, beta)
+    free, centres, circles, _ = _core.burmester_curve(p, beta, free_pose)
     return int(free), centres, circles
 
 
-def centre_point_curve(poses: ArrayLike, n: int = 360) -> NDArray[np.float64]:
+def centre_point_curve(
+    poses: ArrayLike, n: int = 360, *, beta_pose: int | None = None
+) -> NDArray[np.float64]:
     """Sample the centre-point (Burmester) curve of four poses: ``(2n, 2)``.
 
-    The curve is parametrised by the crank's rotation ``β`` from pose 0 to a pose ``k`` (the
-    one that conditions the compatibility equation best), sampled at ``β = 2πi/n``; rows
+    The curve is parametrised by the crank's rotation ``β`` from pose 0 to pose ``beta_pose``
+    (1, 2 or 3; by default the one that conditions the compatibility equation best, which
+    :func:`motion` reports as ``beta_pose``), sampled at ``β = 2πi/n``; rows
     ``[0, n)`` hold the first solution at each ``β``, rows ``[n, 2n)`` the second, NaN where
     the curve has no real point at that ``β``. Plotting each half as a line gives the curve
     (NaN rows break it).
@@ -187,14 +231,17 @@ def centre_point_curve(poses: ArrayLike, n: int = 360) -> NDArray[np.float64]:
     ...
     linkage.LinkageError: needs at least 4 poses, got 3
     """
-    _, centres, _ = _curve(poses, n)
+    _, centres, _ = _curve(poses, n, beta_pose)
     return np.concatenate([centres[:, 0], centres[:, 1]])
 
 
-def circle_point_curve(poses: ArrayLike, n: int = 360) -> NDArray[np.float64]:
+def circle_point_curve(
+    poses: ArrayLike, n: int = 360, *, beta_pose: int | None = None
+) -> NDArray[np.float64]:
     """Sample the circle-point curve of four poses (the moving pivots where they lie at pose 0).
 
-    Sampled as :func:`centre_point_curve`: row ``i`` pairs with row ``i`` of that curve.
+    Sampled as :func:`centre_point_curve` (same ``n`` and ``beta_pose``): row ``i`` pairs with
+    row ``i`` of that curve.
 
     Examples
     --------
@@ -206,14 +253,15 @@ def circle_point_curve(poses: ArrayLike, n: int = 360) -> NDArray[np.float64]:
     ...
     linkage.LinkageError: degenerate synthesis: the four poses have no Burmester curve: ...
     """
-    _, _, circles = _curve(poses, n)
+    _, _, circles = _curve(poses, n, beta_pose)
     return np.concatenate([circles[:, 0], circles[:, 1]])
 
 
 def _dyads_three(
     p: list[tuple[float, float, float]], circle_points: Any, centre_points: Any
-) -> list[Dyad]:
+) -> tuple[list[Dyad], list[str]]:
     dyads: list[Dyad] = []
+    names: list[str] = []
     if circle_points is not None:
         for i, (x, y) in enumerate(_points(circle_points, "circle_points")):
             try:
@@ -221,6 +269,7 @@ def _dyads_three(
             except LinkageError as exc:
                 raise LinkageError(f"circle_points[{i}]: {exc}") from None
             dyads.append(Dyad(centre=(g[0], g[1]), circle=(float(x), float(y))))
+            names.append(f"circle_points[{i}]")
     if centre_points is not None:
         for i, (x, y) in enumerate(_points(centre_points, "centre_points")):
             try:
@@ -228,25 +277,26 @@ def _dyads_three(
             except LinkageError as exc:
                 raise LinkageError(f"centre_points[{i}]: {exc}") from None
             dyads.append(Dyad(centre=(float(x), float(y)), circle=(k[0], k[1])))
-    return dyads
+            names.append(f"centre_points[{i}]")
+    return dyads, names
 
 
-def _dyads_four(p: list[tuple[float, float, float]], beta: Any, n: Any) -> list[Dyad]:
+def _dyads_four(
+    p: list[tuple[float, float, float]], beta: Any, n: Any, beta_pose: int | None
+) -> tuple[list[Dyad], int]:
     if beta is None:
         count = as_count(n, "n")
-        if count < 1:
-            raise LinkageError(f"n must be ≥ 1, got {count}")
         b = 2.0 * np.pi * np.arange(count, dtype=np.float64) / count
     else:
         b = np.ascontiguousarray(np.atleast_1d(as_real_array(beta, "beta")), dtype=np.float64)
         if b.ndim != 1 or not np.all(np.isfinite(b)):
             raise LinkageError("beta must be finite angles, a scalar or 1-D")
-    _, centres, circles, _ = _core.burmester_curve(p, b)
+    free, centres, circles, _ = _core.burmester_curve(p, b, beta_pose)
     out = []
     for g, k in zip(centres.reshape(-1, 2), circles.reshape(-1, 2)):
         if np.all(np.isfinite(g)) and np.all(np.isfinite(k)):
             out.append(Dyad(centre=(float(g[0]), float(g[1])), circle=(float(k[0]), float(k[1]))))
-    return out
+    return out, int(free)
 
 
 def _placed(q: Sequence[float]) -> FourBar:
@@ -272,6 +322,7 @@ def motion(
     centre_points: ArrayLike | None = None,
     beta: ArrayLike | None = None,
     n: int = 36,
+    beta_pose: int | None = None,
     top: int | None = None,
 ) -> list[MotionCandidate]:
     """Four-bars that carry a body through 3 or 4 poses (Burmester motion generation).
@@ -288,6 +339,11 @@ def motion(
     beta, n : four poses only
         The dyads at crank rotations ``beta`` along the Burmester curve (see
         :func:`centre_point_curve`), or at ``n`` rotations evenly spaced over a turn.
+    beta_pose : {1, 2, 3}, optional, four poses only
+        The pose that ``beta`` is the crank's rotation to, from pose 0. By default the one that
+        conditions the compatibility equation best; either way each candidate reports it as
+        ``beta_pose``. To ask for "the crank that turns 40° from pose 0 to pose 1", give
+        ``beta=np.radians(40), beta_pose=1``.
     top : int, optional
         Return only the first ``top`` candidates.
 
@@ -301,11 +357,12 @@ def motion(
     Raises
     ------
     LinkageError
-        Bad poses (shape, count, NaN, coincident), a chosen point whose dyad is degenerate (its
-        centre at infinity or not unique), poses without a Burmester curve, fewer than two
-        dyads.
+        Bad poses (shape, count, NaN, coincident), poses that are rotations about one point
+        (every dyad's fixed pivot is that point, so no two make a four-bar), a chosen point
+        whose dyad is degenerate (its centre at infinity or not unique), poses without a
+        Burmester curve, fewer than two dyads, or dyads no two of which make a four-bar.
     TypeError
-        Points chosen for four poses, or ``beta`` for three.
+        Points chosen for four poses, or ``beta`` / ``beta_pose`` for three.
 
     Examples
     --------
@@ -326,21 +383,27 @@ def motion(
     linkage.LinkageError: three poses leave two free choices per dyad: give circle_points= ...
     """
     p = _poses(poses, (3, 4))
+    free: int | None = None
     if len(p) == 3:
-        if beta is not None:
-            raise TypeError("beta applies to four poses; three take circle_points/centre_points")
+        if beta is not None or beta_pose is not None:
+            name = "beta" if beta is not None else "beta_pose"
+            raise TypeError(f"{name} applies to four poses; three take circle_points/centre_points")
         if circle_points is None and centre_points is None:
             raise LinkageError(
                 "three poses leave two free choices per dyad: give circle_points= and/or "
                 "centre_points= (at least two dyads)"
             )
-        dyads = _dyads_three(p, circle_points, centre_points)
+        _not_one_rotation(p)
+        dyads, names = _dyads_three(p, circle_points, centre_points)
     else:
         if circle_points is not None or centre_points is not None:
             raise TypeError(
                 "four poses fix the dyads to the Burmester curves: choose them by beta= or n="
             )
-        dyads = _dyads_four(p, beta, n)
+        free_pose = _beta_pose(beta_pose)
+        _not_one_rotation(p)
+        dyads, free = _dyads_four(p, beta, n, free_pose)
+        names = [f"dyad {i}" for i in range(len(dyads))]
     if len(dyads) < 2:
         raise LinkageError(f"needs at least 2 dyads to make a four-bar, got {len(dyads)}")
     pairs = [(i, j) for i in range(len(dyads)) for j in range(len(dyads)) if i != j]
@@ -349,6 +412,12 @@ def motion(
     row = [[*dyads[j].centre, *dyads[j].circle] for _, j in pairs]
     rocker = np.ascontiguousarray(row, dtype=np.float64).reshape(-1, 4)
     r = _core.motion_candidates(p, crank, rocker)
+    if not np.any(r["ok"]):
+        i, j = pairs[0]
+        raise LinkageError(
+            f"no two of the {len(dyads)} dyads make a four-bar: {names[i]} driving {names[j]}: "
+            f"{r['error'][0]}"
+        )
     out = []
     for m, (i, j) in enumerate(pairs):
         if not r["ok"][m]:
@@ -371,6 +440,7 @@ def motion(
                 angle_error=float(r["angle_error"][m]),
                 min_transmission_angle=float(r["min_transmission"][m]),
                 grashof=str(r["grashof"][m]),
+                beta_pose=free,
             )
         )
     out.sort(key=lambda c: (not c.reaches, -c.min_transmission_angle))
@@ -418,6 +488,30 @@ def _call(f: Callable[[float], Any], x: float) -> float:
     return v
 
 
+# What function() holds per precision point (x, y, φ, ψ and the two (m, 2) arrays returned, plus
+# a temporary of the linear maps) and per check sample (x, y, φ, the output, the error, and
+# temporaries), in bytes: the memory check's estimate.
+_BYTES_PER_POINT = 8 * 10
+_BYTES_PER_SAMPLE = 8 * 8
+
+
+def _values(f: Callable[[float], Any], xs: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``f`` at each of ``xs``, written straight into one float64 array (no list of floats)."""
+    return np.fromiter((_call(f, float(x)) for x in xs), dtype=np.float64, count=xs.size)
+
+
+def _distinct(xs: NDArray[np.float64]) -> None:
+    """Raise naming two equal ``x`` values among the precision points (O(m log m))."""
+    order = np.argsort(xs, kind="stable")
+    same = np.flatnonzero(xs[order][1:] == xs[order][:-1])
+    if same.size:
+        i, j = sorted((int(order[same[0]]), int(order[same[0] + 1])))
+        raise LinkageError(
+            f"points[{i}] and points[{j}] are the same x = {float(xs[i])!r}: precision points must be "
+            "distinct"
+        )
+
+
 def function(
     f: Callable[[float], SupportsFloat],
     x_range: Sequence[float],
@@ -439,12 +533,15 @@ def function(
     Parameters
     ----------
     points : int or sequence of float
-        Number of precision points (3: exact; more: least squares on Freudenstein's
-        equation), or the ``x`` values themselves.
+        Number of precision points, at least 3 (3: exact; more: least squares on
+        Freudenstein's equation), or the ``x`` values themselves (at least 3, distinct).
     spacing : {"chebyshev", "uniform"}
         Where ``points`` precision points go: Chebyshev spacing, or evenly with both ends.
     n_check : int
-        Samples of ``x`` for the structural error (tracked sweep of the linkage).
+        Samples of ``x`` for the structural error (tracked sweep of the linkage), at least 2.
+
+    Time and memory grow linearly with ``points`` and ``n_check`` (``f`` is called once at
+    each); a count whose arrays cannot fit in memory is refused before any work.
 
     Raises
     ------
@@ -452,7 +549,10 @@ def function(
         Bad ranges, fewer than 3 or coincident precision points, a singular system, no real
         linkage (a link of infinite or imaginary length), ``f`` not finite.
     TypeError
-        ``f`` not callable or not returning a real number.
+        ``f`` not callable or not returning a real number; ``points`` or ``n_check`` a float
+        (a count is an int; ``x`` values are a sequence).
+    MemoryError
+        ``points`` or ``n_check`` too large for this machine's memory.
 
     Examples
     --------
@@ -466,7 +566,7 @@ def function(
     >>> synthesis.function(math.log10, (1, 2), (0, 1), (1, 2), points=2)
     Traceback (most recent call last):
     ...
-    linkage.LinkageError: needs at least 3 precision points, got 2
+    linkage.LinkageError: points must be an int ≥ 3, got 2
     """
     if not callable(f):
         raise TypeError(f"f must be callable, got {type(f).__name__}")
@@ -476,10 +576,18 @@ def function(
     y0, y1 = _pair(y_range, "y_range") if y_range is not None else (_call(f, x0), _call(f, x1))
     if y0 == y1:
         raise LinkageError(f"f(x0) = f(x1) = {y0}: give y_range to scale the output")
-    if isinstance(points, (int, np.integer)) and not isinstance(points, bool):
-        m = as_count(points, "points")
-        if m < 3:
-            raise LinkageError(f"needs at least 3 precision points, got {m}")
+    count = as_count(n_check, "n_check", minimum=2)
+    if isinstance(points, (int, np.integer, bool, np.bool_)) or np.ndim(points) == 0:
+        if isinstance(points, (bool, np.bool_)) or not isinstance(points, (int, np.integer)):
+            raise TypeError(
+                "points must be an int (how many precision points, at least 3) or a sequence of "
+                f"x values, got {type(points).__name__}"
+            )
+        m = as_count(points, "points", minimum=3)
+        check_memory(
+            m * _BYTES_PER_POINT + count * _BYTES_PER_SAMPLE,
+            f"function generation at {m} precision points and {count} samples",
+        )
         if spacing == "chebyshev":
             xs = chebyshev_points(x0, x1, m)
         elif spacing == "uniform":
@@ -492,11 +600,13 @@ def function(
             raise LinkageError(f"needs at least 3 precision points, got {xs.size}")
         if not np.all(np.isfinite(xs)):
             raise LinkageError("precision points must be finite")
-    count = as_count(n_check, "n_check")
-    if count < 2:
-        raise LinkageError(f"n_check must be ≥ 2, got {count}")
+        _distinct(xs)
+        check_memory(
+            xs.size * _BYTES_PER_POINT + count * _BYTES_PER_SAMPLE,
+            f"function generation at {xs.size} precision points and {count} samples",
+        )
     g = as_finite(ground, "ground")
-    ys = np.array([_call(f, float(x)) for x in xs])
+    ys = _values(f, xs)
 
     def phi_of(x: NDArray[np.float64]) -> NDArray[np.float64]:
         return phi0 + (x - x0) / (x1 - x0) * (phi1 - phi0)
@@ -506,12 +616,10 @@ def function(
 
     phi, psi = phi_of(xs), psi_of(ys)
     grid = np.linspace(x0, x1, count)
-    r = _core.function_generator(
-        [float(v) for v in phi], [float(v) for v in psi], g, np.ascontiguousarray(phi_of(grid))
-    )
+    r = _core.function_generator(phi, psi, g, np.ascontiguousarray(phi_of(grid)))
     q = r["params"]
     fb = _placed(q)
-    want = psi_of(np.array([_call(f, float(x)) for x in grid]))
+    want = psi_of(_values(f, grid))
     err = np.asarray(r["output"], dtype=np.float64) - want
     err = (err + np.pi) % (2 * np.pi) - np.pi
     worst = float(np.max(np.abs(err))) if np.all(np.isfinite(err)) else math.nan

@@ -84,6 +84,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::batch_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(precision::burmester_centre_point, m)?)?;
     m.add_function(wrap_pyfunction!(precision::burmester_circle_point, m)?)?;
+    m.add_function(wrap_pyfunction!(precision::burmester_common_pole, m)?)?;
     m.add_function(wrap_pyfunction!(precision::burmester_curve, m)?)?;
     m.add_function(wrap_pyfunction!(precision::motion_candidates, m)?)?;
     m.add_function(wrap_pyfunction!(precision::chebyshev_points, m)?)?;

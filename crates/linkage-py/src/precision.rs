@@ -2,7 +2,7 @@
 //! synthesis. Converts, calls the core, converts back; the Python API is `linkage._precision`.
 
 use linkage_core::{
-    centre_point, chebyshev_spacing, circle_point, Assembly, BodyPose, BurmesterCurve,
+    centre_point, chebyshev_spacing, circle_point, common_pole, Assembly, BodyPose, BurmesterCurve,
     BurmesterPair, Defect, Error, FunctionGenerator, MotionCandidate, Vec2,
 };
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
@@ -45,7 +45,16 @@ pub fn burmester_circle_point(
     Ok((p.circle.x, p.circle.y))
 }
 
-/// The Burmester curves of four poses at free crank rotations `beta` (N,): the free pose's
+/// The point every pose turns about, if the poses are rotations about one point (else None);
+/// raises for bad poses (not finite, coincident).
+#[pyfunction]
+pub fn burmester_common_pole(poses: Vec<(f64, f64, f64)>) -> PyResult<Option<(f64, f64)>> {
+    let p = poses_of(&poses)?;
+    Ok(common_pole(&p).map_err(to_py)?.map(|x| (x.x, x.y)))
+}
+
+/// The Burmester curves of four poses at free crank rotations `beta` (N,) to pose `free` (the
+/// best-conditioned pose when None): the free pose's
 /// index, centre points (N, 2, 2) and circle points (N, 2, 2) for the two solutions at each
 /// (NaN where none), and the crank rotations to every pose (N, 2, 4).
 #[allow(
@@ -53,10 +62,12 @@ pub fn burmester_circle_point(
     reason = "the Python tuple returned, spelled out where it is built"
 )]
 #[pyfunction]
+#[pyo3(signature = (poses, beta, free=None))]
 pub fn burmester_curve<'py>(
     py: Python<'py>,
     poses: Vec<(f64, f64, f64)>,
     beta: PyReadonlyArray1<'py, f64>,
+    free: Option<usize>,
 ) -> PyResult<(
     usize,
     Bound<'py, PyAny>,
@@ -66,7 +77,11 @@ pub fn burmester_curve<'py>(
     let p: [BodyPose<f64>; 4] = poses_of(&poses)?
         .try_into()
         .map_err(|p: Vec<_>| linkage_error(format!("needs exactly 4 poses, got {}", p.len())))?;
-    let curve = BurmesterCurve::new(&p).map_err(to_py)?;
+    let curve = match free {
+        None => BurmesterCurve::new(&p),
+        Some(k) => BurmesterCurve::with_free_pose(&p, k),
+    }
+    .map_err(to_py)?;
     let beta = beta.as_slice()?;
     let n = beta.len();
     let what = || format!("Burmester curves at {n} angles");
@@ -270,18 +285,19 @@ pub fn chebyshev_points<'py>(
 #[pyfunction]
 pub fn function_generator<'py>(
     py: Python<'py>,
-    phi: Vec<f64>,
-    psi: Vec<f64>,
+    phi: PyReadonlyArray1<'py, f64>,
+    psi: PyReadonlyArray1<'py, f64>,
     ground: f64,
     samples: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let (phi, psi) = (phi.as_slice()?, psi.as_slice()?);
     let samples = samples.as_slice()?;
     let n = samples.len();
     let mut out = memory::filled(&|| format!("{n} output angles"), n, f64::NAN)?;
     let (gen, check) = py
         .detach(|| {
-            let gen = FunctionGenerator::synthesise(&phi, &psi, ground)?;
-            let check = gen.sweep(samples, &mut out, &phi, &psi)?;
+            let gen = FunctionGenerator::synthesise(phi, psi, ground)?;
+            let check = gen.sweep(samples, &mut out, phi, psi)?;
             Ok::<_, Error>((gen, check))
         })
         .map_err(to_py)?;
