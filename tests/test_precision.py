@@ -345,7 +345,7 @@ def test_function_refuses_counts_beyond_memory_before_any_work(monkeypatch):
 
     # A 10 MB budget: 10**6 precision points need ~80 MB (f is never called).
     monkeypatch.setattr("linkage._arrays.memory_limit", lambda: 10**7)
-    with pytest.raises(MemoryError, match="1000000 precision points .*needs"):
+    with pytest.raises(MemoryError, match=r"1000000 precision points .*needs"):
         function(f, (1.0, 2.0), (0.5, 1.5), (1.0, 2.0), y_range=(0.0, 1.0), points=10**6)
     with pytest.raises(MemoryError, match="1000000 samples needs"):
         function(f, (1.0, 2.0), (0.5, 1.5), (1.0, 2.0), y_range=(0.0, 1.0), n_check=10**6)
@@ -386,10 +386,12 @@ def test_three_poses_of_one_rotation_are_refused_with_the_geometry():
 def test_motion_names_the_argument_at_fault():
     fb = crank_rocker()
     poses, a, b = coupler_poses(fb, [0.4, 1.3, 2.5])
-    with pytest.raises(linkage.LinkageError, match=r"circle_points\[0\] driving circle_points\[1\]"):
+    with pytest.raises(
+        linkage.LinkageError, match=r"circle_points\[0\] driving circle_points\[1\]"
+    ):
         motion(poses, circle_points=[a[0], a[0]])
     poses[1] = poses[0]
-    with pytest.raises(linkage.LinkageError, match="^poses: precision positions 0 and 1 coincide"):
+    with pytest.raises(linkage.LinkageError, match=r"^poses: precision positions 0 and 1 coincide"):
         motion(poses, circle_points=[a[0], b[0]])
 
 

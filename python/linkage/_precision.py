@@ -507,8 +507,8 @@ def _distinct(xs: NDArray[np.float64]) -> None:
     if same.size:
         i, j = sorted((int(order[same[0]]), int(order[same[0] + 1])))
         raise LinkageError(
-            f"points[{i}] and points[{j}] are the same x = {float(xs[i])!r}: precision points must be "
-            "distinct"
+            f"points[{i}] and points[{j}] are the same x = {float(xs[i])!r}: precision points "
+            "must be distinct"
         )
 
 
