@@ -2056,7 +2056,8 @@ def _spread(target: Float2D, closed: bool, n: int) -> NDArray[np.intp]:
 
     An open target keeps both its ends; a closed one is spread round its loop.
     """
-    steps = np.hypot(*np.diff(target, axis=0, append=target[:1] if closed else None).T)
+    ring = np.concatenate([target, target[:1]]) if closed else target
+    steps = np.hypot(*np.diff(ring, axis=0).T)
     along = np.concatenate([[0.0], np.cumsum(steps)])
     if closed:
         want = np.linspace(0.0, along[-1], n, endpoint=False)
@@ -2267,7 +2268,7 @@ def command(args: argparse.Namespace) -> int:
         ),
     }[kind]
     head = ("#", f"error{u}", f"rms{u}", "class", "crank range (deg)", "min μ (deg)", "O", *tail)
-    rows = [head]
+    rows: list[tuple[str, ...]] = [head]
     for rank, c in enumerate(found, 1):
         fb = c.linkage
         lo, hi = (round(math.degrees(v), 1) + 0.0 for v in c.crank_range)
