@@ -1157,7 +1157,8 @@ def path(
         target's long fits and further matches, and the global search when ``global_search``
         is None — run only while no admissible candidate is within it (default: they run
         until one is exact, :data:`EXACT` of the size, and the global search while none is
-        within ``tol``).
+        within ``tol``; an open target's best exact fit above :data:`TIGHT` of the size then
+        gets one long fit more).
     max_link : float or None
         Candidates with a link (or coupler-triangle side) longer than ``max_link`` times the
         target's size (:func:`target_size`) are ranked after every other, whatever their error:
@@ -1416,6 +1417,20 @@ def path(
         if not closed and mine and best_usable(mine) > goal:
             starts = [c for c in mine if admissible(c)] or mine
             mine += _hops(starts, target, size, bounds, seed, nthreads, k)
+        loose = min((c for c in mine if usable(c)), key=lambda c: c.error, default=None)
+        if (
+            not closed
+            and accept is None
+            and loose is not None
+            and TIGHT * size < loose.error <= goal
+        ):
+            # An exact fit (within EXACT) that the first fits left in a valley above round-off
+            # (8.9e-7 of the size, links 1e-3 off, where the drawing linkage is at 4e-14): one
+            # long fit takes it down (docs/synthesis.md, step 4), and replaces it when better
+            # (else the same design would be listed twice, with its cognate measured from it).
+            tight = _polish([loose], [], target, size, bounds, nthreads, bar, k, usable, TIGHT)
+            if min((c.error for c in tight), default=math.inf) < loose.error:
+                mine = [c for c in mine if c is not loose] + tight
         found += mine
     enough = tol * size if accept is None else accept
     run_global = global_search if global_search is not None else best(found) > enough
@@ -1583,17 +1598,18 @@ def _polish(
     bar: Any,
     kind: _Kind,
     admissible: Callable[[Candidate[Any]], bool],
+    exact: float | None = None,
 ) -> list[Candidate[Any]]:
     """Refine the best :data:`POLISH` distinct fits at length, stopping at the first exact one.
 
-    A short or near-straight arc is matched to ~1e-5 … 1e-4 of its size along a long, curved
-    valley of near-fits (the scaled Jacobian's singular values span 10⁹ on an eighth of
-    Hoecken's curve): least squares crawls along it to the exact linkage, in hundreds to
-    thousands of evaluations where a first fit's rounds stop at 60 (measured in
-    docs/synthesis.md). These fits take geodesic acceleration (:func:`_geodesic_lm`), whose
-    steps follow the valley's bend. Fits whose parameters all lie within 1e-3 of the size of a
-    better one's, or of one in ``polished`` (the starts of earlier calls, to which this call's
-    are added), are one start.
+    Exact is within ``exact`` of the size (default :data:`EXACT`). A short or near-straight arc is
+    matched to ~1e-5 … 1e-4 of its size along a long, curved valley of near-fits (the scaled
+    Jacobian's singular values span 10⁹ on an eighth of Hoecken's curve): least squares crawls along
+    it to the exact linkage, in hundreds to thousands of evaluations where a first fit's rounds stop
+    at 60 (measured in docs/synthesis.md). These fits take geodesic acceleration
+    (:func:`_geodesic_lm`), whose steps follow the valley's bend. Fits whose parameters all lie
+    within 1e-3 of the size of a better one's, or of one in ``polished`` (the starts of earlier
+    calls, to which this call's are added), are one start.
     """
     picked: list[Candidate[Any]] = []
     for c in sorted(found, key=lambda c: c.error):
@@ -1620,7 +1636,7 @@ def _polish(
             nfev=POLISH_NFEV,
             geodesic=True,
         )
-        if any(o.error <= EXACT * size and admissible(o) for o in out):
+        if any(o.error <= (exact or EXACT) * size and admissible(o) for o in out):
             break
     return out
 
@@ -1725,6 +1741,10 @@ def _atlas_pool(
 
 EXACT = 1e-6
 """Errors below this fraction of the target's size count as exact (a tie) when ranking."""
+
+TIGHT = 1e-10
+"""An open target's best fit above this fraction of its size but within :data:`EXACT` (when no
+``accept`` is given) gets one long fit, to round-off where the fit is exact."""
 
 
 def _ranked(found: list[Candidate[Any]], size: float, limit: float) -> list[Candidate[Any]]:
