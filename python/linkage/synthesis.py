@@ -96,9 +96,10 @@ SLIDER_ARCS: AtlasKind = "slider-crank-arcs"
 """The kind of :class:`Atlas` whose entries are open arcs of slider-crank circuits: :func:`path`
 matches open slider-crank targets against it (``linkage_core::Atlas::build_slider_arcs``)."""
 
-DEFAULT_SLIDER_ARC_ENTRIES = 280_000
-"""Entries of the default slider-crank arc atlas: 5,000 circuits × 8 starts × 7 fractions (four
-shape numbers against the four-bar's five)."""
+DEFAULT_SLIDER_ARC_ENTRIES = 560_000
+"""Entries of the default slider-crank arc atlas: 10,000 circuits × 8 starts × 7 fractions, as
+many circuits as the four-bar's (5,000 missed three arcs of ``bench/open_arcs.py --kind
+slider-crank`` that this finds; docs/synthesis.md)."""
 
 _ENTRY_WIDTH = {"fourbar": 6, "slider-crank": 4, ARCS: 8, SLIDER_ARCS: 6}
 
