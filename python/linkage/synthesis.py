@@ -1313,7 +1313,7 @@ def path(
         )
         every = []
         for c in some:
-            crossed = isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
+            crossed = _crossed(c)
             m = _measure(c.params, crossed, target, closed, c.source, nthreads, _KIND[c.kind])
             if m is not None and _meets(m, full_turn, min_transmission, lengths, pivots):
                 every.append(m)
@@ -1623,7 +1623,7 @@ def _polish(
         bar.stage("long fits", len(picked))
     out: list[Candidate[Any]] = []
     for c in picked:
-        crossed = isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
+        crossed = _crossed(c)
         out += _finish(
             [(c.params, crossed, c.source)],
             target,
@@ -1668,7 +1668,7 @@ def _hops(
         c = starts[t % len(starts)]
         step = (0.05 if t % 2 == 0 else 0.01) * size
         x = c.params + step * rng.standard_normal(len(c.params))
-        crossed = isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
+        crossed = _crossed(c)
         out += _finish(
             [(x, crossed, "atlas")], target, False, size, bounds, 1, threads, None, kind=kind
         )
@@ -1802,8 +1802,7 @@ def _longest(c: Candidate[Any]) -> float:
 def _matched_curve(c: Candidate[Any], target: Float2D, closed: bool, samples: int = 512) -> Float2D:
     """Sample the part of ``c``'s circuit that the target points fall on (closed: all of it)."""
     kind = _KIND[c.kind]
-    fb = c.linkage
-    crossed = np.array([isinstance(fb, FourBar) and fb.assembly == "crossed"])
+    crossed = np.array([_crossed(c)])
     _, feet = _errors(
         c.params[None, :], crossed, target, closed, samples=2048, exact=True, kind=kind
     )
@@ -2125,9 +2124,14 @@ def _moved(c: Candidate[Any], centre: NDArray[np.float64], k: float) -> Candidat
     for i, j in kind.pivots:
         x[i], x[j] = centre[0] + k * x[i], centre[1] + k * x[j]
     x[list(kind.scaled)] *= k
-    crossed = isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
+    crossed = _crossed(c)
     lk = _linkage_of(x, crossed, kind)
     return replace(c, linkage=lk, error=c.error * k, rms=c.rms * k, back=c.back * k, params=x)
+
+
+def _crossed(c: Candidate[Any]) -> bool:
+    """Whether ``c`` is a four-bar in its crossed assembly (the flag its parameters go with)."""
+    return isinstance(c.linkage, FourBar) and c.linkage.assembly == "crossed"
 
 
 def _linkage_of(x: NDArray[np.float64], crossed: bool, kind: _Kind) -> FourBar | SliderCrank:
