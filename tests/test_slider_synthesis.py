@@ -395,14 +395,16 @@ def test_a_slider_crank_and_its_cognate_draw_the_same_curve() -> None:
 
 def test_near_copies_are_listed_once(atlas: Atlas) -> None:
     # On this curve places 4 and 5 were one rocking slider-crank, once with its line reversed,
-    # its lengths and pivot differing by 0.9 % of the size (errors 9.30e-3 and 9.35e-3).
+    # its lengths and pivot differing by 0.9 % of the size (errors 9.30e-3 and 9.35e-3); the
+    # next was the same again, 3.5 % of the size away (9.73e-3).
     sc = random_slider_crank(np.random.default_rng(3))
     target = sc.circuit(61).point[:-1]
     found = synthesis.path(target, kind="slider-crank", atlas=atlas, top=5)
     size = size_of(target)
-    assert len(found) == 5 and found[0].error <= 1e-9 * size
+    assert len(found) >= 4 and found[0].error <= 1e-9 * size
     for i, a in enumerate(found):
         for b in found[:i]:
+            scale = max(size, min(synthesis.longest_link(a), synthesis.longest_link(b)))
             # b's linkage, and the same with its line reversed when its crank rocks.
             forms = [b.params]
             if not b.linkage.full_turn:
@@ -410,5 +412,5 @@ def test_near_copies_are_listed_once(atlas: Atlas) -> None:
             for x in forms:
                 turn = (a.params[2] - x[2]) % (2 * math.pi)
                 d = np.abs(a.params - x)
-                d[2] = min(turn, 2 * math.pi - turn) * size
-                assert d.max() > synthesis.NEAR * size, (i, a.linkage, b.linkage)
+                d[2] = min(turn, 2 * math.pi - turn) * scale
+                assert d.max() > synthesis.NEAR * scale, (i, a.linkage, b.linkage)

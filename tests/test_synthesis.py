@@ -408,8 +408,12 @@ def test_bad_csv(tmp_path) -> None:  # type: ignore[no-untyped-def]
         synthesis.read_points(tmp_path / "missing.csv")
 
 
-def test_cli_synth(tmp_path, capsys, atlas: Atlas) -> None:  # type: ignore[no-untyped-def]
+def test_cli_synth(tmp_path, capsys, monkeypatch, atlas: Atlas) -> None:  # type: ignore[no-untyped-def]
     from linkage import cli
+
+    reads: list[object] = []
+    read = synthesis.read_points
+    monkeypatch.setattr(synthesis, "read_points", lambda p: reads.append(p) or read(p))
 
     fb = linkage.catalog.get("hoecken")
     assert isinstance(fb, linkage.FourBar)
@@ -422,6 +426,7 @@ def test_cli_synth(tmp_path, capsys, atlas: Atlas) -> None:  # type: ignore[no-u
     )
     out = capsys.readouterr().out
     assert code == 0
+    assert [p for p in reads if isinstance(p, str)] == [str(f)]  # the file is read once
     assert "error mm" in out
     assert any(k in out for k in ("crank-rocker", "double-rocker", "rocker-crank")), out
     code = cli.main(["synth", str(tmp_path / "missing.csv"), "--quiet", "--atlas", str(folder)])
@@ -801,3 +806,69 @@ def test_a_short_arc_of_fewer_points_than_unknowns_is_fitted(arc_atlas: Atlas) -
         pts = hoecken[:n]
         best = synthesis.path(pts, closed=False, top=1, atlas=arc_atlas, global_search=False)[0]
         assert best.error <= 1e-9 * size_of(pts), (n, best.error / size_of(pts))
+
+
+def test_near_copies_of_a_long_linked_fit_are_listed_once() -> None:
+    """A new user's open arc (a flat stance and the start of a swing) listed the same crank-rocker
+    three times: its 330 mm crank and far pivot moved along a valley of near-fits by 4.6 … 6.7 mm,
+    a quarter of the target's size but 2 % of the linkage. Near-copies are judged on the
+    linkage's own scale when it is larger; a different design is still listed."""
+    k = np.arange(1, 8)
+    target = np.r_[
+        np.c_[np.arange(30, -30.1, -2.5), np.full(25, -100.0)],
+        np.c_[-30 + 3.75 * k, -100 + 20 * np.sin(np.radians(11.25 * k))],
+    ]
+    size = synthesis.target_size(target)
+    found = []
+    # Places 1, 2 and 3 of path(target, closed=False, top=3) with the default atlases.
+    for crossed, x in (
+        (
+            False,
+            [
+                -233.41653,
+                130.12765,
+                5.9090245,
+                -106.15229,
+                333.194,
+                18.480665,
+                15.363937,
+                15.910363,
+                21.340885,
+            ],
+        ),
+        (
+            False,
+            [
+                -228.82568,
+                125.15304,
+                5.9878175,
+                -106.21728,
+                326.5078,
+                18.521772,
+                15.379368,
+                15.942438,
+                21.4187,
+            ],
+        ),
+        (
+            True,
+            [
+                8.494579,
+                -110.16956,
+                -127.74456,
+                91.440971,
+                23.033959,
+                26.107881,
+                240.11767,
+                16.815098,
+                -28.585516,
+            ],
+        ),
+    ):
+        c = synthesis._measure(np.array(x), crossed, target, False, "atlas", 1)
+        assert c is not None and c.error < 0.01 * size, c
+        found.append(c)
+    # The first two differ by a quarter of the size and more: five times NEAR of it.
+    assert np.abs(found[0].params - found[1].params).max() > 5 * synthesis.NEAR * size
+    kept = synthesis._distinct(found, target, False, size, 5)
+    assert kept == [found[0], found[2]]

@@ -362,6 +362,12 @@ def test_the_plot_keeps_its_labels_in_the_figure_and_its_legend_in_rank_order(
     for t in texts:
         box = t.get_window_extent(renderer)
         assert box.x0 >= 0 and box.x1 <= width and box.y0 >= 0, (t.get_text(), box, width)
+    # A curve that leaves the view says so in its legend entry, and only such a curve.
+    for line in ax.lines:
+        if line.get_label().startswith("#"):
+            x, y = (np.asarray(v, dtype=float) for v in line.get_data())
+            out = bool(np.any((x < x0) | (x > x1) | (y < y0) | (y > y1)))
+            assert out == line.get_label().endswith("(leaves the view)"), line.get_label()
     # The legend reads down its columns: the target, then #1, #2, … in rank order.
     (legend,) = fig.legends
     entries = [(t.get_window_extent(renderer), t.get_text()) for t in legend.get_texts()]
@@ -369,3 +375,26 @@ def test_the_plot_keeps_its_labels_in_the_figure_and_its_legend_in_rank_order(
     ranks = [text.split(":")[0] for _, text in down_columns]
     assert ranks[0].startswith("target") and len(ranks) == 5, ranks
     assert ranks[1:] == [f"#{k}" for k in range(1, 5)], ranks
+
+
+def test_a_curve_outside_the_plot_is_named_in_the_legend(
+    tmp_path: Path, atlas_folder: Path
+) -> None:
+    """The view is set by the target and the best candidate; a worse candidate's curve far from
+    the target (a poor fit at a large scale) would leave it without a word."""
+    from linkage import report as report_module
+
+    path = tmp_path / "foot.toml"
+    foot = ROOT / "examples" / "foot_path.csv"
+    path.write_text(
+        f'name = "foot"\nunits = "mm"\n[synthesis]\npoints = {json.dumps(str(foot))}\n'
+        f"atlas = {json.dumps(str(atlas_folder))}\ntop = 3\n"
+    )
+    res = runner.run(scene.load(path))
+    run = res.synthesis
+    assert run is not None and len(run.curves) == 3
+    run.curves[2] = run.curves[2] + np.array([0.0, 40.0 * synthesis.target_size(run.target)])
+    fig = report_module._synthesis(res)
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    flagged = [t.split(":")[0] for t in labels if t.endswith("(leaves the view)")]
+    assert flagged == ["#3"], labels

@@ -34,7 +34,7 @@ from linkage._slider_crank import SliderCrank
 from linkage.build import build_drive
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.drive import CrankSchedule
-from linkage.figures import Result, branch_text, format_number, length_unit
+from linkage.figures import Result, branch_text, format_number, length_unit, rounded_to
 
 __all__ = ["MAX_FRAMES", "PAGE_SIZE", "PATH_POINTS", "frames", "page", "write_index"]
 
@@ -197,14 +197,11 @@ def _candidates_table(res: Result) -> str:
     assert run is not None
     u = html.escape(length_unit(res.scene))
 
-    # Coordinates and lengths to 1e-6 of the target's size, so the round-off of an exact fit (a
-    # pivot at 4.9e-7 on a 34 mm curve) prints as 0.
-    quantum = 10.0 ** (math.floor(math.log10(run.size)) - 6)
-
     def n(x: float, digits: int | None = None) -> str:
-        # Lengths to six digits without trailing zeros; errors to ``digits``.
+        # Coordinates and lengths to 1e-6 of the target's size without trailing zeros (an exact
+        # fit's round-off reads 0); errors to ``digits``.
         if digits is None:
-            return html.escape(format_number(round(float(x) / quantum) * quantum + 0.0, 0))
+            return html.escape(format_number(rounded_to(x, run.size, 6), 0))
         return html.escape(format_number(float(x), None, digits))
 
     def pair(x: float, y: float) -> str:

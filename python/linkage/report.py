@@ -666,7 +666,8 @@ def _synthesis(res: Result) -> Any:
 
     Each curve is named in the legend with its largest error, the best candidate drawn at one pose
     with its ground pivots; to scale, limits from the target and the best candidate's links and
-    curve (the other curves may leave the view: they are compared where the target is).
+    curve (the other curves may leave the view, and their legend entries say so: they are
+    compared where the target is).
     """
     run = res.synthesis
     assert run is not None
@@ -695,6 +696,12 @@ def _synthesis(res: Result) -> Any:
         colour, ls = line_style(k)
         c = shown[k]
         err = format_number(c.error, digits=3)
+        xy = run.curves[k]
+        # A curve that strays far from the target leaves the view: the legend says so.
+        out = bool(
+            np.any((xy[:, 0] < box[0]) | (xy[:, 0] > box[1]))
+            or np.any((xy[:, 1] < box[2]) | (xy[:, 1] > box[3]))
+        )
         ax.plot(
             run.curves[k][:, 0],
             run.curves[k][:, 1],
@@ -702,7 +709,7 @@ def _synthesis(res: Result) -> Any:
             color=colour,
             lw=2.2 if k == 0 else 1.3,
             zorder=3.5 if k == 0 else 3 - 0.01 * k,
-            label=f"#{k + 1}: max error {err} {u}, {c.grashof}",
+            label=f"#{k + 1}: max error {err} {u}, {c.grashof}{' (leaves the view)' * out}",
         )
     t = run.target
     ax.plot(

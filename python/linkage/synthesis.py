@@ -723,6 +723,19 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
     return np.ascontiguousarray(pts)
 
 
+def _target(points: str | os.PathLike[str] | ArrayLike, closed: bool) -> Float2D:
+    """Read and clean a target (:func:`read_points`, :func:`clean_target`).
+
+    A file's problems, those of its points too, are named after the file.
+    """
+    try:
+        return clean_target(read_points(points), closed)
+    except LinkageError as exc:
+        if isinstance(points, (str, os.PathLike)) and not str(exc).startswith(str(points)):
+            raise LinkageError(f"{points}: {exc}") from None
+        raise
+
+
 def target_size(points: Float2D) -> float:
     """Return the size of a target: the RMS distance of its points from their centroid.
 
@@ -1251,12 +1264,7 @@ def path(
         if isinstance(pivots, (str, bytes)) or np.ndim(pivots) == 0 or len(pivots) != 2:
             raise TypeError("pivots must be ((xmin, ymin), (xmax, ymax))")
         pivots = (as_point(pivots[0], "pivots[0]"), as_point(pivots[1], "pivots[1]"))
-    try:
-        target = clean_target(read_points(points), closed)
-    except LinkageError as exc:
-        if isinstance(points, (str, os.PathLike)) and not str(exc).startswith(str(points)):
-            raise LinkageError(f"{points}: {exc}") from None
-        raise
+    target = _target(points, closed)
     if len(target) > POINTS_MAX:
         raise LinkageError(f"path synthesis takes at most {POINTS_MAX} points, got {len(target)}")
     size = target_size(target)
@@ -1842,8 +1850,9 @@ def _distinct(
     Two candidates draw the same curve when each one's matched part lies within
     ``max(1e-6 size, error / 20)`` of the other's (a difference the target cannot tell); the
     later (worse-ranked) one is dropped unless it is a Roberts cognate of the earlier. Two
-    candidates of the same kind and assembly whose parameters agree to :data:`NEAR` of the size
-    (a slider line's direction to :data:`NEAR` radians) are one design, whatever their matched
+    candidates of the same kind and assembly whose parameters agree to :data:`NEAR` of the
+    larger of the size and the shorter of their longest links (a slider line's direction to
+    :data:`NEAR` radians) are one design, whatever their matched
     curves (one that does not sample finitely included): a near-copy the optimiser left in the
     same valley. So are two four-bars that are one linkage driven at either pivot (the better
     drive is kept), and two rocking slider-cranks that are one linkage with its line reversed.
@@ -1856,11 +1865,13 @@ def _distinct(
         same = False
         for u, ucurve, forms in kept:
             tol = max(1e-6 * size, min(c.error, u.error) / 20)
+            # Near-copies are judged on the scale of the drawing that shows the whole linkage.
+            near = max(size, min(_longest(c), _longest(u)))
             if any(
                 type(form) is type(c.linkage)
                 and getattr(form, "assembly", None) == getattr(c.linkage, "assembly", None)
                 and params.shape == c.params.shape
-                and _apart(params, c.params, _KIND[c.kind], size) <= NEAR * size
+                and _apart(params, c.params, _KIND[c.kind], near) <= NEAR * near
                 for form, params in forms
             ):
                 same = True
@@ -1889,9 +1900,10 @@ def _same_pivots(a: Candidate[Any], b: Candidate[Any], tol: float) -> bool:
     return any(abs(pb[0] - p) <= tol and abs(pb[1] - q) <= tol for p, q in (pa, pa[::-1]))
 
 
-NEAR = 0.02
-"""Two candidates whose placed parameters all agree to this fraction of the target's size (a
-slider line's direction to this many radians) are one design: only the better is listed."""
+NEAR = 0.05
+"""Two candidates whose placed parameters all agree to this fraction of the target's size, or of
+their longest link when both are longer (a slider line's direction to this many radians), are
+one design: only the better is listed. A drawing of the whole linkage shows them alike."""
 
 
 def _apart(a: NDArray[np.float64], b: NDArray[np.float64], kind: _Kind, size: float) -> float:
@@ -2251,8 +2263,10 @@ def command(args: argparse.Namespace) -> int:
         raise LinkageError(f"--min-transmission-deg must be between 0 and 90, got {mu:g}")
     kind = cast(PathKind, getattr(args, "kind", "fourbar"))
     t0 = time.perf_counter()
+    # Read once: the search takes the cleaned points, the table rounds to their size.
+    target = _target(args.curve, not args.open)
     found = path(
-        args.curve,
+        target,
         closed=not args.open,
         top=int(args.top),
         kind=kind,
@@ -2278,13 +2292,13 @@ def command(args: argparse.Namespace) -> int:
         f"{len(found)} {what}(s) for {args.curve}, best first ({took:.1f} s; errors are the "
         f"largest / RMS distance of the target points to the coupler curve{u and ', in' + u}):"
     )
-    # Coordinates and lengths to 1e-5 of the target's size: round-off of an exact fit (a pivot
-    # at 4.9e-7 on a 34 mm curve) prints as 0.
-    size = target_size(clean_target(read_points(args.curve), not args.open))
-    quantum = 10.0 ** (math.floor(math.log10(size)) - 5)
+    from linkage.figures import rounded_to  # noqa: PLC0415 (figures imports this module)
+
+    size = target_size(target)
 
     def g(x: float) -> str:
-        return f"{round(x / quantum) * quantum + 0.0:.4g}"
+        # Coordinates and lengths to 1e-5 of the target's size: an exact fit's round-off reads 0.
+        return f"{rounded_to(x, size, 5):.4g}"
 
     # One table ranked as found; under "any" a column holds a four-bar's or a slider-crank's
     # number, named by both.
