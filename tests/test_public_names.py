@@ -23,7 +23,14 @@ PUBLIC = sorted(
 # Public helpers a module keeps out of its user-facing ``__all__`` on purpose: synthesis's
 # target normalisation and distance helpers (export and the CLI call them) and its CLI glue.
 UNLISTED = {
-    "linkage.synthesis": {"clean_target", "command", "largest_distance", "target_size", "timed"},
+    "linkage.synthesis": {
+        "clean_target",
+        "command",
+        "largest_distance",
+        "rounded_to",
+        "target_size",
+        "timed",
+    },
 }
 
 

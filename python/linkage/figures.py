@@ -40,7 +40,6 @@ __all__ = [
     "format_number",
     "length_unit",
     "pair",
-    "rounded_to",
     "row",
     "sci",
     "significant_digits",
@@ -198,20 +197,6 @@ def significant_digits(x: float, error: float | None) -> int:
         return SIG_MAX
     digits = math.floor(math.log10(abs(x))) - math.floor(math.log10(error)) + 2
     return max(2, min(SIG_MAX, digits))
-
-
-def rounded_to(x: float, size: float, digits: int) -> float:
-    """Return ``x`` rounded to ``10**-digits`` of ``size`` (a power of ten), never ``-0.0``.
-
-    Coordinates and lengths of a fitted linkage are printed so: the round-off of an exact fit
-    (a pivot at 4.9e-7 on a 34 mm curve) reads 0, while ``digits`` places of the size remain.
-
-    >>> from linkage.figures import rounded_to
-    >>> rounded_to(4.8993e-7, 34.0, 6), rounded_to(-1e-9, 34.0, 5), rounded_to(12.3456789, 34.0, 5)
-    (0.0, 0.0, 12.3457)
-    """
-    quantum = 10.0 ** (math.floor(math.log10(size)) - digits)
-    return round(float(x) / quantum) * quantum + 0.0
 
 
 def format_number(x: float, error: float | None = None, digits: int | None = None) -> str:

@@ -34,7 +34,8 @@ from linkage._slider_crank import SliderCrank
 from linkage.build import build_drive
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.drive import CrankSchedule
-from linkage.figures import Result, branch_text, format_number, length_unit, rounded_to
+from linkage.figures import Result, branch_text, format_number, length_unit
+from linkage.synthesis import rounded_to
 
 __all__ = ["MAX_FRAMES", "PAGE_SIZE", "PATH_POINTS", "frames", "page", "write_index"]
 

@@ -723,6 +723,20 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
     return np.ascontiguousarray(pts)
 
 
+def rounded_to(x: float, size: float, digits: int) -> float:
+    """Return ``x`` rounded to ``10**-digits`` of ``size`` (a power of ten), never ``-0.0``.
+
+    Coordinates and lengths of a fitted linkage are printed so: the round-off of an exact fit
+    (a pivot at 4.9e-7 on a 34 mm curve) reads 0, while ``digits`` places of the size remain.
+
+    >>> from linkage.synthesis import rounded_to
+    >>> rounded_to(4.8993e-7, 34.0, 6), rounded_to(-1e-9, 34.0, 5), rounded_to(12.3456789, 34.0, 5)
+    (0.0, 0.0, 12.3457)
+    """
+    quantum = 10.0 ** (math.floor(math.log10(size)) - digits)
+    return round(float(x) / quantum) * quantum + 0.0
+
+
 def _target(points: str | os.PathLike[str] | ArrayLike, closed: bool) -> Float2D:
     """Read and clean a target (:func:`read_points`, :func:`clean_target`).
 
@@ -2292,8 +2306,6 @@ def command(args: argparse.Namespace) -> int:
         f"{len(found)} {what}(s) for {args.curve}, best first ({took:.1f} s; errors are the "
         f"largest / RMS distance of the target points to the coupler curve{u and ', in' + u}):"
     )
-    from linkage.figures import rounded_to  # noqa: PLC0415 (figures imports this module)
-
     size = target_size(target)
 
     def g(x: float) -> str:
