@@ -872,3 +872,25 @@ def test_near_copies_of_a_long_linked_fit_are_listed_once() -> None:
     assert np.abs(found[0].params - found[1].params).max() > 5 * synthesis.NEAR * size
     kept = synthesis._distinct(found, target, False, size, 5)
     assert kept == [found[0], found[2]]
+
+
+def test_a_full_turn_crank_reports_its_transmission_over_the_whole_turn(arc_atlas: Atlas) -> None:
+    """A new user's open target (a 60 mm stance and the start of a 20 mm swing) with
+    ``full_turn``: the motor drives the crank through the whole turn, so the least transmission
+    angle counts there, not only on the matched part (one candidate read 53.5° and came within
+    0.1° of a toggle elsewhere in its turn). Checked by an independent sweep of the joints."""
+    stance = np.c_[np.linspace(0, 60, 20), np.zeros(20)]
+    t = np.linspace(0, 0.3, 9)[1:]
+    target = np.r_[stance, np.c_[60 - 60 * t, 20 * np.sin(np.pi * t)]]
+    found = synthesis.path(target, closed=False, top=5, atlas=arc_atlas, full_turn=True)
+    assert found and all(c.full_turn for c in found)
+    theta = np.linspace(0, 2 * np.pi, 20001)
+    for c in found:
+        joints = c.linkage.sweep(theta).joints  # O, C, A, B, …
+        a, b, r = joints[:, 2], joints[:, 3], joints[:, 1]
+        u, v = b - a, b - r
+        cos = (u * v).sum(axis=1) / np.hypot(*u.T) / np.hypot(*v.T)
+        mu = np.arccos(np.clip(cos, -1, 1))
+        least = float(np.min(np.minimum(mu, np.pi - mu)))
+        # The sweep's 20,001 samples and the circuit's 512 see the same least angle.
+        assert c.min_transmission == pytest.approx(least, abs=math.radians(0.05)), c

@@ -540,8 +540,10 @@ class Candidate(Generic[LinkageT]):
     ``grashof`` is the four-bar's Grashof class, or for a slider-crank ``"crank-slider"`` (the
     crank turns fully, ``|offset| + crank < coupler``) or ``"rocker-slider"`` (it rocks);
     ``min_transmission`` is the transmission angle's least distance from a toggle (a
-    slider-crank's: the angle between the rod and the normal to the line). ``source`` says
-    where it came from: ``"atlas"`` (a match refined), ``"global"`` (the global search) or
+    slider-crank's: the angle between the rod and the normal to the line) over the matched
+    part, or over the whole turn when the crank turns fully (it is driven through all of it).
+    ``source`` says where it came from: ``"atlas"`` (a match refined), ``"global"`` (the global
+    search) or
     ``"cognate"`` (a Roberts cognate of an exact fit, or one driven at its other pivot).
     """
 
@@ -1177,7 +1179,8 @@ def path(
         within ``tol`` of the target's size.
     full_turn, min_transmission, lengths, pivots
         Constraints: a crank that turns fully, a transmission angle at least this far from a
-        toggle (radians) over the matched part, every link length within ``lengths`` (a
+        toggle (radians) over the matched part (over the whole turn for a crank that turns
+        fully: the motor drives it all), every link length within ``lengths`` (a
         slider-crank's crank and rod), both ground pivots (a slider-crank's crank pivot) inside
         the box ``pivots = ((xmin, ymin), (xmax, ymax))``.
     accept : float or None
@@ -2221,6 +2224,16 @@ def _measure(
             problem, full, th_lo, th_hi, mu, through = _core.synth_info(x, crossed, lo_s, hi_s)
             fb = _linkage_of(x, crossed, kind)
             grashof = cast(FourBar, fb).grashof()
+        if problem is None and full and not closed:
+            # A crank that turns fully is driven through the whole turn, not only the matched
+            # part: its transmission angle counts over the turn (a candidate that read 53.5°
+            # on its matched part came within 0.1° of a toggle elsewhere).
+            whole = (
+                _core.synth_slider_info(x, 0.0, 2 * math.pi, check_samples=2)
+                if kind is SLIDER
+                else _core.synth_info(x, crossed, 0.0, 2 * math.pi, check_samples=2)
+            )
+            mu = min(mu, whole[4])
     except LinkageError:
         return None
     if problem is not None:
