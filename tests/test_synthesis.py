@@ -444,6 +444,12 @@ def test_cli_synth(tmp_path, capsys, monkeypatch, atlas: Atlas) -> None:  # type
     assert code == 0, out
     rows = [line.split() for line in out.splitlines()[2:]]
     assert rows and all(float(r[r.index("…") + 2]) >= 20.0 for r in rows), out  # min μ
+    # Nothing found is one line on stderr and status 2, naming the constraints given.
+    far = ["--pivots", "1000", "1000", "1001", "1001"]
+    assert cli.main(["synth", str(f), "--quiet", "--atlas", str(folder), *far]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and len(err.splitlines()) == 1, err
+    assert err.startswith("linkage: error: no valid four-bar found for") and "(--pivots)" in err
     for bad, match in (
         (["--min-transmission-deg", "120"], "between 0 and 90, got 120"),
         (["--lengths", "5", "2"], "0 < least < greatest"),
@@ -730,6 +736,14 @@ def test_points_files_in_a_spreadsheets_encodings_and_separators(tmp_path) -> No
         f = tmp_path / name
         f.write_text(
             "\n".join(["x_mm,y_mm"] + [s.format(sep=sep) for s in lines]), encoding=encoding
+        )
+        np.testing.assert_array_equal(synthesis.read_points(f), pts)
+    # Decimal commas, as a spreadsheet in such a locale exports them, with semicolons or tabs.
+    for name, sep in (("euro.csv", ";"), ("euro.txt", "\t")):
+        f = tmp_path / name
+        f.write_text(
+            "\n".join(["x;y"] + [s.format(sep=sep).replace(".", ",") for s in lines]),
+            encoding="utf-8",
         )
         np.testing.assert_array_equal(synthesis.read_points(f), pts)
     bad = [

@@ -225,7 +225,9 @@ def _candidates_table(res: Result) -> str:
     for k, c in enumerate(run.candidates, 1):
         lk = c.linkage
         lo, hi = (math.degrees(v) for v in c.crank_range)
-        turn = " <span class=nb>(full turn)</span>" if c.full_turn else ""
+        # An open target's range is the matched part of a crank that may turn fully.
+        full = "(full turn)" if run.closed else "(crank turns fully)"
+        turn = f" <span class=nb>{full}</span>" if c.full_turn else ""
         o = pair(*lk.o)
         if isinstance(lk, SliderCrank):
             g = pair(*lk.line_point)

@@ -173,7 +173,7 @@ def synthesis_figures(res: Result) -> None:
         lo, hi = (math.degrees(v) + 0.0 for v in c.crank_range)
         lo_text, hi_text = (f"{round(v, 1) + 0.0:.1f}" for v in (lo, hi))
         how = (
-            "full turn"
+            ("full turn" if run.closed else "the matched part; the crank turns fully")
             if c.full_turn
             else f"rocks between its limits, through one (the {branch_word(c.linkage)} changes "
             "there)"
@@ -189,7 +189,8 @@ def synthesis_figures(res: Result) -> None:
                 f"{name}: min transmission angle",
                 f"{round(mu, 1) + 0.0:.1f}",
                 "deg",
-                "least distance from a toggle over the matched part",
+                "least distance from a toggle over the "
+                + ("whole turn" if c.full_turn else "matched part"),
                 value=mu,
             )
         )

@@ -572,7 +572,9 @@ class Candidate(Generic[LinkageT]):
 def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
     """Read target points as an ``(n, 2)`` float64 array, from an array-like or a CSV file.
 
-    A CSV file has two numeric columns and an optional header line.
+    A CSV file has two numeric columns and an optional header line. The numbers are separated
+    by a comma, semicolon, tab or spaces; with semicolons or tabs, decimal commas are read too
+    (``3,5;0,25``: a spreadsheet's export in a locale that writes them).
 
     Raises
     ------
@@ -599,6 +601,14 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
             cells = [c for c in _SEPARATORS.split(line.strip()) if c]
             if not cells or cells[0].startswith("#"):
                 continue
+            if "," in line and (";" in line or "\t" in line):
+                # A spreadsheet's export with decimal commas ("3,5;0,25"): with semicolons or
+                # tabs between the numbers, a comma inside one can only be its decimal mark.
+                decimal = [
+                    c.replace(",", ".") for c in _DECIMAL_COMMA_SEPARATORS.split(line.strip())
+                ]
+                if len([c for c in decimal if c]) == 2:
+                    cells = [c for c in decimal if c]
             try:
                 row = [float(c) for c in cells]
             except ValueError:
@@ -633,6 +643,9 @@ take about 0.4 MiB)."""
 
 _SEPARATORS = re.compile(r"[,;\s]+")
 """What separates x from y in a points file: commas, semicolons, tabs or spaces."""
+
+_DECIMAL_COMMA_SEPARATORS = re.compile(r"[;\s]+")
+"""What separates x from y in a line with decimal commas: semicolons, tabs or spaces."""
 
 
 def _csv_text(p: Path) -> str:
@@ -2313,8 +2326,24 @@ def command(args: argparse.Namespace) -> int:
     u = f" {args.units}" if args.units else ""
     what = {"fourbar": "four-bar", "slider-crank": "slider-crank", "any": "linkage"}[kind]
     if not found:
-        print(f"no valid {what} found for {args.curve} ({took:.1f} s)")
-        return 1
+        # One line and status 2, as `linkage run` says it of a scene.
+        given = [
+            opt
+            for opt, on in (
+                ("--full-turn", args.full_turn),
+                ("--min-transmission-deg", mu > 0),
+                ("--lengths", getattr(args, "lengths", None) is not None),
+                ("--pivots", getattr(args, "pivots", None) is not None),
+            )
+            if on
+        ]
+        why = (
+            f"none meets the constraints ({', '.join(given)}): loosen them, or give more "
+            "candidates room (--top)"
+            if given
+            else "every linkage tried failed to assemble over its circuit or switched branch"
+        )
+        raise LinkageError(f"no valid {what} found for {args.curve} in {took:.1f} s: {why}")
     print(
         f"{len(found)} {what}(s) for {args.curve}, best first ({took:.1f} s; errors are the "
         f"largest / RMS distance of the target points to the coupler curve{u and ', in' + u}):"
