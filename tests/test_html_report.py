@@ -424,7 +424,15 @@ def test_synthesis_page_in_chromium(browser: Browser, tmp_path: Path) -> None:
     )
     assert len(cells) == len(res.synthesis.candidates)
     assert [row[0] for row in cells] == [str(k + 1) for k in range(len(cells))]
-    assert cells[0][-1] in ("open", "crossed") and cells[0][3] == "crank-rocker"
+    assert cells[0][-1] in ("open", "crossed") and cells[0][4] == "crank-rocker"
+    # A closed target's candidates say how far their curve strays from the target's polygon
+    # (here the polygon's chords: the fit is exact at the points).
+    heads = browser.js(
+        "Array.from(document.querySelectorAll('#candidates thead th')).map(c => c.textContent)"
+    )
+    assert heads[3] == "curve → polygon (mm)", heads
+    c0 = res.synthesis.candidates[0]
+    assert float(cells[0][3]) == pytest.approx(c0.back, rel=5e-3) and c0.back > 10 * c0.error
     # The candidates table fits the page at 1280 px: it had scrolled sideways at 1400.
     wide = "(() => {const w = document.querySelector('.wide'); return [w.scrollWidth, w.clientWidth];})()"
     scroll, client = browser.js(wide)

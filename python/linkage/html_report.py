@@ -216,8 +216,11 @@ def _candidates_table(res: Result) -> str:
         frame, links, branch = "pivot O; slider line", f"crank, rod; offset ({u})", "reach"
     else:
         frame, links, branch = "pivots; slider line", f"links ({u})", "branch"
+    # A closed target's candidates also say how far their curve strays from the target's
+    # polygon (a spur or a loop the points never asked for), which the error cannot show.
+    back = f"<th>curve → polygon ({u})</th>" if run.closed else ""
     head = (
-        f"<tr><th>#</th><th>max error ({u})</th><th>RMS ({u})</th><th>class</th>"
+        f"<tr><th>#</th><th>max error ({u})</th><th>RMS ({u})</th>{back}<th>class</th>"
         f"<th>crank range (°)</th><th>min transmission (°)</th><th>{frame}</th>"
         f"<th>{links}</th><th>coupler point</th><th>{branch}</th></tr>"
     )
@@ -249,7 +252,8 @@ def _candidates_table(res: Result) -> str:
             lengths = f"{names}: {lengths}"
         rows.append(
             f"<tr><td>{k}</td><td class=num>{n(c.error, 3)}</td><td class=num>{n(c.rms, 3)}</td>"
-            f"<td>{html.escape(c.grashof)}</td>"
+            + (f"<td class=num>{n(c.back, 3)}</td>" if run.closed else "")
+            + f"<td>{html.escape(c.grashof)}</td>"
             f"<td class='num wrap'><span class=nb>{round(lo, 1) + 0.0:.1f} … "
             f"{round(hi, 1) + 0.0:.1f}</span>{turn}</td>"
             f"<td class=num>{c.min_transmission_deg:.1f}</td>"

@@ -161,6 +161,17 @@ def synthesis_figures(res: Result) -> None:
                 value=c.rms,
             )
         )
+        if run.closed:
+            rows.append(
+                Row(
+                    f"{name}: curve → target polygon",
+                    format_number(c.back, digits=3),
+                    u,
+                    "largest distance of the coupler curve from the target's polygon (a spur "
+                    "or loop the points do not ask for)",
+                    value=c.back,
+                )
+            )
         rows.append(
             Row(
                 f"{name}: {'class' if isinstance(c.linkage, SliderCrank) else 'Grashof class'}",

@@ -2375,7 +2375,20 @@ def command(args: argparse.Namespace) -> int:
             "assembly | reach",
         ),
     }[kind]
-    head = ("#", f"error{u}", f"rms{u}", "class", "crank range (deg)", "min μ (deg)", "O", *tail)
+    # A closed target's candidates also say how far their curve strays from the target's
+    # polygon (a spur or a loop the points never asked for).
+    back = (f"curve→polygon{u}",) if not args.open else ()
+    head = (
+        "#",
+        f"error{u}",
+        f"rms{u}",
+        *back,
+        "class",
+        "crank range (deg)",
+        "min μ (deg)",
+        "O",
+        *tail,
+    )
     rows: list[tuple[str, ...]] = [head]
     for rank, c in enumerate(found, 1):
         fb = c.linkage
@@ -2384,6 +2397,7 @@ def command(args: argparse.Namespace) -> int:
             str(rank),
             f"{c.error:.3g}",
             f"{c.rms:.3g}",
+            *((f"{c.back:.3g}",) if not args.open else ()),
             c.grashof,
             f"{lo:.1f} … {hi:.1f}",
             f"{c.min_transmission_deg:.1f}",
