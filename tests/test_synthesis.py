@@ -454,6 +454,7 @@ def test_cli_synth(tmp_path, capsys, monkeypatch, atlas: Atlas) -> None:  # type
         (["--min-transmission-deg", "120"], "between 0 and 90, got 120"),
         (["--lengths", "5", "2"], "0 < least < greatest"),
         (["--top", "51"], "between 1 and 50"),
+        (["--refine", "201"], "--refine must be between 0 and 200, got 201"),
     ):
         assert cli.main(["synth", str(f), "--quiet", "--atlas", str(folder), *bad]) == 2
         assert match in capsys.readouterr().err
@@ -773,6 +774,7 @@ def test_points_files_in_a_spreadsheets_encodings_and_separators(tmp_path) -> No
     ("kw", "match"),
     [
         ({"top": 51}, "top must be between 1 and 50"),
+        ({"refine": 201}, "refine must be between 0 and 200"),
         ({"tol": 0.0}, "tol must be positive"),
         ({"min_transmission": 30}, r"did you mean math.radians\(30\)"),
         ({"min_transmission": -0.1}, "between 0 and π/2"),

@@ -398,3 +398,22 @@ def test_a_curve_outside_the_plot_is_named_in_the_legend(
     labels = [t.get_text() for t in fig.legends[0].get_texts()]
     flagged = [t.split(":")[0] for t in labels if t.endswith("(leaves the view)")]
     assert flagged == ["#3"], labels
+
+
+def test_a_scene_sets_how_many_matches_are_refined(tmp_path: Path, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """``refine`` is the search's depth (``top`` had been the only knob a scene had)."""
+    seen: dict[str, object] = {}
+
+    def spy(points, **kw):  # type: ignore[no-untyped-def]
+        seen.update(kw)
+        return []
+
+    monkeypatch.setattr(synthesis, "path", spy)
+    path = tmp_path / "deep.toml"
+    path.write_text(
+        'name = "deep"\nunits = "mm"\n[synthesis]\n'
+        "points = [[0, 0], [1, 0], [1, 1], [0, 1], [0.5, 1.5]]\nrefine = 32\n"
+    )
+    with pytest.raises(linkage.LinkageError, match="no valid four-bar found"):
+        runner.run(scene.load(path))
+    assert seen["refine"] == 32

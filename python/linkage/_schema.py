@@ -127,6 +127,9 @@ FILE_MAX = 1 << 20
 """Largest scene file, in bytes (1 MiB; a scene is a few hundred bytes)."""
 SYNTHESIS_TOP_MAX = 50
 """Most candidates a ``[synthesis]`` scene may ask for (``top``)."""
+SYNTHESIS_REFINE_MAX = 200
+"""Most atlas matches a ``[synthesis]`` scene may ask to refine (``refine``; the search's time
+grows with it)."""
 SEED_MAX = 2**32 - 1
 """Largest random seed of the global search."""
 POINTS_MAX = 10_000
@@ -322,6 +325,7 @@ SYNTHESIS = {
     "kind": "str",
     "closed": "bool",
     "top": "int",
+    "refine": "int",
     "full_turn": "bool",
     "min_transmission_deg": "transmission",
     "lengths": "list",
@@ -333,7 +337,7 @@ SYNTHESIS = {
 }
 """Keys of ``[synthesis]``: the target (a CSV file relative to the scene's folder, or inline
 ``[[x, y], …]``), the linkage sought (``"fourbar"``, ``"slider-crank"`` or ``"any"``), whether it
-is closed, how many candidates, the constraints, the global
+is closed, how many candidates, how many atlas matches are refined, the constraints, the global
 search's tolerance (of the target's size) and seed, and an atlas folder (relative to the
 scene's folder; default: the one built once into the cache folder)."""
 PATH_KINDS: tuple[str, ...] = tuple(k for a in get_args(PathKind) for k in get_args(a) or (a,))
@@ -938,6 +942,11 @@ def _synthesis(s: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
     if not 1 <= top <= SYNTHESIS_TOP_MAX:
         raise scene.error(
             sec, "top", f"must be between 1 and {SYNTHESIS_TOP_MAX}, got {_show(top)}"
+        )
+    refine = s.get("refine", 8)
+    if not 0 <= refine <= SYNTHESIS_REFINE_MAX:
+        raise scene.error(
+            sec, "refine", f"must be between 0 and {SYNTHESIS_REFINE_MAX}, got {_show(refine)}"
         )
     seed = s.get("seed", 0)
     if not 0 <= seed <= SEED_MAX:

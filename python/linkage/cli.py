@@ -338,6 +338,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         metavar=("XMIN", "YMIN", "XMAX", "YMAX"),
         help="ground pivots within this box (target units)",
     )
+    syn.add_argument(
+        "--refine",
+        type=int,
+        default=8,
+        help="atlas matches refined by least squares, at least --top (default 8): a deeper, "
+        "slower search",
+    )
     syn.add_argument("--seed", type=int, default=0, help="the global search's seed (default 0)")
     syn.add_argument(
         "--tol",

@@ -236,6 +236,7 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
             closed=closed,
             kind=cast(PathKind, kind),
             top=int(s.get("top", 5)),
+            refine=int(s.get("refine", 8)),
             atlas=atlas,
             full_turn=bool(s.get("full_turn", False)),
             min_transmission=math.radians(float(s.get("min_transmission_deg", 0.0))),

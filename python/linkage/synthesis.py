@@ -47,7 +47,7 @@ from linkage._precision import (
     motion,
 )
 from linkage._progress import Bar
-from linkage._schema import POINTS_MAX, SYNTHESIS_TOP_MAX
+from linkage._schema import POINTS_MAX, SYNTHESIS_REFINE_MAX, SYNTHESIS_TOP_MAX
 from linkage._slider_crank import SliderCrank
 from linkage.catalog import cache_dir
 
@@ -1186,7 +1186,9 @@ def path(
         arcs, ``kind="fourbar-arcs"`` or ``"slider-crank-arcs"`` (default: the
         :func:`default_atlas` of that kind), which the sequence may give too.
     refine : int
-        Atlas matches refined by least squares (of each kind).
+        Atlas matches refined by least squares (of each kind; at most 200): a closed target's
+        ``max(refine, top)``, an open target's ``3 × refine`` first fits. The search's time, and
+        how good its best candidate can be, grow with it (and so with ``top``).
     global_search : bool or None
         Run differential evolution; ``None``: when no atlas candidate of any kind searched is
         within ``tol`` of the target's size.
@@ -1260,6 +1262,8 @@ def path(
     if top > SYNTHESIS_TOP_MAX:
         raise LinkageError(f"top must be between 1 and {SYNTHESIS_TOP_MAX}, got {top}")
     refine = as_count(refine, "refine", 0)
+    if refine > SYNTHESIS_REFINE_MAX:
+        raise LinkageError(f"refine must be between 0 and {SYNTHESIS_REFINE_MAX}, got {refine}")
     maxiter = as_count(maxiter, "maxiter")
     seed = as_count(seed, "seed", 0)
     tol = as_finite(tol, "tol")
@@ -2298,6 +2302,9 @@ def command(args: argparse.Namespace) -> int:
     """``linkage synth curve.csv``: print the candidates as a table with units."""
     if not 1 <= int(args.top) <= SYNTHESIS_TOP_MAX:
         raise LinkageError(f"--top must be between 1 and {SYNTHESIS_TOP_MAX}, got {args.top}")
+    refine = int(getattr(args, "refine", 8))
+    if not 0 <= refine <= SYNTHESIS_REFINE_MAX:
+        raise LinkageError(f"--refine must be between 0 and {SYNTHESIS_REFINE_MAX}, got {refine}")
     mu = getattr(args, "min_transmission_deg", 0.0)
     if not 0 <= mu <= 90:
         raise LinkageError(f"--min-transmission-deg must be between 0 and 90, got {mu:g}")
@@ -2309,6 +2316,7 @@ def command(args: argparse.Namespace) -> int:
         target,
         closed=not args.open,
         top=int(args.top),
+        refine=refine,
         kind=kind,
         full_turn=bool(args.full_turn),
         min_transmission=math.radians(mu),
