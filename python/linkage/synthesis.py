@@ -956,7 +956,15 @@ def _refine(
             # for the last digits, which its convergence near the answer gives sooner.
             x = _geodesic_lm(fun, jac, x, max_nfev)
             common["max_nfev"] = max_nfev // 5
-        res = least_squares(fun, x, method="lm", **common)
+        # SciPy's C MINPACK (1.15 on) reads one element past its copy of the Jacobian when it
+        # updates the norm of the last column in its pivoted QR: what lies there changes from
+        # call to call, and with it a few fits, so one search returned other candidates run to
+        # run (valgrind: "Invalid read of size 8 … 0 bytes after a block" in qrfac). A last
+        # unknown that no residual depends on has a column of zeros, whose norm MINPACK never
+        # updates, so nothing past the Jacobian is read and every fit is repeatable.
+        zero = np.zeros((2 * n, 1))
+        common["jac"] = lambda y: np.hstack([jac(y[:-1]), zero])
+        res = least_squares(lambda y: fun(y[:-1]), np.append(x, 0.0), method="lm", **common)
     else:
         res = least_squares(fun, x, bounds=(lo, hi), method="trf", tr_solver="lsmr", **common)
     out: NDArray[np.float64] = res.x[:q]
