@@ -233,3 +233,25 @@ def test_a_run_that_reaches_a_toggle_has_unbounded_peak_rates():
     stage_figures.rate_figures(res, runs[0], runs[1:])
     speed = {r[0]: r for r in res.figures}["peak trace speed"]
     assert math.isfinite(float(speed[1])) and speed[3].startswith("±")
+
+
+def test_a_candidate_on_the_edge_of_a_change_point_is_named_so() -> None:
+    """A new user's full-turn fits ended on the full-turn condition: "crank-rocker" with s + l
+    equal to p + q within 1.7e-5 mm (it can flip branch where its links lie flat), and only a
+    transmission angle of 0.0° hinted at it. The class's note says so."""
+    from linkage.synthesis import Candidate
+
+    def note(lk: linkage.FourBar | linkage.SliderCrank, cls: str) -> str:
+        c = Candidate(lk, 1.0, 1.0, 1.0, (0.0, 6.3), True, cls, 0.0, False, "atlas", np.zeros(9))
+        return stage_figures._near_change_point(c, 40.0, "mm")
+
+    edge = linkage.FourBar(ground=70.55, crank=21.0, coupler=69.93, rocker=21.62 + 1.68e-5)
+    assert edge.grashof() == "crank-rocker"
+    assert note(edge, "crank-rocker") == (
+        "; 1.7e-5 mm from a change point (s + l = p + q): it can flip branch where its links "
+        "lie flat"
+    )
+    assert note(linkage.catalog.hoecken(), "crank-rocker") == ""
+    slider = linkage.SliderCrank(crank=1.0, coupler=2.0, offset=1.0 - 3e-6)
+    assert "from a change point (|offset| + crank = rod)" in note(slider, "crank-slider")
+    assert note(linkage.SliderCrank(crank=1.0, coupler=3.0), "crank-slider") == ""

@@ -45,6 +45,7 @@ from linkage.synthesis import LONG_LINK, Candidate, longest_link
 from linkage.walker import Simulation, Walker
 
 __all__ = [
+    "CHANGE_POINT_NEAR",
     "STRAIGHT_RADIUS",
     "cam_figures",
     "drive_label",
@@ -177,7 +178,8 @@ def synthesis_figures(res: Result) -> None:
                 f"{name}: {'class' if isinstance(c.linkage, SliderCrank) else 'Grashof class'}",
                 c.grashof,
                 "",
-                f"{branch_text(c.linkage)}, from the {c.source} search{_long(c, run.size)}",
+                f"{branch_text(c.linkage)}, from the {c.source} search{_long(c, run.size)}"
+                f"{_near_change_point(c, run.size, u)}",
             )
         )
         # The value in full, as candidates.csv has it; the text to 0.1° (never "-0.0").
@@ -216,6 +218,33 @@ def _long(c: Candidate[FourBar | SliderCrank], size: float) -> str:
     if not ratio > LONG_LINK:
         return ""
     return f"; its longest link is {ratio:.0f}× the target's size"
+
+
+CHANGE_POINT_NEAR = 1e-3
+"""A candidate whose Grashof sums (a slider-crank's ``|offset| + crank`` and rod) differ by less
+than this fraction of the target's size is named near a change point in its class's note."""
+
+
+def _near_change_point(c: Candidate[FourBar | SliderCrank], size: float, unit: str) -> str:
+    """Return a note for a candidate within :data:`CHANGE_POINT_NEAR` of a change point, else "".
+
+    A fit pushed against the full-turn condition ends on it: a "crank-rocker" whose ``s + l``
+    is ``p + q`` to 1e-5 mm turns fully on paper but can flip branch where its links lie flat.
+    """
+    lk = c.linkage
+    if isinstance(lk, SliderCrank):
+        gap = abs(lk.coupler - (abs(lk.offset) + lk.crank))
+        law = "|offset| + crank = rod"
+    else:
+        short, p, q, long = sorted((lk.ground, lk.crank, lk.coupler, lk.rocker))
+        gap = abs(p + q - (short + long))
+        law = "s + l = p + q"
+    if c.grashof == "change-point" or not gap < CHANGE_POINT_NEAR * size:
+        return ""
+    return (
+        f"; {format_number(gap, digits=2)} {unit} from a change point ({law}): it can flip "
+        "branch where its links lie flat"
+    )
 
 
 def _ranges(s: Sweep) -> tuple[tuple[float, float], tuple[float, float]] | None:
