@@ -930,3 +930,32 @@ def test_the_same_search_returns_the_same_candidates(arc_atlas: Atlas) -> None:
         assert len(other) == len(runs[0])
         for a, b in zip(runs[0], other):
             np.testing.assert_array_equal(a, b)
+
+
+def test_a_long_linked_candidate_says_why_it_is_ranked_after(tmp_path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """A new user read a fit 500 times better listed third as a sorting mistake: it had a
+    448 mm coupler side on a 15 mm target, past ``max_link``. The CLI table and the page say
+    why it comes after."""
+    from linkage import cli
+    from linkage.html_report import _ranked_after
+
+    pts = linkage.catalog.hoecken().circuit(13).point[:-1]
+    f = tmp_path / "foot.csv"
+    np.savetxt(f, pts, delimiter=",")
+    size = synthesis.target_size(pts)
+    short = linkage.catalog.hoecken()
+    long = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(40 * size, 0))
+    found = [
+        synthesis.Candidate(
+            lk, e, e, e, (0.0, 6.3), True, "crank-rocker", 0.5, False, "atlas", np.zeros(9)
+        )
+        for lk, e in ((short, 1e-3), (long, 1e-9))
+    ]
+    monkeypatch.setattr(synthesis, "path", lambda *a, **k: found)
+    assert cli.main(["synth", str(f), "--quiet"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[1].split()[-1] == "note"
+    assert not lines[2].endswith("ranked after")
+    assert lines[3].endswith("× size: ranked after")
+    assert _ranked_after(found[0], size) == ""
+    assert "the size: ranked after" in _ranked_after(found[1], size)

@@ -343,8 +343,10 @@ def test_the_plot_keeps_its_labels_in_the_figure_and_its_legend_in_rank_order(
     foot = np.loadtxt(ROOT / "examples" / "foot_path.csv", delimiter=",", skiprows=1)
     np.savetxt(tmp_path / "foot.csv", foot * scale, delimiter=",")
     path = tmp_path / "big.toml"
+    # A long scene name: the title had run off both edges of the figure.
+    name = "a-foot-path-for-the-hind-legs-of-the-big-walker-drawn-at-scale"
     path.write_text(
-        f'name = "big"\nunits = "mm"\n[synthesis]\npoints = "foot.csv"\n'
+        f'name = "{name}"\nunits = "mm"\n[synthesis]\npoints = "foot.csv"\n'
         f"atlas = {json.dumps(str(atlas_folder))}\ntop = 4\n"
     )
     fig = report_module._synthesis(runner.run(scene.load(path)))
@@ -359,9 +361,12 @@ def test_the_plot_keeps_its_labels_in_the_figure_and_its_legend_in_rank_order(
         *(t for t in ax.get_xticklabels() if x0 <= t.get_position()[0] <= x1),
     ]
     width = fig.bbox.width
-    for t in texts:
+    for t in [*texts, ax.title]:
         box = t.get_window_extent(renderer)
         assert box.x0 >= 0 and box.x1 <= width and box.y0 >= 0, (t.get_text(), box, width)
+    (whole,) = fig.legends
+    box = whole.get_window_extent(renderer)
+    assert box.x0 >= 0 and box.x1 <= width, (box, width)
     # A curve that leaves the view says so in its legend entry, and only such a curve.
     for line in ax.lines:
         if line.get_label().startswith("#"):

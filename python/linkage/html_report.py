@@ -35,7 +35,7 @@ from linkage.build import build_drive
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.drive import CrankSchedule
 from linkage.figures import Result, branch_text, format_number, length_unit
-from linkage.synthesis import rounded_to
+from linkage.synthesis import LONG_LINK, Candidate, longest_link, rounded_to
 
 __all__ = ["MAX_FRAMES", "PAGE_SIZE", "PATH_POINTS", "frames", "page", "write_index"]
 
@@ -224,6 +224,8 @@ def _candidates_table(res: Result) -> str:
         f"<th>crank range (°)</th><th>min transmission (°)</th><th>{frame}</th>"
         f"<th>{links}</th><th>coupler point</th><th>{branch}</th></tr>"
     )
+    # Given length bounds replace the ranking of long-linked candidates after the rest.
+    bounded = "lengths" in (res.scene.synthesis or {})
     rows = []
     for k, c in enumerate(run.candidates, 1):
         lk = c.linkage
@@ -253,7 +255,7 @@ def _candidates_table(res: Result) -> str:
         rows.append(
             f"<tr><td>{k}</td><td class=num>{n(c.error, 3)}</td><td class=num>{n(c.rms, 3)}</td>"
             + (f"<td class=num>{n(c.back, 3)}</td>" if run.closed else "")
-            + f"<td>{html.escape(c.grashof)}</td>"
+            + f"<td>{html.escape(c.grashof)}{'' if bounded else _ranked_after(c, run.size)}</td>"
             f"<td class='num wrap'><span class=nb>{round(lo, 1) + 0.0:.1f} … "
             f"{round(hi, 1) + 0.0:.1f}</span>{turn}</td>"
             f"<td class=num>{c.min_transmission_deg:.1f}</td>"
@@ -266,6 +268,14 @@ def _candidates_table(res: Result) -> str:
         + "".join(rows)
         + "</tbody></table>"
     )
+
+
+def _ranked_after(c: Candidate[Any], size: float) -> str:
+    """Return the note of a candidate ranked last for a link over ``LONG_LINK`` sizes, or ""."""
+    k = longest_link(c) / size
+    if not k > LONG_LINK:
+        return ""
+    return f" <span class=nb>(link {k:.0f}× the size: ranked after)</span>"
 
 
 def frames(n: int, most: int = MAX_FRAMES) -> NDArray[np.intp]:

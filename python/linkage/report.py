@@ -684,8 +684,6 @@ def _synthesis(res: Result) -> Any:
     box = (float(lo[0] - g), float(hi[0] + g), float(lo[1] - g), float(hi[1] + g))
     width = 6.4
     shown = run.candidates[:SYNTHESIS_SHOWN]
-    rows = len(shown) + 1 if len(shown) <= 2 else math.ceil((len(shown) + 1) / 2)
-    bottom = 0.55 + 0.2 * rows
     fig = _new_figure(width, 4.0)  # sized below, once the y tick labels are known
     ax = fig.subplots()
     size = _size(view)
@@ -732,29 +730,50 @@ def _synthesis(res: Result) -> Any:
     left = max(0.85, _y_labels_width(fig, ax) + 0.45)
     ratio = (box[3] - box[2]) / (box[1] - box[0])
     height = float(min(max((width - left - 0.2) * ratio, 2.2), 6.0))
-    fig.set_size_inches(width, height + 0.4 + bottom)
-    _margins(fig, left=left, top=0.4, bottom=bottom)
-    more = len(run.candidates) - len(shown)
-    extra = f" (+{more} in candidates.csv)" if more > 0 else ""
+    drawn = (
+        f"{len(run.candidates)} candidate coupler curves"
+        if len(shown) == len(run.candidates)
+        else f"{len(shown)} of {len(run.candidates)} candidate coupler curves (all in "
+        "candidates.csv)"
+    )
     theta = math.degrees(float(run.best.theta[pose])) % 360
-    ax.set_title(
-        f"{res.scene.name}: target and {len(run.candidates)} candidate coupler curves{extra}; "
-        f"#1 drawn at θ = {theta:.0f}°",
-        fontsize=10,
+    title = ax.set_title(
+        f"{res.scene.name}: target and {drawn}; #1 drawn at θ = {theta:.0f}°", fontsize=10
     )
     handles, labels = ax.get_legend_handles_labels()
     # Target first, then the candidates best first, down the first column and on down the
     # second (as matplotlib fills them): read either column downwards, the ranks ascend.
     order = [len(labels) - 1, *reversed(range(len(labels) - 1))]
-    ncol = 1 if len(order) <= 3 else 2
-    fig.legend(
-        [handles[i] for i in order],
-        [labels[i] for i in order],
-        loc="lower center",
-        ncol=ncol,
-        fontsize=7,
-        frameon=False,
-    )
+    renderer = fig.canvas.get_renderer()
+    room = width * fig.dpi - 8  # px: the legend and the title stay inside the figure
+    legend, ncol = None, 1
+    for ncol in (1,) if len(order) <= 3 else (2, 1):
+        if legend is not None:
+            legend.remove()
+        legend = fig.legend(
+            [handles[i] for i in order],
+            [labels[i] for i in order],
+            loc="lower center",
+            ncol=ncol,
+            fontsize=7,
+            frameon=False,
+        )
+        if legend.get_window_extent(renderer).width <= room:
+            break  # two columns of long labels (an open target's) overran both edges
+    rows = math.ceil(len(order) / ncol)
+    bottom = 0.55 + 0.2 * rows
+    fig.set_size_inches(width, height + 0.4 + bottom)
+    _margins(fig, left=left, top=0.4, bottom=bottom)
+    # The title is centred over the plot as laid out (the equal aspect may narrow it): one too
+    # wide for the figure (a long scene name at top = 50 overran both edges) is set smaller.
+    for _ in range(3):
+        fig.draw_without_rendering()  # the layout as drawn: the title where it will be
+        box_px = title.get_window_extent()
+        centre = 0.5 * (box_px.x0 + box_px.x1)
+        fits = 2 * min(centre, fig.bbox.width - centre) - 8
+        if box_px.width <= fits:
+            break
+        title.set_fontsize(title.get_fontsize() * fits / box_px.width)
     return fig
 
 

@@ -2426,9 +2426,18 @@ def command(args: argparse.Namespace) -> int:
             row += [f"({g(fb.c[0])}, {g(fb.c[1])})", g(fb.crank), g(fb.coupler)]
             row += [g(fb.rocker), f"({g(fb.point[0])}, {g(fb.point[1])})", fb.assembly]
         rows.append(tuple(row))
+    # A candidate ranked after the rest for a link longer than LONG_LINK sizes (max_link) says
+    # so: a fit far better than those above it had read as a sorting mistake.
+    ratios = [longest_link(c) / size for c in found]
+    if getattr(args, "lengths", None) is None and any(r > LONG_LINK for r in ratios):
+        head = (*head, "note")
+        rows = [(*rows[0], "note")] + [
+            (*r, f"link {k:.0f}× size: ranked after" if k > LONG_LINK else "")
+            for r, k in zip(rows[1:], ratios)
+        ]
     widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
     for r in rows:
-        print("  ".join(cell.rjust(w) for cell, w in zip(r, widths)))
+        print("  ".join(cell.rjust(w) for cell, w in zip(r, widths)).rstrip())
     return 0
 
 
