@@ -959,3 +959,16 @@ def test_a_long_linked_candidate_says_why_it_is_ranked_after(tmp_path, capsys, m
     assert lines[3].endswith("× size: ranked after")
     assert _ranked_after(found[0], size) == ""
     assert "the size: ranked after" in _ranked_after(found[1], size)
+
+
+def test_lengths_bound_the_coupler_triangle_too(atlas: Atlas) -> None:
+    """``lengths`` bounds the links; a new user's foot bar (the coupler triangle's side to the
+    point, a link of the leg too) came out at 136–144 mm under a bound of 80 or 120. Hoecken's
+    own point lies 50 from its crank pin: under a bound of 40 it is no answer."""
+    pts = linkage.catalog.hoecken().circuit(37).point[:-1]
+    found = synthesis.path(pts, top=3, atlas=atlas, lengths=(5, 40), global_search=False)
+    assert found
+    for c in found:
+        along, left = c.linkage.point
+        arms = (math.hypot(along, left), math.hypot(c.linkage.coupler - along, left))
+        assert max(arms) <= 40, c

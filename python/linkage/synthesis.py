@@ -1204,7 +1204,8 @@ def path(
         Constraints: a crank that turns fully, a transmission angle at least this far from a
         toggle (radians) over the matched part (over the whole turn for a crank that turns
         fully: the motor drives it all), every link length within ``lengths`` (a
-        slider-crank's crank and rod), both ground pivots (a slider-crank's crank pivot) inside
+        slider-crank's crank and rod) and both sides of the coupler triangle to the point at most
+        its greatest, both ground pivots (a slider-crank's crank pivot) inside
         the box ``pivots = ((xmin, ymin), (xmax, ymax))``.
     accept : float or None
         A largest error (target units) that is good enough: the later stages — an open
@@ -2027,6 +2028,9 @@ def _bounds(
                 f"lengths must be (least, greatest) with 0 < least < greatest, got {lengths}"
             )
         lo[at], hi[at] = a, b
+        # The coupler point within the greatest length of both its joints (see _meets).
+        point = [kind.params - 2, kind.params - 1]
+        lo[point], hi[point] = -b, b
     if pivots is not None:
         (x0, y0), (x1, y1) = pivots
         if not (x0 < x1 and y0 < y1):
@@ -2297,6 +2301,11 @@ def _meets(
         else:
             links = (fb.ground, fb.crank, fb.coupler, fb.rocker)
         if any(not (lengths[0] <= v <= lengths[1]) for v in links):
+            return False
+        # The coupler triangle's sides to the point are links too (a foot bar): at most the
+        # greatest length (a point may lie at a joint, so no least).
+        along, left = fb.point
+        if max(math.hypot(along, left), math.hypot(fb.coupler - along, left)) > lengths[1]:
             return False
     if pivots is not None:
         (x0, y0), (x1, y1) = pivots
