@@ -1213,7 +1213,8 @@ def path(
         is None — run only while no admissible candidate is within it (default: they run
         until one is exact, :data:`EXACT` of the size, and the global search while none is
         within ``tol``; an open target's best exact fit above :data:`TIGHT` of the size then
-        gets one long fit more).
+        gets one long fit more). The stages skipped would have found more candidates too: the
+        list may hold fewer than ``top``.
     max_link : float or None
         Candidates with a link (or coupler-triangle side) longer than ``max_link`` times the
         target's size (:func:`target_size`) are ranked after every other, whatever their error:
