@@ -448,3 +448,21 @@ def test_beta_pose_bad_input(kwargs, exc, match):
         centre_point_curve(poses, **kwargs)
     with pytest.raises(TypeError, match="beta_pose applies to four poses"):
         motion(poses[:3], circle_points=[[0, 1], [1, 0]], beta_pose=1)
+
+
+def test_function_generator_short_of_its_range_reports_the_part_it_follows():
+    """A new user's y = x² on 1…3 (input 30…120°, output 60…150°, 3 Chebyshev points): the
+    linkage stops at its input limit near x = 2.954, so the structural error over the range is
+    NaN; the part it follows and the largest error there are reported (the user found 2.954 and
+    7.64° from ``error`` by hand)."""
+    g = function(lambda x: x**2, (1, 3), np.radians((30, 120)), np.radians((60, 150)), points=3)
+    assert not g.reaches and g.defect == "input-limit" and math.isnan(g.structural_error)
+    ok = np.isfinite(g.error)
+    upto = int(np.argmin(ok))  # the first sample it does not follow
+    assert g.x_reached == (1.0, g.x[upto - 1]) and 2.9 < g.x_reached[1] < 3.0
+    assert g.structural_error_reached == np.max(np.abs(g.error[:upto]))
+    assert math.degrees(g.structural_error_reached) == pytest.approx(7.64, abs=0.01)
+    # One that follows the whole range reports the whole range.
+    h = function(np.log10, (1, 2), np.radians((45, 105)), np.radians((135, 225)), points=3)
+    assert h.reaches and h.x_reached == (1.0, 2.0)
+    assert h.structural_error_reached == h.structural_error

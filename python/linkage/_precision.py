@@ -113,6 +113,10 @@ class FunctionGenerator:
     ``y`` units), from the tracked sweep; ``error`` its samples. ``precision_points`` holds the
     ``(x, y)`` pairs met, ``precision_angles`` their ``(φ, ψ)``. ``reaches`` / ``defect`` as for
     :class:`MotionCandidate` (``"branch"``, ``"input-limit"``, ``"flat-position"``).
+    ``structural_error`` is NaN when the linkage does not reach the whole range: then
+    ``x_reached`` is the part of ``[x0, x1]`` it follows from ``x0`` on (sampled, NaN when not
+    even ``x0``) and ``structural_error_reached`` the largest error there (both the whole range
+    and ``structural_error`` otherwise).
     """
 
     linkage: FourBar
@@ -130,6 +134,8 @@ class FunctionGenerator:
     defect: str | None
     min_transmission_angle: float
     grashof: str
+    x_reached: tuple[float, float] = (math.nan, math.nan)
+    structural_error_reached: float = math.nan
 
 
 def _poses(poses: Any, counts: Sequence[int]) -> list[tuple[float, float, float]]:
@@ -623,6 +629,12 @@ def function(
     err = np.asarray(r["output"], dtype=np.float64) - want
     err = (err + np.pi) % (2 * np.pi) - np.pi
     worst = float(np.max(np.abs(err))) if np.all(np.isfinite(err)) else math.nan
+    # The part of the range it follows from x0 on, and the error there: a linkage that stops
+    # at a toggle short of x1 still serves up to there.
+    gone = np.flatnonzero(~np.isfinite(err))
+    upto = len(err) if gone.size == 0 else int(gone[0])
+    reached = (float(grid[0]), float(grid[upto - 1])) if upto else (math.nan, math.nan)
+    worst_reached = float(np.max(np.abs(err[:upto]))) if upto else math.nan
     code = int(r["defect"])
     off = float(r["input_offset"])
     return FunctionGenerator(
@@ -641,4 +653,6 @@ def function(
         defect=None if code < 0 else _DEFECTS[code],
         min_transmission_angle=float(r["min_transmission"]),
         grashof=str(r["grashof"]),
+        x_reached=reached,
+        structural_error_reached=worst_reached,
     )
