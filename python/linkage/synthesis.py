@@ -956,19 +956,38 @@ def _refine(
             # for the last digits, which its convergence near the answer gives sooner.
             x = _geodesic_lm(fun, jac, x, max_nfev)
             common["max_nfev"] = max_nfev // 5
+
         # SciPy's C MINPACK (1.15 on) reads one element past its copy of the Jacobian when it
-        # updates the norm of the last column in its pivoted QR: what lies there changes from
-        # call to call, and with it a few fits, so one search returned other candidates run to
-        # run (valgrind: "Invalid read of size 8 … 0 bytes after a block" in qrfac). A last
-        # unknown that no residual depends on has a column of zeros, whose norm MINPACK never
-        # updates, so nothing past the Jacobian is read and every fit is repeatable.
-        zero = np.zeros((2 * n, 1))
-        common["jac"] = lambda y: np.hstack([jac(y[:-1]), zero])
-        res = least_squares(lambda y: fun(y[:-1]), np.append(x, 0.0), method="lm", **common)
+        # recomputes the norm of the last column of its pivoted QR: what lies there changes
+        # from call to call, and with it a few fits, so one search returned other candidates
+        # run to run (valgrind: "Invalid read of size 8 … 0 bytes after a block" in qrfac). So
+        # a last unknown y joins, with one residual GUARD·y of its own: its column, the
+        # smallest that is not zero, is pivoted after every other but zero ones, no other
+        # column's reflection touches it, so its norm is never recomputed (nor is a zero
+        # column's), and nothing past the Jacobian is read. The fit keeps full rank and its
+        # steps (a column of zeros instead had cost the last digits: 4e-10 of the size where
+        # 3e-14 had been reached).
+        def fun_g(y: NDArray[np.float64]) -> NDArray[np.float64]:
+            return np.append(fun(y[:-1]), GUARD * y[-1])
+
+        def jac_g(y: NDArray[np.float64]) -> NDArray[np.float64]:
+            j = jac(y[:-1])
+            out = np.zeros((j.shape[0] + 1, j.shape[1] + 1))
+            out[:-1, :-1] = j
+            out[-1, -1] = GUARD
+            return out
+
+        common["jac"] = jac_g
+        res = least_squares(fun_g, np.append(x, 0.0), method="lm", **common)
     else:
         res = least_squares(fun, x, bounds=(lo, hi), method="trf", tr_solver="lsmr", **common)
     out: NDArray[np.float64] = res.x[:q]
     return out
+
+
+GUARD = 1e-100
+"""The weight of the guard unknown that keeps SciPy's MINPACK inside its Jacobian (:func:`_refine`):
+far below any column of a fit's Jacobian, far above the smallest normal number when squared."""
 
 
 def _geodesic_lm(
