@@ -1489,6 +1489,14 @@ def path(
         if not closed and mine and best_usable(mine) > goal:
             starts = [c for c in mine if admissible(c)] or mine
             mine += _hops(starts, target, size, bounds, seed, nthreads, k)
+        if closed and refine > 0 and best_usable(mine) > goal:
+            # A closed target no match fitted exactly: parts of it searched as open arcs, their
+            # best fits refined on the whole target (docs/synthesis.md, step 4).
+            given = atlases.get(k.arcs)
+            if given is None:
+                _note_builds(missing_atlases(k.name, False), bar)
+            arcs = given or default_atlas(kind=k.arcs)
+            mine += _from_parts(target, size, bounds, refine, arcs, nthreads, bar, k, usable)
         loose = min((c for c in mine if usable(c)), key=lambda c: c.error, default=None)
         if (
             not closed
@@ -1671,6 +1679,7 @@ def _polish(
     kind: _Kind,
     admissible: Callable[[Candidate[Any]], bool],
     exact: float | None = None,
+    closed: bool = False,
 ) -> list[Candidate[Any]]:
     """Refine the best :data:`POLISH` distinct fits at length, stopping at the first exact one.
 
@@ -1698,7 +1707,7 @@ def _polish(
         out += _finish(
             [(c.params, crossed, c.source)],
             target,
-            False,
+            closed,
             size,
             bounds,
             1,
@@ -1745,6 +1754,118 @@ def _hops(
         )
         if out and min(o.error for o in out) <= 1e-10 * size:
             break
+    return out
+
+
+PART_GAP = 3.0
+"""A closed target is cut into parts (:func:`_parts`) where two consecutive points are more than
+this many times the median spacing apart."""
+
+PART_POINTS = 12
+"""Fewest points of a part of a closed target searched as an open arc (:func:`_parts`): well
+over the nine through which finitely many four-bars pass exactly (Wampler, Morgan and Sommese
+1992: 1442 of them), so that a fit exact on a part says something about the whole."""
+
+PART_FITS = 2
+"""Best fits of each part refined on the whole closed target (:func:`_from_parts`)."""
+
+PART_MATCHES = 3
+"""Fits of each part, in units of ``refine`` (as an open target's first fits): with ``refine``
+alone the crescent of the tests ended at 1e-4 … 3e-4 of its size under 8 of 8 placements with
+the tests' 200,000-arc atlas, with three times as many at ≤ 5e-12 under 8 of 8."""
+
+VALLEY = 1e-4
+"""A closed target's fit from its parts within this fraction of its size that is not exact gets
+long fits (:func:`_from_parts`)."""
+
+
+def _parts(target: Float2D) -> list[NDArray[np.intp]]:
+    """Return the indices of the parts of a closed ``target`` searched as open arcs.
+
+    The points are cut where a gap exceeds :data:`PART_GAP` times the median gap (and at the
+    largest gap), into runs the curve passes through without a stretch the points leave out;
+    a run of ``m`` of the ``n`` points is cut again into ``min(⌊3m/n⌋, ⌊m/PART_POINTS⌋)``
+    parts (thirds of a target of 36 or more points with no such gap), consecutive parts sharing
+    their end point. Parts of fewer than :data:`PART_POINTS` points are left out; the longest
+    come first.
+    """
+    n = len(target)
+    gaps = np.hypot(*(np.roll(target, -1, axis=0) - target).T)
+    # Start after the largest gap, so that no run crosses it.
+    order = np.roll(np.arange(n), -(int(np.argmax(gaps)) + 1))
+    cuts = sorted(set(np.flatnonzero(gaps[order] > PART_GAP * np.median(gaps)).tolist()) | {n - 1})
+    out: list[NDArray[np.intp]] = []
+    start = 0
+    for end in cuts:
+        run = order[start : end + 1]
+        start = end + 1
+        m = max(1, min(3 * len(run) // n, len(run) // PART_POINTS))
+        for j in range(m):
+            a = j * len(run) // m
+            b = (j + 1) * len(run) // m + (1 if j < m - 1 else 0)
+            if b - a >= PART_POINTS:
+                out.append(run[a:b])
+    out.sort(key=len, reverse=True)
+    return out
+
+
+def _from_parts(
+    target: Float2D,
+    size: float,
+    bounds: tuple[NDArray[np.float64], NDArray[np.float64]],
+    refine: int,
+    arcs: Atlas,
+    threads: int,
+    bar: Any,
+    kind: _Kind,
+    admissible: Callable[[Candidate[Any]], bool],
+) -> list[Candidate[Any]]:
+    """Fit a closed target from fits of its parts, stopping at the first exact one.
+
+    Each part (:func:`_parts`, longest first) is matched against the open-arc atlas ``arcs``,
+    its :data:`PART_MATCHES` × ``refine`` best placed matches are fitted to it as an open
+    target's first fits are (stopping at one exact on the part), and its best :data:`PART_FITS`
+    fits are refined on the whole target. When none of those is exact, the ones within
+    :data:`VALLEY` of the size get long fits (:func:`_polish`). A part leaves out the stretches
+    between sparse points, which mislead the closed polygon's descriptors, and the rest of the
+    curve; a fit close on a part lies in the basin of the linkage that draws the whole more
+    often than the closed matches do (measured in docs/synthesis.md).
+    """
+    parts = _parts(target)
+    if bar is not None:
+        bar.stage("parts as arcs", len(parts))
+    out: list[Candidate[Any]] = []
+    for idx in parts:
+        part = target[idx]
+        part_size = target_size(part)
+        # As an open target's first fits (path): 3 × refine of the 16 × refine nearest.
+        pool = _atlas_pool(kind, arcs, part, PART_MATCHES * refine, 16 * refine, threads)
+        fits = _finish(
+            pool, part, False, part_size, bounds, len(pool), threads, None, 1, kind, exact_at=EXACT
+        )
+        fits.sort(key=lambda c: c.error)
+        for c in fits[:PART_FITS]:
+            out += _finish(
+                [(c.params, _crossed(c), "atlas")],
+                target,
+                True,
+                size,
+                bounds,
+                1,
+                threads,
+                None,
+                kind=kind,
+                admissible=admissible,
+            )
+        if bar is not None:
+            bar.update(1)
+        if any(o.error <= EXACT * size and admissible(o) for o in out):
+            return out
+    # A near-fit (within VALLEY of the size) lies in a valley that leads to the exact linkage
+    # (step 4); a worse fit, often in another basin, is not worth a long fit's time.
+    near = [c for c in out if c.error <= VALLEY * size]
+    if near:
+        out += _polish(near, [], target, size, bounds, threads, bar, kind, admissible, closed=True)
     return out
 
 
