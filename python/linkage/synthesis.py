@@ -1775,8 +1775,8 @@ alone the crescent of the tests ended at 1e-4 … 3e-4 of its size under 8 of 8 
 the tests' 200,000-arc atlas, with three times as many at ≤ 5e-12 under 8 of 8."""
 
 VALLEY = 1e-4
-"""A closed target's fit from its parts within this fraction of its size that is not exact gets
-long fits (:func:`_from_parts`)."""
+"""A closed target's best fit from its parts, when not exact but within this fraction of its
+size, gets a long fit (:func:`_from_parts`)."""
 
 
 def _parts(target: Float2D) -> list[NDArray[np.intp]]:
@@ -1825,11 +1825,11 @@ def _from_parts(
     Each part (:func:`_parts`, longest first) is matched against the open-arc atlas ``arcs``,
     its :data:`PART_MATCHES` × ``refine`` best placed matches are fitted to it as an open
     target's first fits are (stopping at one exact on the part), and its best :data:`PART_FITS`
-    fits are refined on the whole target. When none of those is exact, the ones within
-    :data:`VALLEY` of the size get long fits (:func:`_polish`). A part leaves out the stretches
-    between sparse points, which mislead the closed polygon's descriptors, and the rest of the
-    curve; a fit close on a part lies in the basin of the linkage that draws the whole more
-    often than the closed matches do (measured in docs/synthesis.md).
+    fits are refined on the whole target. When none of those is exact, the best gets a long
+    fit (:func:`_polish`) if it is within :data:`VALLEY` of the size. A part leaves out the
+    stretches between sparse points, which mislead the closed polygon's descriptors, and the
+    rest of the curve; a fit close on a part lies in the basin of the linkage that draws the
+    whole more often than the closed matches do (measured in docs/synthesis.md).
     """
     parts = _parts(target)
     if bar is not None:
@@ -1861,11 +1861,14 @@ def _from_parts(
             bar.update(1)
         if any(o.error <= EXACT * size and admissible(o) for o in out):
             return out
-    # A near-fit (within VALLEY of the size) lies in a valley that leads to the exact linkage
-    # (step 4); a worse fit, often in another basin, is not worth a long fit's time.
-    near = [c for c in out if c.error <= VALLEY * size]
-    if near:
-        out += _polish(near, [], target, size, bounds, threads, bar, kind, admissible, closed=True)
+    # A near-fit (within VALLEY of the size) may lie in a valley that leads to the exact linkage
+    # (step 4); the best one gets a long fit. More cost too much on a target no four-bar draws
+    # (a long fit of 60 points took up to 7.6 s), whose fits can come that near too.
+    near = min(out, key=lambda c: c.error, default=None)
+    if near is not None and near.error <= VALLEY * size:
+        out += _polish(
+            [near], [], target, size, bounds, threads, bar, kind, admissible, closed=True
+        )
     return out
 
 
