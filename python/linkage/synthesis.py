@@ -1774,9 +1774,10 @@ PART_MATCHES = 3
 alone the crescent of the tests ended at 1e-4 … 3e-4 of its size under 8 of 8 placements with
 the tests' 200,000-arc atlas, with three times as many at ≤ 5e-12 under 8 of 8."""
 
-VALLEY = 1e-4
-"""A closed target's best fit from its parts, when not exact but within this fraction of its
-size, gets a long fit (:func:`_from_parts`)."""
+VALLEY = 1e-3
+"""A closed target's best :data:`PART_FITS` fits from its parts, when none is exact, get long
+fits if within this fraction of its size (:func:`_from_parts`): the tests' crescent, placed so
+that its best such fit (1.5e-4) stays there, is recovered by one at 2.8e-4 (to 3.6e-14)."""
 
 
 def _parts(target: Float2D) -> list[NDArray[np.intp]]:
@@ -1825,11 +1826,11 @@ def _from_parts(
     Each part (:func:`_parts`, longest first) is matched against the open-arc atlas ``arcs``,
     its :data:`PART_MATCHES` × ``refine`` best placed matches are fitted to it as an open
     target's first fits are (stopping at one exact on the part), and its best :data:`PART_FITS`
-    fits are refined on the whole target. When none of those is exact, the best gets a long
-    fit (:func:`_polish`) if it is within :data:`VALLEY` of the size. A part leaves out the
-    stretches between sparse points, which mislead the closed polygon's descriptors, and the
-    rest of the curve; a fit close on a part lies in the basin of the linkage that draws the
-    whole more often than the closed matches do (measured in docs/synthesis.md).
+    fits are refined on the whole target. When none of those is exact, the best
+    :data:`PART_FITS` within :data:`VALLEY` of the size get long fits (:func:`_polish`). A part
+    leaves out the stretches between sparse points, which mislead the closed polygon's
+    descriptors, and the rest of the curve; a fit close on a part lies in the basin of the
+    linkage that draws the whole more often than the closed matches do (docs/synthesis.md).
     """
     parts = _parts(target)
     if bar is not None:
@@ -1862,13 +1863,16 @@ def _from_parts(
         if any(o.error <= EXACT * size and admissible(o) for o in out):
             return out
     # A near-fit (within VALLEY of the size) may lie in a valley that leads to the exact linkage
-    # (step 4); the best one gets a long fit. More cost too much on a target no four-bar draws
-    # (a long fit of 60 points took up to 7.6 s), whose fits can come that near too.
-    near = min(out, key=lambda c: c.error, default=None)
-    if near is not None and near.error <= VALLEY * size:
+    # (step 4): the best PART_FITS get long fits. More cost too much on a target no four-bar
+    # draws (a long fit of 60 points took up to 7.6 s), whose fits can come that near too.
+    near = sorted((c for c in out if c.error <= VALLEY * size), key=lambda c: c.error)
+    polished: list[NDArray[np.float64]] = []
+    for c in near[:PART_FITS]:
         out += _polish(
-            [near], [], target, size, bounds, threads, bar, kind, admissible, closed=True
+            [c], polished, target, size, bounds, threads, bar, kind, admissible, closed=True
         )
+        if any(o.error <= EXACT * size and admissible(o) for o in out):
+            break
     return out
 
 
