@@ -1776,8 +1776,9 @@ the tests' 200,000-arc atlas, with three times as many at ≤ 5e-12 under 8 of 8
 
 VALLEY = 1e-3
 """A closed target's best :data:`PART_FITS` fits from its parts, when none is exact, get long
-fits if within this fraction of its size (:func:`_from_parts`): the tests' crescent, placed so
-that its best such fit (1.5e-4) stays there, is recovered by one at 2.8e-4 (to 3.6e-14)."""
+fits if within this fraction of its size (:func:`_from_parts`): one placement of the tests'
+crescent, whose best such fit (1.5e-4) stayed there, was recovered by one at 2.8e-4 (to
+3.6e-14; measured with an earlier guard of MINPACK's Jacobian copy, docs/synthesis.md)."""
 
 
 def _parts(target: Float2D) -> list[NDArray[np.intp]]:
