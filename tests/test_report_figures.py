@@ -4,6 +4,7 @@ sampling error measured at 8× the samples."""
 
 import math
 from pathlib import Path
+from typing import Union
 
 import numpy as np
 import pytest
@@ -241,7 +242,7 @@ def test_a_candidate_on_the_edge_of_a_change_point_is_named_so() -> None:
     transmission angle of 0.0° hinted at it. The class's note says so."""
     from linkage.synthesis import Candidate
 
-    def note(lk: linkage.FourBar | linkage.SliderCrank, cls: str) -> str:
+    def note(lk: Union[linkage.FourBar, linkage.SliderCrank], cls: str) -> str:
         c = Candidate(lk, 1.0, 1.0, 1.0, (0.0, 6.3), True, cls, 0.0, False, "atlas", np.zeros(9))
         return stage_figures._near_change_point(c, 40.0, "mm")
 

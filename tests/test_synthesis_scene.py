@@ -117,7 +117,8 @@ def test_the_figures_are_typed_with_units_and_three_digits(report: Path) -> None
         assert mu["text"] == f"{mu['value']:.1f}"
     time = rows["search time"]
     assert time["unit"] == "s" and time["value"] > 0
-    assert set(s["stages_s"]) == {"build", "synthesis", "report"}
+    # An "atlas" stage too when the default atlas was not in the cache yet (a fresh machine).
+    assert set(s["stages_s"]) - {"atlas"} == {"build", "synthesis", "report"}
     # The figures come in the order of the terminal's table: count, candidates, time.
     names = [f["figure"] for f in s["figures"]]
     assert names.index("candidates found") < names.index("candidate 1: max error")
