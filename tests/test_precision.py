@@ -466,3 +466,62 @@ def test_function_generator_short_of_its_range_reports_the_part_it_follows():
     h = function(np.log10, (1, 2), np.radians((45, 105)), np.radians((135, 225)), points=3)
     assert h.reaches and h.x_reached == (1.0, 2.0)
     assert h.structural_error_reached == h.structural_error
+
+
+# The trial's level-platform task (FINDINGS 9): pure translation, moving pivots 40 apart.
+LEVEL = np.array([[0.0, 0.0, 0.0], [30.0, 10.0, 0.0], [60.0, 0.0, 0.0]])
+
+
+def nearest_on_sweep(fb: linkage.FourBar, theta_from: float, theta_to: float, point) -> float:
+    """Distance from ``point`` to ``fb``'s coupler point swept densely (tracked, from its
+    declared start) between two crank angles."""
+    s = fb.sweep(np.linspace(theta_from, theta_to, 2001))
+    return float(np.min(np.hypot(*(s.point - np.asarray(point)).T)))
+
+
+def test_parallelogram_reaches_driven_from_either_pivot():
+    # Both candidates are the parallelogram (ground 40, cranks 50); the one driven from the
+    # right-hand pivot was built on its antiparallelogram branch (a change point's assembly
+    # names its branch at its start angle, a flat position away from pose 0) and missed pose 0.
+    cands = motion(LEVEL, circle_points=[[0.0, 0.0], [40.0, 0.0]])
+    assert len(cands) == 2
+    assert {tuple(np.round(c.linkage.o, 9)) for c in cands} == {(30.0, -40.0), (70.0, -40.0)}
+    for c in cands:
+        assert c.grashof == "change-point"
+        assert c.reaches and c.defect is None, (c.linkage, c.defect, c.defect_pose)
+        assert reproduces(c, LEVEL) <= 1e-9
+        # Independently: the linkage swept densely from pose 0's crank angle to pose 2's passes
+        # through every pose's point.
+        t0, t2 = c.crank_angles[0], c.crank_angles[-1]
+        for point in LEVEL[:, :2]:
+            assert nearest_on_sweep(c.linkage, t0, t2, point) < 0.05
+        # The tracked sweep at the poses' crank angles keeps the coupler level (translation).
+        s = c.linkage.sweep(c.crank_angles)
+        d = s.joints[:, 3] - s.joints[:, 2]
+        turn = np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(d[0, 1], d[0, 0])
+        np.testing.assert_allclose((turn + np.pi) % TAU - np.pi, 0, atol=1e-12)
+
+
+def parallelogram_poses(degrees) -> tuple[np.ndarray, np.ndarray]:
+    """Level poses of the parallelogram O (30, −40), C (70, −40), cranks 50, body point 7 left
+    and 11 above the crank pin, at crank angles ``degrees``; and the pins at the first."""
+    o, r = np.array([30.0, -40.0]), 50.0
+    t = np.radians(degrees)
+    a = o + r * np.column_stack([np.cos(t), np.sin(t)])
+    poses = np.column_stack([a + np.array([-7.0, 11.0]), np.zeros(len(t))])
+    return poses, np.array([a[0], a[0] + np.array([40.0, 0.0])])
+
+
+@pytest.mark.parametrize("degrees", [(120, 170, 220), (-30, 10, 40)])
+def test_parallelogram_passing_its_flat_position_is_flagged(degrees):
+    # At the flat position (crank along the ground line) the parallelogram may go on as an
+    # antiparallelogram: a motion through it is a defect, driven from either pivot.
+    poses, pins = parallelogram_poses(degrees)
+    cands = motion(poses, circle_points=pins)
+    assert len(cands) == 2
+    assert all(c.grashof == "change-point" for c in cands)
+    assert [c.defect for c in cands] == ["flat-position"] * 2
+    # Short of it, the same linkages pass.
+    start, flat = degrees[0], (180 if degrees[0] > 0 else 0)
+    poses, pins = parallelogram_poses((start, (start + flat) / 2, flat - 3))
+    assert all(c.reaches for c in motion(poses, circle_points=pins))

@@ -740,7 +740,8 @@ pub struct MotionCheck<T> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MotionCandidate<T> {
     /// The linkage: crank pivot at the driving dyad's centre point, rocker pivot at the other's,
-    /// coupler point at the body's reference point, assembly as at pose 0.
+    /// coupler point at the body's reference point, on the branch through pose 0 (a change
+    /// point's assembly names that branch at its start angle, [`FourBar::start_angle`]).
     pub four_bar: FourBar<T>,
     /// The driving dyad.
     pub crank: BurmesterPair<T>,
@@ -920,7 +921,18 @@ fn sweep_sense<T: RealField + Copy>(
         out.defect = Some(Defect::Toggle { pose: 0 });
         return out;
     };
-    let sign0 = tracker.branch(FourBar::<T>::B);
+    // The side of `B` on `A → C` changes only where the dyad is flat: for a crank that stays
+    // in its interval (checked above), at a change point's flat position. Compared with its
+    // side at pose 0 at every sample: a change point's declared assembly names its branch at
+    // the start angle, not at pose 0, and a tracker whose orientations are known in closed form
+    // does not report the flips it places.
+    let side = |j: &[Vec2<T>; 5]| {
+        FourBar::<T>::assembly_of(
+            fb.c - j[FourBar::<T>::A],
+            j[FourBar::<T>::B] - j[FourBar::<T>::A],
+        )
+    };
+    let mut side0 = None;
     let size = fb
         .ground()
         .max(fb.crank)
@@ -949,6 +961,11 @@ fn sweep_sense<T: RealField + Copy>(
                         return out;
                     }
                 }
+                if side0 != Some(side(&joints)) {
+                    out.min_transmission = margin.max(T::zero()).min(T::one()).asin();
+                    out.defect = Some(Defect::FlatPosition);
+                    return out;
+                }
             }
         }
         match tracker.step(t[j], None, &mut joints, Rates::none()) {
@@ -959,7 +976,9 @@ fn sweep_sense<T: RealField + Copy>(
             }
         }
         out.min_transmission = margin.max(T::zero()).min(T::one()).asin();
-        if tracker.branch(FourBar::<T>::B) != sign0 {
+        if j == 0 {
+            side0 = Some(side(&joints));
+        } else if side0 != Some(side(&joints)) {
             out.defect = Some(Defect::FlatPosition);
             return out;
         }

@@ -579,7 +579,7 @@ impl<T: RealField + Copy> FourBar<T> {
     /// The assembly that puts `B` where it is, from `A → C` and `A → B`: open when `B` is left
     /// of `A → C`. The sign is taken in units of a power of two near their size (exact), so it
     /// is right at any scale (the cross product of tiny vectors underflows to 0).
-    fn assembly_of(to_c: Vec2<T>, to_b: Vec2<T>) -> Assembly {
+    pub(crate) fn assembly_of(to_c: Vec2<T>, to_b: Vec2<T>) -> Assembly {
         let big = to_c.amax().max(to_b.amax());
         let s = crate::dyad::pow2_scale(big);
         if cross(to_c / s, to_b / s) >= T::zero() {
@@ -591,6 +591,13 @@ impl<T: RealField + Copy> FourBar<T> {
 
     /// The four-bar with crank pivot `o`, rocker pivot `c`, crank pin `a`, coupler–rocker joint
     /// `b` and coupler point `p` as placed (one pose): lengths, coupler point and assembly.
+    ///
+    /// The assembly is the side `B` is on as placed, except for a change point, whose declared
+    /// assembly names the branch at its [`FourBar::start_angle`]: the side of `B` flips at each
+    /// flat position between there and the placed crank angle `arg(a − o)`, so the assembly is
+    /// the one whose tracked sweep ([`Tracker`], from the start angle) puts `B` where it is
+    /// placed. (Taking the placed side alone built a parallelogram whose placed crank angle is
+    /// past a flat position from its start angle on its antiparallelogram branch.)
     pub(crate) fn from_points(
         o: Vec2<T>,
         c: Vec2<T>,
@@ -610,7 +617,7 @@ impl<T: RealField + Copy> FourBar<T> {
             (rel.x * e.x + rel.y * e.y) / len * s,
             cross(e, rel) / len * s,
         );
-        FourBar::with_pivots(
+        let placed = FourBar::with_pivots(
             o,
             c,
             crate::scalar::length(a - o),
@@ -618,7 +625,28 @@ impl<T: RealField + Copy> FourBar<T> {
             crate::scalar::length(b - c),
             (along, left),
             Self::assembly_of(c - a, b - a),
-        )
+        )?;
+        if placed.start_angle().is_none() {
+            return Ok(placed);
+        }
+        // A change point: track from the start angle to the placed crank angle and see which
+        // side `B` arrives on. Where the sweep cannot get there, the placed side stands.
+        let m = placed.mechanism();
+        let mut joints = [Vec2::zeros(); 5];
+        let theta = (a - o).y.atan2((a - o).x);
+        let tracked = Tracker::new(&m)
+            .and_then(|mut t| t.step(theta, None, &mut joints, Rates::none()))
+            .map(|_| Self::assembly_of(c - joints[Self::A], joints[Self::B] - joints[Self::A]));
+        match tracked {
+            Ok(side) if side != placed.assembly => Ok(FourBar {
+                assembly: match placed.assembly {
+                    Assembly::Open => Assembly::Crossed,
+                    Assembly::Crossed => Assembly::Open,
+                },
+                ..placed
+            }),
+            _ => Ok(placed),
+        }
     }
 
     /// Transmission angle `μ ∈ [0, π]`: the angle at `B` between coupler and rocker. Force

@@ -511,6 +511,91 @@ fn circuit_defect_is_flagged() {
     );
 }
 
+/// A parallelogram's coupler translates through three poses; driven from either pivot the
+/// two dyads are the same parallelogram, and both must carry the body through the poses. The
+/// driven-from-the-other-pivot one used to be built on its antiparallelogram branch whenever
+/// pose 0's crank angle lay a flat position away from its start angle (a change point's
+/// declared assembly names the branch there), and was flagged a branch defect at pose 0.
+#[test]
+fn parallelogram_reaches_driven_from_either_pivot() {
+    let (g, r) = (40.0, 50.0);
+    let mut checked = 0;
+    for ground_dir in [0.0, 0.7, PI, -2.0] {
+        let o = Vec2::new(30.0, -40.0);
+        let c = o + Vec2::new(ground_dir.cos(), ground_dir.sin()) * g;
+        // Three crank angles inside one open half-turn between the flat positions (crank along
+        // the ground line), either way round, starting on either side of the ground line.
+        for side in [0.0, PI] {
+            for start in [0.5, 1.2, 2.6] {
+                for step in [0.2, -0.2] {
+                    let th0 = ground_dir + side + start;
+                    let thetas = [th0, th0 + step, th0 + 2.0 * step];
+                    let at = |t: f64| {
+                        let u = Vec2::new(t.cos(), t.sin()) * r;
+                        let (a, b) = (o + u, c + u);
+                        (a, b, a + Vec2::new(-7.0, 11.0))
+                    };
+                    let poses =
+                        thetas.map(|t| BodyPose::new(at(t).2.x, at(t).2.y, ground_dir).unwrap());
+                    let (a0, b0, _) = at(thetas[0]);
+                    let left = centre_point(&poses, a0).unwrap();
+                    let right = centre_point(&poses, b0).unwrap();
+                    for (crank, rocker) in [(left, right), (right, left)] {
+                        let cand = MotionCandidate::new(&poses, crank, rocker).unwrap();
+                        assert_eq!(cand.four_bar.grashof(), GrashofClass::ChangePoint);
+                        assert_eq!(
+                            cand.check.defect, None,
+                            "ground {ground_dir}, crank angles {thetas:?}, driven from {:?}: {:?}",
+                            crank.centre, cand
+                        );
+                        assert!(independently_reaches(&cand, &poses), "{cand:?}");
+                        checked += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 4 * 2 * 3 * 2 * 2);
+}
+
+/// Poses on either side of a parallelogram's flat position (crank along the ground line, where
+/// it may go on as an antiparallelogram) are flagged, from exact pivots too: a tracker that
+/// knows the orientations in closed form does not report the flip it places there.
+#[test]
+fn parallelogram_passing_its_flat_position_is_flagged() {
+    let (o, c, r) = (Vec2::new(30.0, -40.0), Vec2::new(70.0, -40.0), 50.0);
+    let at = |t: f64| {
+        let u = Vec2::new(t.cos(), t.sin()) * r;
+        (o + u, c + u)
+    };
+    for thetas in [[2.6, 3.0, 3.4], [-0.4, 0.1, 0.5]] {
+        let poses = thetas.map(|t| BodyPose::new(at(t).0.x - 7.0, at(t).0.y + 11.0, 0.0).unwrap());
+        let (a0, b0) = at(thetas[0]);
+        let left = BurmesterPair {
+            centre: o,
+            circle: a0,
+        };
+        let right = BurmesterPair {
+            centre: c,
+            circle: b0,
+        };
+        for (crank, rocker) in [(left, right), (right, left)] {
+            let cand = MotionCandidate::new(&poses, crank, rocker).unwrap();
+            assert_eq!(
+                cand.check.defect,
+                Some(Defect::FlatPosition),
+                "{thetas:?}: {cand:?}"
+            );
+        }
+        // Short of the flat position, the same linkage passes.
+        let flat = if thetas[0] > 0.0 { PI } else { 0.0 };
+        let near = [thetas[0], (thetas[0] + flat) / 2.0, flat - 0.05];
+        let poses = near.map(|t| BodyPose::new(at(t).0.x - 7.0, at(t).0.y + 11.0, 0.0).unwrap());
+        let cand = MotionCandidate::new(&poses, left, right).unwrap();
+        assert_eq!(cand.check.defect, None, "{near:?}: {cand:?}");
+    }
+}
+
 #[test]
 fn order_defect_is_flagged() {
     let fb = crank_rocker();
@@ -714,8 +799,12 @@ fn independently_reaches(cand: &MotionCandidate<f64>, poses: &[BodyPose<f64>]) -
     let m = cand.four_bar.mechanism();
     let mut t = Tracker::new(&m).unwrap();
     let mut j = [Vec2::zeros(); 5];
-    let s0 = t.branch(FourBar::<f64>::B);
     let angles = &cand.check.crank_angles[..poses.len()];
+    // The orientation at pose 0: a change point's declared one holds at its start angle.
+    if t.step(angles[0], None, &mut j, Rates::none()).is_err() {
+        return false;
+    }
+    let s0 = t.branch(FourBar::<f64>::B);
     for (k, &th) in angles.iter().enumerate() {
         let from = if k == 0 { th } else { angles[k - 1] };
         for s in 0..=50 {
