@@ -525,3 +525,45 @@ def test_parallelogram_passing_its_flat_position_is_flagged(degrees):
     start, flat = degrees[0], (180 if degrees[0] > 0 else 0)
     poses, pins = parallelogram_poses((start, (start + flat) / 2, flat - 3))
     assert all(c.reaches for c in motion(poses, circle_points=pins))
+
+
+# The trial's four-pose task (FINDINGS 9 and 19): mm and radians.
+POSES4 = np.array(
+    [
+        [0.0, 0.0, 0.0],
+        [40.0, 15.0, np.radians(30)],
+        [70.0, 50.0, np.radians(75)],
+        [80.0, 90.0, np.radians(110)],
+    ]
+)
+
+
+def test_beta_where_the_burmester_curves_are_not_real_says_so():
+    # Independently: the sampled curve has no real point at 40° (row 4 of 10° steps, both
+    # halves), but has at 40° measured to pose 2.
+    curve = centre_point_curve(POSES4, n=36, beta_pose=1)
+    assert np.isnan(curve[[4, 40]]).all()
+    assert np.isfinite(centre_point_curve(POSES4, n=36, beta_pose=2)[[4, 40]]).all()
+    with pytest.raises(linkage.LinkageError, match=r"no real point at beta = 40° .*pose 1"):
+        motion(POSES4, beta=np.radians(40), beta_pose=1)
+    assert len(motion(POSES4, beta=np.radians(40), beta_pose=2)) == 2
+
+
+def test_pose_angles_in_degrees_warn():
+    # FINDINGS 19: degrees by mistake passed silently. Legal (angles count modulo 2π), so a
+    # warning that names the likely mistake, not an error.
+    degrees = np.array([[0, 0, 0], [40, 15, 30], [70, 50, 75]], dtype=float)
+    with pytest.warns(UserWarning, match=r"2 of 3 pose angles exceed 2π.*np\.radians") as rec:
+        motion(degrees, circle_points=[[-10, -20], [25, -15]])
+    assert rec[0].filename == __file__  # attributed to the caller
+    with pytest.warns(UserWarning, match="radians") as rec:
+        centre_point_curve(np.vstack([degrees, [80, 90, 110]]), n=4)
+    assert rec[0].filename == __file__
+    radians = degrees.copy()
+    radians[:, 2] = np.radians(radians[:, 2])
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        motion(radians, circle_points=[[-10, -20], [25, -15]])
+        motion(POSES4, n=4)

@@ -18,6 +18,7 @@ positions, and says whether it reaches them all on one circuit, in order, withou
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, SupportsFloat, get_args
@@ -102,6 +103,10 @@ class MotionCandidate:
     beta_pose: int | None = None
 
 
+# Pose angles beyond this magnitude (radians) are legal but most likely degrees given by mistake.
+_DEGREES_HINT = 2.0 * math.pi
+
+
 @dataclass(frozen=True)
 class FunctionGenerator:
     """A four-bar whose output angle follows ``y = f(x)`` (Freudenstein's equation).
@@ -138,7 +143,9 @@ class FunctionGenerator:
     structural_error_reached: float = math.nan
 
 
-def _poses(poses: Any, counts: Sequence[int]) -> list[tuple[float, float, float]]:
+def _poses(
+    poses: Any, counts: Sequence[int], stacklevel: int = 3
+) -> list[tuple[float, float, float]]:
     arr = np.asarray(as_real_array(poses, "poses"), dtype=np.float64)
     if arr.ndim != 2 or arr.shape[1] != 3:
         raise LinkageError(f"poses must have shape (k, 3) of (x, y, angle), got {arr.shape}")
@@ -151,6 +158,17 @@ def _poses(poses: Any, counts: Sequence[int]) -> list[tuple[float, float, float]
         )
     if not np.all(np.isfinite(arr)):
         raise LinkageError("poses must be finite")
+    big = np.flatnonzero(np.abs(arr[:, 2]) > _DEGREES_HINT)
+    if big.size:
+        # A warning, not an error: an angle is legal modulo 2π (an unwrapped one may exceed it).
+        i = int(big[0])
+        warnings.warn(
+            f"poses: {big.size} of {k} pose angles exceed 2π in magnitude (pose {i}: "
+            f"{arr[i, 2]:g}): pose angles are radians. Degrees given by mistake? "
+            "np.radians converts them",
+            UserWarning,
+            stacklevel=stacklevel,
+        )
     return [(float(x), float(y), float(a)) for x, y, a in arr]
 
 
@@ -197,7 +215,7 @@ def _not_one_rotation(p: list[tuple[float, float, float]]) -> None:
 def _curve(
     poses: Any, n: Any, beta_pose: Any
 ) -> tuple[int, NDArray[np.float64], NDArray[np.float64]]:
-    p = _poses(poses, (4,))
+    p = _poses(poses, (4,), stacklevel=4)
     count = as_count(n, "n")
     free_pose = _beta_pose(beta_pose)
     _not_one_rotation(p)
@@ -302,6 +320,19 @@ def _dyads_four(
     for g, k in zip(centres.reshape(-1, 2), circles.reshape(-1, 2)):
         if np.all(np.isfinite(g)) and np.all(np.isfinite(k)):
             out.append(Dyad(centre=(float(g[0]), float(g[1])), circle=(float(k[0]), float(k[1]))))
+    if len(out) < 2:
+        # Not "too few dyads" alone: say why, the curves' gaps at the rotations asked for.
+        at = (
+            f"beta = {', '.join(f'{math.degrees(x):.6g}°' for x in b[:4])}"
+            f"{', ...' if b.size > 4 else ''}"
+            if beta is not None
+            else f"the n = {b.size} rotations sampled"
+        )
+        raise LinkageError(
+            f"the Burmester curves have {'no real point' if not out else 'one real point only'} "
+            f"at {at} (the crank's rotation from pose 0 to pose {int(free)}): a four-bar needs "
+            "two dyads. centre_point_curve(poses, beta_pose=...) shows where the curves are real"
+        )
     return out, int(free)
 
 
@@ -366,9 +397,15 @@ def motion(
         Bad poses (shape, count, NaN, coincident), poses that are rotations about one point
         (every dyad's fixed pivot is that point, so no two make a four-bar), a chosen point
         whose dyad is degenerate (its centre at infinity or not unique), poses without a
-        Burmester curve, fewer than two dyads, or dyads no two of which make a four-bar.
+        Burmester curve, fewer than two dyads (for four poses: the curves have no real point
+        at the ``beta`` given), or dyads no two of which make a four-bar.
     TypeError
         Points chosen for four poses, or ``beta`` / ``beta_pose`` for three.
+
+    Warns
+    -----
+    UserWarning
+        A pose angle beyond 2π in magnitude: legal, but most likely degrees given by mistake.
 
     Examples
     --------
