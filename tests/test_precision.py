@@ -8,6 +8,7 @@ check their numbers). Consistency tests compute one quantity two ways.
 
 from __future__ import annotations
 
+import inspect
 import math
 import time
 
@@ -547,6 +548,95 @@ def test_beta_where_the_burmester_curves_are_not_real_says_so():
     with pytest.raises(linkage.LinkageError, match=r"no real point at beta = 40° .*pose 1"):
         motion(POSES4, beta=np.radians(40), beta_pose=1)
     assert len(motion(POSES4, beta=np.radians(40), beta_pose=2)) == 2
+
+
+def test_candidates_that_do_not_reach_have_nan_figures_and_rank_last():
+    # FINDINGS 19: fixed pivots chosen; neither candidate reaches, and the one that toggles
+    # reported a perfect 90° and 0 mm over "the poses reached" (pose 0 alone).
+    poses = POSES4[:3]
+    cands = motion(poses, centre_points=[[-20.0, 80.0], [90.0, 100.0]])
+    assert cands and not any(c.reaches for c in cands)
+    for c in cands:
+        assert math.isnan(c.position_error) and math.isnan(c.angle_error)
+        assert math.isnan(c.min_transmission_angle)
+    # Four poses: every candidate that reaches comes first, by transmission angle, and the
+    # figures are finite exactly for them.
+    cands = motion(POSES4, n=24, max_link=None)
+    reach = [c.reaches for c in cands]
+    assert any(reach) and not all(reach)
+    assert reach == sorted(reach, reverse=True)
+    mu = [c.min_transmission_angle for c in cands if c.reaches]
+    assert mu == sorted(mu, reverse=True) and np.isfinite(mu).all()
+    assert all(np.isnan(c.position_error) for c in cands if not c.reaches)
+    # Those that do not reach: the ones reaching more poses first.
+    got = [np.count_nonzero(np.isfinite(c.crank_angles)) for c in cands if not c.reaches]
+    assert got == sorted(got, reverse=True)
+
+
+def links_measured(c, point) -> tuple[float, ...]:
+    """Ground, crank, coupler, rocker and the body's sides to its point ``point`` (at pose 0),
+    from the candidate's two dyads (not its linkage)."""
+    o, cc = np.array(c.crank.centre), np.array(c.rocker.centre)
+    a, b, p = np.array(c.crank.circle), np.array(c.rocker.circle), np.asarray(point)
+    d = np.linalg.norm
+    return (d(cc - o), d(a - o), d(b - a), d(b - cc), d(p - a), d(p - b))
+
+
+def test_max_link_ranks_compact_designs_first():
+    size = linkage.synthesis.target_size(POSES4[:, :2])
+    plain = [c for c in motion(POSES4, n=24, max_link=None) if c.reaches]
+    for c in plain[:10]:
+        assert c.longest_link == pytest.approx(max(links_measured(c, POSES4[0, :2])), rel=1e-9)
+    long = [c.longest_link > 3 * size for c in plain]
+    assert any(long) and not all(long)
+    assert long != sorted(long), "by transmission alone, a long one comes before a compact one"
+    ranked = [c for c in motion(POSES4, n=24, max_link=3) if c.reaches]
+    long = [c.longest_link > 3 * size for c in ranked]
+    assert long == sorted(long)
+    assert len(ranked) == len(plain)
+    # The default is path's (LONG_LINK sizes), which none of these reach: the same order.
+    assert inspect.signature(motion).parameters["max_link"].default == linkage.synthesis.LONG_LINK
+    assert linkage.synthesis.LONG_LINK * size > max(c.longest_link for c in plain)
+    default = [c for c in motion(POSES4, n=24) if c.reaches]
+    assert [c.crank for c in default] == [c.crank for c in plain]
+
+
+def test_lengths_and_pivots_filter():
+    every = motion(POSES4, n=24, max_link=None)
+    lo, hi = 5.0, 80.0
+    kept = motion(POSES4, n=24, lengths=(lo, hi))
+    assert 0 < len(kept) < len(every)
+    for c in kept:
+        links = links_measured(c, POSES4[0, :2])
+        assert all(lo - 1e-9 <= v <= hi + 1e-9 for v in links[:4]) and max(links) <= hi + 1e-9
+    inside = [
+        c for c in every if lo <= min(links_measured(c, POSES4[0, :2])[:4]) and c.longest_link <= hi
+    ]
+    assert len(kept) == len(inside)
+    box = ((-30.0, 60.0), (30.0, 120.0))
+    kept = motion(POSES4, n=24, pivots=box)
+    assert 0 < len(kept) < len(every)
+    for c in kept:
+        for x, y in (c.linkage.o, c.linkage.c):
+            assert -30 <= x <= 30 and 60 <= y <= 120
+    assert motion(POSES4, n=24, lengths=(1.0, 2.0)) == []
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "exc", "match"),
+    [
+        ({"lengths": (5.0, 1.0)}, linkage.LinkageError, "0 < least < greatest"),
+        ({"lengths": 5.0}, TypeError, r"lengths must be a pair \(least, greatest\), got float"),
+        ({"lengths": (1, 2, 3)}, linkage.LinkageError, "lengths must be a pair .* got 3 values"),
+        ({"lengths": (1, np.inf)}, linkage.LinkageError, r"lengths\[1\]"),
+        ({"pivots": ((0, 0), (0, 1))}, linkage.LinkageError, "xmin, ymin"),
+        ({"pivots": (0, 0)}, TypeError, r"pivots\[0\] must be a pair"),
+        ({"max_link": 0.0}, linkage.LinkageError, "max_link must be positive"),
+    ],
+)
+def test_motion_filter_bad_input(kwargs, exc, match):
+    with pytest.raises(exc, match=match):
+        motion(POSES4, n=4, **kwargs)
 
 
 def test_pose_angles_in_degrees_warn():

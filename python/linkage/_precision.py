@@ -30,6 +30,7 @@ from linkage import _core
 from linkage._arrays import (
     as_count,
     as_finite,
+    as_point,
     as_real_array,
     assembly_named,
     check_memory,
@@ -38,6 +39,7 @@ from linkage._arrays import (
 from linkage._choices import Spacing
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
+from linkage._size import rms_size
 
 __all__ = [
     "Dyad",
@@ -81,11 +83,14 @@ class MotionCandidate:
     way to pose ``defect_pose``), ``"order"`` (the poses come in another order) or
     ``"flat-position"`` (the motion passes a change-point linkage's flat position).
     ``crank_angles`` are the crank angles at the poses along the travel (NaN past a defect);
-    ``position_error``/``angle_error`` the largest mismatch of the tracked sweep at the poses
-    reached; ``min_transmission_angle`` the smallest transmission angle over the travel, folded
-    to [0, π/2]. ``beta_pose`` (four poses only, else None) is the pose ``k`` (1, 2 or 3) whose
-    crank rotation from pose 0 is the ``beta`` the dyads were found at: the crank turns by
-    ``crank_angles[k] − crank_angles[0]`` (≡ ``beta`` mod 2π) from pose 0 to pose ``k``.
+    ``position_error``/``angle_error`` the largest mismatch of the tracked sweep at the poses;
+    ``min_transmission_angle`` the smallest transmission angle over the travel, folded to
+    [0, π/2]. Those three are NaN when the candidate does not reach (``reaches`` False): a
+    figure over the part of the travel before the defect (pose 0 alone, say) would read as a
+    perfect linkage. ``longest_link`` is its longest link or coupler side. ``beta_pose``
+    (four poses only, else None) is the pose ``k`` (1, 2 or 3) whose crank rotation from pose 0
+    is the ``beta`` the dyads were found at: the crank turns by ``crank_angles[k] −
+    crank_angles[0]`` (≡ ``beta`` mod 2π) from pose 0 to pose ``k``.
     """
 
     linkage: FourBar
@@ -102,6 +107,26 @@ class MotionCandidate:
     grashof: str
     beta_pose: int | None = None
 
+    @property
+    def longest_link(self) -> float:
+        """Return the longest link: ground, crank, coupler, rocker or a coupler side.
+
+        The coupler's sides are those to the body's reference point (``|P − A|``, ``|P − B|``:
+        the body must reach both moving pivots), as :func:`linkage.synthesis.longest_link`
+        measures a path candidate.
+        """
+        return _longest_link(self.linkage)
+
+
+def _longest_link(fb: FourBar) -> float:
+    along, left = fb.point
+    arms = (math.hypot(along, left), math.hypot(fb.coupler - along, left))
+    return max(fb.ground, fb.crank, fb.coupler, fb.rocker, *arms)
+
+
+# Default ``max_link`` of :func:`motion`: that of :func:`linkage.synthesis.path`
+# (``linkage.synthesis.LONG_LINK``, which imports this module, so not importable here).
+_LONG_LINK = 20.0
 
 # Pose angles beyond this magnitude (radians) are legal but most likely degrees given by mistake.
 _DEGREES_HINT = 2.0 * math.pi
@@ -361,6 +386,9 @@ def motion(
     n: int = 36,
     beta_pose: int | None = None,
     top: int | None = None,
+    lengths: tuple[float, float] | None = None,
+    pivots: tuple[tuple[float, float], tuple[float, float]] | None = None,
+    max_link: float | None = _LONG_LINK,
 ) -> list[MotionCandidate]:
     """Four-bars that carry a body through 3 or 4 poses (Burmester motion generation).
 
@@ -383,13 +411,28 @@ def motion(
         ``beta=np.radians(40), beta_pose=1``.
     top : int, optional
         Return only the first ``top`` candidates.
+    lengths : (least, greatest), optional
+        Keep only the candidates whose ground, crank, coupler and rocker lengths are all within
+        ``[least, greatest]`` and whose coupler sides to the body's reference point are at most
+        ``greatest`` (as :func:`linkage.synthesis.path` filters).
+    pivots : ((xmin, ymin), (xmax, ymax)), optional
+        Keep only the candidates with both fixed pivots inside this box.
+    max_link : float or None
+        Candidates whose :attr:`MotionCandidate.longest_link` is longer than ``max_link`` times
+        the task's size (:func:`linkage.synthesis.target_size` of the poses' points: their RMS
+        distance from their centroid) rank after the others that reach (default 20, as for
+        :func:`linkage.synthesis.path`: a pose set a few centimetres across met by links of
+        metres is no design). Not removed; ``None`` ranks by reach and transmission alone, and
+        it is ignored when ``lengths`` is given (that filters instead). A small value (2 or 3)
+        puts the compact designs first; ``longest_link`` says how long each is.
 
     Returns
     -------
     list of MotionCandidate
-        One per ordered pair of distinct dyads (first drives) that makes a four-bar: those that
-        reach every pose on one circuit in order first, then by smallest transmission angle
-        (largest first).
+        One per ordered pair of distinct dyads (first drives) that makes a four-bar and passes
+        the filters: those that reach every pose on one circuit in order first (by
+        ``max_link``, then largest smallest transmission angle), then the others, those
+        reaching more poses first. The list is empty when the filters remove every candidate.
 
     Raises
     ------
@@ -398,7 +441,8 @@ def motion(
         (every dyad's fixed pivot is that point, so no two make a four-bar), a chosen point
         whose dyad is degenerate (its centre at infinity or not unique), poses without a
         Burmester curve, fewer than two dyads (for four poses: the curves have no real point
-        at the ``beta`` given), or dyads no two of which make a four-bar.
+        at the ``beta`` given), dyads no two of which make a four-bar, or bad ``lengths``,
+        ``pivots`` or ``max_link``.
     TypeError
         Points chosen for four poses, or ``beta`` / ``beta_pose`` for three.
 
@@ -426,6 +470,12 @@ def motion(
     linkage.LinkageError: three poses leave two free choices per dyad: give circle_points= ...
     """
     p = _poses(poses, (3, 4))
+    box = _box(pivots)
+    span = None if lengths is None else _span(lengths)
+    if max_link is not None:
+        max_link = as_finite(max_link, "max_link")
+        if max_link <= 0:
+            raise LinkageError(f"max_link must be positive, got {max_link}")
     free: int | None = None
     if len(p) == 3:
         if beta is not None or beta_pose is not None:
@@ -461,35 +511,97 @@ def motion(
             f"no two of the {len(dyads)} dyads make a four-bar: {names[i]} driving {names[j]}: "
             f"{r['error'][0]}"
         )
+    count = None if top is None else as_count(top, "top")
     out = []
     for m, (i, j) in enumerate(pairs):
         if not r["ok"][m]:
             continue
         q = r["params"][m]
         fb = _placed(q)
+        if not _meets(fb, span, box):
+            continue
         code = int(r["defect"][m])
         pose = int(r["defect_pose"][m])
+        reaches = code < 0
+        # Figures over the poses reached only would make a failed candidate look perfect.
+        mismatch, tilt, mu = (
+            (float(r[k][m]) for k in ("position_error", "angle_error", "min_transmission"))
+            if reaches
+            else (math.nan,) * 3
+        )
         out.append(
             MotionCandidate(
                 linkage=fb,
                 crank=dyads[i],
                 rocker=dyads[j],
-                reaches=code < 0,
-                defect=None if code < 0 else _DEFECTS[code],
+                reaches=reaches,
+                defect=None if reaches else _DEFECTS[code],
                 defect_pose=None if pose < 0 else pose,
                 direction=int(r["direction"][m]),
                 crank_angles=np.array(r["crank_angles"][m][: len(p)]),
-                position_error=float(r["position_error"][m]),
-                angle_error=float(r["angle_error"][m]),
-                min_transmission_angle=float(r["min_transmission"][m]),
+                position_error=mismatch,
+                angle_error=tilt,
+                min_transmission_angle=mu,
                 grashof=str(r["grashof"][m]),
                 beta_pose=free,
             )
         )
-    out.sort(key=lambda c: (not c.reaches, -c.min_transmission_angle))
-    if top is not None:
-        out = out[: as_count(top, "top")]
-    return out
+    if max_link is None or span is not None:
+        limit = math.inf
+    else:
+        limit = max_link * rms_size(np.array([xy[:2] for xy in p]))
+
+    def rank(c: MotionCandidate) -> tuple[bool, bool, float]:
+        if c.reaches:
+            return (False, c.longest_link > limit, -c.min_transmission_angle)
+        # Not reaching: those that get further first (their figures are NaN).
+        return (True, False, -float(np.count_nonzero(np.isfinite(c.crank_angles))))
+
+    out.sort(key=rank)
+    return out if count is None else out[:count]
+
+
+def _span(value: Any) -> tuple[float, float]:
+    if isinstance(value, (str, bytes)) or np.ndim(value) != 1:
+        raise TypeError(f"lengths must be a pair (least, greatest), got {type(value).__name__}")
+    if len(value) != 2:
+        raise LinkageError(f"lengths must be a pair (least, greatest), got {len(value)} values")
+    least, greatest = as_finite(value[0], "lengths[0]"), as_finite(value[1], "lengths[1]")
+    if not 0 < least < greatest:
+        raise LinkageError(
+            f"lengths must be (least, greatest) with 0 < least < greatest, got {value}"
+        )
+    return least, greatest
+
+
+def _box(value: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    if value is None:
+        return None
+    if isinstance(value, (str, bytes)) or np.ndim(value) == 0 or len(value) != 2:
+        raise TypeError("pivots must be ((xmin, ymin), (xmax, ymax))")
+    (x0, y0), (x1, y1) = as_point(value[0], "pivots[0]"), as_point(value[1], "pivots[1]")
+    if not (x0 < x1 and y0 < y1):
+        raise LinkageError(f"pivots must be ((xmin, ymin), (xmax, ymax)), got {value}")
+    return (x0, y0), (x1, y1)
+
+
+def _meets(
+    fb: FourBar,
+    span: tuple[float, float] | None,
+    box: tuple[tuple[float, float], tuple[float, float]] | None,
+) -> bool:
+    """Whether ``fb`` passes the ``lengths`` and ``pivots`` filters of :func:`motion`."""
+    if span is not None:
+        least, greatest = span
+        if not all(least <= v <= greatest for v in (fb.ground, fb.crank, fb.coupler, fb.rocker)):
+            return False
+        if _longest_link(fb) > greatest:  # the coupler's sides to the reference point
+            return False
+    if box is not None:
+        (x0, y0), (x1, y1) = box
+        if not all(x0 <= x <= x1 and y0 <= y <= y1 for x, y in (fb.o, fb.c)):
+            return False
+    return True
 
 
 def chebyshev_points(x0: float, x1: float, n: int) -> NDArray[np.float64]:

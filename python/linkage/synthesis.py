@@ -48,6 +48,9 @@ from linkage._precision import (
 )
 from linkage._progress import Bar
 from linkage._schema import POINTS_MAX, SYNTHESIS_REFINE_MAX, SYNTHESIS_TOP_MAX
+from linkage._size import mean as _mean
+from linkage._size import pow2 as _pow2
+from linkage._size import rms_size
 from linkage._slider_crank import SliderCrank
 from linkage.catalog import cache_dir
 
@@ -775,30 +778,8 @@ def target_size(points: Float2D) -> float:
     >>> linkage.synthesis.target_size(np.array([[1.0, 0], [-1, 0], [0, 1], [0, -1]]))
     1.0
     """
-    centred = points - _mean(points)
     # In units of a power of two near the largest offset: no square overflows or underflows.
-    m = float(np.max(np.abs(centred))) if centred.size else 0.0
-    if not m > 0.0 or not math.isfinite(m):
-        return m if centred.size else 0.0
-    k = _pow2(m)
-    return float(np.sqrt(np.mean(np.sum((centred / k) ** 2, axis=1)))) * k
-
-
-def _pow2(m: float) -> float:
-    """Return the power of two just above the positive finite ``m`` (an exact divisor)."""
-    return math.ldexp(1.0, math.frexp(m)[1])
-
-
-def _mean(points: Float2D) -> NDArray[np.float64]:
-    """Return the centroid of ``points``, summed in units of a power of two.
-
-    No sum overflows, even near the largest floats.
-    """
-    m = float(np.max(np.abs(points))) if points.size else 0.0
-    if not m > 0.0 or not math.isfinite(m):
-        return np.asarray(points.mean(axis=0), dtype=np.float64)
-    k = _pow2(m)
-    return np.asarray((points / k).mean(axis=0) * k, dtype=np.float64)
+    return rms_size(points)
 
 
 # -- the search -----------------------------------------------------------------------------
