@@ -542,7 +542,11 @@ fn parallelogram_reaches_driven_from_either_pivot() {
                     let right = centre_point(&poses, b0).unwrap();
                     for (crank, rocker) in [(left, right), (right, left)] {
                         let cand = MotionCandidate::new(&poses, crank, rocker).unwrap();
-                        assert_eq!(cand.four_bar.grashof(), GrashofClass::ChangePoint);
+                        assert_eq!(
+                            cand.four_bar.grashof(),
+                            GrashofClass::ChangePoint,
+                            "{cand:?}"
+                        );
                         assert_eq!(
                             cand.check.defect, None,
                             "ground {ground_dir}, crank angles {thetas:?}, driven from {:?}: {:?}",
@@ -555,7 +559,7 @@ fn parallelogram_reaches_driven_from_either_pivot() {
             }
         }
     }
-    assert_eq!(checked, 4 * 2 * 3 * 2 * 2);
+    assert_eq!(checked, 4 * 2 * 3 * 2 * 2, "pose sets checked");
 }
 
 /// Poses on either side of a parallelogram's flat position (crank along the ground line, where
