@@ -35,7 +35,7 @@ from linkage.build import build_drive
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.drive import CrankSchedule
 from linkage.figures import Result, branch_text, format_number, length_unit
-from linkage.synthesis import LONG_LINK, Candidate, longest_link, rounded_to
+from linkage.synthesis import Candidate, long_link, rounded_to
 
 __all__ = ["MAX_FRAMES", "PAGE_SIZE", "PATH_POINTS", "frames", "page", "write_index"]
 
@@ -272,8 +272,8 @@ def _candidates_table(res: Result) -> str:
 
 def _ranked_after(c: Candidate[Any], size: float) -> str:
     """Return the note of a candidate ranked last for a link over ``LONG_LINK`` sizes, or ""."""
-    k = longest_link(c) / size
-    if not k > LONG_LINK:
+    k = long_link(c, size)
+    if k is None:
         return ""
     return f" <span class=nb>(link {k:.0f}× the size: ranked after)</span>"
 

@@ -41,7 +41,7 @@ from linkage.figures import (
 )
 from linkage.forces import Forces
 from linkage.geometry import StraightPart, straightness, three_point_centres
-from linkage.synthesis import LONG_LINK, Candidate, longest_link
+from linkage.synthesis import Candidate, long_link
 from linkage.walker import Simulation, Walker
 
 __all__ = [
@@ -214,8 +214,8 @@ def _long(c: Candidate[FourBar | SliderCrank], size: float) -> str:
 
     Such a link (``linkage.synthesis.LONG_LINK``, 20) makes no practical design.
     """
-    ratio = longest_link(c) / size
-    if not ratio > LONG_LINK:
+    ratio = long_link(c, size)
+    if ratio is None:
         return ""
     return f"; its longest link is {ratio:.0f}× the target's size"
 

@@ -69,6 +69,7 @@ __all__ = [
     "default_atlas",
     "function",
     "is_cached",
+    "long_link",
     "longest_link",
     "missing_atlases",
     "motion",
@@ -1970,10 +1971,35 @@ def longest_link(c: Candidate[Any]) -> float:
     return _longest(c)
 
 
+def long_link(c: Candidate[Any], size: float) -> float | None:
+    """Return ``c``'s longest link in target sizes when it passes :data:`LONG_LINK`, else None.
+
+    :func:`path` ranks such candidates after the rest (its ``max_link``); the CLI table, the
+    report's figure and its page say so with this ratio.
+
+    Examples
+    --------
+    >>> import numpy as np, linkage
+    >>> from linkage.synthesis import Candidate, long_link
+    >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+    >>> c = Candidate(fb, 0.0, 0.0, 0.0, (0.0, 6.3), True, "crank-rocker", 0.4, False,
+    ...               "by hand", np.zeros(9))
+    >>> long_link(c, 2.0), long_link(c, 5.0)   # the arm A-P is 50
+    (25.0, None)
+    """
+    ratio = _longest(c) / size
+    return ratio if ratio > LONG_LINK else None
+
+
+def _arms(fb: FourBar | SliderCrank) -> tuple[float, float]:
+    """Return the coupler triangle's sides to the point: from A and from B (the slider's pin)."""
+    along, left = fb.point
+    return math.hypot(along, left), math.hypot(fb.coupler - along, left)
+
+
 def _longest(c: Candidate[Any]) -> float:
     fb: FourBar | SliderCrank = c.linkage
-    along, left = fb.point
-    arms = (math.hypot(along, left), math.hypot(fb.coupler - along, left))
+    arms = _arms(fb)
     if isinstance(fb, SliderCrank):
         # The line's distance from the crank pivot counts as a link: the frame must reach it.
         return max(abs(fb.offset), fb.crank, fb.coupler, *arms)
@@ -2434,8 +2460,7 @@ def _meets(
             return False
         # The coupler triangle's sides to the point are links too (a foot bar): at most the
         # greatest length (a point may lie at a joint, so no least).
-        along, left = fb.point
-        if max(math.hypot(along, left), math.hypot(fb.coupler - along, left)) > lengths[1]:
+        if max(_arms(fb)) > lengths[1]:
             return False
     if pivots is not None:
         (x0, y0), (x1, y1) = pivots
@@ -2567,11 +2592,11 @@ def command(args: argparse.Namespace) -> int:
         rows.append(tuple(row))
     # A candidate ranked after the rest for a link longer than LONG_LINK sizes (max_link) says
     # so: a fit far better than those above it had read as a sorting mistake.
-    ratios = [longest_link(c) / size for c in found]
-    if getattr(args, "lengths", None) is None and any(r > LONG_LINK for r in ratios):
+    ratios = [long_link(c, size) for c in found]
+    if getattr(args, "lengths", None) is None and any(r is not None for r in ratios):
         head = (*head, "note")
         rows = [(*rows[0], "note")] + [
-            (*r, f"link {k:.0f}× size: ranked after" if k > LONG_LINK else "")
+            (*r, "" if k is None else f"link {k:.0f}× size: ranked after")
             for r, k in zip(rows[1:], ratios)
         ]
     widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
