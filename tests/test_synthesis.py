@@ -399,6 +399,34 @@ def test_constraints_are_met(atlas: Atlas) -> None:
         assert_one_circuit(c)
 
 
+@pytest.mark.parametrize("scale", [1.0, 1e6])
+def test_an_empty_result_says_which_constraint_removed_the_fits(atlas: Atlas, scale: float) -> None:
+    # Hoecken's curve, whose pivots are asked to lie in a box far from it. At 1e6 the search
+    # runs on the target moved to unit size and the removed fit is moved back too.
+    fb = linkage.catalog.get("hoecken")
+    assert isinstance(fb, linkage.FourBar)
+    target = scale * fb.circuit(121).point[:-1][::2]
+    box = ((1000 * scale, 1000 * scale), (1001 * scale, 1001 * scale))
+    asked = dict(atlas=atlas, top=3, global_search=False)
+    free = synthesis.path(target, **asked)
+    found = synthesis.path(target, pivots=box, **asked)
+    assert isinstance(found, synthesis.Candidates) and found == []
+    assert list(found.removed) == ["pivots"] and found.removed["pivots"] >= len(free)
+    gone = found.closest_removed
+    assert gone is not None and found.closest_fails == ("pivots",)
+    # It is a fit in the target's frame (the constraints steered it, so it need not be exact):
+    # its error is its curve's distance from the target, and its pivots lie outside the box.
+    curve = gone.linkage.circuit(20001).point
+    assert synthesis.largest_distance(target, curve) == pytest.approx(gone.error, rel=1e-3)
+    assert gone.error < size_of(target)
+    assert not (box[0][0] <= gone.linkage.o[0] <= box[1][0])
+    why, blamed = synthesis.why_none(found, synthesis.CLI_CONSTRAINTS)
+    assert blamed == "pivots" and f"fits failing --pivots: {found.removed['pivots']})" in why
+    assert f"the closest, error {gone.error:.3g}, fails --pivots: loosen it" in why
+    # With no constraint, nothing is removed.
+    assert free and free.removed == {} and free.closest_removed is None
+
+
 def test_a_looser_constraint_finds_what_a_tighter_one_does(atlas: Atlas) -> None:
     # On the foot path, min_transmission=30° alone found nothing while adding full_turn=True
     # found a candidate (0.245 mm, μ 67°) that meets the looser constraint too (default atlas):
@@ -511,7 +539,8 @@ def test_cli_synth(tmp_path, capsys, monkeypatch, atlas: Atlas) -> None:  # type
     assert cli.main(["synth", str(f), "--quiet", "--atlas", str(folder), *far]) == 2
     out, err = capsys.readouterr()
     assert out == "" and len(err.splitlines()) == 1, err
-    assert err.startswith("linkage: error: no valid four-bar found for") and "(--pivots)" in err
+    assert err.startswith("linkage: error: no valid four-bar found for"), err
+    assert "(fits failing --pivots: " in err and ", fails --pivots: loosen it, or refine" in err
     for bad, match in (
         (["--min-transmission-deg", "120"], "between 0 and 90, got 120"),
         (["--lengths", "5", "2"], "0 < least < greatest"),

@@ -268,11 +268,21 @@ def test_a_search_that_finds_nothing_is_one_located_line_and_writes_nothing(
     assert main(["run", str(path), "--out", str(out)]) == 2
     captured = capsys.readouterr()
     assert captured.out == ""
-    assert captured.err.splitlines() == [
-        f"linkage: error: {path}:7: [synthesis] full_turn: no four-bar found that meets the "
-        "constraints (full_turn, min_transmission_deg): loosen them, or give more candidates "
-        "room (top)"
-    ]
+    # One line, at the key of the first constraint the closest fit fails, naming the count each
+    # constraint removed and that fit's error.
+    (line,) = captured.err.splitlines()
+    found = re.fullmatch(
+        rf"linkage: error: {re.escape(str(path))}:(\d+): \[synthesis\] (\w+): no valid four-bar "
+        r"found: every valid fit fails a constraint \(fits failing (.+)\); the closest, error "
+        r"(\S+) mm, fails (.+): loosen (it|them), or refine more atlas matches \(refine\)",
+        line,
+    )
+    assert found is not None, line
+    at, key, counts, error, fails = found.group(1, 2, 3, 4, 5)
+    assert {"full_turn": "7", "min_transmission_deg": "8"}[key] == at
+    assert fails.replace(" and ", ", ").split(", ")[0] == key
+    assert re.fullmatch(r"(full_turn: \d+, )?min_transmission_deg: \d+", counts), counts
+    assert 0 <= float(error) < 1.0  # mm, on a 60 mm foot path
     assert not out.exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["foot.csv", "free.toml"]
 
@@ -412,7 +422,7 @@ def test_a_scene_sets_how_many_matches_are_refined(tmp_path: Path, monkeypatch) 
 
     def spy(points, **kw):  # type: ignore[no-untyped-def]
         seen.update(kw)
-        return []
+        return synthesis.Candidates()
 
     monkeypatch.setattr(synthesis, "path", spy)
     path = tmp_path / "deep.toml"

@@ -23,7 +23,6 @@ from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._schema import Scene
-from linkage._slider_crank import SliderCrank
 from linkage._sweep import Sweep
 from linkage.build import (
     ARITHMETIC,
@@ -230,7 +229,7 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
     kind = str(s.get("kind", "fourbar"))
     sought = {"fourbar": "four-bar", "slider-crank": "slider-crank"}.get(kind, "linkage")
 
-    def search() -> list[synthesis.Candidate[FourBar | SliderCrank]]:
+    def search() -> synthesis.Candidates:
         return synthesis.path(
             target,
             closed=closed,
@@ -265,20 +264,10 @@ def _synthesis(scene: Scene, n: int, stage: Callable[[str, Callable[[], Any]], A
     except LinkageError as exc:
         raise scene.error(("synthesis",), "points", f"the search failed: {exc}") from None
     if not found:
-        given = [k for k in CONSTRAINTS if s.get(k)]
-        if given:
-            raise scene.error(
-                ("synthesis",),
-                given[0],
-                f"no {sought} found that meets the constraints ({', '.join(given)}): "
-                "loosen them, or give more candidates room (top)",
-            )
-        raise scene.error(
-            ("synthesis",),
-            "points",
-            f"no valid {sought} found for these points (every linkage tried failed to "
-            "assemble over its circuit or switched branch)",
-        )
+        names = dict(zip(synthesis.CONSTRAINT_NAMES, CONSTRAINTS), refine="refine")
+        why, blamed = synthesis.why_none(found, names, scene.units)
+        key = "points" if blamed is None else names[blamed]
+        raise scene.error(("synthesis",), key, f"no valid {sought} found: {why}")
     circuits = [c.linkage.circuit(n) for c in found]
     curves = [np.asarray(c.point, dtype=np.float64) for c in circuits]
     size = synthesis.target_size(target)

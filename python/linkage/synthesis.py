@@ -55,10 +55,12 @@ from linkage._slider_crank import SliderCrank
 from linkage.catalog import cache_dir
 
 __all__ = [
+    "CONSTRAINT_NAMES",
     "KINDS",
     "MIN_POINTS",
     "Atlas",
     "Candidate",
+    "Candidates",
     "Dyad",
     "FunctionGenerator",
     "MotionCandidate",
@@ -75,6 +77,7 @@ __all__ = [
     "motion",
     "path",
     "read_points",
+    "why_none",
 ]
 
 MIN_POINTS = 5
@@ -568,6 +571,37 @@ class Candidate(Generic[LinkageT]):
     def min_transmission_deg(self) -> float:
         """:attr:`min_transmission` in degrees."""
         return math.degrees(self.min_transmission)
+
+
+CONSTRAINT_NAMES = ("full_turn", "min_transmission", "lengths", "pivots")
+""":func:`path`'s constraints, in the order :attr:`Candidates.removed` names them."""
+
+
+class Candidates(list[Candidate[Any]]):
+    """:func:`path`'s candidates, best first (a list), and what its constraints removed.
+
+    ``removed`` maps each constraint of :data:`CONSTRAINT_NAMES` that removed a valid fit (one
+    that assembles over its circuit on one branch) to the number of fits it removed (a fit
+    failing two counts for each); ``closest_removed`` is the removed fit of least error, or
+    None, and ``closest_fails`` the constraints it fails. When the list is empty, they say
+    which constraint to loosen (:func:`why_none`).
+    """
+
+    removed: dict[str, int]
+    closest_removed: Candidate[Any] | None
+    closest_fails: tuple[str, ...]
+
+    def __init__(
+        self,
+        found: Iterable[Candidate[Any]] = (),
+        removed: dict[str, int] | None = None,
+        closest_removed: Candidate[Any] | None = None,
+        closest_fails: Sequence[str] = (),
+    ) -> None:
+        super().__init__(found)
+        self.removed = {} if removed is None else removed
+        self.closest_removed = closest_removed
+        self.closest_fails = tuple(closest_fails)
 
 
 # -- input ----------------------------------------------------------------------------------
@@ -1173,7 +1207,7 @@ def path(
     threads: int | None = None,
     progress: bool = False,
     accept: float | None = None,
-) -> list[Candidate[Any]]:
+) -> Candidates:
     """Four-bars (or slider-cranks) whose coupler curve passes through ``points``, best first.
 
     Parameters
@@ -1226,10 +1260,12 @@ def path(
 
     Returns
     -------
-    list of Candidate
-        At most ``top``, ranked by ``error`` then ``rms`` (after ``max_link``), except that
-        errors within the refinement's own accuracy tie: every fit to within :data:`EXACT`
-        (1e-6) of the target's size counts as exact (the long fits of short arcs end some fits
+    Candidates
+        A list of :class:`Candidate`; when the constraints removed fits, its ``removed`` counts
+        them by constraint and ``closest_removed`` is the best of them (:func:`why_none` words
+        why a list is empty). At most ``top``, ranked by ``error`` then ``rms`` (after
+        ``max_link``), except that errors within the refinement's own accuracy tie: every fit
+        to within :data:`EXACT` (1e-6) of the target's size counts as exact (the long fits of short arcs end some fits
         of the exact curve at 2e-7 … 8e-7 of the size, where well-conditioned fits reach 1e-13), and
         among exact fits a crank that turns fully comes first, then the transmission angle
         farthest from a toggle over the matched part (so a buildable linkage is not put after a
@@ -1349,7 +1385,13 @@ def path(
             ),
             accept=None if accept is None else accept / unit,
         )
-        return [_moved(cand, origin, unit) for cand in at_unit]
+        gone = at_unit.closest_removed
+        return Candidates(
+            [_moved(cand, origin, unit) for cand in at_unit],
+            at_unit.removed,
+            None if gone is None else _moved(gone, origin, unit),
+            at_unit.closest_fails,
+        )
     nthreads = _threads(threads)
     if len(target) > FIT_POINTS:
         # Many points: search through FIT_POINTS of them spread along the target (a fit's cost
@@ -1364,14 +1406,18 @@ def path(
             pivots=pivots,
             accept=accept,
         )
-        every = []
-        for c in some:
-            crossed = _crossed(c)
-            m = _measure(c.params, crossed, target, closed, c.source, nthreads, _KIND[c.kind])
-            if m is not None and _meets(m, full_turn, min_transmission, lengths, pivots):
-                every.append(m)
+
+        def on_every_point(c: Candidate[Any]) -> Candidate[Any] | None:
+            kind = _KIND[c.kind]
+            return _measure(c.params, _crossed(c), target, closed, c.source, nthreads, kind)
+
+        measured = [m for m in map(on_every_point, some) if m is not None]
+        gone = some.closest_removed
+        thin = Candidates((), some.removed, None if gone is None else on_every_point(gone))
+        every, result = _kept(measured, full_turn, min_transmission, lengths, pivots, thin)
         limit = math.inf if lengths is not None or max_link is None else max_link * size
-        return _distinct(_ranked(every, size, limit), target, closed, size, top)
+        result.extend(_distinct(_ranked(every, size, limit), target, closed, size, top))
+        return result
     centre = target.mean(axis=0)
     fits = refine if closed else 3 * refine
     bar = _bar(progress, fits * len(kinds))
@@ -1380,7 +1426,7 @@ def path(
     found: list[Candidate[Any]] = []
 
     def admissible(c: Candidate[Any]) -> bool:
-        return _meets(c, full_turn, min_transmission, lengths, pivots)
+        return not _failed(c, full_turn, min_transmission, lengths, pivots)
 
     def best(cs: list[Candidate[Any]]) -> float:
         """Return the least error of the admissible candidates (∞ if none is)."""
@@ -1529,8 +1575,9 @@ def path(
     if bar is not None:
         bar.close()
     found += _cognate_candidates(found, target, closed, size, nthreads, top)
-    ok = [c for c in found if _meets(c, full_turn, min_transmission, lengths, pivots)]
-    return _distinct(_ranked(ok, size, limit), target, closed, size, top)
+    ok, result = _kept(found, full_turn, min_transmission, lengths, pivots)
+    result.extend(_distinct(_ranked(ok, size, limit), target, closed, size, top))
+    return result
 
 
 COGNATES_OF = 8
@@ -2184,7 +2231,7 @@ def _bounds(
                 f"lengths must be (least, greatest) with 0 < least < greatest, got {lengths}"
             )
         lo[at], hi[at] = a, b
-        # The coupler point within the greatest length of both its joints (see _meets).
+        # The coupler point within the greatest length of both its joints (see _failed).
         point = [kind.params - 2, kind.params - 1]
         lo[point], hi[point] = -b, b
     if pivots is not None:
@@ -2439,35 +2486,106 @@ def _measure(
     )
 
 
-def _meets(
+def _failed(
     c: Candidate[Any],
     full_turn: bool,
     min_transmission: float,
     lengths: tuple[float, float] | None,
     pivots: tuple[tuple[float, float], tuple[float, float]] | None,
-) -> bool:
+) -> list[str]:
+    """Return the names (:data:`CONSTRAINT_NAMES`) of the constraints ``c`` fails."""
+    failed = []
     if full_turn and not c.full_turn:
-        return False
+        failed.append("full_turn")
     if c.min_transmission < min_transmission:
-        return False
+        failed.append("min_transmission")
     fb = c.linkage
     if lengths is not None:
         if isinstance(fb, SliderCrank):
             links: tuple[float, ...] = (fb.crank, fb.coupler)
         else:
             links = (fb.ground, fb.crank, fb.coupler, fb.rocker)
-        if any(not (lengths[0] <= v <= lengths[1]) for v in links):
-            return False
         # The coupler triangle's sides to the point are links too (a foot bar): at most the
         # greatest length (a point may lie at a joint, so no least).
-        if max(_arms(fb)) > lengths[1]:
-            return False
+        if any(not (lengths[0] <= v <= lengths[1]) for v in links) or max(_arms(fb)) > lengths[1]:
+            failed.append("lengths")
     if pivots is not None:
         (x0, y0), (x1, y1) = pivots
-        for px, py in (fb.o,) if isinstance(fb, SliderCrank) else (fb.o, fb.c):
-            if not (x0 <= px <= x1 and y0 <= py <= y1):
-                return False
-    return True
+        ps = (fb.o,) if isinstance(fb, SliderCrank) else (fb.o, fb.c)
+        if any(not (x0 <= px <= x1 and y0 <= py <= y1) for px, py in ps):
+            failed.append("pivots")
+    return failed
+
+
+def _kept(
+    found: Sequence[Candidate[Any]],
+    full_turn: bool,
+    min_transmission: float,
+    lengths: tuple[float, float] | None,
+    pivots: tuple[tuple[float, float], tuple[float, float]] | None,
+    removed: Candidates | None = None,
+) -> tuple[list[Candidate[Any]], Candidates]:
+    """Split ``found`` by the constraints.
+
+    Return the candidates that meet them, and an empty :class:`Candidates` that says what the
+    constraints removed; ``removed`` (an earlier search's result) adds its own.
+    """
+    ok: list[Candidate[Any]] = []
+    counts: dict[str, int] = dict(removed.removed) if removed is not None else {}
+    out = [removed.closest_removed] if removed is not None and removed.closest_removed else []
+    for c in found:
+        failed = _failed(c, full_turn, min_transmission, lengths, pivots)
+        if not failed:
+            ok.append(c)
+            continue
+        out.append(c)
+        for name in failed:
+            counts[name] = counts.get(name, 0) + 1
+    closest = min(out, key=lambda c: c.error, default=None)
+    fails = (
+        () if closest is None else _failed(closest, full_turn, min_transmission, lengths, pivots)
+    )
+    counts = {k: counts[k] for k in CONSTRAINT_NAMES if k in counts}
+    return ok, Candidates((), counts, closest, fails)
+
+
+CLI_CONSTRAINTS = {
+    "full_turn": "--full-turn",
+    "min_transmission": "--min-transmission-deg",
+    "lengths": "--lengths",
+    "pivots": "--pivots",
+    "refine": "--refine",
+}
+"""``linkage synth``'s options for :func:`path`'s constraints (and ``refine``)."""
+
+
+def why_none(found: Candidates, names: dict[str, str], unit: str = "") -> tuple[str, str | None]:
+    """Say why :func:`path` returned no candidate, naming the constraints by ``names``.
+
+    Return the sentence and the constraint to blame (of :data:`CONSTRAINT_NAMES`: the first
+    the closest removed fit fails), or None when no fit was valid at all. ``names`` maps
+    :data:`CONSTRAINT_NAMES` and ``"refine"`` to what the caller calls them.
+
+    Examples
+    --------
+    >>> from linkage.synthesis import Candidates, why_none
+    >>> why_none(Candidates(), {})
+    ('every linkage tried failed to assemble over its circuit or switched branch', None)
+    """
+    gone = found.closest_removed
+    if gone is None:
+        return "every linkage tried failed to assemble over its circuit or switched branch", None
+    fails = found.closest_fails
+    counts = ", ".join(f"{names[k]}: {n}" for k, n in found.removed.items())
+    failed = [names[k] for k in fails]
+    which = failed[0] if len(failed) == 1 else ", ".join(failed[:-1]) + " and " + failed[-1]
+    u = f" {unit}" if unit else ""
+    return (
+        f"every valid fit fails a constraint (fits failing {counts}); the closest, error "
+        f"{gone.error:.3g}{u}, fails {which}: loosen {'it' if len(fails) == 1 else 'them'}, "
+        f"or refine more atlas matches ({names.get('refine', 'refine')})",
+        fails[0],
+    )
 
 
 def command(args: argparse.Namespace) -> int:
@@ -2507,22 +2625,7 @@ def command(args: argparse.Namespace) -> int:
     what = {"fourbar": "four-bar", "slider-crank": "slider-crank", "any": "linkage"}[kind]
     if not found:
         # One line and status 2, as `linkage run` says it of a scene.
-        given = [
-            opt
-            for opt, on in (
-                ("--full-turn", args.full_turn),
-                ("--min-transmission-deg", mu > 0),
-                ("--lengths", getattr(args, "lengths", None) is not None),
-                ("--pivots", getattr(args, "pivots", None) is not None),
-            )
-            if on
-        ]
-        why = (
-            f"none meets the constraints ({', '.join(given)}): loosen them, or give more "
-            "candidates room (--top)"
-            if given
-            else "every linkage tried failed to assemble over its circuit or switched branch"
-        )
+        why, _ = why_none(found, CLI_CONSTRAINTS, args.units or "")
         raise LinkageError(f"no valid {what} found for {args.curve} in {took:.1f} s: {why}")
     print(
         f"{len(found)} {what}(s) for {args.curve}, best first ({took:.1f} s; errors are the "
