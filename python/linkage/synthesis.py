@@ -1261,22 +1261,23 @@ def path(
     Returns
     -------
     Candidates
-        A list of :class:`Candidate`; when the constraints removed fits, its ``removed`` counts
-        them by constraint and ``closest_removed`` is the best of them (:func:`why_none` words
-        why a list is empty). At most ``top``, ranked by ``error`` then ``rms`` (after
-        ``max_link``), except that errors within the refinement's own accuracy tie: every fit
-        to within :data:`EXACT` (1e-6) of the target's size counts as exact (the long fits of short arcs end some fits
-        of the exact curve at 2e-7 … 8e-7 of the size, where well-conditioned fits reach 1e-13), and
-        among exact fits a crank that turns fully comes first, then the transmission angle
-        farthest from a toggle over the matched part (so a buildable linkage is not put after a
-        rocker that passes within 0.1° of a toggle by a difference of error nobody can see),
-        then the error. The candidates draw
-        different curves: two candidates whose matched parts lie within
-        ``max(1e-6·size, error/20)`` of each other both ways are one design and only the better
-        is kept, so mirror images of a symmetric curve, the same linkage driven from its other
-        pivot, and fits that differ only by a link drifting to a toggle appear once. Roberts
-        cognates are the exception: they draw the same curve with different links and pivots
-        (another choice of where to put the frame), so each cognate found is kept.
+        A list of :class:`Candidate`; when the constraints removed fits, its ``removed``
+        counts them by constraint and ``closest_removed`` is the best of them
+        (:func:`why_none` words why a list is empty). At most ``top``, ranked by ``error``
+        then ``rms`` (after ``max_link``), except that errors within the refinement's own
+        accuracy tie: every fit to within :data:`EXACT` (1e-6) of the target's size counts
+        as exact (the long fits of short arcs end some fits of the exact curve at 2e-7 …
+        8e-7 of the size, where well-conditioned fits reach 1e-13), and among exact fits a
+        crank that turns fully comes first, then the transmission angle farthest from a
+        toggle over the matched part (so a buildable linkage is not put after a rocker that
+        passes within 0.1° of a toggle by a difference of error nobody can see), then the
+        error. The candidates draw different curves: two candidates whose matched parts lie
+        within ``max(1e-6·size, error/20)`` of each other both ways are one design and only
+        the better is kept, so mirror images of a symmetric curve, the same linkage driven
+        from its other pivot, and fits that differ only by a link drifting to a toggle
+        appear once. Roberts cognates are the exception: they draw the same curve with
+        different links and pivots (another choice of where to put the frame), so each
+        cognate found is kept.
 
     Raises
     ------
