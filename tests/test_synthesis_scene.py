@@ -188,6 +188,12 @@ def test_every_exported_candidate_passes_check_and_draws_its_curve(report: Path,
         # One crank turn draws the candidate's coupler curve, in the target's frame.
         assert largest_distance(trace, curves[k - 1]) < 1e-6
         assert largest_distance(target, trace) == pytest.approx(c["error"], abs=1e-3)
+        # The scene carries the target as its reference points; the run measures their
+        # distance from the trace on its own, to the candidate's error.
+        np.testing.assert_allclose(res.arrays["reference"], target, rtol=0, atol=1e-9)
+        row = next(r for r in res.figures if r[0] == "reference points to the trace")
+        assert row.value == pytest.approx(c["error"], rel=1e-3, abs=1e-9)
+        assert row.error is not None and row.error < 1e-6
     # The best one is the linkage the foot path came from.
     assert largest_distance(
         target, runner.run(scene.load(report / "candidate-1.toml")).sweep.point
@@ -433,3 +439,32 @@ def test_a_scene_sets_how_many_matches_are_refined(tmp_path: Path, monkeypatch) 
     with pytest.raises(linkage.LinkageError, match="no valid four-bar found"):
         runner.run(scene.load(path))
     assert seen["refine"] == 32
+
+
+def test_a_mechanism_scene_measures_its_reference_points(tmp_path: Path) -> None:
+    # Points on Hoecken's coupler curve between the run's samples, one moved 0.25 mm along the
+    # curve's normal: the figure is that 0.25 mm, with its error estimate, from a CSV file
+    # relative to the scene's folder.
+    fb = linkage.catalog.hoecken()
+    on = fb.sweep(np.array([0.011, 0.9, 2.5, 4.2, 5.77]), omega=1.0, outputs=("point", "velocity"))
+    t = on.velocity[2] / np.linalg.norm(on.velocity[2])
+    points = on.point.copy()
+    points[2] += 0.25 * np.array([-t[1], t[0]])
+    (tmp_path / "ref").mkdir()
+    np.savetxt(tmp_path / "ref" / "foot.csv", points, delimiter=",", header="x,y", comments="")
+    path = tmp_path / "leg.toml"
+    path.write_text(
+        'name = "leg"\nunits = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+        'reference = "ref/foot.csv"\n[drive]\nkind = "constant"\nrpm = 60\nsamples = 181\n'
+    )
+    res = runner.run(scene.load(path))
+    row = next(r for r in res.figures if r[0] == "reference points to the trace")
+    assert row.value == pytest.approx(0.25, abs=1e-9)
+    assert row.error is not None and row.error < 1e-9
+    assert row[2] == "mm" and "largest distance of the 5 points" in row[3]
+    # Without the moved point, the points lie on the path: the chords of the run's 181 samples
+    # (2° apart) had put them up to ~1e-3 mm off it.
+    np.savetxt(tmp_path / "ref" / "foot.csv", on.point, delimiter=",", header="x,y", comments="")
+    res = runner.run(scene.load(path))
+    row = next(r for r in res.figures if r[0] == "reference points to the trace")
+    assert 0 <= row.value < 1e-8 and largest_distance(on.point, res.sweep.point) > 1e-5

@@ -241,6 +241,7 @@ MECHANISM = {
     "assembly": "str",
     "trace": "str",
     "joints": "tables",
+    "reference": "points",
 }
 FORMS = {
     "catalog": ("catalog", "scale"),
@@ -553,8 +554,10 @@ def _mechanism(m: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
             "or [[mechanism.joints]]",
         )
     form = forms[0]
+    if "reference" in m:
+        _points(m["reference"], scene, sec, "reference")
     for k in m:
-        if k not in FORMS[form]:
+        if k not in FORMS[form] and k != "reference":
             what = {"catalog": "a catalogue linkage", "ground": "a four-bar", "joints": "joints"}
             owner = next(f for f, keys in FORMS.items() if k in keys)
             raise scene.error(
@@ -899,6 +902,30 @@ def _synthesis_scene(data: Mapping[str, Any], scene: Scene) -> Scene:
     return scene
 
 
+def _points(points: Any, scene: Scene, sec: tuple[str, ...], key: str) -> None:
+    """Check a points value: a CSV file's name, or at most POINTS_MAX pairs [x, y]."""
+    if isinstance(points, str):
+        if not points.strip() or len(points) > 4096 or not points.isprintable():
+            raise scene.error(sec, key, f"must name a CSV file of x, y, got {_show(points)}")
+        return
+    if len(points) > POINTS_MAX:
+        raise scene.error(sec, key, f"at most {POINTS_MAX} points, got {len(points)}")
+    for k, p in enumerate(points):
+        ok = (
+            isinstance(p, list)
+            and len(p) == 2
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in p)
+        )
+        if not ok:
+            raise scene.error(
+                sec, key, f"point {k + 1} must be a pair of numbers [x, y], got {_show(p)}"
+            )
+        if not all(math.isfinite(v) for v in p):
+            raise scene.error(sec, key, f"point {k + 1} must be finite, got [{p[0]!r}, {p[1]!r}]")
+        for v in p:
+            _number(v, "coord", scene, sec, key)
+
+
 def _synthesis(s: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
     sec = ("synthesis",)
     _keys(s, SYNTHESIS, scene, sec)
@@ -908,29 +935,7 @@ def _synthesis(s: Mapping[str, Any], scene: Scene) -> dict[str, Any]:
             "points",
             "missing: a CSV file of x, y (relative to the scene's folder) or [[x, y], ...]",
         )
-    points = s["points"]
-    if isinstance(points, str):
-        if not points.strip() or len(points) > 4096 or not points.isprintable():
-            raise scene.error(sec, "points", f"must name a CSV file of x, y, got {_show(points)}")
-    else:
-        if len(points) > POINTS_MAX:
-            raise scene.error(sec, "points", f"at most {POINTS_MAX} points, got {len(points)}")
-        for k, p in enumerate(points):
-            ok = (
-                isinstance(p, list)
-                and len(p) == 2
-                and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in p)
-            )
-            if not ok:
-                raise scene.error(
-                    sec, "points", f"point {k + 1} must be a pair of numbers [x, y], got {_show(p)}"
-                )
-            if not all(math.isfinite(v) for v in p):
-                raise scene.error(
-                    sec, "points", f"point {k + 1} must be finite, got [{p[0]!r}, {p[1]!r}]"
-                )
-            for v in p:
-                _number(v, "coord", scene, sec, "points")
+    _points(s["points"], scene, sec, "points")
     if s.get("kind", "fourbar") not in PATH_KINDS:
         kinds = ", ".join(repr(k) for k in PATH_KINDS)
         raise scene.error(

@@ -70,6 +70,8 @@ __all__ = [
     "check_synthesis_memory",
     "estimate_memory",
     "no_assembly",
+    "read_scene_points",
+    "reference_points",
     "run_duration",
     "sample_count",
     "synthesis_atlas",
@@ -516,6 +518,7 @@ def validate(scene: Scene, samples: int | None = None) -> None:
         synthesis_atlas(scene)
         return
     study, leg = build_study(scene)
+    reference_points(scene)
     n = sample_count(scene, samples)
     check_memory_estimate(scene, study, n, given=samples is not None)
     drive, period = build_drive(scene, leg)
@@ -943,42 +946,7 @@ def synthesis_target(scene: Scene) -> Array:
     """
     s = scene.synthesis or {}
     sec = ("synthesis",)
-    raw = s["points"]
-    if isinstance(raw, str):
-        where = base_folder(scene) / raw
-        try:
-            info = where.stat()
-        except OSError as exc:
-            raise scene.error(
-                sec,
-                "points",
-                f"cannot read {raw!r} (relative to the scene's folder): {exc.strerror or exc}",
-            ) from None
-        if where.is_dir():
-            raise scene.error(sec, "points", f"{raw!r} is a folder, not a CSV file of x, y")
-        if not where.is_file():  # a device or a pipe: it may never end
-            raise scene.error(
-                sec, "points", f"{raw!r} is not a regular file, not a CSV file of x, y"
-            )
-        if info.st_size > POINTS_FILE_MAX:
-            raise scene.error(
-                sec,
-                "points",
-                f"{raw!r} is larger than {POINTS_FILE_MAX >> 20} MiB: not a file of points",
-            )
-        try:
-            points = synthesis.read_points(where)
-        except LinkageError as exc:
-            raise scene.error(sec, "points", str(exc).replace(str(where), raw)) from None
-        except (ValueError, TypeError):  # rows of different lengths
-            raise scene.error(
-                sec, "points", f"{raw}: every row must hold two numbers (x, y)"
-            ) from None
-        name = raw
-    else:
-        with _blame(scene, sec, "points"):
-            points = synthesis.read_points(np.array(raw, dtype=np.float64).reshape(-1, 2))
-        name = "the points"
+    points, name = read_scene_points(scene, sec, "points", s["points"])
     closed = bool(s.get("closed", True))
     if len(points) > POINTS_MAX:
         raise scene.error(sec, "points", f"{name}: at most {POINTS_MAX} points, got {len(points)}")
@@ -988,6 +956,76 @@ def synthesis_target(scene: Scene) -> Array:
     except LinkageError as exc:
         raise scene.error(sec, "points", f"{name}: {exc}") from None
     return points
+
+
+def reference_points(scene: Scene) -> Array | None:
+    """Read a ``[mechanism]`` scene's ``reference`` points, ``(n, 2)``, or None without them.
+
+    They are the path the trace should pass through (a synthesis candidate's scene carries its
+    target so): from a CSV file relative to the scene's folder, or inline.
+
+    Raises
+    ------
+    SceneError
+        Located at ``[mechanism] reference``.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.build import reference_points
+    >>> m = {"catalog": "hoecken", "reference": [[0, 0], [1, 0.5]]}
+    >>> reference_points(Scene("leg", None, ("trajectory",), mechanism=m)).tolist()
+    [[0.0, 0.0], [1.0, 0.5]]
+    """
+    m = scene.mechanism or {}
+    if "reference" not in m:
+        return None
+    sec = ("mechanism",)
+    points, name = read_scene_points(scene, sec, "reference", m["reference"])
+    if len(points) > POINTS_MAX:
+        raise scene.error(
+            sec, "reference", f"{name}: at most {POINTS_MAX} points, got {len(points)}"
+        )
+    if not len(points):
+        raise scene.error(sec, "reference", f"{name}: no points")
+    return points
+
+
+def read_scene_points(scene: Scene, sec: tuple[str, ...], key: str, raw: Any) -> tuple[Array, str]:
+    """Read a scene's points: a CSV file of x, y relative to its folder, or ``[[x, y], …]``.
+
+    Return them and how a message names them (the file as the scene gives it).
+    """
+    if isinstance(raw, str):
+        where = base_folder(scene) / raw
+        try:
+            info = where.stat()
+        except OSError as exc:
+            raise scene.error(
+                sec,
+                key,
+                f"cannot read {raw!r} (relative to the scene's folder): {exc.strerror or exc}",
+            ) from None
+        if where.is_dir():
+            raise scene.error(sec, key, f"{raw!r} is a folder, not a CSV file of x, y")
+        if not where.is_file():  # a device or a pipe: it may never end
+            raise scene.error(sec, key, f"{raw!r} is not a regular file, not a CSV file of x, y")
+        if info.st_size > POINTS_FILE_MAX:
+            raise scene.error(
+                sec,
+                key,
+                f"{raw!r} is larger than {POINTS_FILE_MAX >> 20} MiB: not a file of points",
+            )
+        try:
+            points = synthesis.read_points(where)
+        except LinkageError as exc:
+            raise scene.error(sec, key, str(exc).replace(str(where), raw)) from None
+        except (ValueError, TypeError):  # rows of different lengths
+            raise scene.error(sec, key, f"{raw}: every row must hold two numbers (x, y)") from None
+        return points, raw
+    with _blame(scene, sec, key):
+        points = synthesis.read_points(np.array(raw, dtype=np.float64).reshape(-1, 2))
+    return points, "the points"
 
 
 def synthesis_atlas(scene: Scene) -> synthesis.Atlas | None:

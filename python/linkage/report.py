@@ -57,6 +57,7 @@ __all__ = [
     "MARKER",
     "PALETTE",
     "SYNTHESIS_SHOWN",
+    "TARGET_MARKERS",
     "default_folder",
     "leg_legend",
     "line_style",
@@ -609,6 +610,12 @@ def _with_data(res: Result, folder: Path, files: list[Path]) -> list[Path]:
     return files
 
 
+TARGET_MARKERS: dict[str, Any] = dict(
+    ls="none", marker="o", ms=5, mfc="white", mec="k", mew=1.2, zorder=7
+)
+"""How a synthesis target and a scene's reference points are drawn: white dots ringed black."""
+
+
 def _trajectory(res: Result, d: Drawing) -> Any:
     """Plot the trace path with the mechanism drawn at its first assembled pose.
 
@@ -632,7 +639,29 @@ def _trajectory(res: Result, d: Drawing) -> Any:
             label="straight part",
             zorder=1.5,
         )
+    reference = res.arrays.get("reference")
+    if reference is not None:
+        gap = next((r for r in res.figures if r[0] == "reference points to the trace"), None)
+        value = getattr(gap, "value", None)
+        within = ""
+        if gap is not None and isinstance(value, float):
+            within = f", within {format_number(value, digits=3)} {gap[2]}".rstrip()
+        # As synthesis.png draws a target.
+        ax.plot(
+            reference[:, 0],
+            reference[:, 1],
+            **TARGET_MARKERS,
+            label=f"reference points ({len(reference)}){within}",
+        )
     _view(ax, d)
+    if reference is not None:
+        # Points the trace misses stay in view.
+        x0, x1 = ax.get_xlim()
+        y0, y1 = ax.get_ylim()
+        lo, hi = np.nanmin(reference, axis=0), np.nanmax(reference, axis=0)
+        g = 0.03 * max(x1 - x0, y1 - y0)
+        ax.set_xlim(min(x0, lo[0] - g), max(x1, hi[0] + g))
+        ax.set_ylim(min(y0, lo[1] - g), max(y1, hi[1] + g))
     if res.geometry is not None and "curvature" in res.geometry.outputs:
         c = res.geometry.curvature_centre
         x0, x1 = ax.get_xlim()
@@ -651,7 +680,14 @@ def _trajectory(res: Result, d: Drawing) -> Any:
             zorder=2,
         )
     theta = math.degrees(float(res.theta[i0])) % 360
-    ax.set_title(f"{res.scene.name}: path of {s.trace}, pose at θ = {theta:.0f}°", fontsize=10)
+    # A crank with a phase (an exported synthesis candidate's) is at θ + phase: say where, as
+    # synthesis.png names the crank's own angle.
+    joints = (res.scene.mechanism or {}).get("joints", [])
+    phase = next((float(j.get("phase_deg", 0.0)) for j in joints if j.get("kind") == "crank"), 0.0)
+    crank = f" (crank at {(theta + phase) % 360:.0f}°)" if phase % 360 else ""
+    ax.set_title(
+        f"{res.scene.name}: path of {s.trace}, pose at θ = {theta:.0f}°{crank}", fontsize=10
+    )
     # Below the plot, where it cannot hide the path or the linkage.
     fig.legend(loc="lower center", ncol=3, fontsize=7, frameon=False)
     return fig
@@ -713,12 +749,7 @@ def _synthesis(res: Result) -> Any:
     ax.plot(
         t[:, 0],
         t[:, 1],
-        "o",
-        ms=5,
-        mfc="white",
-        mec="k",
-        mew=1.2,
-        zorder=7,
+        **TARGET_MARKERS,
         label=f"target ({len(t)} points, {'closed' if run.closed else 'open'})",
     )
     ax.set_xlim(box[0], box[1])

@@ -35,6 +35,7 @@ from linkage.build import (
     check_memory_estimate,
     check_synthesis_memory,
     no_assembly,
+    reference_points,
     run_duration,
     sample_count,
     synthesis_atlas,
@@ -129,6 +130,7 @@ def run(
         res.figures.append(Row("search time", f"{took:.2f}", "s", "wall clock", value=took))
         return _finish(res, stages)
     study, leg = stage("build", lambda: build_study(scene))
+    reference = reference_points(scene)
     check_memory_estimate(scene, study, n, given=samples is not None)
     walker = study if isinstance(study, Walker) else None
     drive, period = build_drive(scene, leg)
@@ -173,7 +175,7 @@ def run(
     res.sweep = sweep
     angles = [drive.angles(ta) for ta in alts]
     sweeps = [stage(second, partial(mech.sweep, a[0])) for a in angles]
-    trajectory_figures(res, mech, sweep, sweeps, _rigidity(mech, sweep))
+    trajectory_figures(res, mech, sweep, sweeps, _rigidity(mech, sweep), reference)
 
     # Straightness reports the speed variation along the straight part, so it needs rates too.
     rates2: list[Sweep] = []
