@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -196,3 +197,36 @@ def test_the_searches_live_in_gait_search_and_keep_their_old_names():
         gait_search.search_phases(q.legs[0])
     with pytest.raises(AttributeError, match="no attribute 'search_gait'"):
         _ = linkage.walker.search_gait
+
+
+LEGS = Path(__file__).parent / "scenes" / "legs"
+
+
+def test_a_leg_from_a_mechanism_scene_walks_as_the_catalogue_leg(tmp_path: Path) -> None:
+    # tests/scenes/legs/walker.toml is examples/biped_custom_legs.toml with each leg given by a
+    # scene of Hoecken's linkage built joint by joint (as a synthesis candidate is exported):
+    # the walker's figures and feet are the catalogue legs'.
+    from linkage import runner, scene
+
+    ours = runner.run(scene.load(LEGS / "walker.toml"))
+    text = (LEGS / "walker.toml").read_text()
+    text = text.replace('scene = "hoecken_joints.toml"', 'catalog = "hoecken"')
+    (tmp_path / "walker.toml").write_text(text)
+    theirs = runner.run(scene.load(tmp_path / "walker.toml"))
+    np.testing.assert_allclose(ours.arrays["feet"], theirs.arrays["feet"], rtol=0, atol=1e-9)
+    rows = {r[0]: r.value for r in theirs.figures if not r[0].startswith(("stage", "outside"))}
+    mine = {r[0]: r.value for r in ours.figures if not r[0].startswith(("stage", "outside"))}
+    assert mine.keys() == rows.keys() and "stride" in rows
+    for k, v in rows.items():
+        if isinstance(v, float) and k not in ("total",):
+            assert mine[k] == pytest.approx(v, rel=1e-9, abs=1e-9), k
+
+
+def test_a_slider_crank_is_a_leg_as_its_mechanism() -> None:
+    sc = linkage.SliderCrank(crank=10, coupler=32, offset=6, point=(12, 9))
+    leg = Leg("L", sc, mount=(0.0, 0.0, 0.0))
+    assert isinstance(leg.linkage, linkage.Mechanism)
+    theta = np.linspace(0, 2 * np.pi, 37)
+    np.testing.assert_allclose(leg.linkage.sweep(theta).point, sc.sweep(theta).point, atol=1e-12)
+    with pytest.raises(TypeError, match="FourBar, SliderCrank or Mechanism, got int"):
+        Leg("L", 3, mount=(0.0, 0.0, 0.0))  # type: ignore[arg-type]

@@ -289,6 +289,7 @@ LEG = {
     "name": "str",
     "catalog": "str",
     "scale": "scale",
+    "scene": "str",
     "mount": "list",
     "phase_deg": "angle",
     "plane": "str",
@@ -731,15 +732,31 @@ def _legs(legs: Sequence[Mapping[str, Any]], scene: Scene) -> None:
     for idx, leg in enumerate(legs):
         lp = ("walker", "legs", idx)
         _keys(leg, LEG, scene, lp)
-        for req in ("name", "catalog", "mount"):
+        for req in ("name", "mount"):
             if req not in leg:
                 raise scene.error(lp, req, "missing")
+        if ("catalog" in leg) == ("scene" in leg):
+            raise scene.error(
+                lp,
+                "scene" if "scene" in leg else "catalog",
+                'give a catalogue four-bar (catalog = "hoecken") or a [mechanism] scene file '
+                '(scene = "candidate-1.toml", relative to this scene), not both'
+                if "scene" in leg
+                else 'missing: a catalogue four-bar (catalog = "hoecken") or a [mechanism] '
+                'scene file (scene = "candidate-1.toml")',
+            )
         if not leg["name"] or not leg["name"].isprintable() or len(leg["name"]) > 64:
             raise scene.error(lp, "name", f"must be a short printable name, got {leg['name']!r}")
         if leg["name"] in names:
             raise scene.error(lp, "name", f"leg {leg['name']!r} is defined twice")
         names.append(leg["name"])
-        if leg["catalog"] not in catalog.FOUR_BARS:
+        if "scene" in leg:
+            f = leg["scene"]
+            if not f.strip() or len(f) > 4096 or not f.isprintable():
+                raise scene.error(lp, "scene", f"must name a scene file, got {_show(f)}")
+            if "scale" in leg:
+                raise scene.error(lp, "scale", "only a catalogue leg is scaled (give the lengths)")
+        elif leg["catalog"] not in catalog.FOUR_BARS:
             raise scene.error(
                 lp,
                 "catalog",

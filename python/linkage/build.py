@@ -37,6 +37,8 @@ from linkage._schema import (
     SceneError,
     _did_you_mean,
     base_folder,
+    parse_only,
+    read_text,
 )
 from linkage.cam import DiscCam
 from linkage.drive import (
@@ -201,14 +203,19 @@ def build_walker(scene: Scene) -> Walker:
         legs = []
         for idx, spec in enumerate(w["legs"]):
             lp = ("walker", "legs", idx)
-            with _blame(scene, lp, "catalog"):
-                fb = catalog.get(spec["catalog"])
-            if not isinstance(fb, FourBar):
-                raise scene.error(lp, "catalog", f"{spec['catalog']!r} is not a four-bar")
-            k = float(spec.get("scale", 1.0))
-            if k != 1.0:
-                with _blame(scene, lp, "scale"):
-                    fb = _scaled(fb, k)
+            fb: FourBar | Mechanism
+            if "scene" in spec:
+                fb = _leg_scene(scene, lp, spec["scene"])
+            else:
+                with _blame(scene, lp, "catalog"):
+                    got = catalog.get(spec["catalog"])
+                if not isinstance(got, FourBar):
+                    raise scene.error(lp, "catalog", f"{spec['catalog']!r} is not a four-bar")
+                fb = got
+                k = float(spec.get("scale", 1.0))
+                if k != 1.0:
+                    with _blame(scene, lp, "scale"):
+                        fb = _scaled(fb, k)
             lift = None
             if "lift" in spec:
                 with _blame(scene, lp, "lift"):
@@ -956,6 +963,26 @@ def synthesis_target(scene: Scene) -> Array:
     except LinkageError as exc:
         raise scene.error(sec, "points", f"{name}: {exc}") from None
     return points
+
+
+def _leg_scene(scene: Scene, lp: tuple[Any, ...], name: str) -> FourBar | Mechanism:
+    """Build a walker leg's linkage from the ``[mechanism]`` scene file it names.
+
+    Its trace point is the foot; a synthesis candidate's exported scene is one. A problem in
+    that file is located at the leg's ``scene`` key, with the file's own ``file:line``.
+    """
+    path = base_folder(scene) / name
+    if not path.is_file():
+        why = "a folder" if path.is_dir() else "not found" if not path.exists() else "not a file"
+        raise scene.error(lp, "scene", f"{name!r} (relative to this scene's folder): {why}")
+    try:
+        other = parse_only(read_text(path), path)
+        if other.mechanism is None:
+            raise SceneError(f"{path}: has no [mechanism] section (a leg is a linkage)")
+        return build_mechanism(other)
+    except SceneError as exc:
+        # The file as this scene names it, then its own line.
+        raise scene.error(lp, "scene", str(exc).replace(str(path), name)) from None
 
 
 def reference_points(scene: Scene) -> Array | None:

@@ -38,6 +38,7 @@ from linkage._choices import Objective, Plane
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage._slider_crank import SliderCrank
 from linkage.drive import Drive, Program
 
 # The searches moved to linkage.gait_search; their old names here keep working.
@@ -63,7 +64,10 @@ PLANES: tuple[Plane, ...] = get_args(Plane)
 
 @dataclass(frozen=True)
 class Leg:
-    """One leg: a linkage whose trace point is the foot, its mount, crank phase and foot pad."""
+    """One leg: a linkage whose trace point is the foot, its mount, crank phase and foot pad.
+
+    A :class:`~linkage.SliderCrank` is taken as its :meth:`~linkage.SliderCrank.mechanism`.
+    """
 
     name: str
     linkage: FourBar | Mechanism
@@ -102,8 +106,14 @@ class Leg:
             raise LinkageError(
                 f"leg {self.name!r}: plane must be one of {PLANES}, got {self.plane!r}"
             )
+        if isinstance(self.linkage, SliderCrank):
+            # Its joints (the slider on its line), the coupler point traced: the foot.
+            object.__setattr__(self, "linkage", self.linkage.mechanism())
         if not isinstance(self.linkage, (FourBar, Mechanism)):
-            raise TypeError(f"leg {self.name!r}: linkage must be a FourBar or Mechanism")
+            raise TypeError(
+                f"leg {self.name!r}: linkage must be a FourBar, SliderCrank or Mechanism, "
+                f"got {type(self.linkage).__name__}"
+            )
         if isinstance(self.mount, (str, bytes)) or not hasattr(self.mount, "__len__"):
             raise TypeError(f"leg {self.name!r}: mount must be (x, y, z)")
         if len(self.mount) != 3:
