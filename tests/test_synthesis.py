@@ -283,6 +283,34 @@ def test_a_short_arc_in_a_curved_valley_is_recovered_by_geodesic_steps(
     assert tracked_distance(found[0].linkage, target) <= 1e-6 * size + 1e-4 * size
 
 
+def test_matches_slid_along_their_curves_reach_a_basin_the_frames_miss() -> None:
+    """bench/open_arcs.py --seed 0 random#27 (0.45 of a crossed four-bar's circuit) with the
+    default arc atlas: its matches placed by the arcs' frames, ranked by their distance, end in
+    other basins (the search's first fits, wider matches and long fits at 3.0e-4 of the size at
+    best); the same nearest shapes moved along their curves by ``_slid`` and ranked again put
+    one in the drawing linkage's basin among the ``SLID`` fitted (to ~1e-13; the search then
+    ends at 1.3e-12). Only the default atlas shows it: the tests' 200,000-arc one recovers
+    neither way."""
+    at = synthesis.default_atlas(kind="fourbar-arcs")
+    target = bench_arc(0, "random#27")
+    size = size_of(target)
+    fb = synthesis.FOURBAR
+    bounds = synthesis._bounds(None, None, size, fb)
+    nearest = 4 * 16 * 8  # the wider matches' nearest shapes under path's defaults
+    best: dict[int, synthesis.Candidate] = {}
+    for slide in (0, synthesis.SLIDES):
+        pool = synthesis._atlas_pool(fb, at, target, synthesis.SLID, nearest, 1, slide=slide)
+        fits = synthesis._finish(
+            pool, target, False, size, bounds, len(pool), 1, None, 1, fb, exact_at=1e-6
+        )
+        best[slide] = min(fits, key=lambda c: c.error)
+    assert best[0].error > 1e-5 * size, best[0].error / size
+    found = best[synthesis.SLIDES]
+    assert found.error <= 1e-6 * size, found.error / size
+    assert_one_circuit(found)
+    assert tracked_distance(found.linkage, target) <= 1e-6 * size + 1e-4 * size
+
+
 def test_full_turn_guides_the_search_not_only_the_ranking(arc_atlas: Atlas) -> None:
     """An arc of a crank-rocker with full_turn=True: the constraint picks which matches are
     refined, so the drawing crank-rocker is found; before, an exact fit of another class ended

@@ -1544,6 +1544,29 @@ def path(
                     mine += _polish(
                         starts, polished, target, size, bounds, nthreads, bar, k, usable
                     )
+            if best_usable(mine) > goal:
+                # The same nearest shapes re-placed along their curves (_slid), ranked again
+                # and fitted as the first (docs/synthesis.md, step 4).
+                slid = _atlas_pool(k, at, target, 4 * SLID, 4 * many, nthreads, slide=SLIDES)
+                if full_turn or min_transmission > 0:
+                    slid.sort(key=lambda e: _shape_order(e, k, full_turn, min_transmission))
+                slid = slid[:SLID]
+                if bar is not None:
+                    bar.stage("matches re-placed", len(slid))
+                mine += _finish(
+                    slid,
+                    target,
+                    False,
+                    size,
+                    bounds,
+                    len(slid),
+                    nthreads,
+                    bar,
+                    1,
+                    k,
+                    usable,
+                    exact_at=EXACT,
+                )
         if not closed and mine and best_usable(mine) > goal:
             starts = [c for c in mine if admissible(c)] or mine
             mine += _hops(starts, target, size, bounds, seed, nthreads, k)
@@ -1955,13 +1978,20 @@ def _atlases(given: Any, kinds: list[_Kind]) -> dict[str, Atlas]:
 
 
 def _atlas_pool(
-    kind: _Kind, at: Atlas, target: Float2D, keep: int, k: int, threads: int
+    kind: _Kind,
+    at: Atlas,
+    target: Float2D,
+    keep: int,
+    k: int,
+    threads: int,
+    slide: int = 0,
 ) -> list[tuple[NDArray[np.float64], bool, str]]:
     """Return the ``keep`` best placed atlas matches of ``target``, of the ``k`` nearest shapes.
 
     Each nearest entry is placed by the similarity between its curve's frame and the target's
-    (both ends of the major axis) and scored by the polyline distance both ways (an arc atlas's
-    entries, :data:`ARCS` or :data:`SLIDER_ARCS`, against an open target: one way).
+    (both ends of the major axis), moved along its curve by ``slide`` rounds of :func:`_slid`
+    (an open target's), and scored by the polyline distance both ways (an arc atlas's entries,
+    :data:`ARCS` or :data:`SLIDER_ARCS`, against an open target: one way).
     """
     closed = at.kind not in _ARC_KIND
     variants, frame_t = _core.synth_descriptors(target, at.harmonics, closed)
@@ -1992,11 +2022,69 @@ def _atlas_pool(
     if not placed:
         return []
     p, cr_a = np.array(placed), np.array(crossed)
+    if slide:
+        p = _slid(kind, p, cr_a, target, slide, threads)
     e, _ = _errors(p, cr_a, target, closed, threads=threads, kind=kind)
     worst = np.maximum(e[:, 0], e[:, 2]) if closed else e[:, 0]
     score = np.where(np.isfinite(worst), worst, np.inf)
     order = np.argsort(score, kind="stable")
     return [(p[j], bool(cr_a[j]), "atlas") for j in order[:keep] if np.isfinite(score[j])]
+
+
+SLID = 24
+"""Matches re-placed by :func:`_slid` and fitted for an open target that no earlier stage fitted
+exactly (the best of ``4 × SLID``, from the wider matches' nearest shapes)."""
+
+SLIDES = 3
+"""Rounds of :func:`_slid`."""
+
+
+def _slid(
+    kind: _Kind,
+    params: NDArray[np.float64],
+    crossed: NDArray[np.bool_],
+    target: Float2D,
+    rounds: int,
+    threads: int,
+) -> NDArray[np.float64]:
+    """Move each placed linkage (rows of ``params``) along its curve onto an open ``target``.
+
+    Each of ``rounds`` rounds (iterative closest points with a similarity) takes every target
+    point's nearest point of the linkage's curve (its foot) and the least-squares similarity
+    ``z ↦ a·z + b`` (complex ``a``, ``b``; Procrustes, no reflection) from the feet to the
+    target points, and moves the linkage by it: its pivots mapped, its lengths scaled by
+    ``|a|``, a slider's line turned by ``arg a``. An arc match is placed by the frames of its
+    stored arc and of the target, which rarely start and end at the same places of the
+    circuit: the target then sits askew along the curve, and its distance can rank a match of
+    the right shape below others (docs/synthesis.md, step 4). Rows whose curve does not
+    assemble at every foot stay where they are.
+    """
+    p = np.array(params, dtype=np.float64)
+    t = target[:, 0] + 1j * target[:, 1]
+    tm = t.mean()
+    scaled = list(kind.scaled)
+    for _ in range(rounds):
+        _, feet = _errors(p, crossed, target, False, threads=threads, kind=kind)
+        rows = np.flatnonzero(np.all(np.isfinite(feet), axis=1))
+        if not len(rows):
+            break
+        r = _residuals(kind, p[rows], crossed[rows], target, feet[rows])
+        z = (r[..., 0] + target[:, 0]) + 1j * (r[..., 1] + target[:, 1])
+        zm = z.mean(axis=1)
+        spread = np.sum(np.abs(z - zm[:, None]) ** 2, axis=1)
+        ok = np.all(np.isfinite(z), axis=1) & (spread > 0)
+        rows, z, zm, spread = rows[ok], z[ok], zm[ok], spread[ok]
+        a = np.sum((t - tm)[None, :] * np.conj(z - zm[:, None]), axis=1) / spread
+        b = tm - a * zm
+        q = p[rows]
+        for i, j in kind.pivots:
+            w = (q[:, i] + 1j * q[:, j]) * a + b
+            q[:, i], q[:, j] = w.real, w.imag
+        q[:, scaled] *= np.abs(a)[:, None]
+        for i in kind.angles:
+            q[:, i] += np.angle(a)
+        p[rows] = q
+    return p
 
 
 EXACT = 1e-6
