@@ -450,7 +450,8 @@ def test_an_empty_result_says_which_constraint_removed_the_fits(atlas: Atlas, sc
     assert not (box[0][0] <= gone.linkage.o[0] <= box[1][0])
     why, blamed = synthesis.why_none(found, synthesis.CLI_CONSTRAINTS)
     assert blamed == "pivots" and f"fits failing --pivots: {found.removed['pivots']})" in why
-    assert f"the closest, error {gone.error:.3g}, fails --pivots: loosen it" in why
+    pins = ", ".join(f"({x:.3g}, {y:.3g})" for x, y in (gone.linkage.o, gone.linkage.c))
+    assert f"the closest, error {gone.error:.3g}, fails --pivots (pivots {pins}): loosen it" in why
     # With no constraint, nothing is removed.
     assert free and free.removed == {} and free.closest_removed is None
 
@@ -583,7 +584,8 @@ def test_cli_synth(tmp_path, capsys, monkeypatch, atlas: Atlas) -> None:  # type
     out, err = capsys.readouterr()
     assert out == "" and len(err.splitlines()) == 1, err
     assert err.startswith("linkage: error: no valid four-bar found for"), err
-    assert "(fits failing --pivots: " in err and ", fails --pivots: loosen it, or refine" in err
+    assert "(fits failing --pivots: " in err and ", fails --pivots (pivots (" in err, err
+    assert ")): loosen it, or refine" in err, err
     for bad, match in (
         (["--min-transmission-deg", "120"], "between 0 and 90, got 120"),
         (["--lengths", "5", "2"], "0 < least < greatest"),
@@ -592,6 +594,48 @@ def test_cli_synth(tmp_path, capsys, monkeypatch, atlas: Atlas) -> None:  # type
     ):
         assert cli.main(["synth", str(f), "--quiet", "--atlas", str(folder), *bad]) == 2
         assert match in capsys.readouterr().err
+
+
+def test_a_fit_with_a_vanishing_link_is_no_candidate() -> None:
+    # A crank of 3.9e-6 mm on a foot path had been listed as a full-turn crank-rocker drawing
+    # a dot: a link under SHORTEST_LINK of the target's size is no linkage.
+    fb = linkage.catalog.get("hoecken")
+    assert isinstance(fb, linkage.FourBar)
+    target = np.ascontiguousarray(fb.circuit(121).point[:-1][::3])
+    x = np.array([0.0, 0.0, 20.0, 0.0, 10.0, 25.0, 25.0, 50.0, 0.0])
+    assert synthesis._measure(x, False, target, True, "atlas", 1) is not None
+    x[4] = 0.5 * synthesis.SHORTEST_LINK * synthesis.target_size(target)
+    assert synthesis._measure(x, False, target, True, "atlas", 1) is None
+
+
+def test_the_cli_notes_a_candidate_near_a_change_point(tmp_path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    # A double-crank whose Grashof sums differ by 6e-6 (a fit pushed against full_turn): the
+    # table says so, as the report's class note does.
+    from linkage import cli
+
+    fb = linkage.FourBar(ground=10, crank=35.56, coupler=35.36, rocker=10.200006, point=(29, 27))
+    pts = fb.circuit(61).point[:-1]
+    c = synthesis.Candidate(
+        fb,
+        6.86,
+        3.77,
+        58.6,
+        (0.0, 2 * math.pi),
+        True,
+        fb.grashof(),
+        0.0,
+        False,
+        "atlas",
+        np.zeros(9),
+    )
+    monkeypatch.setattr(synthesis, "path", lambda *a, **k: synthesis.Candidates([c]))
+    f = tmp_path / "curve.csv"
+    np.savetxt(f, pts, delimiter=",")
+    assert cli.main(["synth", str(f), "--quiet", "--units", "mm"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[1].endswith("note") and out[2].endswith(
+        "6.0e-06 mm from a change point: can flip branch"
+    )
 
 
 def test_progress_is_reported_on_stderr(atlas: Atlas, capsys) -> None:  # type: ignore[no-untyped-def]

@@ -230,3 +230,19 @@ def test_a_slider_crank_is_a_leg_as_its_mechanism() -> None:
     np.testing.assert_allclose(leg.linkage.sweep(theta).point, sc.sweep(theta).point, atol=1e-12)
     with pytest.raises(TypeError, match="FourBar, SliderCrank or Mechanism, got int"):
         Leg("L", 3, mount=(0.0, 0.0, 0.0))  # type: ignore[arg-type]
+
+
+def test_a_leg_whose_pivots_are_below_the_ground_is_reported(tmp_path: Path) -> None:
+    # Hoecken's foot path lies above its pivots: mounted with no foot bar, the pivots are
+    # under the ground by the path's lowest height; with the example's 100 mm bar, above it.
+    from linkage import runner, scene
+
+    low = float(linkage.catalog.hoecken().circuit(20001).point[:, 1].min())
+    text = (LEGS / "walker.toml").read_text().replace("foot_offset = [0.0, -100.0], ", "")
+    (tmp_path / "walker.toml").write_text(text)
+    (tmp_path / "hoecken_joints.toml").write_text((LEGS / "hoecken_joints.toml").read_text())
+    for path, want in ((LEGS / "walker.toml", 100.0 - low), (tmp_path / "walker.toml", -low)):
+        res = runner.run(scene.load(path))
+        row = next(r for r in res.figures if r[0] == "lowest leg pivot above the ground")
+        assert row.value == pytest.approx(want, abs=1e-3)
+        assert ("below the ground" in row[3]) == (want < 0)

@@ -645,14 +645,16 @@ def check_legs(scene: Scene, walker: Walker, drive: Drive, duration: float, n: i
             ok = leg.linkage.sweep(theta, outputs=("point",)).valid
             if not ok.all():
                 bad = float(theta[int(np.argmin(ok))])
-                where: tuple[tuple[Any, ...], str] = (
-                    (("walker", "legs", idx), "catalog")
-                    if scene.walker and "legs" in scene.walker
-                    else (("walker",), "model")
-                )
+                where: tuple[tuple[Any, ...], str] = (("walker",), "model")
+                named = ""
+                if scene.walker and "legs" in scene.walker:
+                    spec = scene.walker["legs"][idx]
+                    key = "scene" if "scene" in spec else "catalog"
+                    where = (("walker", "legs", idx), key)
+                    named = f" ({spec['scene']})" if key == "scene" else ""
                 raise scene.error(
                     *where,
-                    f"leg {leg.name!r} cannot be assembled at crank angle "
+                    f"leg {leg.name!r}{named} cannot be assembled at crank angle "
                     f"{math.degrees(bad) % 360:.1f}° (a leg must assemble at every sample)",
                 )
 
@@ -1014,7 +1016,11 @@ def reference_points(scene: Scene) -> Array | None:
             sec, "reference", f"{name}: at most {POINTS_MAX} points, got {len(points)}"
         )
     if not len(points):
-        raise scene.error(sec, "reference", f"{name}: no points")
+        raise scene.error(
+            sec,
+            "reference",
+            f"{name}: no points" if name != "the points" else "is empty: give [[x, y], …]",
+        )
     return points
 
 

@@ -1127,7 +1127,7 @@ def candidate_scene(res: Result, k: int) -> str:
         "joints = [",
         *(f"  {_toml_table(j, num)}," for j in _joint_tables(fb, side, phase)),
         "]",
-        "# The synthesis target: the report draws it under P's path and gives its largest",
+        "# The synthesis target: the report draws it with P's path and gives its largest",
         "# distance from that path.",
         "reference = [",
         *(f"  [{num(float(x))}, {num(float(y))}]," for x, y in run.target),

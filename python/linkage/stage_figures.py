@@ -22,6 +22,7 @@ from linkage._schema import Scene
 from linkage._slider_crank import SliderCrank
 from linkage._sweep import Sweep
 from linkage.cam import CamProfile
+from linkage.drawing import walker_drawing
 from linkage.drive import Geared
 from linkage.figures import (
     Result,
@@ -41,7 +42,7 @@ from linkage.figures import (
 )
 from linkage.forces import Forces
 from linkage.geometry import StraightPart, straightness, three_point_centres
-from linkage.synthesis import Candidate, long_link
+from linkage.synthesis import CHANGE_POINT_NEAR, Candidate, change_point_gap, long_link
 from linkage.walker import Simulation, Walker
 
 __all__ = [
@@ -224,27 +225,16 @@ def _long(c: Candidate[FourBar | SliderCrank], size: float) -> str:
     return f"; its longest link is {ratio:.0f}× the target's size"
 
 
-CHANGE_POINT_NEAR = 1e-3
-"""A candidate whose Grashof sums (a slider-crank's ``|offset| + crank`` and rod) differ by less
-than this fraction of the target's size is named near a change point in its class's note."""
-
-
 def _near_change_point(c: Candidate[FourBar | SliderCrank], size: float, unit: str) -> str:
     """Return a note for a candidate within :data:`CHANGE_POINT_NEAR` of a change point, else "".
 
     A fit pushed against the full-turn condition ends on it: a "crank-rocker" whose ``s + l``
     is ``p + q`` to 1e-5 mm turns fully on paper but can flip branch where its links lie flat.
     """
-    lk = c.linkage
-    if isinstance(lk, SliderCrank):
-        gap = abs(lk.coupler - (abs(lk.offset) + lk.crank))
-        law = "|offset| + crank = rod"
-    else:
-        short, p, q, long = sorted((lk.ground, lk.crank, lk.coupler, lk.rocker))
-        gap = abs(p + q - (short + long))
-        law = "s + l = p + q"
-    if c.grashof == "change-point" or not gap < CHANGE_POINT_NEAR * size:
+    near = change_point_gap(c, size)
+    if near is None:
         return ""
+    gap, law = near
     return (
         f"; {format_number(gap, digits=2)} {unit} from a change point ({law}): it can flip "
         "branch where its links lie flat"
@@ -332,7 +322,9 @@ def trajectory_figures(
                 u,
                 coarse,
                 ns,
-                f"largest distance of the {len(reference)} points from the traced path",
+                f"largest distance of the {len(reference)} points from the traced path"
+                if len(reference) > 1
+                else "distance of the point from the traced path",
             )
         )
     if isinstance(mech, FourBar):
@@ -410,6 +402,18 @@ def reference_gap(mech: FourBar | Mechanism, s: Sweep, reference: Array) -> floa
     gap = np.linalg.norm(w - t[..., None] * e, axis=2)
     gap = np.where(np.isnan(gap), np.inf, gap).min(axis=1).reshape(len(reference), k).min(axis=1)
     return float(gap.max())
+
+
+def _lowest_pivot(walker: Walker, sim: Simulation) -> float | None:
+    """Return the height above the ground of the lowest fixed pivot of the sagittal legs.
+
+    None when no leg is sagittal (a horizontal leg's pivots lie in the body's plane).
+    """
+    d = walker_drawing(walker, sim, "side")
+    if not d.pivots or d.ground is None:
+        return None
+    z = np.asarray(d.positions, dtype=float)[0, list(d.pivots), 1]
+    return float(z.min() - d.ground)
 
 
 def _peaks(s: Sweep) -> tuple[float, float]:
@@ -828,6 +832,12 @@ def walker_figures(
     rows.append(walker_row("stride", "stride", u))
     rows.append(walker_row("lift height (obstacle a foot clears)", "lift", u))
     rows.append(exact("body clearance", walker.body_underside - sim.ground, u))
+    low = _lowest_pivot(walker, sim)
+    if low is not None:
+        # A leg's frame below the ground: a synthesized leg exported as drawn (its foot path
+        # above its pivots) had put the body 40 mm underground with no word.
+        note = "exact" if low >= 0 else "exact; below the ground: the leg's frame digs in"
+        rows.append(exact("lowest leg pivot above the ground", low, u, note))
     rows.append(walker_row("body travel", "travel", u, "trapezoid"))
     rows.append(walker_row("mean body speed", "speed", f"{u}/s"))
     if scene.wants("stability"):

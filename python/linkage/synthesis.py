@@ -55,6 +55,7 @@ from linkage._slider_crank import SliderCrank
 from linkage.catalog import cache_dir
 
 __all__ = [
+    "CHANGE_POINT_NEAR",
     "CONSTRAINT_NAMES",
     "KINDS",
     "MIN_POINTS",
@@ -66,6 +67,7 @@ __all__ = [
     "MotionCandidate",
     "atlas_kinds",
     "centre_point_curve",
+    "change_point_gap",
     "chebyshev_points",
     "circle_point_curve",
     "default_atlas",
@@ -1029,6 +1031,10 @@ def _refine(
     out: NDArray[np.float64] = res.x[:q]
     return out
 
+
+SHORTEST_LINK = 1e-6
+"""The shortest link a candidate may have, in target sizes (:data:`EXACT`: a link shorter
+than the error a fit is exact to is no link)."""
 
 GUARD = 1e-100
 """The weight of the guard unknown that keeps SciPy's MINPACK inside its Jacobian (:func:`_refine`):
@@ -2156,6 +2162,45 @@ def long_link(c: Candidate[Any], size: float) -> float | None:
     return ratio if ratio > LONG_LINK else None
 
 
+CHANGE_POINT_NEAR = 1e-3
+"""A candidate whose Grashof sums (a slider-crank's ``|offset| + crank`` and rod) differ by less
+than this fraction of the target's size is named near a change point (:func:`change_point_gap`)."""
+
+
+def change_point_gap(c: Candidate[Any], size: float) -> tuple[float, str] | None:
+    """Return ``c``'s distance from a change point and its law, within :data:`CHANGE_POINT_NEAR`.
+
+    The gap between a four-bar's Grashof sums ``s + l`` and ``p + q`` (a slider-crank's
+    ``|offset| + crank`` and rod), when less than ``CHANGE_POINT_NEAR · size`` and ``c`` is not
+    classed a change point already; else None. Such a linkage turns fully on paper but can flip
+    branch where its links lie flat.
+
+    Examples
+    --------
+    >>> import numpy as np, linkage
+    >>> from linkage.synthesis import Candidate, change_point_gap
+    >>> fb = linkage.FourBar(ground=20, crank=10, coupler=25, rocker=15.000001)  # 30 vs 30.000001
+    >>> c = Candidate(fb, 0.0, 0.0, 0.0, (0.0, 6.3), True, fb.grashof(), 0.0, False, "",
+    ...               np.zeros(9))
+    >>> gap, law = change_point_gap(c, 30.0)
+    >>> print(f"{gap:.1e}", law)
+    1.0e-06 s + l = p + q
+    >>> change_point_gap(c, 1e-4) is None
+    True
+    """
+    lk = c.linkage
+    if isinstance(lk, SliderCrank):
+        gap = abs(lk.coupler - (abs(lk.offset) + lk.crank))
+        law = "|offset| + crank = rod"
+    else:
+        short, p, q, long = sorted((lk.ground, lk.crank, lk.coupler, lk.rocker))
+        gap = abs(p + q - (short + long))
+        law = "s + l = p + q"
+    if c.grashof == "change-point" or not gap < CHANGE_POINT_NEAR * size:
+        return None
+    return gap, law
+
+
 def _arms(fb: FourBar | SliderCrank) -> tuple[float, float]:
     """Return the coupler triangle's sides to the point: from A and from B (the slider's pin)."""
     along, left = fb.point
@@ -2552,8 +2597,15 @@ def _measure(
 ) -> Candidate[Any] | None:
     """Measure and check a candidate.
 
-    ``None`` when its circuit does not assemble throughout or the tracker leaves it.
+    ``None`` when its circuit does not assemble throughout or the tracker leaves it, or when a
+    link is shorter than :data:`SHORTEST_LINK` of the target's size (a crank of 4e-6 mm on a
+    60 mm foot path had been listed as a full-turn crank-rocker drawing a dot).
     """
+    links = list(x[list(kind.lengths)])
+    if kind is FOURBAR:
+        links.append(math.hypot(x[2] - x[0], x[3] - x[1]))  # the ground
+    if min(links) < SHORTEST_LINK * target_size(target):
+        return None
     e, feet = _errors(
         x[None, :], np.array([crossed]), target, closed, samples=2048, exact=True, kind=kind
     )
@@ -2695,9 +2747,23 @@ def why_none(found: Candidates, names: dict[str, str], unit: str = "") -> tuple[
         return "every linkage tried failed to assemble over its circuit or switched branch", None
     fails = found.closest_fails
     counts = ", ".join(f"{names[k]}: {n}" for k, n in found.removed.items())
-    failed = [names[k] for k in fails]
-    which = failed[0] if len(failed) == 1 else ", ".join(failed[:-1]) + " and " + failed[-1]
     u = f" {unit}" if unit else ""
+    # How far the closest fit is from each constraint it fails: how far to loosen.
+    lk = gone.linkage
+    links = (
+        (lk.crank, lk.coupler)
+        if isinstance(lk, SliderCrank)
+        else (lk.ground, lk.crank, lk.coupler, lk.rocker)
+    )
+    pins = (lk.o,) if isinstance(lk, SliderCrank) else (lk.o, lk.c)
+    values = {
+        "full_turn": f"its crank rocks, {gone.grashof}",
+        "min_transmission": f"μ {gone.min_transmission_deg:.1f}°",
+        "lengths": f"links {min(links):.3g} … {max(*links, *_arms(lk)):.3g}{u}",
+        "pivots": "pivots " + ", ".join(f"({x:.3g}, {y:.3g})" for x, y in pins),
+    }
+    failed = [f"{names[k]} ({values[k]})" for k in fails]
+    which = failed[0] if len(failed) == 1 else ", ".join(failed[:-1]) + " and " + failed[-1]
     return (
         f"every valid fit fails a constraint (fits failing {counts}); the closest, error "
         f"{gone.error:.3g}{u}, fails {which}: loosen {'it' if len(fails) == 1 else 'them'}, "
@@ -2811,15 +2877,22 @@ def command(args: argparse.Namespace) -> int:
             row += [f"({g(fb.c[0])}, {g(fb.c[1])})", g(fb.crank), g(fb.coupler)]
             row += [g(fb.rocker), f"({g(fb.point[0])}, {g(fb.point[1])})", fb.assembly]
         rows.append(tuple(row))
-    # A candidate ranked after the rest for a link longer than LONG_LINK sizes (max_link) says
-    # so: a fit far better than those above it had read as a sorting mistake.
-    ratios = [long_link(c, size) for c in found]
-    if getattr(args, "lengths", None) is None and any(r is not None for r in ratios):
+    # Notes: a candidate near a change point, and one ranked after the rest for a link longer
+    # than LONG_LINK sizes (max_link: a fit far better than those above it had read as a
+    # sorting mistake).
+    notes = []
+    for c in found:
+        note = []
+        near = change_point_gap(c, size)
+        if near is not None:
+            note.append(f"{near[0]:.1e}{u} from a change point: can flip branch")
+        k = long_link(c, size)
+        if k is not None and getattr(args, "lengths", None) is None:
+            note.append(f"link {k:.0f}× size: ranked after")
+        notes.append("; ".join(note))
+    if any(notes):
         head = (*head, "note")
-        rows = [(*rows[0], "note")] + [
-            (*r, "" if k is None else f"link {k:.0f}× size: ranked after")
-            for r, k in zip(rows[1:], ratios)
-        ]
+        rows = [(*rows[0], "note")] + [(*r, n) for r, n in zip(rows[1:], notes)]
     widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
     for r in rows:
         print("  ".join(cell.rjust(w) for cell, w in zip(r, widths)).rstrip())

@@ -110,9 +110,14 @@ class Leg:
             # Its joints (the slider on its line), the coupler point traced: the foot.
             object.__setattr__(self, "linkage", self.linkage.mechanism())
         if not isinstance(self.linkage, (FourBar, Mechanism)):
+            hint = (
+                " (a synthesis candidate's is its .linkage)"
+                if hasattr(self.linkage, "linkage")
+                else ""
+            )
             raise TypeError(
                 f"leg {self.name!r}: linkage must be a FourBar, SliderCrank or Mechanism, "
-                f"got {type(self.linkage).__name__}"
+                f"got {type(self.linkage).__name__}{hint}"
             )
         if isinstance(self.mount, (str, bytes)) or not hasattr(self.mount, "__len__"):
             raise TypeError(f"leg {self.name!r}: mount must be (x, y, z)")
