@@ -619,7 +619,16 @@ def test_lengths_and_pivots_filter():
     for c in kept:
         for x, y in (c.linkage.o, c.linkage.c):
             assert -30 <= x <= 30 and 60 <= y <= 120
-    assert motion(POSES4, n=24, lengths=(1.0, 2.0)) == []
+    # An emptied list says so, counting what each filter removed: every four-bar of `every`
+    # (max_link only ranks) has a link over 2.
+    with pytest.warns(
+        UserWarning,
+        match=rf"removed all {len(every)} four-bars \(removed by lengths {len(every)}\)",
+    ):
+        assert motion(POSES4, n=24, lengths=(1.0, 2.0)) == []
+    far = ((1e4, 1e4), (1e4 + 1, 1e4 + 1))
+    with pytest.warns(UserWarning, match=r"removed by lengths \d+, pivots \d+\): loosen them"):
+        assert motion(POSES4, n=24, lengths=(1.0, 2.0), pivots=far) == []
 
 
 @pytest.mark.parametrize(

@@ -432,7 +432,8 @@ def motion(
         One per ordered pair of distinct dyads (first drives) that makes a four-bar and passes
         the filters: those that reach every pose on one circuit in order first (by
         ``max_link``, then largest smallest transmission angle), then the others, those
-        reaching more poses first. The list is empty when the filters remove every candidate.
+        reaching more poses first. The list is empty when the filters remove every candidate,
+        with a ``UserWarning`` that counts what each filter removed.
 
     Raises
     ------
@@ -513,12 +514,15 @@ def motion(
         )
     count = None if top is None else as_count(top, "top")
     out = []
+    removed = {"lengths": 0, "pivots": 0}
     for m, (i, j) in enumerate(pairs):
         if not r["ok"][m]:
             continue
         q = r["params"][m]
         fb = _placed(q)
         if not _meets(fb, span, box):
+            removed["lengths"] += not _meets(fb, span, None)
+            removed["pivots"] += not _meets(fb, None, box)
             continue
         code = int(r["defect"][m])
         pose = int(r["defect_pose"][m])
@@ -558,6 +562,14 @@ def motion(
         return (True, False, -float(np.count_nonzero(np.isfinite(c.crank_angles))))
 
     out.sort(key=rank)
+    if not out:
+        # An empty list says which filter emptied it (a candidate may fail both).
+        told = ", ".join(f"{k} {n}" for k, n in removed.items() if n)
+        warnings.warn(
+            f"motion: the filters removed all {int(np.count_nonzero(r['ok']))} four-bars "
+            f"(removed by {told}): loosen them",
+            stacklevel=2,
+        )
     return out if count is None else out[:count]
 
 
