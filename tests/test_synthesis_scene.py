@@ -468,3 +468,24 @@ def test_a_mechanism_scene_measures_its_reference_points(tmp_path: Path) -> None
     res = runner.run(scene.load(path))
     row = next(r for r in res.figures if r[0] == "reference points to the trace")
     assert 0 <= row.value < 1e-8 and largest_distance(on.point, res.sweep.point) > 1e-5
+
+
+def test_a_reference_point_far_off_is_counted_not_drawn(tmp_path: Path) -> None:
+    # One point a thousand kilometres off (other units, another frame) would have shrunk the
+    # plot to a dot: the view keeps to the linkage and the legend counts it.
+    from linkage import export, report
+
+    path = tmp_path / "leg.toml"
+    path.write_text(
+        'name = "leg"\nunits = "mm"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+        "reference = [[20, 48.99], [1e9, 1e9]]\n"
+        '[drive]\nkind = "constant"\nrpm = 60\nsamples = 181\n'
+    )
+    res = runner.run(scene.load(path))
+    fig = report._trajectory(res, export.drawing_of(res))
+    (ax,) = fig.axes
+    assert ax.get_xlim()[1] < 1e3 and ax.get_ylim()[1] < 1e3
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert any(
+        t.startswith("reference points (2), within") and "(1 off the plot)" in t for t in labels
+    )

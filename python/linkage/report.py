@@ -640,28 +640,35 @@ def _trajectory(res: Result, d: Drawing) -> Any:
             zorder=1.5,
         )
     reference = res.arrays.get("reference")
+    _view(ax, d)
     if reference is not None:
         gap = next((r for r in res.figures if r[0] == "reference points to the trace"), None)
         value = getattr(gap, "value", None)
         within = ""
         if gap is not None and isinstance(value, float):
             within = f", within {format_number(value, digits=3)} {gap[2]}".rstrip()
-        # As synthesis.png draws a target.
-        ax.plot(
-            reference[:, 0],
-            reference[:, 1],
-            **TARGET_MARKERS,
-            label=f"reference points ({len(reference)}){within}",
-        )
-    _view(ax, d)
-    if reference is not None:
-        # Points the trace misses stay in view.
+        # Points the trace misses stay in view, up to three times the linkage's extent; those
+        # farther (a reference in other units or another frame) are counted, not drawn.
         x0, x1 = ax.get_xlim()
         y0, y1 = ax.get_ylim()
-        lo, hi = np.nanmin(reference, axis=0), np.nanmax(reference, axis=0)
-        g = 0.03 * max(x1 - x0, y1 - y0)
-        ax.set_xlim(min(x0, lo[0] - g), max(x1, hi[0] + g))
-        ax.set_ylim(min(y0, lo[1] - g), max(y1, hi[1] + g))
+        w = max(x1 - x0, y1 - y0)
+        box = (x0 - w, x1 + w, y0 - w, y1 + w)
+        shown = clip_to(reference, box)
+        ok = np.isfinite(shown).all(axis=1)
+        off = len(reference) - int(ok.sum())
+        if ok.any():
+            lo, hi = shown[ok].min(axis=0), shown[ok].max(axis=0)
+            g = 0.03 * w
+            ax.set_xlim(min(x0, lo[0] - g), max(x1, hi[0] + g))
+            ax.set_ylim(min(y0, lo[1] - g), max(y1, hi[1] + g))
+        # As synthesis.png draws a target.
+        ax.plot(
+            shown[:, 0],
+            shown[:, 1],
+            **TARGET_MARKERS,
+            label=f"reference points ({len(reference)}){within}"
+            + (f" ({off} off the plot)" if off else ""),
+        )
     if res.geometry is not None and "curvature" in res.geometry.outputs:
         c = res.geometry.curvature_centre
         x0, x1 = ax.get_xlim()
