@@ -543,3 +543,20 @@ def test_samples_that_do_not_assemble_are_gaps(tmp_path: Path) -> None:
     assert [r is None for r in rows] == list(~valid)
     x = next(c for c in data["readout"] if c["label"].endswith(" x"))
     assert [v is None for v in x["values"]] == list(~valid)
+
+
+def test_the_read_out_names_the_crank_angle_of_a_phased_crank(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    # An exported synthesis candidate's crank has a phase: the page had shown the drive angle
+    # as "crank angle" (41.5° where the crank was at 221.5°).
+    from linkage import html_report, runner, scene
+
+    text = (ROOT / "examples" / "hoecken_by_joints.toml").read_text()
+    for phase, labels in ((0.0, ["crank angle"]), (90.0, ["drive angle θ", "crank angle"])):
+        path = tmp_path / "leg.toml"
+        path.write_text(text.replace("radius = 10.0 }", f"radius = 10.0, phase_deg = {phase} }}"))
+        res = runner.run(scene.load(path))
+        idx = np.arange(0, len(res.time), 37)
+        cols = {c["label"]: c["values"] for c in html_report._readout(res, idx)}
+        assert [k for k in cols if "angle" in k] == labels
+        want = np.mod(np.degrees(res.theta[idx]) + phase, 360.0)
+        assert cols["crank angle"] == pytest.approx(want, abs=0.05)

@@ -35,6 +35,7 @@ __all__ = [
     "branch_text",
     "branch_word",
     "check_counts",
+    "crank_phase_deg",
     "exact",
     "format_error",
     "format_number",
@@ -303,6 +304,26 @@ def length_unit(scene: Scene) -> str:
     ('mm', 'length units')
     """
     return unit_label(scene.units)
+
+
+def crank_phase_deg(scene: Scene) -> float:
+    """Return the phase of a ``[mechanism]`` scene's crank joint in degrees (0 if none).
+
+    The crank is at the drive angle θ plus it: an exported synthesis candidate's is the start of
+    its crank range.
+
+    Examples
+    --------
+    >>> from linkage.scene import Scene
+    >>> from linkage.figures import crank_phase_deg
+    >>> crank = {"kind": "crank", "name": "A", "centre": "O", "radius": 1, "phase_deg": 180}
+    >>> crank_phase_deg(Scene("leg", None, (), mechanism={"joints": [crank]}))
+    180.0
+    >>> crank_phase_deg(Scene("leg", None, (), mechanism={"catalog": "hoecken"}))
+    0.0
+    """
+    joints = (scene.mechanism or {}).get("joints", [])
+    return next((float(j.get("phase_deg", 0.0)) for j in joints if j.get("kind") == "crank"), 0.0)
 
 
 def torque_unit(scene: Scene) -> str:

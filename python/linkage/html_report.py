@@ -34,7 +34,7 @@ from linkage._slider_crank import SliderCrank
 from linkage.build import build_drive
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
 from linkage.drive import CrankSchedule
-from linkage.figures import Result, branch_text, format_number, length_unit
+from linkage.figures import Result, branch_text, crank_phase_deg, format_number, length_unit
 from linkage.synthesis import Candidate, long_link, rounded_to
 
 __all__ = ["MAX_FRAMES", "PAGE_SIZE", "PATH_POINTS", "frames", "page", "write_index"]
@@ -605,10 +605,15 @@ def _column(label: str, unit: str, v: Array, decimals: int | None = None) -> dic
 
 def _readout(res: Result, idx: NDArray[np.intp]) -> list[dict[str, Any]]:
     u = length_unit(res.scene)
-    cols = [
-        _column("time", "s", res.time[idx]),
-        _column("crank angle", "°", np.degrees(np.mod(res.theta[idx], 2 * math.pi)), 1),
-    ]
+    theta = np.degrees(np.mod(res.theta[idx], 2 * math.pi))
+    cols = [_column("time", "s", res.time[idx])]
+    phase = crank_phase_deg(res.scene)
+    if phase % 360:
+        # The crank is at θ + its phase (an exported synthesis candidate's): both, named.
+        cols.append(_column("drive angle θ", "°", theta, 1))
+        cols.append(_column("crank angle", "°", np.mod(theta + phase, 360.0), 1))
+    else:
+        cols.append(_column("crank angle", "°", theta, 1))
     s = res.sweep
     if s is not None:
         p = np.array(s.point[idx], dtype=float)

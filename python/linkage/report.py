@@ -41,7 +41,7 @@ from linkage.drawing import (
     walker_drawing,
 )
 from linkage.drive import CrankSchedule
-from linkage.figures import Result, format_number, torque_unit, unit_label
+from linkage.figures import Result, crank_phase_deg, format_number, torque_unit, unit_label
 
 # The folder writer, re-exported: ``linkage.report.write_folder`` etc. keep working.
 from linkage.report_folder import DEFAULT_BASE as DEFAULT_BASE
@@ -689,8 +689,7 @@ def _trajectory(res: Result, d: Drawing) -> Any:
     theta = math.degrees(float(res.theta[i0])) % 360
     # A crank with a phase (an exported synthesis candidate's) is at θ + phase: say where, as
     # synthesis.png names the crank's own angle.
-    joints = (res.scene.mechanism or {}).get("joints", [])
-    phase = next((float(j.get("phase_deg", 0.0)) for j in joints if j.get("kind") == "crank"), 0.0)
+    phase = crank_phase_deg(res.scene)
     crank = f" (crank at {(theta + phase) % 360:.0f}°)" if phase % 360 else ""
     ax.set_title(
         f"{res.scene.name}: path of {s.trace}, pose at θ = {theta:.0f}°{crank}", fontsize=10
