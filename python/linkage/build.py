@@ -957,8 +957,6 @@ def synthesis_target(scene: Scene) -> Array:
     sec = ("synthesis",)
     points, name = read_scene_points(scene, sec, "points", s["points"])
     closed = bool(s.get("closed", True))
-    if len(points) > POINTS_MAX:
-        raise scene.error(sec, "points", f"{name}: at most {POINTS_MAX} points, got {len(points)}")
     # As linkage.synthesis.path cleans them (one function).
     try:
         synthesis.clean_target(points, closed)
@@ -1011,10 +1009,6 @@ def reference_points(scene: Scene) -> Array | None:
         return None
     sec = ("mechanism",)
     points, name = read_scene_points(scene, sec, "reference", m["reference"])
-    if len(points) > POINTS_MAX:
-        raise scene.error(
-            sec, "reference", f"{name}: at most {POINTS_MAX} points, got {len(points)}"
-        )
     if not len(points):
         raise scene.error(
             sec,
@@ -1027,8 +1021,16 @@ def reference_points(scene: Scene) -> Array | None:
 def read_scene_points(scene: Scene, sec: tuple[str, ...], key: str, raw: Any) -> tuple[Array, str]:
     """Read a scene's points: a CSV file of x, y relative to its folder, or ``[[x, y], …]``.
 
-    Return them and how a message names them (the file as the scene gives it).
+    Return them (at most :data:`POINTS_MAX`) and how a message names them (the file as the
+    scene gives it).
     """
+    points, name = _scene_points(scene, sec, key, raw)
+    if len(points) > POINTS_MAX:
+        raise scene.error(sec, key, f"{name}: at most {POINTS_MAX} points, got {len(points)}")
+    return points, name
+
+
+def _scene_points(scene: Scene, sec: tuple[str, ...], key: str, raw: Any) -> tuple[Array, str]:
     if isinstance(raw, str):
         where = base_folder(scene) / raw
         try:

@@ -2201,6 +2201,18 @@ def change_point_gap(c: Candidate[Any], size: float) -> tuple[float, str] | None
     return gap, law
 
 
+def _links(fb: FourBar | SliderCrank) -> tuple[float, ...]:
+    """Return the link lengths ``lengths`` bounds: a four-bar's four, a slider-crank's two."""
+    if isinstance(fb, SliderCrank):
+        return fb.crank, fb.coupler
+    return fb.ground, fb.crank, fb.coupler, fb.rocker
+
+
+def _pins(fb: FourBar | SliderCrank) -> tuple[tuple[float, float], ...]:
+    """Return the fixed pivots ``pivots`` bounds: a four-bar's O and C, a slider-crank's O."""
+    return (fb.o,) if isinstance(fb, SliderCrank) else (fb.o, fb.c)
+
+
 def _arms(fb: FourBar | SliderCrank) -> tuple[float, float]:
     """Return the coupler triangle's sides to the point: from A and from B (the slider's pin)."""
     along, left = fb.point
@@ -2671,18 +2683,14 @@ def _failed(
         failed.append("min_transmission")
     fb = c.linkage
     if lengths is not None:
-        if isinstance(fb, SliderCrank):
-            links: tuple[float, ...] = (fb.crank, fb.coupler)
-        else:
-            links = (fb.ground, fb.crank, fb.coupler, fb.rocker)
         # The coupler triangle's sides to the point are links too (a foot bar): at most the
         # greatest length (a point may lie at a joint, so no least).
+        links = _links(fb)
         if any(not (lengths[0] <= v <= lengths[1]) for v in links) or max(_arms(fb)) > lengths[1]:
             failed.append("lengths")
     if pivots is not None:
         (x0, y0), (x1, y1) = pivots
-        ps = (fb.o,) if isinstance(fb, SliderCrank) else (fb.o, fb.c)
-        if any(not (x0 <= px <= x1 and y0 <= py <= y1) for px, py in ps):
+        if any(not (x0 <= px <= x1 and y0 <= py <= y1) for px, py in _pins(fb)):
             failed.append("pivots")
     return failed
 
@@ -2750,17 +2758,12 @@ def why_none(found: Candidates, names: dict[str, str], unit: str = "") -> tuple[
     u = f" {unit}" if unit else ""
     # How far the closest fit is from each constraint it fails: how far to loosen.
     lk = gone.linkage
-    links = (
-        (lk.crank, lk.coupler)
-        if isinstance(lk, SliderCrank)
-        else (lk.ground, lk.crank, lk.coupler, lk.rocker)
-    )
-    pins = (lk.o,) if isinstance(lk, SliderCrank) else (lk.o, lk.c)
+    links = _links(lk)
     values = {
         "full_turn": f"its crank rocks, {gone.grashof}",
         "min_transmission": f"μ {gone.min_transmission_deg:.1f}°",
         "lengths": f"links {min(links):.3g} … {max(*links, *_arms(lk)):.3g}{u}",
-        "pivots": "pivots " + ", ".join(f"({x:.3g}, {y:.3g})" for x, y in pins),
+        "pivots": "pivots " + ", ".join(f"({x:.3g}, {y:.3g})" for x, y in _pins(lk)),
     }
     failed = [f"{names[k]} ({values[k]})" for k in fails]
     which = failed[0] if len(failed) == 1 else ", ".join(failed[:-1]) + " and " + failed[-1]
