@@ -98,6 +98,8 @@ mod arc_atlas;
 #[cfg(feature = "synthesis")]
 mod atlas;
 #[cfg(feature = "synthesis")]
+mod curve_equation;
+#[cfg(feature = "synthesis")]
 mod efd;
 #[cfg(feature = "synthesis")]
 mod path_synthesis;
@@ -114,6 +116,8 @@ pub use atlas::{
     candidate, nearest, slider_candidate, Atlas, AtlasSpec, ENTRY_PARAMS, LENGTH_RANGE,
     SLIDER_ENTRY_PARAMS,
 };
+#[cfg(feature = "synthesis")]
+pub use curve_equation::{fourbars_from_curve, CurveEquation, EquationFit, CURVE_EQUATION_POINTS};
 #[cfg(feature = "synthesis")]
 pub use efd::{
     descriptor_len, query_descriptors, Efd, Normalisation, MIN_CURVE_POINTS, QUERY_VARIANTS,
