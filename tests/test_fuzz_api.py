@@ -858,6 +858,8 @@ def test_synthesis_atlas_build(entries, harmonics, samples, threads):
         assert hits is None or int(hits[0][0]) == 0
 
 
+# Random pose angles beyond 2π draw motion()'s degrees hint, which is for users, not a failure.
+@pytest.mark.filterwarnings("ignore:poses.*pose angles exceed 2π:UserWarning")
 @FAST
 @given(poses=st.one_of(POINTS, HOSTILE), n=COUNT, beta=st.one_of(st.none(), HOSTILE))
 def test_synthesis_motion(poses, n, beta):

@@ -126,7 +126,7 @@ def missed_closed_target(name: str) -> np.ndarray:
 
 @pytest.mark.parametrize("name", sorted(MISSED_CLOSED))
 def test_a_closed_curve_the_atlas_misses_is_recovered_from_its_parts(
-    atlas: Atlas, arc_atlas: Atlas, name: str
+    atlas: Atlas, arc_atlas: Atlas, name: str, no_equation: None
 ) -> None:
     """With these fixtures the closed stage alone ends at 1.5e-4 and 0.26 of the size (as
     placed by the trial; 1.9e-4 and 0.21 with the default atlases); with the parts at 3e-14 …
@@ -139,6 +139,25 @@ def test_a_closed_curve_the_atlas_misses_is_recovered_from_its_parts(
     best, size = found[0], size_of(target)
     assert best.error <= 1e-6 * size, (name, best.error / size)
     assert tracked_distance(best.linkage, target) <= 1e-6 * size + 1e-4 * size
+
+
+@pytest.mark.parametrize("name", sorted(MISSED_CLOSED))
+def test_the_curve_equation_recovers_the_closed_curves_the_atlas_misses(
+    atlas: Atlas,
+    monkeypatch,
+    name: str,  # type: ignore[no-untyped-def]
+) -> None:
+    """The same targets with the parts stage and the global search off: the four-bars from the
+    curve's equation, refined, draw them exactly."""
+    monkeypatch.setattr(synthesis, "PART_POINTS", 10**9)
+    rng = np.random.default_rng(sorted(MISSED_CLOSED).index(name))
+    target, _ = placed(missed_closed_target(name), rng)
+    found = synthesis.path(target, atlas=atlas, top=1, global_search=False)
+    assert found
+    best, size = found[0], size_of(target)
+    assert best.error <= 1e-10 * size, (name, best.error / size)
+    assert best.source in ("equation", "cognate"), best.source
+    assert tracked_distance(best.linkage, target) <= 1e-10 * size + 1e-4 * size
 
 
 def test_parts_of_a_closed_target_are_cut_at_its_gaps() -> None:
@@ -162,6 +181,13 @@ def test_parts_of_a_closed_target_are_cut_at_its_gaps() -> None:
 def arc_atlas() -> Atlas:
     # 200,000 arcs (about 3,600 circuits): the default (560,000) is for users.
     return Atlas.build(200_000, kind="fourbar-arcs", threads=2)
+
+
+@pytest.fixture
+def no_equation(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """Turn off the search's first stage, the four-bars from the curve's equation, for a test
+    of a later stage (it recovers these targets before the later stages run)."""
+    monkeypatch.setattr(synthesis, "CURVE_EQUATION_POINTS", 10**9)
 
 
 def arc_of(fb: linkage.FourBar, rng: np.random.Generator, frac: float) -> np.ndarray:
@@ -222,7 +248,9 @@ def test_open_arc_is_recovered_exactly(arc_atlas: Atlas, name: str, seed: int, f
     assert tracked_distance(found[0].linkage, target) <= 1e-6 * size + 1e-4 * size
 
 
-def test_an_arc_the_first_fits_miss_is_recovered_by_the_long_fits(arc_atlas: Atlas) -> None:
+def test_an_arc_the_first_fits_miss_is_recovered_by_the_long_fits(
+    arc_atlas: Atlas, no_equation: None
+) -> None:
     """A third of Watt's curve (bench/open_arcs.py's watt#1, rounded): with this fixture its
     first fits stall in near-fits and, before the long fits and wider matches, the answer was
     6.5e-5 of the size; now ~5e-14."""
@@ -265,7 +293,7 @@ def bench_arc(seed: int, name: str) -> np.ndarray:
 
 @pytest.mark.parametrize(("seed", "name"), [(0, "random#6")])
 def test_a_short_arc_in_a_curved_valley_is_recovered_by_geodesic_steps(
-    arc_atlas: Atlas, seed: int, name: str
+    arc_atlas: Atlas, seed: int, name: str, no_equation: None
 ) -> None:
     """Arcs of bench/open_arcs.py whose long fits crawl along a curved valley of near-fits.
     random#6 (seed 0, 0.18 of a crossed triple-rocker's circuit): MINPACK's steps ended at 1.4e-5
@@ -311,7 +339,43 @@ def test_matches_slid_along_their_curves_reach_a_basin_the_frames_miss() -> None
     assert tracked_distance(found.linkage, target) <= 1e-6 * size + 1e-4 * size
 
 
-def test_full_turn_guides_the_search_not_only_the_ranking(arc_atlas: Atlas) -> None:
+@pytest.mark.parametrize("seed", range(6))
+def test_the_curve_equation_recovers_a_random_arc_without_the_atlas(
+    arc_atlas: Atlas, seed: int
+) -> None:
+    """An arc of a third to three quarters of a random four-bar's circuit, anywhere at any
+    scale, with no atlas match fitted (``refine=0``) and no global search: a four-bar from the
+    equation of the curve through its points, refined (or a cognate of it), draws it to within
+    EXACT (1e-6) of its size; seed 2's arc, which passes a limit 0.1° from a toggle, ends at
+    1.7e-9."""
+    rng = np.random.default_rng(100 + seed)
+    target = arc_of(random_fourbar(rng), rng, rng.uniform(1 / 3, 3 / 4))
+    found = synthesis.path(
+        target, closed=False, top=1, atlas=arc_atlas, refine=0, global_search=False
+    )
+    assert found
+    size = size_of(target)
+    assert found[0].error <= synthesis.EXACT * size, found[0].error / size
+    assert found[0].source in ("equation", "cognate"), found[0].source
+    assert_one_circuit(found[0])
+    assert tracked_distance(found[0].linkage, target) <= 1e-6 * size + 1e-4 * size
+
+
+def test_the_curve_equation_takes_sixteen_points_or_more() -> None:
+    """The core's function names its least count; the search leaves the stage out below it."""
+    pts = linkage.catalog.hoecken().circuit(16).point[:-1]
+    with pytest.raises(linkage.LinkageError, match="needs at least 16 points on the curve, got 15"):
+        linkage._core.synth_curve_equation(np.ascontiguousarray(pts))
+    assert synthesis._equation_pool(np.ascontiguousarray(pts), True, 1) == []
+    bad = np.ascontiguousarray(linkage.catalog.hoecken().circuit(21).point[:-1])
+    bad[4, 1] = np.nan
+    with pytest.raises(linkage.LinkageError, match="curve point"):
+        linkage._core.synth_curve_equation(bad)
+
+
+def test_full_turn_guides_the_search_not_only_the_ranking(
+    arc_atlas: Atlas, no_equation: None
+) -> None:
     """An arc of a crank-rocker with full_turn=True: the constraint picks which matches are
     refined, so the drawing crank-rocker is found; before, an exact fit of another class ended
     the search and the filter then left an empty list (found by a new-user trial)."""
@@ -444,8 +508,13 @@ def test_an_empty_result_says_which_constraint_removed_the_fits(atlas: Atlas, sc
     assert gone is not None and found.closest_fails == ("pivots",)
     # It is a fit in the target's frame (the constraints steered it, so it need not be exact):
     # its error is its curve's distance from the target, and its pivots lie outside the box.
+    # (Up to the polyline's chords, 3e-7 of the size: the curve's equation brings a removed
+    # fit at 5e-10 of the size.)
     curve = gone.linkage.circuit(20001).point
-    assert synthesis.largest_distance(target, curve) == pytest.approx(gone.error, rel=1e-3)
+    chords = 1e-6 * size_of(target)
+    assert synthesis.largest_distance(target, curve) == pytest.approx(
+        gone.error, rel=1e-3, abs=chords
+    )
     assert gone.error < size_of(target)
     assert not (box[0][0] <= gone.linkage.o[0] <= box[1][0])
     why, blamed = synthesis.why_none(found, synthesis.CLI_CONSTRAINTS)

@@ -55,6 +55,7 @@ __all__ = [
     "synth_arc_frame",
     "synth_atlas_build",
     "synth_atlas_nearest",
+    "synth_curve_equation",
     "synth_descriptors",
     "synth_errors",
     "synth_frame",
@@ -352,6 +353,9 @@ def synth_place(
     flip: bool,
 ) -> NDArray[np.float64]: ...
 def synth_arc(feet: NDArray[np.float64]) -> tuple[float, float] | None: ...
+def synth_curve_equation(
+    points: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float, float]: ...
 def polyline_distance(
     points: NDArray[np.float64], path: NDArray[np.float64]
 ) -> NDArray[np.float64]: ...

@@ -99,6 +99,11 @@ def drive_label(scene: Scene, drive: Any) -> str:
     return f"crank schedule: foot {d['foot_speed']:g} {u}/s, duty factor {d['duty_factor']:g}"
 
 
+SOURCE_WORDS = {"equation": "curve-equation"}
+"""A candidate's ``source`` as the figures table words it ("from the curve-equation search");
+the others read as they are ("atlas", "global", "cognate")."""
+
+
 def synthesis_figures(res: Result) -> None:
     """Append the rows of a ``[synthesis]`` search: the target, then each candidate's figures.
 
@@ -183,7 +188,8 @@ def synthesis_figures(res: Result) -> None:
                 f"{name}: {'class' if isinstance(c.linkage, SliderCrank) else 'Grashof class'}",
                 c.grashof,
                 "",
-                f"{branch_text(c.linkage)}, from the {c.source} search{_long(c, run.size)}"
+                f"{branch_text(c.linkage)}, from the {SOURCE_WORDS.get(c.source, c.source)} search"
+                f"{_long(c, run.size)}"
                 f"{_near_change_point(c, run.size, u)}",
             )
         )

@@ -85,6 +85,10 @@ __all__ = [
 MIN_POINTS = 5
 """Fewest target points: a four-bar's coupler curve has five shape parameters beyond placement."""
 
+CURVE_EQUATION_POINTS = 16
+"""Fewest target points from which a four-bar is sought through the equation of the curve they
+lie on (``linkage_core::CURVE_EQUATION_POINTS``: the equation has 16 coefficients)."""
+
 DEFAULT_ENTRIES = 200_000
 """Entries of the default four-bar atlas (built once into the cache folder)."""
 
@@ -551,8 +555,9 @@ class Candidate(Generic[LinkageT]):
     ``min_transmission`` is the transmission angle's least distance from a toggle (a
     slider-crank's: the angle between the rod and the normal to the line) over the matched
     part, or over the whole turn when the crank turns fully (it is driven through all of it).
-    ``source`` says where it came from: ``"atlas"`` (a match refined), ``"global"`` (the global
-    search) or
+    ``source`` says where it came from: ``"equation"`` (a four-bar from the equation of the
+    curve through the target points, refined), ``"atlas"`` (a match refined), ``"global"``
+    (the global search) or
     ``"cognate"`` (a Roberts cognate of an exact fit, or one driven at its other pivot).
     """
 
@@ -1245,6 +1250,13 @@ def path(
 ) -> Candidates:
     """Four-bars (or slider-cranks) whose coupler curve passes through ``points``, best first.
 
+    A four-bar search of 16 points or more (:data:`CURVE_EQUATION_POINTS`) starts from the
+    equation of the curve through them: its foci are the pivots of the cognates that draw it,
+    and its lengths follow from one linear solve (``linkage_core::fourbars_from_curve``). On a
+    curve a four-bar draws, closed or an arc that singles the curve out, those four-bars,
+    refined, are exact (``source == "equation"``); the atlas matches, refined, and the later
+    stages search on as described below and in ``docs/synthesis.md``.
+
     Parameters
     ----------
     points : (n, 2) array_like or path of a CSV file
@@ -1486,6 +1498,24 @@ def path(
     for k in kinds:
         bounds = _bounds(lengths, pivots, size, k)
         pool = []
+        # A four-bar from the equation of the curve through the points, refined: exact for a
+        # curve a four-bar draws, whatever part of it the points cover (docs/synthesis.md,
+        # step 0).
+        equation = _equation_pool(target, closed, nthreads) if k is FOURBAR else []
+        ahead = _finish(
+            equation,
+            target,
+            closed,
+            size,
+            bounds,
+            len(equation),
+            nthreads,
+            None,
+            top,
+            k,
+            admissible,
+            exact_at=1e-10 if accept is None else max(1e-10, accept / size),
+        )
         # Open targets are matched against open arcs of the kind's circuits.
         name: AtlasKind | None = k.name if closed else k.arcs
         if name is not None:
@@ -1514,6 +1544,7 @@ def path(
             admissible,
             exact_at=1e-10 if accept is None else max(1e-10, accept / size),
         )
+        mine = ahead + mine
         # Restarts and the global search are judged by the candidates the constraints admit:
         # an exact fit they reject must not end the search for one they admit.
         if not closed and name is not None and mine and best_usable(mine) > goal:
@@ -1637,6 +1668,36 @@ def path(
     ok, result = _kept(found, full_turn, min_transmission, lengths, pivots)
     result.extend(_distinct(_ranked(ok, size, limit), target, closed, size, top))
     return result
+
+
+EQUATION_STARTS = 4
+"""Four-bars from the curve's equation that are refined (of up to 6, each in both assemblies,
+best first by their unrefined error): the three cognates when the points lie on a four-bar's
+curve, then the next best labelling of its foci."""
+
+
+def _equation_pool(
+    target: Float2D, closed: bool, threads: int
+) -> list[tuple[NDArray[np.float64], bool, str]]:
+    """Return starts from the equation of the curve through ``target``.
+
+    The four-bars of ``linkage_core::fourbars_from_curve`` in both assemblies, best first by
+    their error, at most :data:`EQUATION_STARTS` (none for fewer than 16 points, or points
+    that give no equation).
+    """
+    if len(target) < CURVE_EQUATION_POINTS:
+        return []
+    try:
+        params, _, _, _, _ = _core.synth_curve_equation(np.ascontiguousarray(target))
+    except LinkageError:
+        return []
+    if not len(params):
+        return []
+    rows = np.repeat(params, 2, axis=0)
+    crossed = np.tile([False, True], len(params))
+    e, _ = _errors(rows, crossed, target, closed, threads=threads)
+    order = [i for i in np.argsort(e[:, 0], kind="stable") if np.isfinite(e[i, 0])]
+    return [(rows[i], bool(crossed[i]), "equation") for i in order[:EQUATION_STARTS]]
 
 
 COGNATES_OF = 8

@@ -1,13 +1,14 @@
-//! Mirrors `linkage_core::{efd, atlas, path_synthesis, slider_circuit}`: the Rust half of
+//! Mirrors `linkage_core::{efd, atlas, path_synthesis, slider_circuit, curve_equation}`: the Rust half of
 //! `linkage.synthesis` (descriptors, the atlas, circuit errors and residuals). Converts arrays,
 //! allocates outputs with numpy, releases the GIL and calls the core.
 
 use linkage_core::{
-    arc_frame, covering_arc, descriptor_len, nearest, path_errors, path_residuals, place_entry,
-    place_slider_entry, polyline_distances, query_descriptors, slider_arc_frame,
-    slider_path_errors, slider_path_residuals, ArcSpec, Atlas, AtlasSpec, Circuit, CircuitPath,
-    FootSearch, Normalisation, PathError, SliderCircuit, Vec2, ARC_ENTRY_PARAMS, ENTRY_PARAMS,
-    PLACED_PARAMS, QUERY_VARIANTS, SLIDER_ARC_ENTRY_PARAMS, SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
+    arc_frame, covering_arc, descriptor_len, fourbars_from_curve, nearest, path_errors,
+    path_residuals, place_entry, place_slider_entry, polyline_distances, query_descriptors,
+    slider_arc_frame, slider_path_errors, slider_path_residuals, ArcSpec, Atlas, AtlasSpec,
+    Circuit, CircuitPath, FootSearch, Normalisation, PathError, SliderCircuit, Vec2,
+    ARC_ENTRY_PARAMS, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS, SLIDER_ARC_ENTRY_PARAMS,
+    SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
 };
 use numpy::ndarray::{Ix2, Ix3};
 use numpy::{
@@ -575,4 +576,35 @@ pub fn synth_arc(feet: PyReadonlyArray1<'_, f64>) -> PyResult<Option<(f64, f64)>
         .as_slice()
         .map_err(|_| linkage_error("feet must be a contiguous float64 array"))?;
     Ok(covering_arc(f))
+}
+
+/// The placed four-bars, their residuals, the foci, `misfit` and `spread`.
+type CurveArrays<'py> = (Arr2<'py, f64>, Arr1<'py, f64>, Arr2<'py, f64>, f64, f64);
+
+/// Four-bars from the equation of the curve through `points (n, 2)`
+/// (`linkage_core::fourbars_from_curve`): placed parameters `(k, 9)` least residual first,
+/// their residuals `(k,)`, the curve's foci `(3, 2)`, and the fit's `misfit` and `spread`.
+#[pyfunction]
+#[pyo3(signature = (points,))]
+pub fn synth_curve_equation<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray2<'py, f64>,
+) -> PyResult<CurveArrays<'py>> {
+    let pts = self::points("points", &points)?;
+    let found = py.detach(|| fourbars_from_curve(pts)).map_err(to_py)?;
+    let k = found.fits.len();
+    let params: Vec<f64> = found.fits.iter().flat_map(|f| f.params).collect();
+    let residuals: Vec<f64> = found.fits.iter().map(|f| f.residual).collect();
+    let foci: Vec<f64> = found.foci.iter().flat_map(|f| [f.x, f.y]).collect();
+    let shape = |rows, cols, v: Vec<f64>| {
+        numpy::ndarray::Array2::from_shape_vec((rows, cols), v)
+            .map_err(|e| linkage_error(format!("internal: {e}")))
+    };
+    Ok((
+        shape(k, PLACED_PARAMS, params)?.into_pyarray(py),
+        residuals.into_pyarray(py),
+        shape(3, 2, foci)?.into_pyarray(py),
+        found.misfit,
+        found.spread,
+    ))
 }
