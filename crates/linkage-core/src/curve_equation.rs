@@ -639,24 +639,19 @@ mod tests {
     #[test]
     fn bad_points_are_errors() {
         let one = vec![Vec2::new(1.0, 2.0); 20];
-        assert_eq!(
-            fourbars_from_curve(&one[..15]),
-            Err(Error::TooFew {
-                what: "points on the curve",
-                needed: 16,
-                got: 15
-            })
-        );
-        assert!(matches!(
-            fourbars_from_curve(&one),
-            Err(Error::Degenerate { .. })
-        ));
+        let few = fourbars_from_curve(&one[..15]);
+        let want = Error::TooFew {
+            what: "points on the curve",
+            needed: 16,
+            got: 15,
+        };
+        assert_eq!(few, Err(want), "15 points");
+        let same = fourbars_from_curve(&one);
+        assert!(matches!(same, Err(Error::Degenerate { .. })), "{same:?}");
         let mut nan = on_circuit(LINKAGES[0].0, false, 20, 0.0, 6.0);
         nan[3].y = f64::NAN;
-        assert!(matches!(
-            fourbars_from_curve(&nan),
-            Err(Error::NotFinite { .. })
-        ));
+        let got = fourbars_from_curve(&nan);
+        assert!(matches!(got, Err(Error::NotFinite { .. })), "{got:?}");
     }
 
     #[test]
