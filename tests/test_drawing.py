@@ -16,6 +16,7 @@ from linkage.drawing import (
     clip_to,
     mechanism_drawing,
     path_window,
+    sagittal_pivots,
     walker_drawing,
 )
 from linkage.walker import leg_labels
@@ -137,6 +138,22 @@ def test_walker_legs_sit_at_their_mounts(model, view):
         assert d.ground == sim.ground and d.support is None
     else:
         assert d.support is not None and d.cg == tuple(w.cg)
+
+
+@pytest.mark.parametrize("model", ["quadruped_hoecken", "hexapod_tripod"])
+def test_sagittal_pivots_are_the_side_views_pivots(model):
+    """One pose a leg gives the fixed pivots the side view marks over the whole run (the
+    hexapod's legs are horizontal: none)."""
+    w = getattr(linkage.catalog, model)()
+    sim = w.simulate(THETA)
+    d = walker_drawing(w, sim, "side")
+    pins = sagittal_pivots(w, sim)
+    assert len(pins) == len(d.pivots) == (8 if model == "quadruped_hoecken" else 0)
+    if not len(pins):
+        return
+    drawn = d.positions[:, list(d.pivots)]
+    np.testing.assert_allclose(pins[:, [0, 2]], drawn[0], atol=1e-12)
+    np.testing.assert_allclose(drawn, np.broadcast_to(drawn[0], drawn.shape), atol=1e-12)
 
 
 def test_rigid_leg_bars_keep_their_length_in_the_body_frame():

@@ -814,7 +814,14 @@ def test_placement_arc_and_polyline_distance_from_the_core_match_numpy() -> None
         assert synthesis.largest_distance(pts, path) == pytest.approx(
             _distance_reference(pts, path), 1e-12
         )
+        # Each point against its own polyline (reference_gap's measure).
+        own = rng.normal(size=(15, 7, 2))
+        each = linkage._core.polyline_distance_each(pts, own.reshape(-1, 2), 7)
+        want = [_distance_reference(pts[i : i + 1], own[i]) for i in range(15)]
+        np.testing.assert_allclose(each, want, rtol=1e-12)
     assert synthesis._arc(np.array([0.3, 1.0]), True) == (0.0, 2 * math.pi)
+    with pytest.raises(linkage.LinkageError, match="polylines"):
+        linkage._core.polyline_distance_each(np.zeros((3, 2)), np.zeros((8, 2)), 3)
     # A NaN sample breaks the polyline: no segment across the gap (the old code drew one).
     path = np.array([[0.0, 0.0], [2.0, 0.0], [np.nan, np.nan], [2.0, 2.0]])
     assert synthesis.largest_distance(np.array([[2.0, 1.5]]), path) == pytest.approx(0.5)

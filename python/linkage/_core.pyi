@@ -42,6 +42,7 @@ __all__ = [
     "motion_law_eval",
     "motion_law_names",
     "polyline_distance",
+    "polyline_distance_each",
     "program_discontinuities",
     "program_eval",
     "schedule_eval",
@@ -358,6 +359,9 @@ def synth_curve_equation(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float, float]: ...
 def polyline_distance(
     points: NDArray[np.float64], path: NDArray[np.float64]
+) -> NDArray[np.float64]: ...
+def polyline_distance_each(
+    points: NDArray[np.float64], paths: NDArray[np.float64], stride: int
 ) -> NDArray[np.float64]: ...
 def synth_residuals(
     params: NDArray[np.float64],

@@ -91,6 +91,7 @@ __all__ = [
     "leg_angles",
     "mechanism_drawing",
     "path_window",
+    "sagittal_pivots",
     "walker_drawing",
 ]
 
@@ -522,6 +523,25 @@ def walker_drawing(
         support=sim.support if view == "top" else None,
         cg=(float(walker.cg[0]), float(walker.cg[1])) if view == "top" else None,
     )
+
+
+def sagittal_pivots(walker: Any, sim: Any) -> Array:
+    """Return the fixed pivots of ``walker``'s sagittal legs in the body frame, (k, 3).
+
+    The joints :func:`walker_drawing`'s side view marks as pivots, from one pose of each leg (at
+    the run's first sample) instead of the whole run; (0, 3) when no leg is sagittal.
+    """
+    out = [np.empty((0, 3))]
+    for li, leg in enumerate(walker.legs):
+        if leg.plane != "sagittal":
+            continue
+        theta = float(sim.theta[0] + walker.phases[li])
+        p2 = np.asarray(leg.linkage.sweep(np.array([theta])).joints, dtype=float)
+        if not np.isfinite(p2).all():
+            raise LinkageError(f"leg {leg.name!r} does not assemble at every sample")
+        st = _structure(leg.linkage, p2[0])
+        out.append(_to_body(leg, p2)[0, list(st.pivots)])
+    return np.concatenate(out)
 
 
 def _to_body(leg: Any, p2: Array, vector: bool = False) -> Array:

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage import _core
 from linkage._core import LinkageError
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
@@ -22,7 +23,7 @@ from linkage._schema import Scene
 from linkage._slider_crank import SliderCrank
 from linkage._sweep import Sweep
 from linkage.cam import CamProfile
-from linkage.drawing import walker_drawing
+from linkage.drawing import sagittal_pivots
 from linkage.drive import Geared
 from linkage.figures import (
     Result,
@@ -399,15 +400,14 @@ def reference_gap(mech: FourBar | Mechanism, s: Sweep, reference: Array) -> floa
         j = np.where(np.isnan(d), np.inf, d).argmin(axis=1)
         a = theta[rows, np.maximum(j - 1, 0)]
         b = theta[rows, np.minimum(j + 1, REFERENCE_SUBSAMPLES)]
-    # Each point's distance from the chords of its own last samples (NaN where one end does
+    # Each point's distance from the polyline of its own last samples (broken where one does
     # not assemble), the least over its nearest samples, the largest over the points.
-    p, q = pts[:, :-1], pts[:, 1:]
-    e = q - p
-    w = ref[:, None, :] - p
-    t = np.clip(np.sum(w * e, axis=2) / np.maximum(np.sum(e * e, axis=2), 1e-300), 0.0, 1.0)
-    gap = np.linalg.norm(w - t[..., None] * e, axis=2)
-    gap = np.where(np.isnan(gap), np.inf, gap).min(axis=1).reshape(len(reference), k).min(axis=1)
-    return float(gap.max())
+    each = _core.polyline_distance_each(
+        np.ascontiguousarray(ref, dtype=np.float64),
+        np.ascontiguousarray(pts.reshape(-1, 2), dtype=np.float64),
+        pts.shape[1],
+    )
+    return float(each.reshape(len(reference), k).min(axis=1).max())
 
 
 def _lowest_pivot(walker: Walker, sim: Simulation) -> float | None:
@@ -415,11 +415,10 @@ def _lowest_pivot(walker: Walker, sim: Simulation) -> float | None:
 
     None when no leg is sagittal (a horizontal leg's pivots lie in the body's plane).
     """
-    d = walker_drawing(walker, sim, "side")
-    if not d.pivots or d.ground is None:
+    pins = sagittal_pivots(walker, sim)
+    if not len(pins):
         return None
-    z = np.asarray(d.positions, dtype=float)[0, list(d.pivots), 1]
-    return float(z.min() - d.ground)
+    return float(pins[:, 2].min() - sim.ground)
 
 
 def _peaks(s: Sweep) -> tuple[float, float]:

@@ -124,9 +124,9 @@ pub use efd::{
 };
 #[cfg(feature = "synthesis")]
 pub use path_synthesis::{
-    covering_arc, path_errors, path_residuals, place_entry, polyline_distances, ArcFigures,
-    Circuit, CircuitPath, FootSearch, PathError, BRANCH_JOINT, FOOT_STARTS, PLACED_PARAMS,
-    POINT_JOINT,
+    covering_arc, path_errors, path_residuals, place_entry, polyline_distances,
+    polyline_distances_each, ArcFigures, Circuit, CircuitPath, FootSearch, PathError, BRANCH_JOINT,
+    FOOT_STARTS, PLACED_PARAMS, POINT_JOINT,
 };
 #[cfg(feature = "synthesis")]
 pub use slider_arc_atlas::{slider_arc_frame, slider_arc_points, SLIDER_ARC_ENTRY_PARAMS};

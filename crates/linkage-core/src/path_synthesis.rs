@@ -860,6 +860,58 @@ pub fn polyline_distances<T: RealField + Copy>(
     Ok(())
 }
 
+/// The distance from each of `points` to its own polyline into `out`: `paths` holds
+/// `points.len()` polylines of `stride` samples each, point `k`'s from sample `k·stride`, each
+/// measured as [`polyline_distances`] measures (a sample that is not finite breaks it;
+/// infinity for a polyline with no finite sample).
+///
+/// ```
+/// use linkage_core::{polyline_distances_each, Vec2};
+/// // Two points, each against its own two-sample polyline.
+/// let paths = [
+///     Vec2::new(0.0, 0.0), Vec2::new(2.0, 0.0), // the first point's
+///     Vec2::new(5.0, 5.0), Vec2::new(5.0, 9.0), // the second's
+/// ];
+/// let points = [Vec2::new(1.0, 1.0), Vec2::new(2.0, 6.0)];
+/// let mut d = [0.0; 2];
+/// polyline_distances_each(&points, &paths, 2, &mut d).unwrap();
+/// assert_eq!(d, [1.0, 3.0]);
+/// ```
+///
+/// # Errors
+/// [`Error::BufferLength`] when `paths` is not `points.len() × stride` long or `out` not as
+/// long as `points`.
+pub fn polyline_distances_each<T: RealField + Copy>(
+    points: &[Vec2<T>],
+    paths: &[Vec2<T>],
+    stride: usize,
+    out: &mut [T],
+) -> Result<(), Error> {
+    let expected = points.len().saturating_mul(stride);
+    if paths.len() != expected || stride == 0 {
+        return Err(Error::BufferLength {
+            what: "polylines (points × stride)",
+            expected,
+            got: paths.len(),
+        });
+    }
+    if out.len() != points.len() {
+        return Err(Error::BufferLength {
+            what: "polyline distances",
+            expected: points.len(),
+            got: out.len(),
+        });
+    }
+    for ((q, path), d) in points
+        .iter()
+        .zip(paths.chunks_exact(stride))
+        .zip(out.chunks_exact_mut(1))
+    {
+        polyline_distances(core::slice::from_ref(q), path, d)?;
+    }
+    Ok(())
+}
+
 /// The circuit-parameter arc `(start, end)` (`end` in `[start, start + 2π)`) that holds every
 /// finite one of `feet` (circuit parameters, any turn): the complement of the largest gap
 /// between them around the circle. `None` when none is finite.

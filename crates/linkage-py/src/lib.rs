@@ -103,6 +103,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(synthesis::synth_curve_equation, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_arc, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::polyline_distance, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::polyline_distance_each, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_residuals, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_errors, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_info, m)?)?;

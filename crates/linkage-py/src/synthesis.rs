@@ -4,9 +4,9 @@
 
 use linkage_core::{
     arc_frame, covering_arc, descriptor_len, fourbars_from_curve, nearest, path_errors,
-    path_residuals, place_entry, place_slider_entry, polyline_distances, query_descriptors,
-    slider_arc_frame, slider_path_errors, slider_path_residuals, ArcSpec, Atlas, AtlasSpec,
-    Circuit, CircuitPath, FootSearch, Normalisation, PathError, SliderCircuit, Vec2,
+    path_residuals, place_entry, place_slider_entry, polyline_distances, polyline_distances_each,
+    query_descriptors, slider_arc_frame, slider_path_errors, slider_path_residuals, ArcSpec, Atlas,
+    AtlasSpec, Circuit, CircuitPath, FootSearch, Normalisation, PathError, SliderCircuit, Vec2,
     ARC_ENTRY_PARAMS, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS, SLIDER_ARC_ENTRY_PARAMS,
     SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
 };
@@ -563,6 +563,34 @@ pub fn polyline_distance<'py>(
             .as_slice_mut()
             .map_err(|_| linkage_error("internal: output not contiguous"))?;
         py.detach(|| polyline_distances(q, p, o)).map_err(to_py)?;
+    }
+    Ok(out)
+}
+
+/// Distance `(m,)` from each of `points (m, 2)` to its own polyline of `stride` samples, the
+/// rows of `paths (m·stride, 2)` (`linkage_core::polyline_distances_each`).
+#[pyfunction]
+#[pyo3(signature = (points, paths, stride))]
+pub fn polyline_distance_each<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray2<'py, f64>,
+    paths: PyReadonlyArray2<'py, f64>,
+    stride: usize,
+) -> PyResult<Arr1<'py, f64>> {
+    let (q, p) = (
+        self::points("points", &points)?,
+        self::points("paths", &paths)?,
+    );
+    let n = q.len();
+    let what = || format!("distances of {n} points");
+    let out = memory::zeros::<f64, numpy::ndarray::Ix1>(py, &what, &[n])?;
+    {
+        let mut w = out.readwrite();
+        let o = w
+            .as_slice_mut()
+            .map_err(|_| linkage_error("internal: output not contiguous"))?;
+        py.detach(|| polyline_distances_each(q, p, stride, o))
+            .map_err(to_py)?;
     }
     Ok(out)
 }
