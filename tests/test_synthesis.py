@@ -585,6 +585,11 @@ def test_atlas_round_trips_through_files(tmp_path) -> None:  # type: ignore[no-u
     [
         (np.zeros((3, 2)), linkage.LinkageError, "at least 5 distinct points"),
         (
+            np.tile([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], (6, 1)),
+            linkage.LinkageError,
+            r"at least 5 distinct points, got 3 \(18 points repeating them\)",
+        ),
+        (
             np.array([[0, 0], [1, 0], [np.nan, 1], [2, 2], [3, 1], [0, 3]]),
             linkage.LinkageError,
             "finite",
@@ -934,6 +939,24 @@ def test_cognates_of_an_exact_fit_offer_its_full_turn_drives() -> None:
     assert all(c.grashof == "crank-rocker" and c.source == "cognate" for c in turning)
     best = synthesis._ranked([rocking, *more], size, math.inf)[0]
     assert best.full_turn, best
+
+
+def test_a_cognate_is_not_hidden_by_its_numbers_on_the_other_assembly() -> None:
+    """Half a double-rocker's circuit (a new user's trial, 2026-11-27): its open crank-rocker
+    cognate (crank 7.21 about the double-rocker's pivot O, turns fully, μ 29°) has the same nine
+    numbers as the other crank-rocker's reversed drive on the crossed assembly, which misses by
+    5.6 sizes. That variant, tried first, had marked the numbers as seen, and the exact
+    full-turn cognate was never listed."""
+    fb = linkage.FourBar(ground=20, crank=15, coupler=10, rocker=20, point=(4, 6))
+    c = fb.circuit(20001).point[:-1]
+    idx = ((0.61 + 0.5 * np.linspace(0, 1, 20)) * len(c)).astype(int) % len(c)
+    rot = np.array([[math.cos(0.3), math.sin(0.3)], [-math.sin(0.3), math.cos(0.3)]])
+    target = np.ascontiguousarray(c[idx] @ rot)
+    size = size_of(target)
+    found = synthesis.path(target, closed=False, top=3)
+    turning = [x for x in found if x.full_turn and x.error <= synthesis.EXACT * size]
+    cranks = sorted(round(x.linkage.crank, 4) for x in turning)
+    assert cranks == [7.2111, 8.4853], [(x.source, x.linkage) for x in found]
 
 
 def test_cognate_candidates_are_exact_and_each_linkage_is_listed_once(atlas: Atlas) -> None:

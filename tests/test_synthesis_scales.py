@@ -29,16 +29,24 @@ def test_a_target_at_an_extreme_scale_is_found_as_at_unit_scale(kind: str, scale
     unit = curve(kind)
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no overflow or underflow warning anywhere
-        ref = synthesis.path(unit, kind=kind, top=1)[0]
+        refs = synthesis.path(unit, kind=kind, top=3)
         got = synthesis.path(unit * scale, kind=kind, top=1)[0]
         size = target_size(unit * scale)
         assert size == pytest.approx(target_size(unit) * scale, rel=1e-14)
-        assert got.error <= 1e-12 * size and ref.error <= 1e-12 * target_size(unit)
-        # The candidate is the unit one scaled: its own circuit passes through the target.
+        assert got.error <= 1e-12 * size and refs[0].error <= 1e-12 * target_size(unit)
+        # The candidate is a unit one scaled: its own circuit passes through the target. (Which
+        # one: Hoecken's two crank-rocker cognates are mirror images, alike to the last digits
+        # of every measure, so rounding picks the first.)
         s = got.linkage.circuit(4001)
         assert largest_distance(unit * scale, s.point[s.valid]) <= 1e-5 * size
-        assert got.crank_range == pytest.approx(ref.crank_range, abs=1e-9)
-        assert got.grashof == ref.grashof and got.full_turn == ref.full_turn
+        same = [
+            r
+            for r in refs
+            if r.crank_range == pytest.approx(got.crank_range, abs=1e-9)
+            and (r.grashof, r.full_turn) == (got.grashof, got.full_turn)
+        ]
+        assert same, (got, refs)
+        assert same[0].min_transmission == pytest.approx(refs[0].min_transmission, abs=1e-12)
 
 
 def test_measures_of_a_curve_hold_at_extreme_scales() -> None:

@@ -764,9 +764,13 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
     pts = points[keep]
     if closed and len(pts) > 1 and np.array_equal(pts[0], pts[-1]):
         pts = pts[:-1]
-    if len(pts) < MIN_POINTS:
+    # Distinct anywhere, not only from their neighbours: 18 points cycling through 3 positions
+    # had passed (and been "fitted exactly"; found by a new-user trial).
+    distinct = len(np.unique(pts, axis=0))
+    if distinct < MIN_POINTS:
+        also = f" ({len(pts)} points repeating them)" if len(pts) > distinct else ""
         raise LinkageError(
-            f"path synthesis needs at least {MIN_POINTS} distinct points, got {len(pts)}"
+            f"path synthesis needs at least {MIN_POINTS} distinct points, got {distinct}{also}"
         )
     # Measured in units of a power of two near the largest coordinate: no sum overflows.
     m = float(np.max(np.abs(pts)))
@@ -1253,9 +1257,11 @@ def path(
     A four-bar search of 16 points or more (:data:`CURVE_EQUATION_POINTS`) starts from the
     equation of the curve through them: its foci are the pivots of the cognates that draw it,
     and its lengths follow from one linear solve (``linkage_core::fourbars_from_curve``). On a
-    curve a four-bar draws, closed or an arc that singles the curve out, those four-bars,
-    refined, are exact (``source == "equation"``); the atlas matches, refined, and the later
-    stages search on as described below and in ``docs/synthesis.md``.
+    curve a four-bar draws, closed or an arc that singles the curve out (given to about 8–9
+    significant digits), those four-bars, refined, are exact (``source == "equation"``,
+    unless the atlas or the cognates found the same linkage: exact fits tie, and each is
+    listed once); the atlas matches, refined, and the later stages search on as described
+    below and in ``docs/synthesis.md``.
 
     Parameters
     ----------
@@ -1671,9 +1677,9 @@ def path(
 
 
 EQUATION_STARTS = 4
-"""Four-bars from the curve's equation that are refined (of up to 6, each in both assemblies,
-best first by their unrefined error): the three cognates when the points lie on a four-bar's
-curve, then the next best labelling of its foci."""
+"""Four-bars from the curve's equation that are refined (of up to 6, each on the better of its
+assemblies, best first by their unrefined error): the three cognates when the points lie on a
+four-bar's curve, then the next best labelling of its foci."""
 
 
 def _equation_pool(
@@ -1696,8 +1702,16 @@ def _equation_pool(
     rows = np.repeat(params, 2, axis=0)
     crossed = np.tile([False, True], len(params))
     e, _ = _errors(rows, crossed, target, closed, threads=threads)
-    order = [i for i in np.argsort(e[:, 0], kind="stable") if np.isfinite(e[i, 0])]
-    return [(rows[i], bool(crossed[i]), "equation") for i in order[:EQUATION_STARTS]]
+    chosen: list[int] = []
+    for i in np.argsort(e[:, 0], kind="stable"):
+        if len(chosen) == EQUATION_STARTS or not np.isfinite(e[i, 0]):
+            break
+        # One assembly of each four-bar: a double-rocker's two trace one circuit (its two
+        # rows fit alike, and would be refined twice).
+        tol = 1e-9 * float(np.max(np.abs(rows[i])))
+        if all(np.max(np.abs(rows[i] - rows[j])) > tol for j in chosen):
+            chosen.append(int(i))
+    return [(rows[i], bool(crossed[i]), "equation") for i in chosen]
 
 
 COGNATES_OF = 8
@@ -1723,7 +1737,10 @@ def _cognate_candidates(
     """
     exact = sorted((c for c in found if c.error <= EXACT * size), key=lambda c: c.error)
     out: list[Candidate[Any]] = []
-    seen = [c.params for c in found]
+    # A tried variant is its parameters and its assembly: the same nine numbers on the other
+    # assembly draw another circuit (a cognate's reversed drive on the wrong assembly, 5.6 sizes
+    # off, had hidden the exact full-turn cognate with those numbers; found by a new-user trial).
+    seen = [(c.params, _crossed(c)) for c in found]
     for c in exact[: min(top, COGNATES_OF)]:
         fb = c.linkage
         if isinstance(fb, SliderCrank):
@@ -1735,11 +1752,11 @@ def _cognate_candidates(
         except LinkageError:
             continue
         for v in variants:
-            x = _params_of(v)
-            if any(np.max(np.abs(x - q)) <= 1e-9 * size for q in seen if q.shape == x.shape):
+            x, crossed = _params_of(v), v.assembly == "crossed"
+            if _tried(x, crossed, seen, size):
                 continue  # found already (a search finds cognates too)
-            seen.append(x)
-            cand = _measure(x, v.assembly == "crossed", target, closed, "cognate", threads)
+            seen.append((x, crossed))
+            cand = _measure(x, crossed, target, closed, "cognate", threads)
             # Exact or nothing: a variant that is not exact traces the curve on another circuit (a
             # crank that rocks over two intervals traces the first; see FourBar.cognates).
             if cand is not None and cand.error <= EXACT * size:
@@ -1747,9 +1764,19 @@ def _cognate_candidates(
     return out
 
 
+def _tried(
+    x: NDArray[np.float64], crossed: bool, seen: list[tuple[NDArray[np.float64], bool]], size: float
+) -> bool:
+    """Whether the placed linkage ``x`` on that assembly is in ``seen`` (to 1e-9 of ``size``)."""
+    return any(
+        f == crossed and q.shape == x.shape and np.max(np.abs(x - q)) <= 1e-9 * size
+        for q, f in seen
+    )
+
+
 def _slider_cognate(
     sc: SliderCrank,
-    seen: list[NDArray[np.float64]],
+    seen: list[tuple[NDArray[np.float64], bool]],
     target: Float2D,
     closed: bool,
     size: float,
@@ -1768,9 +1795,9 @@ def _slider_cognate(
     out = []
     for angle, offset in ((cog.angle, cog.offset), (cog.angle + math.pi, -cog.offset)):
         x = np.array([ox, oy, angle, offset, cog.crank, cog.coupler, along, left])
-        if any(np.max(np.abs(x - q)) <= 1e-9 * size for q in seen if q.shape == x.shape):
+        if _tried(x, False, seen, size):
             continue  # found already
-        seen.append(x)
+        seen.append((x, False))
         cand = _measure(x, False, target, closed, "cognate", threads, SLIDER)
         if cand is not None and cand.error <= EXACT * size:
             out.append(cand)

@@ -189,8 +189,8 @@ pub struct EquationFit<T> {
 #[derive(Clone, Debug, PartialEq)]
 pub struct CurveEquation<T> {
     /// The four-bars, least residual first (at most 6: three choices of the coupler point's
-    /// pivot, the triangle direct or mirrored; those with a coupler or a link of no real
-    /// length are left out).
+    /// pivot, the triangle direct or mirrored — one triangle when the coupler point is on the
+    /// coupler line; those with a coupler or a link of no real length are left out).
     pub fits: Vec<EquationFit<T>>,
     /// The curve's three singular foci (the cognates' fixed pivots), in the points' frame.
     pub foci: [Vec2<T>; 3],
@@ -439,8 +439,9 @@ fn solve<T: RealField + Copy>(
 /// # Errors
 /// - [`Error::TooFew`] for fewer than [`CURVE_EQUATION_POINTS`] points.
 /// - [`Error::NotFinite`] for a point that is not finite.
-/// - [`Error::Degenerate`] when the points are all one point, or fix no sextic with three
-///   finite foci.
+/// - [`Error::Degenerate`] when the points are all one point, fit a family of sextics rather
+///   than one (to rounding: collinear points, a few positions repeated, a circle, too short an
+///   arc), or fix no sextic with three finite foci.
 pub fn fourbars_from_curve<T: RealField + Copy>(
     points: &[Vec2<T>],
 ) -> Result<CurveEquation<T>, Error> {
@@ -461,12 +462,17 @@ pub fn fourbars_from_curve<T: RealField + Copy>(
             }
         }
     }
-    // The unit frame: centred, RMS radius 1.
+    // The unit frame: centred, RMS radius 1, formed in units of a power of two near the largest
+    // coordinate (no sum or square overflows or underflows at extreme scales).
+    let largest = points
+        .iter()
+        .fold(T::zero(), |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let unit = crate::dyad::pow2_scale(largest);
     let n: T = lit(points.len() as f64);
-    let centre = points.iter().fold(Vec2::zeros(), |s, p| s + p) / n;
+    let centre = points.iter().fold(Vec2::zeros(), |s, p| s + p / unit) / n;
     let rms = (points
         .iter()
-        .map(|p| (p - centre).norm_squared())
+        .map(|p| (p / unit - centre).norm_squared())
         .fold(T::zero(), |s, v| s + v)
         / n)
         .sqrt();
@@ -474,12 +480,21 @@ pub fn fourbars_from_curve<T: RealField + Copy>(
     if !(positive(rms) && rms.is_finite()) {
         return Err(degenerate("the points are all one point"));
     }
+    let (centre, rms) = (centre * unit, rms * unit);
     let z: Vec<Cx<T>> = points
         .iter()
         .map(|p| Cx::new((p.x - centre.x) / rms, (p.y - centre.y) / rms))
         .collect();
     let (curve, misfit, spread) =
         fit_equation(&z).ok_or(degenerate("the points fix no curve equation"))?;
+    if !positive(spread - lit::<T>(4.0) * T::default_epsilon()) {
+        // A family of curves fits them (rank deficient to rounding): the foci of its least
+        // singular vector are arbitrary (20 collinear points gave a pivot 1e16 away).
+        return Err(degenerate(
+            "the points fit a family of curves, not one: too few distinct points, all on a \
+             line or a circle, or too short an arc",
+        ));
+    }
     let f = cubic_roots([curve.c[0][3], curve.c[1][3], curve.c[2][3], curve.c[3][3]])
         .ok_or(degenerate("the curve's equation has no three finite foci"))?;
     let mut fits = Vec::new();
@@ -490,7 +505,10 @@ pub fn fourbars_from_curve<T: RealField + Copy>(
             continue;
         }
         let t = f[ic].sub(a0).div(ground);
-        for tt in [t, t.conj()] {
+        // A coupler point on the coupler line (`t` real to rounding): the mirrored triangle is
+        // the same one, and its solve the same four-bar.
+        let flat = t.im.abs() <= lit::<T>(1e-9) * t.norm();
+        for tt in [t, t.conj()].into_iter().take(if flat { 1 } else { 2 }) {
             if let Some((mut params, residual)) = solve(&curve, a0, b0, tt) {
                 for (k, v) in params.iter_mut().enumerate() {
                     *v = match k {
@@ -652,6 +670,61 @@ mod tests {
         nan[3].y = f64::NAN;
         let got = fourbars_from_curve(&nan);
         assert!(matches!(got, Err(Error::NotFinite { .. })), "{got:?}");
+        // Points that fit a family of curves: collinear, or a few positions repeated.
+        let line: Vec<_> = (0..20)
+            .map(|k| Vec2::new(k as f64, 2.0 * k as f64))
+            .collect();
+        let two: Vec<_> = (0..20).map(|k| Vec2::new((k % 2) as f64, 0.0)).collect();
+        for (what, pts) in [("collinear", line), ("two positions", two)] {
+            let got = fourbars_from_curve(&pts);
+            assert!(
+                matches!(got, Err(Error::Degenerate { .. })),
+                "{what}: {got:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn extreme_scales_are_the_same_problem() {
+        // Squares of 1e±300 overflow or underflow: the frame is formed in units of a power of two.
+        let pts = on_circuit(LINKAGES[0].0, false, 30, 0.0, 6.0);
+        let base = fourbars_from_curve(&pts).expect("unit scale");
+        for k in [1e300, 1e-300] {
+            let far: Vec<_> = pts.iter().map(|p| p * k).collect();
+            let got = fourbars_from_curve(&far).expect("a scaled curve");
+            assert_eq!(got.fits.len(), base.fits.len(), "{k:e}");
+            // The same four-bars scaled (their order may differ: residuals tie at rounding).
+            for b in &base.fits {
+                let same = |a: &EquationFit<f64>| {
+                    let off = a
+                        .params
+                        .iter()
+                        .zip(b.params)
+                        .map(|(x, y)| (x / k - y).abs());
+                    off.fold(0.0, f64::max) <= 1e-9
+                };
+                assert!(
+                    got.fits.iter().any(same),
+                    "{k:e}: {b:?} not in {:?}",
+                    got.fits
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_point_on_the_coupler_line_gives_each_cognate_once() {
+        // Hoecken's linkage: P on the line AB, so the mirrored triangle is the same one.
+        let hoecken = [0.0, 0.0, 20.0, 0.0, 10.0, 25.0, 25.0, 50.0, 0.0];
+        let pts = on_circuit(hoecken, false, 40, 0.0, 6.0);
+        let found = fourbars_from_curve(&pts).expect("Hoecken's curve");
+        assert_eq!(found.fits.len(), 3, "{found:?}");
+        for (i, a) in found.fits.iter().enumerate() {
+            for b in &found.fits[i + 1..] {
+                let apart = a.params.iter().zip(b.params).map(|(x, y)| (x - y).abs());
+                assert!(apart.fold(0.0, f64::max) > 1e-3, "{a:?} {b:?}");
+            }
+        }
     }
 
     #[test]
