@@ -1505,7 +1505,7 @@ def path(
         bounds = _bounds(lengths, pivots, size, k)
         pool = []
         # A four-bar from the equation of the curve through the points, refined: exact for a
-        # curve a four-bar draws, whatever part of it the points cover (docs/synthesis.md,
+        # curve a four-bar draws, closed or an arc that singles it out (docs/synthesis.md,
         # step 0).
         equation = _equation_pool(target, closed, nthreads) if k is FOURBAR else []
         ahead = _finish(
@@ -1687,9 +1687,9 @@ def _equation_pool(
 ) -> list[tuple[NDArray[np.float64], bool, str]]:
     """Return starts from the equation of the curve through ``target``.
 
-    The four-bars of ``linkage_core::fourbars_from_curve`` in both assemblies, best first by
-    their error, at most :data:`EQUATION_STARTS` (none for fewer than 16 points, or points
-    that give no equation).
+    The four-bars of ``linkage_core::fourbars_from_curve``, each on the better of its
+    assemblies, best first by their error, at most :data:`EQUATION_STARTS` (none for fewer
+    than 16 points, or points that give no equation).
     """
     if len(target) < CURVE_EQUATION_POINTS:
         return []

@@ -554,17 +554,7 @@ pub fn polyline_distance<'py>(
         self::points("points", &points)?,
         self::points("path", &path)?,
     );
-    let n = q.len();
-    let what = || format!("distances of {n} points");
-    let out = memory::zeros::<f64, numpy::ndarray::Ix1>(py, &what, &[n])?;
-    {
-        let mut w = out.readwrite();
-        let o = w
-            .as_slice_mut()
-            .map_err(|_| linkage_error("internal: output not contiguous"))?;
-        py.detach(|| polyline_distances(q, p, o)).map_err(to_py)?;
-    }
-    Ok(out)
+    distances(py, q.len(), |o| polyline_distances(q, p, o))
 }
 
 /// Distance `(m,)` from each of `points (m, 2)` to its own polyline of `stride` samples, the
@@ -581,7 +571,15 @@ pub fn polyline_distance_each<'py>(
         self::points("points", &points)?,
         self::points("paths", &paths)?,
     );
-    let n = q.len();
+    distances(py, q.len(), |o| polyline_distances_each(q, p, stride, o))
+}
+
+/// `n` distances written by `fill` into a new array, the GIL released.
+fn distances<'py>(
+    py: Python<'py>,
+    n: usize,
+    fill: impl FnOnce(&mut [f64]) -> Result<(), linkage_core::Error> + Send,
+) -> PyResult<Arr1<'py, f64>> {
     let what = || format!("distances of {n} points");
     let out = memory::zeros::<f64, numpy::ndarray::Ix1>(py, &what, &[n])?;
     {
@@ -589,8 +587,7 @@ pub fn polyline_distance_each<'py>(
         let o = w
             .as_slice_mut()
             .map_err(|_| linkage_error("internal: output not contiguous"))?;
-        py.detach(|| polyline_distances_each(q, p, stride, o))
-            .map_err(to_py)?;
+        py.detach(|| fill(o)).map_err(to_py)?;
     }
     Ok(out)
 }
