@@ -540,6 +540,34 @@ def test_a_rust_panic_is_an_internal_error_not_a_traceback(world, capsys, monkey
     assert snapshot(world) == before
 
 
+def test_ctrl_c_that_a_library_turns_into_its_own_error_is_still_an_interrupt(
+    world, capsys, monkeypatch
+):
+    # matplotlib's C++ renderer, hit by Ctrl-C while it converts its arguments, reports
+    # "ValueError: Invalid bounding box" and drops the KeyboardInterrupt (a CI run saw it)
+    out = Path.cwd() / "linkage-report" / "other"
+    real = report._write_files
+
+    def swallowing(*args, **kwargs):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(5)  # the handler runs at the next bytecode; this is never reached
+        except KeyboardInterrupt:
+            raise ValueError("Invalid bounding box") from None
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(report, "_write_files", swallowing)
+    monkeypatch.delenv("LINKAGE_DEBUG", raising=False)
+    before = snapshot(world)
+    assert main(["run", str(scene_file(world, "other")), *FAST, "--force"]) == 130
+    line = one_error_line(capsys.readouterr().err)
+    assert "interrupted" in line and "nothing was written" in line, line
+    assert snapshot(world) == before
+    assert leftovers(out.parent) == []
+    # the handler is Python's own again once the run is over
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
 # -- a real Ctrl-C ---------------------------------------------------------------------------
 
 

@@ -14,11 +14,13 @@ import argparse
 import contextlib
 import os
 import shutil
+import signal
 import sys
 import textwrap
+import threading
 import time
 import traceback
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from linkage import catalog, scene
@@ -373,33 +375,72 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not 2 <= getattr(args, "frames", 2) <= MAX_FRAMES:
         parser.error(f"--frames must be between 2 and {MAX_FRAMES}")
     state: dict[str, Path] = {}
+    ctrl_c: list[bool] = []
     try:
-        return int(args.func(args, state))
+        with _ctrl_c_noted(ctrl_c):
+            return int(args.func(args, state))
     except KeyboardInterrupt:
         _say(f"interrupted; {_written(state)}")
         return EXIT_INTERRUPTED
-    except LinkageError as exc:
+    except (SystemExit, GeneratorExit):
+        raise
+    except BaseException as exc:
+        if ctrl_c:
+            # Ctrl-C raised KeyboardInterrupt inside a library that turned it into an error of its
+            # own (matplotlib's C++ renderer reports "Invalid bounding box"): still an interrupt
+            _say(f"interrupted; {_written(state)}")
+            return EXIT_INTERRUPTED
+        return _failed(exc, state)
+
+
+def _failed(exc: BaseException, state: dict[str, Path]) -> int:
+    """Say what went wrong in one line and give the exit status for it."""
+    if isinstance(exc, LinkageError):
         _say(f"error: {exc}")
         return EXIT_ERROR
-    except MemoryError as exc:
+    if isinstance(exc, MemoryError):
         detail = f": {exc}" if str(exc) else ""
         _say(f"error: out of memory{detail} ({_written(state)})")
         return EXIT_ERROR
-    except OSError as exc:
+    if isinstance(exc, OSError):
         where = f"{exc.filename}: " if exc.filename is not None else ""
         _say(f"error: {where}{exc.strerror or exc} ({_written(state)})")
         return EXIT_ERROR
-    except (SystemExit, GeneratorExit):
-        raise
-    except BaseException as exc:  # a bug (a Rust panic is a BaseException): say so, no traceback
-        _say(
-            f"internal error (a bug in linkage, please report it): "
-            f"{type(exc).__name__}: {exc} (set {DEBUG_ENV}=1 for the traceback; "
-            f"{_written(state)})"
-        )
-        if os.environ.get(DEBUG_ENV):
-            traceback.print_exc()
-        return EXIT_INTERNAL
+    # a bug (a Rust panic is a BaseException): say so, no traceback
+    _say(
+        f"internal error (a bug in linkage, please report it): "
+        f"{type(exc).__name__}: {exc} (set {DEBUG_ENV}=1 for the traceback; "
+        f"{_written(state)})"
+    )
+    if os.environ.get(DEBUG_ENV):
+        traceback.print_exception(type(exc), exc, exc.__traceback__)
+    return EXIT_INTERNAL
+
+
+@contextlib.contextmanager
+def _ctrl_c_noted(ctrl_c: list[bool]) -> Iterator[None]:
+    """Note every Ctrl-C in ``ctrl_c`` before raising ``KeyboardInterrupt`` as Python does.
+
+    Main thread only (elsewhere Python delivers no signals), and only while Python's own handler is
+    in place; the previous handler is restored on the way out.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.getsignal(signal.SIGINT)
+    if previous is not signal.default_int_handler:
+        yield
+        return
+
+    def note(signum: int, frame: object) -> None:
+        ctrl_c.append(True)
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGINT, note)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def _written(state: dict[str, Path]) -> str:
