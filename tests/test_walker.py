@@ -153,6 +153,19 @@ def test_bad_walkers():
         linkage.catalog.quadruped_hoecken().search_phases(step=0.7)
 
 
+@pytest.mark.filterwarnings("error::RuntimeWarning")
+def test_a_body_travel_beyond_the_float_range_is_an_error_not_an_overflow_warning():
+    quad = linkage.catalog.quadruped_hoecken()
+    # every time is finite, but travel = speed x time passes 1.8e308 mm
+    with pytest.raises(linkage.LinkageError, match="body's travel is not representable"):
+        quad.simulate(np.array([0.0, 1e308, 1.7e308]))
+    with pytest.raises(linkage.LinkageError, match="body's travel is not representable"):
+        quad.simulate(np.array([-1e308, 0.0, 1e308]), 1e300)
+    # a long run well inside the range is travelled in full
+    sim = quad.simulate(np.linspace(0.0, 2e6 * np.pi, 4001))
+    assert np.isfinite(sim.body_position).all() and abs(sim.body_position[-1]) > 1e6
+
+
 def test_duty_factor_search_with_schedule():
     q = linkage.catalog.quadruped_hoecken()
     beta, margin = search_duty_factor(q, 80.0, "margin", duty_factors=(0.5, 0.55, 0.6, 0.65))

@@ -537,9 +537,16 @@ class Walker:
             spread = np.where(
                 stance.sum(axis=1) >= 2, np.nanmax(vx, axis=1) - np.nanmin(vx, axis=1), 0.0
             )
-        dt = np.diff(t)
         bv = np.nan_to_num(body_v)
-        body_x = np.r_[0.0, np.cumsum(0.5 * (bv[1:] + bv[:-1]) * dt)]
+        with np.errstate(over="ignore", invalid="ignore"):
+            body_x = np.r_[0.0, np.cumsum((0.5 * bv[1:] + 0.5 * bv[:-1]) * np.diff(t))]
+        if not np.isfinite(body_x).all():
+            k = int(np.argmin(np.isfinite(body_x)))
+            raise LinkageError(
+                f"the body's travel is not representable in float64 by crank angle "
+                f"{float(th[k])!r} (times {float(t[0])!r} … {float(t[-1])!r}): sample a shorter "
+                f"span of the crank"
+            )
         # Support polygon: pad corners of every stance foot.
         half = np.array([leg.pad / 2 for leg in self.legs])
         corners = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float)
