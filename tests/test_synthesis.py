@@ -637,6 +637,12 @@ def test_cli_synth(tmp_path, capsys, monkeypatch, atlas: Atlas) -> None:  # type
     assert [p for p in reads if isinstance(p, str)] == [str(f)]  # the file is read once
     assert "error mm" in out
     assert any(k in out for k in ("crank-rocker", "double-rocker", "rocker-crank")), out
+    # The last column says which stage found each candidate (61 points of a four-bar's curve:
+    # the curve-equation stage draws it exactly, as the atlas may too).
+    table = [line.split() for line in out.splitlines()[1:]]
+    assert table[0][-1] == "from", out
+    assert "equation" in {r[-1] for r in table[1:]}, out
+    assert {r[-1] for r in table[1:]} <= {"equation", "atlas", "global", "cognate"}, out
     code = cli.main(["synth", str(tmp_path / "missing.csv"), "--quiet", "--atlas", str(folder)])
     assert code != 0
     assert "cannot read" in capsys.readouterr().err

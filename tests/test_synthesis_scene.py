@@ -366,7 +366,8 @@ def test_the_plot_keeps_its_labels_in_the_figure_and_its_legend_in_rank_order(
         f'name = "{name}"\nunits = "mm"\n[synthesis]\npoints = "foot.csv"\n'
         f"atlas = {json.dumps(str(atlas_folder))}\ntop = 4\n"
     )
-    fig = report_module._synthesis(runner.run(scene.load(path)))
+    res = runner.run(scene.load(path))
+    fig = report_module._synthesis(res)
     renderer = fig.canvas.get_renderer()
     fig.draw(renderer)
     (ax,) = fig.axes
@@ -390,6 +391,15 @@ def test_the_plot_keeps_its_labels_in_the_figure_and_its_legend_in_rank_order(
             x, y = (np.asarray(v, dtype=float) for v in line.get_data())
             out = bool(np.any((x < x0) | (x > x1) | (y < y0) | (y > y1)))
             assert out == line.get_label().endswith("(leaves the view)"), line.get_label()
+    # Each entry names the stage that found its candidate.
+    assert res.synthesis is not None
+    named = {
+        line.get_label().split(":")[0]: line.get_label()
+        for line in ax.lines
+        if line.get_label().startswith("#")
+    }
+    for k, c in enumerate(res.synthesis.candidates[:4], 1):
+        assert f", {synthesis.source_text(c.source)}" in named[f"#{k}"], named
     # The legend reads down its columns: the target, then #1, #2, … in rank order.
     (legend,) = fig.legends
     entries = [(t.get_window_extent(renderer), t.get_text()) for t in legend.get_texts()]

@@ -50,6 +50,7 @@ from linkage.report_folder import default_folder as default_folder
 from linkage.report_folder import prepare as prepare
 from linkage.report_folder import read_marker as read_marker
 from linkage.report_folder import write_folder as write_folder
+from linkage.synthesis import source_text
 
 __all__ = [
     "DEFAULT_BASE",
@@ -749,7 +750,8 @@ def _synthesis(res: Result) -> Any:
             color=colour,
             lw=2.2 if k == 0 else 1.3,
             zorder=3.5 if k == 0 else 3 - 0.01 * k,
-            label=f"#{k + 1}: max error {err} {u}, {c.grashof}{' (leaves the view)' * out}",
+            label=f"#{k + 1}: max error {err} {u}, {c.grashof}, {source_text(c.source)}"
+            f"{' (leaves the view)' * out}",
         )
     t = run.target
     ax.plot(

@@ -43,7 +43,13 @@ from linkage.figures import (
 )
 from linkage.forces import Forces
 from linkage.geometry import StraightPart, straightness, three_point_centres
-from linkage.synthesis import CHANGE_POINT_NEAR, Candidate, change_point_gap, long_link
+from linkage.synthesis import (
+    CHANGE_POINT_NEAR,
+    Candidate,
+    change_point_gap,
+    long_link,
+    source_text,
+)
 from linkage.walker import Simulation, Walker
 
 __all__ = [
@@ -98,11 +104,6 @@ def drive_label(scene: Scene, drive: Any) -> str:
         return f"motion program, {len(d['segments'])} segments{gears}"
     u = length_unit(scene)
     return f"crank schedule: foot {d['foot_speed']:g} {u}/s, duty factor {d['duty_factor']:g}"
-
-
-SOURCE_WORDS = {"equation": "curve-equation"}
-"""A candidate's ``source`` as the figures table words it ("from the curve-equation search");
-the others read as they are ("atlas", "global", "cognate")."""
 
 
 def synthesis_figures(res: Result) -> None:
@@ -189,7 +190,7 @@ def synthesis_figures(res: Result) -> None:
                 f"{name}: {'class' if isinstance(c.linkage, SliderCrank) else 'Grashof class'}",
                 c.grashof,
                 "",
-                f"{branch_text(c.linkage)}, from the {SOURCE_WORDS.get(c.source, c.source)} search"
+                f"{branch_text(c.linkage)}, from the {source_text(c.source)}"
                 f"{_long(c, run.size)}"
                 f"{_near_change_point(c, run.size, u)}",
             )

@@ -79,6 +79,7 @@ __all__ = [
     "motion",
     "path",
     "read_points",
+    "source_text",
     "why_none",
 ]
 
@@ -2230,6 +2231,18 @@ def longest_link(c: Candidate[Any]) -> float:
     return _longest(c)
 
 
+def source_text(source: str) -> str:
+    """Word a candidate's ``source`` as the stage that found it.
+
+    Examples
+    --------
+    >>> from linkage.synthesis import source_text
+    >>> [source_text(s) for s in ("equation", "atlas", "global", "cognate")]
+    ['curve-equation search', 'atlas search', 'global search', 'cognate search']
+    """
+    return f"{'curve-equation' if source == 'equation' else source} search"
+
+
 def long_link(c: Candidate[Any], size: float) -> float | None:
     """Return ``c``'s longest link in target sizes when it passes :data:`LONG_LINK`, else None.
 
@@ -2946,6 +2959,7 @@ def command(args: argparse.Namespace) -> int:
         "min μ (deg)",
         "O",
         *tail,
+        "from",
     )
     rows: list[tuple[str, ...]] = [head]
     for rank, c in enumerate(found, 1):
@@ -2967,6 +2981,8 @@ def command(args: argparse.Namespace) -> int:
         else:
             row += [f"({g(fb.c[0])}, {g(fb.c[1])})", g(fb.crank), g(fb.coupler)]
             row += [g(fb.rocker), f"({g(fb.point[0])}, {g(fb.point[1])})", fb.assembly]
+        # The stage that found it (candidates.csv's `source`): equation, atlas, global, cognate.
+        row.append(c.source)
         rows.append(tuple(row))
     # Notes: a candidate near a change point, and one ranked after the rest for a link longer
     # than LONG_LINK sizes (max_link: a fit far better than those above it had read as a
