@@ -89,6 +89,19 @@ PYTHON_CASES = {
     "circumcentre_broadcast": (
         "geometry.circumcentre(np.zeros((10**5, 1, 2)), np.ones((1, 10**5, 2)), [0.0, 1.0])"
     ),
+    "burmester_curve_samples": (
+        "linkage.synthesis.centre_point_curve([(1.0, 1.1, 0.4), (0.3, 1.7, 0.3), "
+        "(-0.6, 1.5, 0.5), (-1.0, 1.0, 0.9)], n=2**62)"
+    ),
+    "motion_rotations": (
+        "linkage.synthesis.motion([(1.0, 1.1, 0.4), (0.3, 1.7, 0.3), (-0.6, 1.5, 0.5), "
+        "(-1.0, 1.0, 0.9)], n=10**10)"
+    ),
+    # 20,000 rotations fit; their dyads' ordered pairs (grow as n squared) do not
+    "motion_dyad_pairs": (
+        "linkage.synthesis.motion([(1.0, 1.1, 0.4), (0.3, 1.7, 0.3), (-0.6, 1.5, 0.5), "
+        "(-1.0, 1.0, 0.9)], n=20_000)"
+    ),
     "curvature_centre_broadcast": (
         "geometry.curvature_centre(np.broadcast_to(np.ones(2), (10**10, 2)), [0.0, 1.0], [1.0, 0.0])"
     ),

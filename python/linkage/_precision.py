@@ -237,14 +237,29 @@ def _not_one_rotation(p: list[tuple[float, float, float]]) -> None:
         )
 
 
+_CURVE_SAMPLE_BYTES = 128
+"""Bytes per rotation sampled on the Burmester curves: the angle, two centre and two circle
+points, and the core's working copies (16 float64)."""
+
+_PAIR_BYTES = 3000
+"""Bytes per ordered pair of dyads in :func:`motion`: the core's figures of the pair and its
+candidate (measured: the process grew 3.2 kB per pair from n = 100 to 200)."""
+
+
+def _rotations(n: Any) -> NDArray[np.float64]:
+    """``n`` crank rotations evenly spaced over a turn, refused before allocating if too many."""
+    count = as_count(n, "n")
+    check_memory(count * _CURVE_SAMPLE_BYTES, f"n = {count} rotations on the Burmester curves")
+    return 2.0 * np.pi * np.arange(count, dtype=np.float64) / count
+
+
 def _curve(
     poses: Any, n: Any, beta_pose: Any
 ) -> tuple[int, NDArray[np.float64], NDArray[np.float64]]:
     p = _poses(poses, (4,), stacklevel=4)
-    count = as_count(n, "n")
     free_pose = _beta_pose(beta_pose)
     _not_one_rotation(p)
-    beta = 2.0 * np.pi * np.arange(count, dtype=np.float64) / count
+    beta = _rotations(n)
     free, centres, circles, _ = _core.burmester_curve(p, beta, free_pose)
     return int(free), centres, circles
 
@@ -266,6 +281,8 @@ def centre_point_curve(
     LinkageError
         Not 4 poses, non-finite or coincident poses, or poses without a Burmester curve (pure
         translations, rotations about one point).
+    MemoryError
+        ``n`` beyond what this process can hold (named, before anything is allocated).
 
     Examples
     --------
@@ -334,8 +351,7 @@ def _dyads_four(
     p: list[tuple[float, float, float]], beta: Any, n: Any, beta_pose: int | None
 ) -> tuple[list[Dyad], int]:
     if beta is None:
-        count = as_count(n, "n")
-        b = 2.0 * np.pi * np.arange(count, dtype=np.float64) / count
+        b = _rotations(n)
     else:
         b = np.ascontiguousarray(np.atleast_1d(as_real_array(beta, "beta")), dtype=np.float64)
         if b.ndim != 1 or not np.all(np.isfinite(b)):
@@ -446,6 +462,9 @@ def motion(
         ``pivots`` or ``max_link``.
     TypeError
         Points chosen for four poses, or ``beta`` / ``beta_pose`` for three.
+    MemoryError
+        ``n`` rotations, or the ordered pairs of the dyads (their number squared: about 3 kB
+        each), beyond what this process can hold; nothing is allocated first.
 
     Warns
     -----
@@ -500,6 +519,11 @@ def motion(
         names = [f"dyad {i}" for i in range(len(dyads))]
     if len(dyads) < 2:
         raise LinkageError(f"needs at least 2 dyads to make a four-bar, got {len(dyads)}")
+    # Every ordered pair is a candidate: the cost grows as the square of the dyads.
+    check_memory(
+        len(dyads) * (len(dyads) - 1) * _PAIR_BYTES,
+        f"the {len(dyads) * (len(dyads) - 1)} ordered pairs of {len(dyads)} dyads",
+    )
     pairs = [(i, j) for i in range(len(dyads)) for j in range(len(dyads)) if i != j]
     row = [[*dyads[i].centre, *dyads[i].circle] for i, _ in pairs]
     crank = np.ascontiguousarray(row, dtype=np.float64).reshape(-1, 4)
