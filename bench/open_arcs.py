@@ -3,6 +3,8 @@ finds a linkage for to within 1e-6 of the target's size, and in what time.
 
     .venv/bin/python bench/open_arcs.py [--random 40] [--seed 0] [--entries N] [--out rows.csv]
     .venv/bin/python bench/open_arcs.py --kind slider-crank [--random 30] [--seed 0]
+    .venv/bin/python bench/open_arcs.py --compare ...   (each target without, then with, the
+                                                         curve-equation stage)
 
 Targets: arcs of the catalogue four-bars (Hoecken, Chebyshev, Watt, Roberts, Evans A and B) and
 of random four-bars (the test suite's ``random_fourbar``: ground 1, crank, coupler, rocker
@@ -51,6 +53,11 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--entries", type=int, default=None, help="arc atlas entries (default)")
     ap.add_argument("--out", default=None)
+    ap.add_argument(
+        "--compare",
+        action="store_true",
+        help="run each target without the curve-equation stage first, then with it",
+    )
     args = ap.parse_args()
     rng = np.random.default_rng(args.seed)
     cases = []
@@ -81,17 +88,42 @@ def main() -> None:
     import scipy.optimize  # noqa: F401  (one-time import, outside the timed calls)
 
     errs, times, rows = [], [], []
+    off_errs, ratios = [], []
+    least = (synthesis.CURVE_EQUATION_POINTS, synthesis.SLIDER_EQUATION_POINTS)
+
+    def run(target: np.ndarray, size: float, with_equation: bool) -> tuple[float, float]:
+        # The stage is off when no target has enough points for it.
+        on = least if with_equation else (10**9, 10**9)
+        synthesis.CURVE_EQUATION_POINTS, synthesis.SLIDER_EQUATION_POINTS = on
+        try:
+            t0 = time.perf_counter()
+            kw = {"atlas": atlas} if atlas is not None else {}
+            found = synthesis.path(target, closed=False, top=1, kind=args.kind, **kw)
+            dt = time.perf_counter() - t0
+        finally:
+            synthesis.CURVE_EQUATION_POINTS, synthesis.SLIDER_EQUATION_POINTS = least
+        return (found[0].error / size if found else math.inf), dt
+
     for name, target in cases:
         size = synthesis.target_size(target)
-        t0 = time.perf_counter()
-        kw = {"atlas": atlas} if atlas is not None else {}
-        found = synthesis.path(target, closed=False, top=1, kind=args.kind, **kw)
-        dt = time.perf_counter() - t0
-        e = found[0].error / size if found else math.inf
+        before = ""
+        if args.compare:
+            e0, dt0 = run(target, size, False)
+            off_errs.append(e0)
+            before = f"without the equation {e0:9.2e} {dt0:6.2f} s; with "
+        e, dt = run(target, size, True)
+        if args.compare:
+            ratios.append(dt / dt0)
         errs.append(e)
         times.append(dt)
         rows.append((name, e, dt))
-        print(f"{name:14s} {e:9.2e} {dt:6.2f} s", flush=True)
+        print(f"{name:14s} {before}{e:9.2e} {dt:6.2f} s", flush=True)
+    if args.compare:
+        ok = int(np.sum(np.array(off_errs) <= 1e-6))
+        print(
+            f"without the equation: {ok}/{len(off_errs)} within 1e-6 of the size; time with / "
+            f"without: median ratio {statistics.median(ratios):.2f}"
+        )
     errs_a = np.array(errs)
     cat = np.array([not n.startswith("random") for n, _, _ in rows])
     for label, mask in (("catalogue", cat), ("random", ~cat), ("all", np.ones_like(cat))):

@@ -214,8 +214,12 @@ def test_a_slider_crank_synthesis_scene_finds_it_and_exports_runnable_scenes(
         assert ok.sum() >= len(ok) - 1
         assert largest_distance(res.sweep.point[ok], curve) < 1e-6 * size
         if c["full_turn"]:
+            # The run's polyline is within its chords' sag of the curve: a candidate far from the
+            # target (the curve-equation stage lists one 3.4 sizes off, its curve large) measures
+            # the target against the chords, 1.3e-4 mm from the curve there.
+            sag = largest_distance(curve, res.sweep.point[ok])
             assert largest_distance(target, res.sweep.point) == pytest.approx(
-                c["error"], abs=1e-6 * size
+                c["error"], abs=1e-6 * size + sag
             )
     # The page names the kind searched and a slider's line.
     page = (out / "index.html").read_text()

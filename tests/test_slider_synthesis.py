@@ -161,10 +161,13 @@ def arc_atlas() -> Atlas:
     return Atlas.build(synthesis.DEFAULT_SLIDER_ARC_ENTRIES, threads=2, kind="slider-crank-arcs")
 
 
-def test_open_arc_is_matched(arc_atlas: Atlas) -> None:
+def test_open_arc_is_matched(arc_atlas: Atlas, monkeypatch) -> None:  # type: ignore[no-untyped-def]
     """Three radians of a full-turn slider-crank's curve as an open arc: the slider-crank arc
     atlas and least squares find it again exactly, on one circuit. (Before the arc atlas the
-    global search alone reached 7.3e-5 of the size here, 7e-5 … 1.2e-1 over six arcs.)"""
+    global search alone reached 7.3e-5 of the size here, 7e-5 … 1.2e-1 over six arcs. The
+    curve's equation, the search's first stage, recovers it too: it is off here, to test the
+    atlas.)"""
+    monkeypatch.setattr(synthesis, "SLIDER_EQUATION_POINTS", 10**9)
     rng = np.random.default_rng(203)
     rod = math.exp(rng.uniform(math.log(1.5), math.log(4)))
     sc = linkage.SliderCrank(
@@ -414,3 +417,35 @@ def test_near_copies_are_listed_once(atlas: Atlas) -> None:
                 d = np.abs(a.params - x)
                 d[2] = min(turn, 2 * math.pi - turn) * scale
                 assert d.max() > synthesis.NEAR * scale, (i, a.linkage, b.linkage)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_curve_equation_draws_random_arcs_without_an_atlas_match(seed: int) -> None:
+    """Arcs of ⅓ … ¾ of random slider-cranks' circuits, placed anywhere: the slider-cranks from
+    the curve's equation (its focus is the crank pivot, ``linkage_core::slider_cranks_from_curve``),
+    refined, draw them, with no atlas match fitted (``refine=0``) and no global search."""
+    rng = np.random.default_rng(500 + seed)
+    sc = random_slider_crank(rng)
+    target = arc_of(sc, rng, rng.uniform(1 / 3, 3 / 4))
+    found = synthesis.path(
+        target, closed=False, kind="slider-crank", top=1, refine=0, global_search=False
+    )
+    assert found
+    best, size = found[0], size_of(target)
+    assert best.error <= 1e-8 * size, (sc, best.error / size)
+    assert best.source in ("equation", "cognate"), best.source
+    assert tracked_distance(best.linkage, target) <= best.error + 1e-6 * size
+
+
+def test_the_curve_equation_needs_13_points_and_a_curve(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    sc = linkage.SliderCrank(crank=1.0, coupler=2.5, offset=0.3, point=(1.2, 0.6), angle=0.3)
+    arc = np.ascontiguousarray(sc.circuit(61).point[:30])
+    pool = synthesis._equation_pool(arc[:13], False, 1, synthesis.SLIDER)
+    assert pool and all(source == "equation" for _, _, source in pool)
+    assert synthesis._equation_pool(arc[:12], False, 1, synthesis.SLIDER) == []
+    # Points that fit a family of quartics give no starts (and no error): a circle.
+    t = np.linspace(0.0, 5.0, 20)
+    circle = np.ascontiguousarray(np.c_[np.cos(t), np.sin(t)])
+    assert synthesis._equation_pool(circle, False, 1, synthesis.SLIDER) == []
+    # The four-bar stage is not the slider-crank one: 13 points are too few for it.
+    assert synthesis._equation_pool(arc[:13], False, 1) == []

@@ -185,9 +185,10 @@ def arc_atlas() -> Atlas:
 
 @pytest.fixture
 def no_equation(monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    """Turn off the search's first stage, the four-bars from the curve's equation, for a test
+    """Turn off the search's first stage, the linkages from the curve's equation, for a test
     of a later stage (it recovers these targets before the later stages run)."""
     monkeypatch.setattr(synthesis, "CURVE_EQUATION_POINTS", 10**9)
+    monkeypatch.setattr(synthesis, "SLIDER_EQUATION_POINTS", 10**9)
 
 
 def arc_of(fb: linkage.FourBar, rng: np.random.Generator, frac: float) -> np.ndarray:

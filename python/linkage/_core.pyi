@@ -64,6 +64,7 @@ __all__ = [
     "synth_place",
     "synth_residuals",
     "synth_slider_atlas_build",
+    "synth_slider_curve_equation",
     "synth_slider_errors",
     "synth_slider_frame",
     "synth_slider_info",
@@ -355,6 +356,9 @@ def synth_place(
 ) -> NDArray[np.float64]: ...
 def synth_arc(feet: NDArray[np.float64]) -> tuple[float, float] | None: ...
 def synth_curve_equation(
+    points: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float, float]: ...
+def synth_slider_curve_equation(
     points: NDArray[np.float64],
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float, float]: ...
 def polyline_distance(

@@ -90,6 +90,10 @@ CURVE_EQUATION_POINTS = 16
 """Fewest target points from which a four-bar is sought through the equation of the curve they
 lie on (``linkage_core::CURVE_EQUATION_POINTS``: the equation has 16 coefficients)."""
 
+SLIDER_EQUATION_POINTS = 13
+"""Fewest target points from which a slider-crank is sought through the equation of the curve
+they lie on (``linkage_core::SLIDER_EQUATION_POINTS``: a circular quartic, 13 coefficients)."""
+
 DEFAULT_ENTRIES = 200_000
 """Entries of the default four-bar atlas (built once into the cache folder)."""
 
@@ -1262,7 +1266,9 @@ def path(
     significant digits), those four-bars, refined, are exact (``source == "equation"``,
     unless the atlas or the cognates found the same linkage: exact fits tie, and each is
     listed once); the atlas matches, refined, and the later stages search on as described
-    below and in ``docs/synthesis.md``.
+    below and in ``docs/synthesis.md``. A slider-crank search of 13 points or more
+    (:data:`SLIDER_EQUATION_POINTS`) starts likewise from the circular quartic through them,
+    whose one focus is the crank pivot (``linkage_core::slider_cranks_from_curve``).
 
     Parameters
     ----------
@@ -1508,7 +1514,7 @@ def path(
         # A four-bar from the equation of the curve through the points, refined: exact for a
         # curve a four-bar draws, closed or an arc that singles it out (docs/synthesis.md,
         # step 0).
-        equation = _equation_pool(target, closed, nthreads) if k is FOURBAR else []
+        equation = _equation_pool(target, closed, nthreads, k)
         ahead = _finish(
             equation,
             target,
@@ -1678,37 +1684,47 @@ def path(
 
 
 EQUATION_STARTS = 4
-"""Four-bars from the curve's equation that are refined (of up to 6, each on the better of its
-assemblies, best first by their unrefined error): the three cognates when the points lie on a
-four-bar's curve, then the next best labelling of its foci."""
+"""Linkages from the curve's equation that are refined (four-bars: of up to 6, each on the
+better of its assemblies; slider-cranks: of up to 6, each on the better of its reaches; best
+first by their unrefined error): for a four-bar's curve its three cognates, for a
+slider-crank's the linkage and its cognate, then the next best solves."""
 
 
 def _equation_pool(
-    target: Float2D, closed: bool, threads: int
+    target: Float2D, closed: bool, threads: int, kind: _Kind = FOURBAR
 ) -> list[tuple[NDArray[np.float64], bool, str]]:
     """Return starts from the equation of the curve through ``target``.
 
-    The four-bars of ``linkage_core::fourbars_from_curve``, each on the better of its
-    assemblies, best first by their error, at most :data:`EQUATION_STARTS` (none for fewer
-    than 16 points, or points that give no equation).
+    Four-bars: ``linkage_core::fourbars_from_curve``, each on the better of its assemblies.
+    Slider-cranks: ``linkage_core::slider_cranks_from_curve``, each on the better of its
+    reaches (the line reversed: ``angle + π``, ``−offset``). Best first by their error, at most
+    :data:`EQUATION_STARTS`; none for fewer than :data:`CURVE_EQUATION_POINTS` (four-bars) or
+    :data:`SLIDER_EQUATION_POINTS` points, or points that give no equation.
     """
-    if len(target) < CURVE_EQUATION_POINTS:
+    slider = kind is SLIDER
+    if len(target) < (SLIDER_EQUATION_POINTS if slider else CURVE_EQUATION_POINTS):
         return []
+    solve = _core.synth_slider_curve_equation if slider else _core.synth_curve_equation
     try:
-        params, _, _, _, _ = _core.synth_curve_equation(np.ascontiguousarray(target))
+        params, _, _, _, _ = solve(np.ascontiguousarray(target))
     except LinkageError:
         return []
     if not len(params):
         return []
     rows = np.repeat(params, 2, axis=0)
     crossed = np.tile([False, True], len(params))
-    e, _ = _errors(rows, crossed, target, closed, threads=threads)
+    if slider:
+        # The other reach of each: the same linkage with its line reversed.
+        rows[1::2, 2] += math.pi
+        rows[1::2, 3] *= -1.0
+        crossed[:] = False
+    e, _ = _errors(rows, crossed, target, closed, threads=threads, kind=kind)
     chosen: list[int] = []
     for i in np.argsort(e[:, 0], kind="stable"):
         if len(chosen) == EQUATION_STARTS or not np.isfinite(e[i, 0]):
             break
         # One assembly of each four-bar: a double-rocker's two trace one circuit (its two
-        # rows fit alike, and would be refined twice).
+        # rows fit alike, and would be refined twice). A slider-crank's two rows differ.
         tol = 1e-9 * float(np.max(np.abs(rows[i])))
         if all(np.max(np.abs(rows[i] - rows[j])) > tol for j in chosen):
             chosen.append(int(i))
@@ -2976,7 +2992,9 @@ def command(args: argparse.Namespace) -> int:
             f"({g(fb.o[0])}, {g(fb.o[1])})",
         ]
         if isinstance(fb, SliderCrank):
-            row += [f"{math.degrees(fb.angle):.2f}", g(fb.crank), g(fb.coupler), g(fb.offset)]
+            # Rounded first: an angle of -1e-12 rad reads 0.00, not -0.00.
+            line = round(math.degrees(fb.angle), 2) + 0.0
+            row += [f"{line:.2f}", g(fb.crank), g(fb.coupler), g(fb.offset)]
             row += [f"({g(fb.point[0])}, {g(fb.point[1])})", f"slider {fb.reach}"]
         else:
             row += [f"({g(fb.c[0])}, {g(fb.c[1])})", g(fb.crank), g(fb.coupler)]

@@ -35,7 +35,7 @@ use crate::error::Error;
 use crate::scalar::{lit, Vec2};
 
 /// Whether `x > 0` (false for NaN).
-fn positive<T: RealField + Copy>(x: T) -> bool {
+pub(crate) fn positive<T: RealField + Copy>(x: T) -> bool {
     x.partial_cmp(&T::zero()) == Some(core::cmp::Ordering::Greater)
 }
 
@@ -44,43 +44,43 @@ pub const CURVE_EQUATION_POINTS: usize = 16;
 
 /// A complex number (the few operations the elimination needs, generic over the scalar).
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Cx<T> {
-    re: T,
-    im: T,
+pub(crate) struct Cx<T> {
+    pub(crate) re: T,
+    pub(crate) im: T,
 }
 
 impl<T: RealField + Copy> Cx<T> {
-    fn new(re: T, im: T) -> Self {
+    pub(crate) fn new(re: T, im: T) -> Self {
         Cx { re, im }
     }
-    fn zero() -> Self {
+    pub(crate) fn zero() -> Self {
         Cx::new(T::zero(), T::zero())
     }
-    fn real(re: T) -> Self {
+    pub(crate) fn real(re: T) -> Self {
         Cx::new(re, T::zero())
     }
-    fn add(self, o: Self) -> Self {
+    pub(crate) fn add(self, o: Self) -> Self {
         Cx::new(self.re + o.re, self.im + o.im)
     }
-    fn sub(self, o: Self) -> Self {
+    pub(crate) fn sub(self, o: Self) -> Self {
         Cx::new(self.re - o.re, self.im - o.im)
     }
-    fn mul(self, o: Self) -> Self {
+    pub(crate) fn mul(self, o: Self) -> Self {
         Cx::new(
             self.re * o.re - self.im * o.im,
             self.re * o.im + self.im * o.re,
         )
     }
-    fn scale(self, k: T) -> Self {
+    pub(crate) fn scale(self, k: T) -> Self {
         Cx::new(self.re * k, self.im * k)
     }
-    fn conj(self) -> Self {
+    pub(crate) fn conj(self) -> Self {
         Cx::new(self.re, -self.im)
     }
-    fn norm(self) -> T {
+    pub(crate) fn norm(self) -> T {
         self.re.hypot(self.im)
     }
-    fn div(self, o: Self) -> Self {
+    pub(crate) fn div(self, o: Self) -> Self {
         // Scaled by the larger part of `o`: no square overflows.
         let k = o.re.abs().max(o.im.abs());
         let (a, b) = (self.scale(T::one() / k), o.scale(T::one() / k));
@@ -91,12 +91,12 @@ impl<T: RealField + Copy> Cx<T> {
 
 /// A polynomial `Σ c_ij z^i z̄^j`, `i, j ≤ 3`.
 #[derive(Clone, Copy, Debug)]
-struct Poly<T> {
-    c: [[Cx<T>; 4]; 4],
+pub(crate) struct Poly<T> {
+    pub(crate) c: [[Cx<T>; 4]; 4],
 }
 
 impl<T: RealField + Copy> Poly<T> {
-    fn zero() -> Self {
+    pub(crate) fn zero() -> Self {
         Poly {
             c: [[Cx::zero(); 4]; 4],
         }
@@ -118,7 +118,7 @@ impl<T: RealField + Copy> Poly<T> {
         }
         p
     }
-    fn scale(&self, k: Cx<T>) -> Self {
+    pub(crate) fn scale(&self, k: Cx<T>) -> Self {
         let mut p = *self;
         for row in &mut p.c {
             for v in row {
@@ -203,11 +203,23 @@ pub struct CurveEquation<T> {
     pub spread: T,
 }
 
-/// The curve's coefficients `c[i][j]` of `z^i z̄^j` from points in the unit frame, and the
-/// singular values' ratios (least, second least).
-fn fit_equation<T: RealField + Copy>(z: &[Cx<T>]) -> Option<(Poly<T>, T, T)> {
+/// The curve's coefficients `c[i][j]` of `z^i z̄^j` (`i, j ≤ 3`, `i + j ≤ degree`) from points
+/// in the unit frame, and the singular values' ratios (least, second least). `degree` 6: a
+/// tricircular sextic (16 real coefficients); 4: a circular quartic (13).
+pub(crate) fn fit_equation<T: RealField + Copy>(
+    z: &[Cx<T>],
+    degree: usize,
+) -> Option<(Poly<T>, T, T)> {
     let n = z.len();
-    let mut a = DMatrix::<T>::zeros(n, 16);
+    let terms = (0..4)
+        .flat_map(|i| (i..4).map(move |j| (i, j)))
+        .filter(|&(i, j)| i + j <= degree)
+        .map(|(i, j)| if i == j { 1 } else { 2 })
+        .sum::<usize>();
+    if n < terms {
+        return None;
+    }
+    let mut a = DMatrix::<T>::zeros(n, terms);
     let two = lit::<T>(2.0);
     for (r, &p) in z.iter().enumerate() {
         let mut zi = [Cx::real(T::one()); 4];
@@ -219,6 +231,9 @@ fn fit_equation<T: RealField + Copy>(z: &[Cx<T>]) -> Option<(Poly<T>, T, T)> {
         let mut col = 0;
         for (i, zp) in zi.iter().enumerate() {
             for (j, bp) in bi.iter().enumerate().skip(i) {
+                if i + j > degree {
+                    continue;
+                }
                 let m = zp.mul(*bp);
                 if i == j {
                     a[(r, col)] = m.re;
@@ -237,14 +252,17 @@ fn fit_equation<T: RealField + Copy>(z: &[Cx<T>]) -> Option<(Poly<T>, T, T)> {
     let s = &svd.singular_values;
     // Sorted in decreasing order by nalgebra's `svd`.
     let top = s[0];
-    if !positive(top) || v_t.nrows() < 16 {
+    if !positive(top) || v_t.nrows() < terms {
         return None;
     }
-    let f = v_t.row(15);
+    let f = v_t.row(terms - 1);
     let mut poly = Poly::zero();
     let mut col = 0;
     for i in 0..4 {
         for j in i..4 {
+            if i + j > degree {
+                continue;
+            }
             if i == j {
                 poly.c[i][i] = Cx::real(f[col]);
                 col += 1;
@@ -255,7 +273,7 @@ fn fit_equation<T: RealField + Copy>(z: &[Cx<T>]) -> Option<(Poly<T>, T, T)> {
             }
         }
     }
-    Some((poly, s[15] / top, s[14] / top))
+    Some((poly, s[terms - 1] / top, s[terms - 2] / top))
 }
 
 /// The roots of `Σ_k a[k] z^k` (`a[3] ≠ 0`): Durand–Kerner's iteration, then Newton's.
@@ -412,6 +430,64 @@ fn solve<T: RealField + Copy>(
         .then_some((params, residual))
 }
 
+/// The frame's centre and radius, and the points in it.
+pub(crate) type Frame<T> = (Vec2<T>, T, Vec<Cx<T>>);
+
+/// The points in the unit frame (centred, RMS radius 1), with the frame's centre and radius:
+/// formed in units of a power of two near the largest coordinate, so no sum or square
+/// overflows or underflows at extreme scales.
+///
+/// # Errors
+/// [`Error::TooFew`] for fewer than `needed` points, [`Error::NotFinite`] for a point that is
+/// not finite, [`Error::Degenerate`] when they are all one point.
+pub(crate) fn unit_frame<T: RealField + Copy>(
+    points: &[Vec2<T>],
+    needed: usize,
+) -> Result<Frame<T>, Error> {
+    if points.len() < needed {
+        return Err(Error::TooFew {
+            what: "points on the curve",
+            needed,
+            got: points.len(),
+        });
+    }
+    for p in points {
+        for v in [p.x, p.y] {
+            if !v.is_finite() {
+                return Err(Error::NotFinite {
+                    what: "curve point",
+                    value: crate::scalar::to_f64(v),
+                });
+            }
+        }
+    }
+    // The unit frame: centred, RMS radius 1, formed in units of a power of two near the largest
+    // coordinate (no sum or square overflows or underflows at extreme scales).
+    let largest = points
+        .iter()
+        .fold(T::zero(), |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let unit = crate::dyad::pow2_scale(largest);
+    let n: T = lit(points.len() as f64);
+    let centre = points.iter().fold(Vec2::zeros(), |s, p| s + p / unit) / n;
+    let rms = (points
+        .iter()
+        .map(|p| (p / unit - centre).norm_squared())
+        .fold(T::zero(), |s, v| s + v)
+        / n)
+        .sqrt();
+    if !(positive(rms) && rms.is_finite()) {
+        return Err(Error::Degenerate {
+            what: "the points are all one point",
+        });
+    }
+    let (centre, rms) = (centre * unit, rms * unit);
+    let z: Vec<Cx<T>> = points
+        .iter()
+        .map(|p| Cx::new((p.x - centre.x) / rms, (p.y - centre.y) / rms))
+        .collect();
+    Ok((centre, rms, z))
+}
+
 /// Four-bars whose coupler curve passes through `points`, from the curve's equation (module
 /// docs): exact, to rounding, for points on a four-bar's curve; starting points for a fit
 /// otherwise.
@@ -445,48 +521,10 @@ fn solve<T: RealField + Copy>(
 pub fn fourbars_from_curve<T: RealField + Copy>(
     points: &[Vec2<T>],
 ) -> Result<CurveEquation<T>, Error> {
-    if points.len() < CURVE_EQUATION_POINTS {
-        return Err(Error::TooFew {
-            what: "points on the curve",
-            needed: CURVE_EQUATION_POINTS,
-            got: points.len(),
-        });
-    }
-    for p in points {
-        for v in [p.x, p.y] {
-            if !v.is_finite() {
-                return Err(Error::NotFinite {
-                    what: "curve point",
-                    value: crate::scalar::to_f64(v),
-                });
-            }
-        }
-    }
-    // The unit frame: centred, RMS radius 1, formed in units of a power of two near the largest
-    // coordinate (no sum or square overflows or underflows at extreme scales).
-    let largest = points
-        .iter()
-        .fold(T::zero(), |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let unit = crate::dyad::pow2_scale(largest);
-    let n: T = lit(points.len() as f64);
-    let centre = points.iter().fold(Vec2::zeros(), |s, p| s + p / unit) / n;
-    let rms = (points
-        .iter()
-        .map(|p| (p / unit - centre).norm_squared())
-        .fold(T::zero(), |s, v| s + v)
-        / n)
-        .sqrt();
+    let (centre, rms, z) = unit_frame(points, CURVE_EQUATION_POINTS)?;
     let degenerate = |what| Error::Degenerate { what };
-    if !(positive(rms) && rms.is_finite()) {
-        return Err(degenerate("the points are all one point"));
-    }
-    let (centre, rms) = (centre * unit, rms * unit);
-    let z: Vec<Cx<T>> = points
-        .iter()
-        .map(|p| Cx::new((p.x - centre.x) / rms, (p.y - centre.y) / rms))
-        .collect();
     let (curve, misfit, spread) =
-        fit_equation(&z).ok_or(degenerate("the points fix no curve equation"))?;
+        fit_equation(&z, 6).ok_or(degenerate("the points fix no curve equation"))?;
     if !positive(spread - lit::<T>(4.0) * T::default_epsilon()) {
         // A family of curves fits them (rank deficient to rounding): the foci of its least
         // singular vector are arbitrary (20 collinear points gave a pivot 1e16 away).

@@ -110,6 +110,8 @@ mod slider_circuit;
 #[cfg(feature = "synthesis")]
 mod slider_crank;
 #[cfg(feature = "synthesis")]
+mod slider_equation;
+#[cfg(feature = "synthesis")]
 pub use arc_atlas::{arc_frame, arc_points, ArcSpec, ARC_ENTRY_PARAMS, ARC_FRACTIONS};
 #[cfg(feature = "synthesis")]
 pub use atlas::{
@@ -136,6 +138,10 @@ pub use slider_circuit::{
 };
 #[cfg(feature = "synthesis")]
 pub use slider_crank::{SliderCrank, SliderCrankPose};
+#[cfg(feature = "synthesis")]
+pub use slider_equation::{
+    slider_cranks_from_curve, SliderEquation, SliderEquationFit, SLIDER_EQUATION_POINTS,
+};
 
 /// The repository README's Rust examples, compiled and run as doc tests.
 #[cfg(doctest)]

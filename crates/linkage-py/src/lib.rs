@@ -101,6 +101,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(synthesis::synth_frame, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_place, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_curve_equation, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesis::synth_slider_curve_equation, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_arc, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::polyline_distance, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::polyline_distance_each, m)?)?;

@@ -1,14 +1,15 @@
-//! Mirrors `linkage_core::{efd, atlas, path_synthesis, slider_circuit, curve_equation}`: the Rust half of
+//! Mirrors `linkage_core::{efd, atlas, path_synthesis, slider_circuit, curve_equation,
+//! slider_equation}`: the Rust half of
 //! `linkage.synthesis` (descriptors, the atlas, circuit errors and residuals). Converts arrays,
 //! allocates outputs with numpy, releases the GIL and calls the core.
 
 use linkage_core::{
     arc_frame, covering_arc, descriptor_len, fourbars_from_curve, nearest, path_errors,
     path_residuals, place_entry, place_slider_entry, polyline_distances, polyline_distances_each,
-    query_descriptors, slider_arc_frame, slider_path_errors, slider_path_residuals, ArcSpec, Atlas,
-    AtlasSpec, Circuit, CircuitPath, FootSearch, Normalisation, PathError, SliderCircuit, Vec2,
-    ARC_ENTRY_PARAMS, ENTRY_PARAMS, PLACED_PARAMS, QUERY_VARIANTS, SLIDER_ARC_ENTRY_PARAMS,
-    SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
+    query_descriptors, slider_arc_frame, slider_cranks_from_curve, slider_path_errors,
+    slider_path_residuals, ArcSpec, Atlas, AtlasSpec, Circuit, CircuitPath, FootSearch,
+    Normalisation, PathError, SliderCircuit, Vec2, ARC_ENTRY_PARAMS, ENTRY_PARAMS, PLACED_PARAMS,
+    QUERY_VARIANTS, SLIDER_ARC_ENTRY_PARAMS, SLIDER_ENTRY_PARAMS, SLIDER_PARAMS,
 };
 use numpy::ndarray::{Ix2, Ix3};
 use numpy::{
@@ -601,6 +602,35 @@ pub fn synth_arc(feet: PyReadonlyArray1<'_, f64>) -> PyResult<Option<(f64, f64)>
         .as_slice()
         .map_err(|_| linkage_error("feet must be a contiguous float64 array"))?;
     Ok(covering_arc(f))
+}
+
+/// The placed slider-cranks, their residuals, the crank pivot, `misfit` and `spread`.
+type SliderCurveArrays<'py> = (Arr2<'py, f64>, Arr1<'py, f64>, Arr1<'py, f64>, f64, f64);
+
+/// Slider-cranks from the equation of the curve through `points (n, 2)`
+/// (`linkage_core::slider_cranks_from_curve`): placed parameters `(k, 8)` on the ahead reach,
+/// least residual first, their residuals `(k,)`, the crank pivot `(2,)`, and the fit's `misfit`
+/// and `spread`.
+#[pyfunction]
+#[pyo3(signature = (points,))]
+pub fn synth_slider_curve_equation<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray2<'py, f64>,
+) -> PyResult<SliderCurveArrays<'py>> {
+    let pts = self::points("points", &points)?;
+    let found = py.detach(|| slider_cranks_from_curve(pts)).map_err(to_py)?;
+    let k = found.fits.len();
+    let params: Vec<f64> = found.fits.iter().flat_map(|f| f.params).collect();
+    let residuals: Vec<f64> = found.fits.iter().map(|f| f.residual).collect();
+    let params = numpy::ndarray::Array2::from_shape_vec((k, SLIDER_PARAMS), params)
+        .map_err(|e| linkage_error(format!("internal: {e}")))?;
+    Ok((
+        params.into_pyarray(py),
+        residuals.into_pyarray(py),
+        vec![found.pivot.x, found.pivot.y].into_pyarray(py),
+        found.misfit,
+        found.spread,
+    ))
 }
 
 /// The placed four-bars, their residuals, the foci, `misfit` and `spread`.
