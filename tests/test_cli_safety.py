@@ -564,14 +564,25 @@ def test_ctrl_c_that_a_library_turns_into_its_own_error_is_still_an_interrupt(
     assert "interrupted" in line and "nothing was written" in line, line
     assert snapshot(world) == before
     assert leftovers(out.parent) == []
-    # the handler is Python's own again once the run is over
+    # the handlers are Python's own again once the run is over
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL
 
 
 # -- a real Ctrl-C ---------------------------------------------------------------------------
 
 
-def test_sigint_to_a_real_run_exits_130_and_leaves_the_old_report(world, tmp_path_factory):
+@pytest.mark.parametrize(
+    ("signum", "status", "said"),
+    [
+        (signal.SIGINT, 130, "interrupted"),
+        # kill, timeout, a cancelled CI job: the partial folder had been left behind
+        (signal.SIGTERM, 143, "stopped by SIGTERM"),
+    ],
+)
+def test_a_signal_to_a_real_run_exits_and_leaves_the_old_report(
+    world, tmp_path_factory, signum, status, said
+):
     out = Path.cwd() / "linkage-report" / "other"
     scene = scene_file(world, "other", '["trajectory", "animation"]')
     before = snapshot(world)
@@ -603,14 +614,14 @@ def test_sigint_to_a_real_run_exits_130_and_leaves_the_old_report(world, tmp_pat
         partial = leftovers(out.parent)
         assert len(partial) == 1 and ".partial-" in partial[0]
         time.sleep(0.2)  # well inside the write (the animation takes seconds)
-        child.send_signal(signal.SIGINT)
+        child.send_signal(signum)
         stdout, stderr = child.communicate(timeout=120)
     finally:
         if child.poll() is None:
             child.kill()
             child.wait()
-    assert child.returncode == 130, stderr
-    assert stderr.strip() == "linkage: interrupted; nothing was written", stderr
+    assert child.returncode == status, stderr
+    assert stderr.strip() == f"linkage: {said}; nothing was written", stderr
     assert stdout == ""
     assert leftovers(out.parent) == []
     assert snapshot(world) == before

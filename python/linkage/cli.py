@@ -5,7 +5,8 @@ under its drive (the same as ``examples/quadruped_hoecken.toml``).
 
 Exit status: 0 done; 2 a mistake in the scene or arguments, a refused or failed report folder, or
 out of memory (one line on stderr, nothing written); 3 an internal error (a bug; set
-LINKAGE_DEBUG=1 for the traceback); 130 interrupted by Ctrl-C (nothing written).
+LINKAGE_DEBUG=1 for the traceback); 130 interrupted by Ctrl-C, 143 stopped by SIGTERM, 129 by
+SIGHUP (nothing written: a report being written is removed as after Ctrl-C).
 """
 
 from __future__ import annotations
@@ -33,7 +34,22 @@ EXIT_ERROR = 2
 EXIT_INTERNAL = 3
 """Exit status for an internal error (a bug in linkage)."""
 EXIT_INTERRUPTED = 130
-"""Exit status after Ctrl-C (128 + SIGINT, as shells report it)."""
+"""Exit status after Ctrl-C (128 + SIGINT, as shells report it); after SIGTERM or SIGHUP, 128
+plus its number."""
+
+
+class Stopped(KeyboardInterrupt):
+    """SIGTERM or SIGHUP while a command runs.
+
+    ``kill``, ``timeout``, a cancelled CI job or a closed terminal: raised as Ctrl-C's
+    ``KeyboardInterrupt`` is, so a report being written is removed the same way.
+    """
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
 DEBUG_ENV = "LINKAGE_DEBUG"
 
 
@@ -375,22 +391,30 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not 2 <= getattr(args, "frames", 2) <= MAX_FRAMES:
         parser.error(f"--frames must be between 2 and {MAX_FRAMES}")
     state: dict[str, Path] = {}
-    ctrl_c: list[bool] = []
+    signals: list[int] = []
     try:
-        with _ctrl_c_noted(ctrl_c):
+        with _signals_noted(signals):
             return int(args.func(args, state))
-    except KeyboardInterrupt:
-        _say(f"interrupted; {_written(state)}")
-        return EXIT_INTERRUPTED
+    except KeyboardInterrupt as exc:
+        return _stopped(exc.signum if isinstance(exc, Stopped) else signal.SIGINT, state)
     except (SystemExit, GeneratorExit):
         raise
     except BaseException as exc:
-        if ctrl_c:
-            # Ctrl-C raised KeyboardInterrupt inside a library that turned it into an error of its
-            # own (matplotlib's C++ renderer reports "Invalid bounding box"): still an interrupt
-            _say(f"interrupted; {_written(state)}")
-            return EXIT_INTERRUPTED
+        if signals:
+            # The signal's KeyboardInterrupt was raised inside a library that turned it into an
+            # error of its own (matplotlib's C++ renderer reports "Invalid bounding box"):
+            # still a stop
+            return _stopped(signals[-1], state)
         return _failed(exc, state)
+
+
+def _stopped(signum: int, state: dict[str, Path]) -> int:
+    """Say that a signal stopped the command, and give its exit status (128 + its number)."""
+    if signum == signal.SIGINT:
+        _say(f"interrupted; {_written(state)}")
+        return EXIT_INTERRUPTED
+    _say(f"stopped by {signal.Signals(signum).name}; {_written(state)}")
+    return 128 + int(signum)
 
 
 def _failed(exc: BaseException, state: dict[str, Path]) -> int:
@@ -417,30 +441,40 @@ def _failed(exc: BaseException, state: dict[str, Path]) -> int:
     return EXIT_INTERNAL
 
 
-@contextlib.contextmanager
-def _ctrl_c_noted(ctrl_c: list[bool]) -> Iterator[None]:
-    """Note every Ctrl-C in ``ctrl_c`` before raising ``KeyboardInterrupt`` as Python does.
+STOPPING = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name))
+"""Signals that stop a command as Ctrl-C does (where their handler is still the default)."""
 
-    Main thread only (elsewhere Python delivers no signals), and only while Python's own handler is
-    in place; the previous handler is restored on the way out.
+
+@contextlib.contextmanager
+def _signals_noted(signals: list[int]) -> Iterator[None]:
+    """Note every Ctrl-C, SIGTERM and SIGHUP in ``signals``, and raise as Python does for Ctrl-C.
+
+    ``KeyboardInterrupt`` for Ctrl-C, :class:`Stopped` for the others. Main thread only
+    (elsewhere Python delivers no signals), and only for a signal whose handler is still Python's
+    own (Ctrl-C) or the default (the others); the previous handlers are restored on the way out.
     """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    previous = signal.getsignal(signal.SIGINT)
-    if previous is not signal.default_int_handler:
-        yield
-        return
 
     def note(signum: int, frame: object) -> None:
-        ctrl_c.append(True)
-        raise KeyboardInterrupt
+        signals.append(signum)
+        if signum == signal.SIGINT:
+            raise KeyboardInterrupt
+        raise Stopped(signum)
 
-    signal.signal(signal.SIGINT, note)
+    previous = {}
+    for signum in (signal.SIGINT, *STOPPING):
+        was = signal.getsignal(signum)
+        default = signal.default_int_handler if signum == signal.SIGINT else signal.SIG_DFL
+        if was is default:
+            previous[signum] = was
+            signal.signal(signum, note)
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        for signum, was in previous.items():
+            signal.signal(signum, was)
 
 
 def _written(state: dict[str, Path]) -> str:

@@ -304,22 +304,27 @@ def prepare(folder: Path, force: bool) -> None:
 
 @contextlib.contextmanager
 def _sigint_held() -> Iterator[None]:
-    """Hold Ctrl-C off a few renames or a clean-up so they cannot be cut in half.
+    """Hold Ctrl-C, SIGTERM and SIGHUP off a few renames or a clean-up: none is cut in half.
 
     Main thread only; elsewhere signals are not delivered to Python anyway.
     """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    held = [signal.SIGINT] + [
+        getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)
+    ]
+    previous = {}
     try:
-        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        for signum in held:
+            previous[signum] = signal.signal(signum, signal.SIG_IGN)
     except (ValueError, OSError):
-        yield
-        return
+        pass
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        for signum, was in previous.items():
+            signal.signal(signum, was)
 
 
 def _make_sibling(parent: Path, name: str, kind: str) -> Path:
