@@ -196,6 +196,39 @@ def test_pantograph_at_huge_scale_is_linkage_error() -> None:
         _core.catalog_linkage("hoecken_pantograph", 1e308)
 
 
+def test_messages_say_what_is_wrong_not_a_length_template() -> None:
+    # A new user's trial: a gear count and a scale of 0.5 had been "not a positive finite length".
+    import linkage
+
+    cases = [
+        (
+            lambda: linkage.catalog.hoecken_pantograph(0.5),
+            "pantograph scale must be greater than 1, got 0.5",
+        ),
+        (
+            lambda: linkage.catalog.hoecken_pantograph(float("nan")),
+            "scale must be finite",
+        ),
+        (
+            lambda: linkage.drive.GearTrain.simple([18]),
+            "needs at least 2 gears in a simple gear train, got 1",
+        ),
+        (
+            lambda: linkage.drive.GearTrain.simple([18, 0]),
+            "tooth counts must be positive, got 0",
+        ),
+        (
+            lambda: linkage.drive.GearTrain.compound([]),
+            "needs at least 1 stages in a compound gear train, got 0",
+        ),
+    ]
+    for make, message in cases:
+        with pytest.raises(LinkageError) as info:
+            make()
+        assert str(info.value).startswith(message), str(info.value)
+        assert "positive finite length" not in str(info.value), str(info.value)
+
+
 def test_many_threads_are_capped_and_give_the_same_bits() -> None:
     fb = _hoecken()
     one = fb.uniform_sweep(0.3, 1e-3, 20_000, threads=1)

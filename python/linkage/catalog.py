@@ -285,7 +285,7 @@ def hoecken_pantograph(scale: float = 2.0) -> Mechanism:
     >>> linkage.catalog.hoecken_pantograph(1.0)
     Traceback (most recent call last):
     ...
-    linkage.LinkageError: pantograph scale (must exceed 1, with 30·scale finite) must be ...
+    linkage.LinkageError: pantograph scale must be greater than 1, got 1
     """
     return _linkage("hoecken_pantograph", scale)
 

@@ -208,15 +208,26 @@ pub fn hart<T: RealField + Copy>() -> Linkage<T> {
 /// the parallelogram `E F G T`, output `P` on `F → G` at `30·scale`, so `P = Q + scale·(T − Q)`.
 ///
 /// # Errors
-/// [`Error::InvalidLength`] unless `scale > 1` and finite, and small enough that the arms
-/// (`30·scale`) are finite.
+/// [`Error::NotFinite`] for a scale that is not finite, [`Error::NotAbove`] unless `scale > 1`,
+/// [`Error::NotRepresentable`] when the arms (`30·scale`) overflow.
 pub fn hoecken_pantograph<T: RealField + Copy>(scale: T) -> Result<Linkage<T>, Error> {
     let c = lit::<T>;
     let arm = c(30.0);
-    if !(scale.is_finite() && scale > T::one() && (arm * scale).is_finite()) {
-        return Err(Error::InvalidLength {
-            what: "pantograph scale (must exceed 1, with 30·scale finite)",
-            value: crate::scalar::to_f64(scale),
+    let what = "pantograph scale";
+    let value = crate::scalar::to_f64(scale);
+    if !scale.is_finite() {
+        return Err(Error::NotFinite { what, value });
+    }
+    if scale <= T::one() {
+        return Err(Error::NotAbove {
+            what,
+            value,
+            min: 1.0,
+        });
+    }
+    if !(arm * scale).is_finite() {
+        return Err(Error::NotRepresentable {
+            what: "pantograph scale's arms (30·scale)",
         });
     }
     let build = |g_side: Side| {

@@ -152,6 +152,16 @@ pub enum Error {
         /// The choices as a message lists them, e.g. `"'open' or 'crossed'"`.
         choices: &'static str,
     },
+    /// A value that must be greater than a bound is not (e.g. a pantograph's scale, which must
+    /// exceed 1).
+    NotAbove {
+        /// Which value.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+        /// The bound it must exceed.
+        min: f64,
+    },
     /// A count or size above the most a computation takes.
     OutOfRange {
         /// Which count, e.g. `"table block"`.
@@ -242,6 +252,14 @@ impl fmt::Display for Error {
             Error::Degenerate { what } => write!(f, "degenerate synthesis: {what}"),
             Error::NoSolution { what } => write!(f, "no solution: {what}"),
             Error::InvalidChoice { what, choices } => write!(f, "{what} must be {choices}"),
+            Error::NotAbove { what, value, min } => {
+                write!(
+                    f,
+                    "{what} must be greater than {}, got {}",
+                    Num(min),
+                    Num(value)
+                )
+            }
             Error::OutOfRange { what, value, max } => {
                 write!(f, "{what} must be at most {max}, got {value}")
             }
@@ -345,5 +363,48 @@ mod sig3_tests {
         for (x, want) in cases {
             assert_eq!(format!("{}", Sig3(x)), want, "{x}");
         }
+    }
+}
+
+#[cfg(test)]
+mod message_tests {
+    use super::Error;
+    extern crate std;
+    use std::string::ToString;
+
+    #[test]
+    fn a_bound_or_a_count_is_not_called_a_length() {
+        // A new user's trial: a pantograph scale of 0.5 and a one-gear train were each "not a
+        // positive finite length".
+        let scale = crate::catalog_impl::hoecken_pantograph(0.5_f64)
+            .map(|_| ())
+            .unwrap_err();
+        assert_eq!(
+            scale.to_string(),
+            "pantograph scale must be greater than 1, got 0.5",
+            "{scale:?}"
+        );
+        let gears = crate::GearTrain::simple(&[18]).unwrap_err();
+        assert_eq!(
+            gears.to_string(),
+            "needs at least 2 gears in a simple gear train, got 1",
+            "{gears:?}"
+        );
+        let teeth = crate::GearTrain::simple(&[18, 0]).unwrap_err();
+        assert!(
+            matches!(
+                teeth,
+                Error::TooFew {
+                    needed: 1,
+                    got: 0,
+                    ..
+                }
+            ),
+            "{teeth:?}"
+        );
+        let huge = crate::catalog_impl::hoecken_pantograph(1e308_f64)
+            .map(|_| ())
+            .unwrap_err();
+        assert!(matches!(huge, Error::NotRepresentable { .. }), "{huge:?}");
     }
 }

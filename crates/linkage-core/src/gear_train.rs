@@ -24,12 +24,13 @@ impl GearTrain {
     /// `z_first / z_last` (idlers cancel) and every external mesh reverses the sense.
     ///
     /// # Errors
-    /// [`Error::InvalidLength`] for fewer than two gears or a zero tooth count.
+    /// [`Error::TooFew`] for fewer than two gears or a gear of no teeth.
     pub fn simple(teeth: &[u32]) -> Result<Self, Error> {
         if teeth.len() < 2 {
-            return Err(Error::InvalidLength {
-                what: "gear train (at least two gears)",
-                value: teeth.len() as f64,
+            return Err(Error::TooFew {
+                what: "gears in a simple gear train",
+                needed: 2,
+                got: teeth.len(),
             });
         }
         check_teeth(teeth.iter().copied())?;
@@ -47,14 +48,15 @@ impl GearTrain {
     /// or overflow on the way to a representable ratio.
     ///
     /// # Errors
-    /// [`Error::InvalidLength`] for no stage or a zero tooth count;
+    /// [`Error::TooFew`] for no stage or a gear of no teeth;
     /// [`Error::NotRepresentable`] when the ratio itself is below the smallest normal `f64` or
     /// above the largest (it would come out as 0, a subnormal without full precision, or ∞).
     pub fn compound(stages: &[(u32, u32)]) -> Result<Self, Error> {
         if stages.is_empty() {
-            return Err(Error::InvalidLength {
-                what: "gear train (at least one stage)",
-                value: 0.0,
+            return Err(Error::TooFew {
+                what: "stages in a compound gear train",
+                needed: 1,
+                got: 0,
             });
         }
         check_teeth(stages.iter().flat_map(|&(a, b)| [a, b]))?;
@@ -124,9 +126,10 @@ impl GearTrain {
 fn check_teeth(teeth: impl Iterator<Item = u32>) -> Result<(), Error> {
     for z in teeth {
         if z == 0 {
-            return Err(Error::InvalidLength {
-                what: "gear tooth count",
-                value: 0.0,
+            return Err(Error::TooFew {
+                what: "teeth on each gear",
+                needed: 1,
+                got: 0,
             });
         }
     }
