@@ -340,3 +340,20 @@ def test_threads_the_system_refuses_are_swept_on_the_calling_thread() -> None:
     )
     assert child.returncode == 0, child.stderr[-2000:]
     assert child.stdout.strip() == "same", child.stdout + child.stderr
+
+
+def test_a_circuit_that_never_assembles_names_joint_b_and_its_gap() -> None:
+    # A new user's trial: the slider-crank's gap had been NaN, the four-bar's "9.4e1", both
+    # "joint 3".
+    import linkage
+
+    cases = [
+        (linkage.FourBar(ground=100, crank=1, coupler=2, rocker=3, point=(5, 0)), "94.0"),
+        (linkage.SliderCrank(crank=10, coupler=3, offset=60, point=(12, 9)), "47.0"),
+    ]
+    for obj, gap in cases:
+        with pytest.raises(linkage.AssemblyError) as info:
+            obj.circuit(11)
+        assert str(info.value) == (
+            f"joint B cannot be assembled: the lengths miss closure by {gap}"
+        ), str(info.value)

@@ -563,7 +563,12 @@ class FourBar:
         (True, True)
         """
         # The margin is the tracker's: |sin| of the transmission angle at B.
-        theta, joints, velocity, margin = self._core.circuit(as_count(n, "n", 2))
+        count = as_count(n, "n", 2)
+        try:
+            theta, joints, velocity, margin = self._core.circuit(count)
+        except _core.AssemblyError as exc:
+            # The core names joints by index; joint 3 is B.
+            raise _core.AssemblyError(str(exc).replace("joint 3 ", "joint B ", 1)) from None
         valid = np.isfinite(joints[:, 4, 0])
         raw = {
             "joints": joints,

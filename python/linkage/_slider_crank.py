@@ -302,7 +302,12 @@ class SliderCrank:
         ...
         linkage.LinkageError: n must be an int ≥ 2, got 1
         """
-        theta, joints, margin = self._core.circuit(as_count(n, "n", 2))
+        count = as_count(n, "n", 2)
+        try:
+            theta, joints, margin = self._core.circuit(count)
+        except _core.AssemblyError as exc:
+            # The core names joints by index; joint 3 is B.
+            raise _core.AssemblyError(str(exc).replace("joint 3 ", "joint B ", 1)) from None
         valid = np.isfinite(joints[:, 4, 0])
         raw = {
             "joints": joints,

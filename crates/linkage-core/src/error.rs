@@ -188,7 +188,8 @@ impl fmt::Display for Error {
             }
             Error::CannotAssemble { joint, gap } => write!(
                 f,
-                "joint {joint} cannot be assembled: the lengths miss closure by {gap:e}"
+                "joint {joint} cannot be assembled: the lengths miss closure by {}",
+                Sig3(gap)
             ),
             Error::Coincident { joint } => write!(
                 f,

@@ -73,10 +73,12 @@ impl<T: RealField + Copy> SliderCircuit<T> {
     pub fn new(linkage: SliderCrank<T>) -> Result<Self, Error> {
         let relative = match linkage.relative_range() {
             RelativeRange::Never => {
+                // The rod cannot reach the line from any crank position: |e| − r > l.
+                let gap = linkage.offset.abs() - linkage.crank - linkage.coupler;
                 return Err(Error::CannotAssemble {
                     joint: SliderCrank::<T>::B,
-                    gap: f64::NAN,
-                })
+                    gap: crate::scalar::to_f64(gap),
+                });
             }
             RelativeRange::Full => None,
             RelativeRange::One(lim) | RelativeRange::Two(lim, _) => Some(lim),
