@@ -357,3 +357,18 @@ def test_a_circuit_that_never_assembles_names_joint_b_and_its_gap() -> None:
         assert str(info.value) == (
             f"joint B cannot be assembled: the lengths miss closure by {gap}"
         ), str(info.value)
+
+
+def test_bad_values_a_trial_found_accepted_are_errors() -> None:
+    import linkage
+    from linkage.cam import leg_lift
+
+    with pytest.raises(LinkageError, match=r"target_size takes finite points, got \[nan, 0.0\]"):
+        linkage.synthesis.target_size(np.array([[np.nan, 0.0], [1.0, 1.0]]))
+    with pytest.raises(LinkageError, match=r"height must be a lift of 0 or more, got -1\.0"):
+        leg_lift(-1.0)
+    with pytest.raises(TypeError, match="height must be a real number"):
+        leg_lift("tall")  # type: ignore[arg-type]
+    # Three identical poses: they coincide (asking for circle points would not help).
+    with pytest.raises(LinkageError, match="precision positions 0 and 1 coincide"):
+        linkage.synthesis.motion(np.zeros((3, 3)))

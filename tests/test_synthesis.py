@@ -667,6 +667,12 @@ def test_cli_synth(tmp_path, capsys, monkeypatch, atlas: Atlas) -> None:  # type
     assert err.startswith("linkage: error: no valid four-bar found for"), err
     assert "(fits failing --pivots: " in err and ", fails --pivots (pivots (" in err, err
     assert ")): loosen it, or refine" in err, err
+    # Too many points: named after the file, with what to do.
+    many = tmp_path / "many.csv"
+    np.savetxt(many, np.random.default_rng(0).normal(size=(10_001, 2)), delimiter=",")
+    assert cli.main(["synth", str(many), "--quiet", "--atlas", str(folder)]) == 2
+    err = capsys.readouterr().err
+    assert f"{many}: path synthesis takes at most 10000 points, got 10001: thin them" in err, err
     for bad, match in (
         (["--min-transmission-deg", "120"], "between 0 and 90, got 120"),
         (["--lengths", "5", "2"], "0 < least < greatest"),

@@ -501,12 +501,13 @@ def motion(
         if beta is not None or beta_pose is not None:
             name = "beta" if beta is not None else "beta_pose"
             raise TypeError(f"{name} applies to four poses; three take circle_points/centre_points")
+        # Coincident poses first: "give circle_points=" would not help them.
+        _not_one_rotation(p)
         if circle_points is None and centre_points is None:
             raise LinkageError(
                 "three poses leave two free choices per dyad: give circle_points= and/or "
                 "centre_points= (at least two dyads)"
             )
-        _not_one_rotation(p)
         dyads, names = _dyads_three(p, circle_points, centre_points)
     else:
         if circle_points is not None or centre_points is not None:

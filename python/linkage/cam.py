@@ -249,7 +249,9 @@ def leg_lift(height: float = 1.4) -> Program:
     Raises
     ------
     LinkageError
-        For a non-finite ``height``.
+        For a ``height`` that is negative or not finite.
+    TypeError
+        For a ``height`` that is not a number.
 
     Examples
     --------
@@ -261,9 +263,15 @@ def leg_lift(height: float = 1.4) -> Program:
     >>> leg_lift(float("nan"))
     Traceback (most recent call last):
     ...
-    linkage.LinkageError: rise must be finite, got nan
+    linkage.LinkageError: height must be finite, got nan
+    >>> leg_lift(-1.0)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: height must be a lift of 0 or more, got -1.0
     """
-    h = float(height)
+    h = as_finite(height, "height")
+    if h < 0:
+        raise LinkageError(f"height must be a lift of 0 or more, got {h!r}")
     return Program(
         h,
         [

@@ -27,7 +27,15 @@ from pathlib import Path
 from linkage import catalog, scene
 from linkage._core import LinkageError
 
-__all__ = ["EXIT_ERROR", "EXIT_INTERNAL", "EXIT_INTERRUPTED", "MAX_FRAMES", "main", "print_table"]
+__all__ = [
+    "EXIT_ERROR",
+    "EXIT_INTERNAL",
+    "EXIT_INTERRUPTED",
+    "MAX_FRAMES",
+    "Stopped",
+    "main",
+    "print_table",
+]
 
 EXIT_ERROR = 2
 """Exit status for a mistake in the scene or the arguments, or a failed write."""
@@ -441,7 +449,7 @@ def _failed(exc: BaseException, state: dict[str, Path]) -> int:
     return EXIT_INTERNAL
 
 
-STOPPING = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name))
+_STOPPING = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name))
 """Signals that stop a command as Ctrl-C does (where their handler is still the default)."""
 
 
@@ -464,7 +472,7 @@ def _signals_noted(signals: list[int]) -> Iterator[None]:
         raise Stopped(signum)
 
     previous = {}
-    for signum in (signal.SIGINT, *STOPPING):
+    for signum in (signal.SIGINT, *_STOPPING):
         was = signal.getsignal(signum)
         default = signal.default_int_handler if signum == signal.SIGINT else signal.SIG_DFL
         if was is default:

@@ -716,7 +716,10 @@ def _csv_text(p: Path) -> str:
     if not p.is_file():  # a device or a pipe: it may never end
         raise LinkageError(f"{p} is not a regular file, not a CSV file of x, y")
     if info.st_size > POINTS_FILE_MAX:
-        raise LinkageError(f"{p} is larger than {POINTS_FILE_MAX >> 20} MiB: not a file of points")
+        raise LinkageError(
+            f"{p} is {info.st_size} bytes, more than the {POINTS_FILE_MAX >> 20} MiB a points file "
+            f"may hold (path synthesis takes at most {POINTS_MAX} points): thin the points"
+        )
     try:
         data = p.read_bytes()
     except OSError as e:
@@ -812,7 +815,12 @@ def _target(points: str | os.PathLike[str] | ArrayLike, closed: bool) -> Float2D
     A file's problems, those of its points too, are named after the file.
     """
     try:
-        return clean_target(read_points(points), closed)
+        target = clean_target(read_points(points), closed)
+        if len(target) > POINTS_MAX:
+            raise LinkageError(
+                f"path synthesis takes at most {POINTS_MAX} points, got {len(target)}: thin them"
+            )
+        return target
     except LinkageError as exc:
         if isinstance(points, (str, os.PathLike)) and not str(exc).startswith(str(points)):
             raise LinkageError(f"{points}: {exc}") from None
@@ -829,8 +837,15 @@ def target_size(points: Float2D) -> float:
     >>> linkage.synthesis.target_size(np.array([[1.0, 0], [-1, 0], [0, 1], [0, -1]]))
     1.0
     """
+    p = np.asarray(points, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1:] != (2,):
+        raise LinkageError(f"target_size takes points of shape (n, 2), got shape {p.shape}")
+    bad = ~np.isfinite(p).all(axis=1)
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise LinkageError(f"target_size takes finite points, got {p[k].tolist()} at row {k}")
     # In units of a power of two near the largest offset: no square overflows or underflows.
-    return rms_size(points)
+    return rms_size(p)
 
 
 # -- the search -----------------------------------------------------------------------------
@@ -1407,8 +1422,6 @@ def path(
             raise TypeError("pivots must be ((xmin, ymin), (xmax, ymax))")
         pivots = (as_point(pivots[0], "pivots[0]"), as_point(pivots[1], "pivots[1]"))
     target = _target(points, closed)
-    if len(target) > POINTS_MAX:
-        raise LinkageError(f"path synthesis takes at most {POINTS_MAX} points, got {len(target)}")
     size = target_size(target)
     frame = _unit_frame(target, size)
     # The settings a search of a moved or thinned target keeps.
