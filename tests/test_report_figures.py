@@ -30,7 +30,7 @@ LENGTH_ROWS = {
     "body travel",
     "minimum stability margin",
     "foot slip per cycle (all feet)",
-    "cam smallest profile radius",
+    "cam profile's smallest radius of curvature",
 }
 SPEED_ROWS = {"peak trace speed", "mean body speed", "largest stance-speed spread"}
 

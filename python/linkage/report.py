@@ -545,16 +545,17 @@ def _write_files(res: Result, folder: Path, frames: int) -> list[Path]:
 
     if res.cam is not None:
         p = res.cam
-        fig = _new_figure(5, 5)
+        fig = _new_figure(5, 5.25)
         ax = fig.subplots()
         ax.plot(p.profile[:, 0], p.profile[:, 1], "k-", label="profile")
         ax.plot(p.pitch[:, 0], p.pitch[:, 1], "--", color="tab:gray", label="pitch curve")
         ax.plot([0], [0], "+", color="k", ms=10, label="cam axis")
         ax.set_aspect("equal")
         _tidy(ax, f"x ({u})", f"y ({u})")
-        ax.legend(fontsize=7)
+        # Below the axes, in one row: inside, it covered the cam axis at the centre.
+        fig.legend(fontsize=7, loc="lower center", ncol=3, frameon=False)
         ax.set_title(f"{scene.name}: cam")
-        _margins(fig)
+        _margins(fig, bottom=0.85)
         save(fig, "cam.png")
 
     if sim is not None:

@@ -733,7 +733,7 @@ def cam_figures(
     >>> for row in res.figures:
     ...     print(*row[:3], sep=" | ")
     cam max pressure angle | 8.6738 | deg
-    cam smallest profile radius | 5.71732 | mm
+    cam profile's smallest radius of curvature | 5.71732 | mm
     cam check | ok |
     >>> up, down = Segment(math.pi / 2, 10.0, "cycloidal"), Segment(math.pi / 2, -10.0, "cycloidal")
     >>> small = DiscCam(Program(0.0, [up, down, Segment(math.pi)]), 5.0, roller_radius=2.0)
@@ -747,9 +747,9 @@ def cam_figures(
     res.arrays.update(cam_profile=p.profile, cam_pitch=p.pitch, cam_pressure_angle=p.pressure_angle)
     angle, radius = _cam_values(p)
     res.figures.append(row("cam max pressure angle", angle, "deg", [a[0] for a in alt], ns))
-    res.figures.append(
-        row("cam smallest profile radius", radius, length_unit(res.scene), [a[1] for a in alt], ns)
-    )
+    name = "cam profile's smallest radius of curvature"
+    unit = length_unit(res.scene)
+    res.figures.append(row(name, radius, unit, [a[1] for a in alt], ns))
     res.figures.append(Row("cam check", "ok" if not p.problems else "; ".join(p.problems)))
 
 
