@@ -257,9 +257,20 @@ def check_memory(nbytes: int, what: str) -> None:
 
 
 def _bytes(n: int) -> str:
-    for unit, size in (("EiB", 1 << 60), ("PiB", 1 << 50), ("TiB", 1 << 40), ("GiB", 1 << 30)):
+    """Word a size as every MemoryError does (the Rust half words it alike).
+
+    Three significant digits, no exponent, in the largest binary unit from MiB to EiB that fits,
+    with the exact bytes; bytes alone below.
+    """
+    for unit, shift in (("EiB", 60), ("PiB", 50), ("TiB", 40), ("GiB", 30), ("MiB", 20)):
+        size = 1 << shift
         if n >= size:
-            return f"{n / size:.3g} {unit} ({n} bytes)"
+            v = n / size
+            digits = 0 if v >= 99.95 else 1 if v >= 9.995 else 2
+            text = f"{v:.{digits}f}"
+            if "." in text:
+                text = text.rstrip("0").rstrip(".")
+            return f"{text} {unit} ({n} bytes)"
     return f"{n} bytes"
 
 

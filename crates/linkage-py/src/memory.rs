@@ -31,9 +31,41 @@ fn machine_bytes() -> Option<u128> {
     })
 }
 
-/// `what needs X GB` as a `MemoryError`, with the reason.
+/// A size as the Python package words it (`linkage._arrays._bytes`): three significant digits in
+/// the largest binary unit from MiB to EiB that fits, with the exact bytes; bytes alone below.
+fn size_text(n: u128) -> String {
+    for (unit, size) in [
+        ("EiB", 1u128 << 60),
+        ("PiB", 1 << 50),
+        ("TiB", 1 << 40),
+        ("GiB", 1 << 30),
+        ("MiB", 1 << 20),
+    ] {
+        if n >= size {
+            let v = n as f64 / size as f64;
+            // Python's `.3g`: no decimals from 100 up, one from 10, two below.
+            let digits = if v >= 99.95 {
+                0
+            } else if v >= 9.995 {
+                1
+            } else {
+                2
+            };
+            let text = format!("{v:.digits$}");
+            let text = if text.contains('.') {
+                text.trim_end_matches('0').trim_end_matches('.').to_string()
+            } else {
+                text
+            };
+            return format!("{text} {unit} ({n} bytes)");
+        }
+    }
+    format!("{n} bytes")
+}
+
+/// `what needs X GiB (N bytes)` as a `MemoryError`, with the reason.
 fn memory_error(what: &str, bytes: u128, why: &str) -> PyErr {
-    PyMemoryError::new_err(format!("{what} needs {:.1} GB{why}", bytes as f64 / 1e9))
+    PyMemoryError::new_err(format!("{what} needs {}{why}", size_text(bytes)))
 }
 
 /// Checks that `bytes` (the total an operation will allocate) can be held at all: it must fit
@@ -52,8 +84,8 @@ pub fn check(what: &dyn Fn() -> String, bytes: u128) -> Result<(), PyErr> {
                 &what(),
                 bytes,
                 &format!(
-                    " (this machine has {:.1} GB of memory and swap)",
-                    total as f64 / 1e9
+                    " (this machine has {} of memory and swap)",
+                    size_text(total)
                 ),
             ));
         }
@@ -153,4 +185,23 @@ fn allocate<'py, T: numpy::Element, D: numpy::ndarray::Dimension>(
             e
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::size_text;
+
+    #[test]
+    fn sizes_read_as_the_python_package_writes_them() {
+        // linkage._arrays._bytes: f"{n / size:.3g} {unit} ({n} bytes)".
+        assert_eq!(
+            size_text(160_000_000_000_000),
+            "146 TiB (160000000000000 bytes)"
+        );
+        assert_eq!(size_text(3 << 30), "3 GiB (3221225472 bytes)");
+        assert_eq!(size_text(25_276_502_016), "23.5 GiB (25276502016 bytes)");
+        assert_eq!(size_text(1_610_612_736), "1.5 GiB (1610612736 bytes)");
+        assert_eq!(size_text(384_000_000), "366 MiB (384000000 bytes)");
+        assert_eq!(size_text(1000), "1000 bytes");
+    }
 }
