@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, Any, Union, cast
 
@@ -22,6 +23,19 @@ if TYPE_CHECKING:  # drive.py imports this module
 JOINTS = ("O", "C", "A", "B", "P")
 LINKS = ("ground", "crank", "coupler", "rocker")
 ArrayOrFloat = Union[float, NDArray[np.float64]]
+
+
+def named_joint(exc: _core.AssemblyError, joints: tuple[str, ...]) -> _core.AssemblyError:
+    """Return the core's assembly error with its joint named from ``joints``.
+
+    The core numbers joints: "joint 3 cannot be assembled" is B's for a four-bar and a
+    slider-crank alike.
+    """
+    text = str(exc)
+    m = re.match(r"joint (\d+) ", text)
+    if m is not None and int(m[1]) < len(joints):
+        text = f"joint {joints[int(m[1])]} {text[m.end() :]}"
+    return _core.AssemblyError(text)
 
 
 class FourBar:
@@ -567,8 +581,7 @@ class FourBar:
         try:
             theta, joints, velocity, margin = self._core.circuit(count)
         except _core.AssemblyError as exc:
-            # The core names joints by index; joint 3 is B.
-            raise _core.AssemblyError(str(exc).replace("joint 3 ", "joint B ", 1)) from None
+            raise named_joint(exc, JOINTS) from None
         valid = np.isfinite(joints[:, 4, 0])
         raw = {
             "joints": joints,

@@ -12,7 +12,7 @@ from linkage import _core
 from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
 from linkage._choices import Output, Reach
 from linkage._core import LinkageError
-from linkage._fourbar import ArrayOrFloat
+from linkage._fourbar import ArrayOrFloat, named_joint
 from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
 from linkage._sweep import Sweep
 
@@ -306,8 +306,7 @@ class SliderCrank:
         try:
             theta, joints, margin = self._core.circuit(count)
         except _core.AssemblyError as exc:
-            # The core names joints by index; joint 3 is B.
-            raise _core.AssemblyError(str(exc).replace("joint 3 ", "joint B ", 1)) from None
+            raise named_joint(exc, JOINTS) from None
         valid = np.isfinite(joints[:, 4, 0])
         raw = {
             "joints": joints,

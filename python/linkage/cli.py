@@ -26,6 +26,7 @@ from pathlib import Path
 
 from linkage import catalog, scene
 from linkage._core import LinkageError
+from linkage.report_folder import STOP_SIGNALS
 
 __all__ = [
     "EXIT_ERROR",
@@ -449,10 +450,6 @@ def _failed(exc: BaseException, state: dict[str, Path]) -> int:
     return EXIT_INTERNAL
 
 
-_STOPPING = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name))
-"""Signals that stop a command as Ctrl-C does (where their handler is still the default)."""
-
-
 @contextlib.contextmanager
 def _signals_noted(signals: list[int]) -> Iterator[None]:
     """Note every Ctrl-C, SIGTERM and SIGHUP in ``signals``, and raise as Python does for Ctrl-C.
@@ -472,7 +469,7 @@ def _signals_noted(signals: list[int]) -> Iterator[None]:
         raise Stopped(signum)
 
     previous = {}
-    for signum in (signal.SIGINT, *_STOPPING):
+    for signum in (signal.SIGINT, *STOP_SIGNALS):
         was = signal.getsignal(signum)
         default = signal.default_int_handler if signum == signal.SIGINT else signal.SIG_DFL
         if was is default:

@@ -302,6 +302,13 @@ def prepare(folder: Path, force: bool) -> None:
         _check_existing(folder, target, force)
 
 
+STOP_SIGNALS: tuple[int, ...] = tuple(
+    getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)
+)
+"""Signals besides Ctrl-C that stop a command as it does (those this platform has): held off
+the renames here, turned into :class:`linkage.cli.Stopped` by the command."""
+
+
 @contextlib.contextmanager
 def _sigint_held() -> Iterator[None]:
     """Hold Ctrl-C, SIGTERM and SIGHUP off a few renames or a clean-up: none is cut in half.
@@ -311,12 +318,9 @@ def _sigint_held() -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    held = [signal.SIGINT] + [
-        getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)
-    ]
     previous = {}
     try:
-        for signum in held:
+        for signum in (signal.SIGINT, *STOP_SIGNALS):
             previous[signum] = signal.signal(signum, signal.SIG_IGN)
     except (ValueError, OSError):
         pass

@@ -1725,12 +1725,13 @@ def _equation_pool(
     if not len(params):
         return []
     rows = np.repeat(params, 2, axis=0)
-    crossed = np.tile([False, True], len(params))
     if slider:
-        # The other reach of each: the same linkage with its line reversed.
+        # The other reach of each: the same linkage with its line reversed (no assembly flag).
         rows[1::2, 2] += math.pi
         rows[1::2, 3] *= -1.0
-        crossed[:] = False
+        crossed = np.zeros(len(rows), dtype=bool)
+    else:
+        crossed = np.tile([False, True], len(params))
     e, _ = _errors(rows, crossed, target, closed, threads=threads, kind=kind)
     chosen: list[int] = []
     for i in np.argsort(e[:, 0], kind="stable"):
