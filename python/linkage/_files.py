@@ -268,7 +268,7 @@ def sweep_stale(folder: PathLike, pattern: re.Pattern[str]) -> list[str]:
     removed with its contents. Returns the names removed; errors are ignored (another run may be
     sweeping the same folder).
     """
-    removed = []
+    removed: list[str] = []
     try:
         names = os.listdir(folder)
     except OSError:
