@@ -190,9 +190,9 @@ TAMPERINGS: list[tuple[str, str, Callable[[Path], None], str]] = [
     ("arc-phases-129", "arcs", _meta(phases=129), "phases must be an int from 0 to 128, got 129"),
     ("arc-samples-16", "arcs", _meta(samples=16, phases=8),
      "samples must be from 32 to 4096 for a fourbar-arcs atlas, got 16"),
-    ("arc-phase-index", "arcs", _array(P, lambda a: _set(a, (2, 6), 8.0)), "params of entry 2: phase 8.0"),
-    ("arc-half-index", "arcs", _array(P, lambda a: _set(a, (4, 6), 0.5)), "params of entry 4: phase 0.5"),
-    ("arc-fraction-index", "arcs", _array(P, lambda a: _set(a, (1, 7), 7.0)), "fraction 7.0"),
+    ("arc-phase-index", "arcs", _array(P, lambda a: _set(a, (2, 6), 8.0)), "params of entry 2: the arc's phase 8.0 is not an index below 8"),
+    ("arc-half-index", "arcs", _array(P, lambda a: _set(a, (4, 6), 0.5)), "params of entry 4: the arc's phase 0.5"),
+    ("arc-fraction-index", "arcs", _array(P, lambda a: _set(a, (1, 7), 7.0)), "entry 1: the arc's fraction 7.0 is not an index below 7"),
     ("arc-as-fourbar", "arcs", _meta(kind="fourbar", phases=0), r"params must have shape \(entries ≥ 1, 6\)"),
 ]  # fmt: skip
 
@@ -532,3 +532,27 @@ def test_the_catalogue_cache_is_keyed_on_the_cores_content(monkeypatch: pytest.M
     before = catalog._cache_key(1e-3, 101, 51)
     monkeypatch.setattr(catalog, "core_identity", lambda: "another build")
     assert catalog._cache_key(1e-3, 101, 51) != before
+
+
+@pytest.mark.parametrize("command", ["check", "run"])
+def test_a_scenes_tampered_atlas_is_blamed_on_its_atlas_line(
+    saved: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str], command: str
+) -> None:
+    """A negative ``samples`` was blamed on ``[synthesis] points`` ("the search failed: can't
+    convert negative int to unsigned") by ``run``, and ``check`` said ok."""
+    from linkage import cli
+
+    _tampered(saved, tmp_path, "atlas", "fourbar", _meta(samples=-5))
+    shutil.copy("examples/foot_path.csv", tmp_path)
+    scene = tmp_path / "s.toml"
+    scene.write_text(
+        'name = "s"\nunits = "mm"\noutputs = ["synthesis"]\n[synthesis]\n'
+        'points = "foot_path.csv"\ntop = 1\natlas = "atlas"\n'
+    )
+    extra = ["--out", str(tmp_path / "out"), "--quiet"] if command == "run" else []
+    assert cli.main([command, str(scene), *extra]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == (
+        f"linkage: error: {scene}:7: [synthesis] atlas: 'atlas' is not a readable atlas: "
+        "meta.json: samples must be an int from 8 to 4096, got -5"
+    ), err

@@ -292,18 +292,19 @@ def _check_atlas(at: Atlas) -> None:
             f"params have {at.params.shape[0]} entries, descriptors {at.descriptors.shape[0]}"
         )
     for name in ("descriptors", "params"):
-        bad = _first_false(np.isfinite(getattr(at, name)).all(axis=1))
-        if bad is not None:
+        a = getattr(at, name)
+        if not np.isfinite(a).all():  # the whole array at once: per row only to name one
+            bad = _first_false(np.isfinite(a).all(axis=1))
             raise LinkageError(f"{name} of entry {bad} are not all finite")
     if arcs:
-        index = at.params[:, -2:]
-        ok = (index == np.floor(index)) & (index >= 0) & (index < [at.phases, _ARC_FRACTIONS])
-        bad = _first_false(ok.all(axis=1))
-        if bad is not None:
-            raise LinkageError(
-                f"params of entry {bad}: phase {index[bad, 0]} or fraction {index[bad, 1]} "
-                f"is not an index below {at.phases} or {_ARC_FRACTIONS}"
-            )
+        for col, high, what in ((-2, at.phases, "phase"), (-1, _ARC_FRACTIONS, "fraction")):
+            c = at.params[:, col]
+            if c.min() < 0 or c.max() >= high or not (np.floor(c) == c).all():
+                ok = (c >= 0) & (c < high) & (np.floor(c) == c)
+                bad = _first_false(ok)
+                raise LinkageError(
+                    f"params of entry {bad}: the arc's {what} {c[bad]} is not an index below {high}"
+                )
 
 
 def _first_false(ok: NDArray[np.bool_]) -> int | None:
