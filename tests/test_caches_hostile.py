@@ -29,7 +29,6 @@ from linkage import catalog, synthesis
 from linkage.synthesis import Atlas
 
 PYTHON = [sys.executable]
-ENV = {**os.environ, "PYTHONPATH": str(Path(linkage.__file__).parents[1])}
 
 
 @pytest.fixture(scope="module")
@@ -234,8 +233,10 @@ def test_the_valid_atlases_of_the_corpus_load(saved: dict[str, Path]) -> None:
 
 
 def _run(args: list[str], timeout: float, **kw: Any) -> subprocess.CompletedProcess[str]:
+    """Run Python with ``args`` in a child that sees this package and the environment now."""
+    env = {**os.environ, "PYTHONPATH": str(Path(linkage.__file__).parents[1])}
     return subprocess.run(
-        [*PYTHON, *args], capture_output=True, text=True, timeout=timeout, env=ENV, **kw
+        [*PYTHON, *args], capture_output=True, text=True, timeout=timeout, env=env, **kw
     )
 
 
