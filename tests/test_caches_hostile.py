@@ -557,3 +557,8 @@ def test_a_scenes_tampered_atlas_is_blamed_on_its_atlas_line(
         f"linkage: error: {scene}:7: [synthesis] atlas: 'atlas' is not a readable atlas: "
         "meta.json: samples must be an int from 8 to 4096, got -5"
     ), err
+
+
+def test_an_atlas_of_numpy_counts_saves_and_loads(tmp_path: Path) -> None:
+    at = Atlas(**_good(harmonics=np.int64(8), samples=np.int32(64)))
+    assert len(Atlas.load(at.save(tmp_path / "a"))) == 3

@@ -791,12 +791,12 @@ def table(rel_tol: float = 1e-3, samples: int = TABLE_SAMPLES, cache: bool = Tru
     check = check_count(samples)
     path = cache_dir() / f"catalog-{_cache_key(rel_tol, samples, check)}.json"
     if cache:
+        sweep_stale(path.parent, _CACHE_TEMP)
         hit = _read_cache(path)
         if hit is not None:
             return hit
     rows = _with_errors(figures(rel_tol, samples), figures(rel_tol, check))
     if cache:
-        sweep_stale(path.parent, _CACHE_TEMP)
         _write_cache(path, rows)
     return rows
 

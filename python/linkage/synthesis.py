@@ -493,11 +493,11 @@ class Atlas:
             np.save(tmp / "params.npy", np.ascontiguousarray(self.params))
             meta = {
                 "format": ATLAS_FORMAT,
-                "harmonics": self.harmonics,
-                "samples": self.samples,
+                "harmonics": int(self.harmonics),  # numpy ints are not JSON
+                "samples": int(self.samples),
                 "entries": len(self),
                 "kind": self.kind,
-                "phases": self.phases,
+                "phases": int(self.phases),
             }
             (tmp / "meta.json").write_text(json.dumps(meta))
             if out.exists():
