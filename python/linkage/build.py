@@ -1099,7 +1099,10 @@ def synthesis_atlas(scene: Scene) -> synthesis.Atlas | None:
     try:
         atlas = synthesis.Atlas.load(folder)
     except LinkageError as exc:
-        raise scene.error(("synthesis",), "atlas", str(exc).replace(str(folder), raw)) from None
+        # Every field is checked on load: the message names the file or field, located here.
+        raise scene.error(
+            ("synthesis",), "atlas", str(exc).replace(str(folder), repr(raw))
+        ) from None
     kind = str(s.get("kind", "fourbar"))
     serves = {
         "fourbar": ("fourbar", "fourbar-arcs"),

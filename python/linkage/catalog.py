@@ -17,11 +17,12 @@ linkage.LinkageError: unknown catalogue linkage 'nope'; choose from watt, robert
 
 from __future__ import annotations
 
-import contextlib
 import hashlib
 import json
 import math
 import os
+import re
+import stat
 import sys
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, fields, replace
@@ -31,7 +32,9 @@ import numpy as np
 
 from linkage import _core
 from linkage._arrays import as_count, as_finite, check_memory
+from linkage._cache_files import core_identity
 from linkage._core import LinkageError
+from linkage._files import read_json, sweep_stale, write_atomic
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
 from linkage._version import __version__
@@ -627,19 +630,30 @@ def cache_dir() -> Path:
     return (Path(xdg) if xdg and os.path.isabs(xdg) else Path.home() / ".cache") / "linkage"
 
 
+CACHE_MAX = 1 << 20
+"""Largest cached table read back, in bytes (the table is about 5 kB)."""
+
+_CACHE_TEMP = re.compile(r"\.catalog-[0-9a-f]{32}\.json\.(\d+)(?:\.[A-Za-z0-9_]+)?\.tmp")
+"""The cache's temporaries: ``linkage._files.write_atomic``'s (``.<name>.<pid>.<random>.tmp``)
+and the former ``.<name>.<pid>.tmp``; group 1 is the pid of the process that wrote it."""
+
+
 def _cache_key(rel_tol: float, samples: int, check: int) -> str:
     """Hash everything the table depends on.
 
-    That is the package version and the compiled core (size and modification time), the parameters
-    and the catalogue's names.
+    That is the package version and the compiled core's content
+    (:func:`linkage._cache_files.core_identity`), the parameters and the catalogue's names.
     """
-    try:
-        st = os.stat(_core.__file__ or "")
-        core = [st.st_size, st.st_mtime_ns]
-    except (OSError, TypeError):
-        core = []
     text = json.dumps(
-        [CACHE_FORMAT, str(__version__), core, repr(rel_tol), samples, check, list(names())]
+        [
+            CACHE_FORMAT,
+            str(__version__),
+            core_identity(),
+            repr(rel_tol),
+            samples,
+            check,
+            list(names()),
+        ]
     )
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
@@ -650,36 +664,63 @@ _FIELDS = {f.name: f.type for f in fields(Figures)}
 def _read_cache(path: Path) -> list[Figures] | None:
     """Read the cached table at ``path``; None when absent, unreadable or not a table.
 
-    A corrupt cache is ignored (and then rewritten).
+    It is read as :func:`linkage._files.read_json` reads (a regular file of at most
+    :data:`CACHE_MAX` bytes, opened without blocking, nesting bounded), and every value is
+    checked: a corrupt cache is ignored (and then rewritten).
     """
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-        rows = []
-        for d in data:
-            if set(d) != set(_FIELDS):
-                return None
-            rng = d["input_range"]
-            rows.append(
-                Figures(
-                    name=str(d["name"]),
-                    grashof=str(d["grashof"]),
-                    input_range=None if rng is None else (float(rng[0]), float(rng[1])),
-                    size=float(d["size"]),
-                    tolerance=float(d["tolerance"]),
-                    straight_length=float(d["straight_length"]),
-                    max_deviation=float(d["max_deviation"]),
-                    speed_variation=float(d["speed_variation"]),
-                    samples=int(d["samples"]),
-                    straight_length_error=_opt(d["straight_length_error"]),
-                    max_deviation_error=_opt(d["max_deviation_error"]),
-                    speed_variation_error=_opt(d["speed_variation_error"]),
-                )
-            )
-    except (OSError, UnicodeDecodeError, ValueError, TypeError, KeyError, IndexError):
+        data = read_json(path, CACHE_MAX, "catalogue cache")
+    except LinkageError:
         return None
-    if [r.name for r in rows] != list(names()):
+    if not isinstance(data, list):
         return None
-    return rows
+    rows = [_cached_row(d) for d in data]
+    if any(r is None for r in rows) or [r.name for r in rows if r] != list(names()):
+        return None
+    return [r for r in rows if r]
+
+
+_TEXT = ("name", "grashof")
+_NUMBERS = ("size", "tolerance", "straight_length", "max_deviation", "speed_variation")
+_OPTIONAL = ("straight_length_error", "max_deviation_error", "speed_variation_error")
+
+
+def _cached_row(d: object) -> Figures | None:
+    """Return the row a cached JSON object ``d`` holds; None unless every field is valid."""
+    if not isinstance(d, dict) or set(d) != set(_FIELDS):
+        return None
+    rng, n = d["input_range"], d["samples"]
+    if (
+        not all(isinstance(d[k], str) for k in _TEXT)
+        or not all(_real(d[k]) for k in _NUMBERS)
+        or not all(d[k] is None or _real(d[k]) for k in _OPTIONAL)
+        or not (rng is None or (isinstance(rng, list) and len(rng) == 2 and all(map(_real, rng))))
+        or isinstance(n, bool)
+        or not isinstance(n, int)
+        or not 3 <= n <= sys.maxsize
+    ):
+        return None
+    return Figures(
+        name=d["name"],
+        grashof=d["grashof"],
+        input_range=None if rng is None else (float(rng[0]), float(rng[1])),
+        samples=n,
+        **{k: float(d[k]) for k in _NUMBERS},
+        straight_length_error=_opt(d["straight_length_error"]),
+        max_deviation_error=_opt(d["max_deviation_error"]),
+        speed_variation_error=_opt(d["speed_variation_error"]),
+    )
+
+
+def _real(x: object) -> bool:
+    """Whether ``x`` is a JSON number (not a bool) a float can hold."""
+    if isinstance(x, bool) or not isinstance(x, (int, float)):
+        return False
+    try:
+        float(x)
+    except OverflowError:
+        return False
+    return True
 
 
 def _opt(x: object) -> float | None:
@@ -689,16 +730,25 @@ def _opt(x: object) -> float | None:
 def _write_cache(path: Path, rows: list[Figures]) -> None:
     """Write the table to ``path`` inside the cache folder, atomically.
 
-    A temporary file in the same folder is renamed over it; any failure leaves the cache as it was.
+    Through :func:`linkage._files.write_atomic` (an exclusively created temporary renamed over
+    ``path``: no planted link is followed), and only where ``path`` is absent or a regular file
+    (this tool's: the name is its own): a link, a pipe, a device or a folder there is left as it
+    is, and the table is only kept in memory. Any failure leaves the cache as it was.
     """
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        info = os.lstat(path)
+    except FileNotFoundError:
+        pass
+    except OSError:
+        return
+    else:
+        if not stat.S_ISREG(info.st_mode):
+            return
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp.write_text(json.dumps([asdict(r) for r in rows], allow_nan=True), encoding="utf-8")
-        os.replace(tmp, path)
+        write_atomic(path, json.dumps([asdict(r) for r in rows], allow_nan=True))
     except OSError:
-        with contextlib.suppress(OSError):
-            tmp.unlink()
+        pass
 
 
 def table(rel_tol: float = 1e-3, samples: int = TABLE_SAMPLES, cache: bool = True) -> list[Figures]:
@@ -707,7 +757,8 @@ def table(rel_tol: float = 1e-3, samples: int = TABLE_SAMPLES, cache: bool = Tru
     Each figure's error is its difference from the same figure at :func:`check_count` samples. With
     ``cache``, the table is kept in :func:`cache_dir` under a hash of the version, the compiled core
     and the parameters (only that file is written; an unreadable or corrupt one is recomputed and
-    rewritten).
+    rewritten, one that is not a regular file — a link, a pipe, a device — is left alone and the
+    table computed; temporaries of runs killed while writing are removed).
 
     Parameters
     ----------
@@ -740,6 +791,7 @@ def table(rel_tol: float = 1e-3, samples: int = TABLE_SAMPLES, cache: bool = Tru
     check = check_count(samples)
     path = cache_dir() / f"catalog-{_cache_key(rel_tol, samples, check)}.json"
     if cache:
+        sweep_stale(path.parent, _CACHE_TEMP)
         hit = _read_cache(path)
         if hit is not None:
             return hit
