@@ -448,3 +448,23 @@ def test_sigterm_at_any_moment_tells_the_truth(tmp_path, scene, delay):
         assert not out.exists(), line
     else:
         assert intact(out), line
+
+
+def test_a_run_that_finds_another_runs_report_where_there_was_none_is_told_so(tmp_path):
+    out = tmp_path / "report"
+
+    def fill(folder: Path) -> list[str]:
+        # Meanwhile another run puts its report where there was none.
+        report_folder.write_folder(
+            out, "other", lambda f: [(f / "data.csv").write_text("1\n") and "data.csv"]
+        )
+        (folder / "data.csv").write_text("2\n")
+        return ["data.csv"]
+
+    with pytest.raises(report_folder.LinkageError) as caught:
+        report_folder.write_folder(out, "fast", fill)
+    message = str(caught.value)
+    assert message.startswith(f"another linkage run wrote {out} while this one ran"), message
+    assert "nothing was written" in message and "--force" in message
+    assert (out / "data.csv").read_text() == "1\n" and intact(out)
+    assert temporaries(tmp_path) == []
