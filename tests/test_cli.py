@@ -55,6 +55,9 @@ def report_files(folder: Path) -> set[str]:
     assert MARKER in names, f"{folder} has no {MARKER}"
     marker = json.loads((folder / MARKER).read_text())
     assert marker["tool"] == "linkage" and set(marker["files"]) == names - {MARKER}
+    # A folder a killed run left is swept only if it holds nothing but such names.
+    unknown = [n for n in names if not linkage.report_folder.TOOL_FILE.fullmatch(n)]
+    assert unknown == [], f"add {unknown} to linkage.report_folder.TOOL_FILE"
     return names - {MARKER}
 
 

@@ -6,13 +6,16 @@ under its drive (the same as ``examples/quadruped_hoecken.toml``).
 Exit status: 0 done; 2 a mistake in the scene or arguments, a refused or failed report folder, or
 out of memory (one line on stderr, nothing written); 3 an internal error (a bug; set
 LINKAGE_DEBUG=1 for the traceback); 130 interrupted by Ctrl-C, 143 stopped by SIGTERM, 129 by
-SIGHUP (nothing written: a report being written is removed as after Ctrl-C).
+SIGHUP (nothing written: a report being written is removed as after Ctrl-C); 141 (128 + SIGPIPE)
+when the reader of the output went away (``linkage catalog | head -1``), silently, as a Unix
+tool cut off by its reader (a report already in place stays).
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
+import errno
 import os
 import shutil
 import signal
@@ -23,15 +26,17 @@ import time
 import traceback
 from collections.abc import Iterator, Sequence
 from pathlib import Path
+from typing import Any
 
 from linkage import catalog, scene
 from linkage._core import LinkageError
-from linkage.report_folder import STOP_SIGNALS
+from linkage.report_folder import STOP_SIGNALS, recording
 
 __all__ = [
     "EXIT_ERROR",
     "EXIT_INTERNAL",
     "EXIT_INTERRUPTED",
+    "EXIT_PIPE",
     "MAX_FRAMES",
     "Stopped",
     "main",
@@ -45,6 +50,9 @@ EXIT_INTERNAL = 3
 EXIT_INTERRUPTED = 130
 """Exit status after Ctrl-C (128 + SIGINT, as shells report it); after SIGTERM or SIGHUP, 128
 plus its number."""
+EXIT_PIPE = 141
+"""Exit status when the reader of the output went away (128 + SIGPIPE, as a shell reports a Unix
+tool that its reader cut off)."""
 
 
 class Stopped(KeyboardInterrupt):
@@ -401,20 +409,86 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error(f"--frames must be between 2 and {MAX_FRAMES}")
     state: dict[str, Path] = {}
     signals: list[int] = []
+    stdout = sys.stdout
+    written: list[Path] = []
     try:
-        with _signals_noted(signals):
-            return int(args.func(args, state))
-    except KeyboardInterrupt as exc:
-        return _stopped(exc.signum if isinstance(exc, Stopped) else signal.SIGINT, state)
+        with _signals_noted(signals), recording() as written, _stdout_named():
+            code = int(args.func(args, state))
+            # Inside: a reader gone away or a full disk shows on this flush, not at exit.
+            sys.stdout.flush()
+            return code
+    except BrokenPipeError:
+        return _pipe_closed(stdout)
     except (SystemExit, GeneratorExit):
         raise
     except BaseException as exc:
+        if written:
+            # Recorded in the same step as the rename: true even if a signal came before the
+            # command itself noted the report.
+            state["written"] = written[-1]
+        if isinstance(exc, KeyboardInterrupt):
+            return _stopped(exc.signum if isinstance(exc, Stopped) else signal.SIGINT, state)
         if signals:
             # The signal's KeyboardInterrupt was raised inside a library that turned it into an
             # error of its own (matplotlib's C++ renderer reports "Invalid bounding box"):
             # still a stop
             return _stopped(signals[-1], state)
         return _failed(exc, state)
+
+
+STDOUT = "<stdout>"
+"""The file name given to an error writing the standard output."""
+
+
+class _NamedOutput:
+    """The standard output, whose write errors name it (``write()`` gives no file name)."""
+
+    def __init__(self, stream: Any) -> None:
+        self._stream = stream
+
+    def write(self, text: str) -> int:
+        try:
+            return int(self._stream.write(text))
+        except OSError as exc:
+            raise _named(exc) from None
+
+    def flush(self) -> None:
+        try:
+            self._stream.flush()
+        except OSError as exc:
+            raise _named(exc) from None
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+
+def _named(exc: OSError) -> OSError:
+    if exc.filename is None:
+        exc.filename = STDOUT
+    return exc
+
+
+@contextlib.contextmanager
+def _stdout_named() -> Iterator[None]:
+    was = sys.stdout
+    sys.stdout = _NamedOutput(was)
+    try:
+        yield
+    finally:
+        sys.stdout = was
+
+
+def _pipe_closed(stdout: Any) -> int:
+    """End quietly when the reader went away, as Python's documentation of SIGPIPE advises.
+
+    The standard output is pointed at ``os.devnull`` so that the interpreter's own flush at exit
+    does not fail again; the status is 128 + SIGPIPE, what a shell shows for a Unix tool there.
+    """
+    with contextlib.suppress(OSError, ValueError, AttributeError):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, stdout.fileno())
+        os.close(devnull)
+    return EXIT_PIPE
 
 
 def _stopped(signum: int, state: dict[str, Path]) -> int:
@@ -436,6 +510,16 @@ def _failed(exc: BaseException, state: dict[str, Path]) -> int:
         _say(f"error: out of memory{detail} ({_written(state)})")
         return EXIT_ERROR
     if isinstance(exc, OSError):
+        if exc.errno == errno.EPIPE:  # a BrokenPipeError a library wrapped
+            return _pipe_closed(sys.stdout)
+        if exc.filename == STDOUT:
+            # The output is cut short; a report, if any, was written before it was printed.
+            report = f" ({_written(state)})" if "written" in state else ""
+            _say(
+                f"error: cannot write to the standard output: {exc.strerror or exc}; the output "
+                f"is incomplete{report}"
+            )
+            return EXIT_ERROR
         where = f"{exc.filename}: " if exc.filename is not None else ""
         _say(f"error: {where}{exc.strerror or exc} ({_written(state)})")
         return EXIT_ERROR

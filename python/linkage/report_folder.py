@@ -14,7 +14,17 @@ A report folder is on the user's disk, so this module removes only what it wrote
   the new one renamed in, and then the old one is removed file by file (only the listed files;
   never ``rmtree`` on a folder the tool did not create);
 - a target that is a symbolic link (dangling or not), not a folder, the file-system root, the home
-  folder, the working directory or one of their ancestors is refused, force or not.
+  folder, the working directory or one of their ancestors is refused, force or not;
+- concurrent runs on one folder do not trip over each other: the check and the swap hold a lock on
+  the parent folder (``flock``, where the file system has it), and a check that another run's swap
+  overtook is made again on what is there now, so a run is never told the user edited files that
+  another run replaced; a run that finds another's report where it found none is told so;
+- a later write into the same parent folder sweeps what a killed run (``kill -9``, power loss)
+  left there: a temporary folder of a dead process holding nothing but files the tool writes
+  (:data:`TOOL_FILE`), and a set-aside old report (put back where it was if nothing replaced it,
+  else removed file by file as above, and only if it is whole and holds nothing else);
+- a failed write names the file: a full disk, a quota or ``ulimit -f`` report no file name, so the
+  last file the run opened for writing in the folder is named.
 
 :func:`prepare` checks a target before anything is computed; :func:`write_folder` writes any
 folder of results this way (the run's report, :func:`linkage.report.write`; the design search's,
@@ -33,6 +43,7 @@ import os
 import re
 import shutil
 import signal
+import stat
 import sys
 import threading
 from collections.abc import Callable, Iterator, Sequence
@@ -40,9 +51,19 @@ from pathlib import Path
 from typing import Any
 
 from linkage._core import LinkageError
+from linkage._files import pid_alive
 from linkage._version import __version__
 
-__all__ = ["DEFAULT_BASE", "MARKER", "default_folder", "prepare", "read_marker", "write_folder"]
+__all__ = [
+    "DEFAULT_BASE",
+    "MARKER",
+    "TOOL_FILE",
+    "default_folder",
+    "prepare",
+    "read_marker",
+    "recording",
+    "write_folder",
+]
 
 MARKER = ".linkage-report"
 """Name of the marker file that makes a folder a report linkage wrote (and may replace)."""
@@ -228,8 +249,59 @@ def _resolve(folder: Path) -> Path:
     return target
 
 
+_RECHECKS = 5
+"""How many times a check overtaken by another run's swap is made again before giving up."""
+
+
+def _identity(target: Path) -> tuple[int, int, bytes] | None:
+    """Return what changes when another run swaps ``target``: its inode and its marker's bytes.
+
+    ``None`` if there is no folder.
+    """
+    try:
+        info = os.lstat(target)
+    except OSError:
+        return None
+    marker = b""
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOFOLLOW", 0)
+    with contextlib.suppress(OSError):
+        fd = os.open(target / MARKER, flags | os.O_CLOEXEC)
+        try:
+            if stat.S_ISREG(os.fstat(fd).st_mode):  # not a pipe or a device
+                marker = os.read(fd, 1 << 20)
+        finally:
+            os.close(fd)
+    return info.st_dev, info.st_ino, marker
+
+
 def _check_existing(folder: Path, target: Path, force: bool) -> dict[str, Any] | None:
-    """For an existing ``target``: its marker if ``force`` may replace it; otherwise refuse."""
+    """For an existing ``target``: its marker if ``force`` may replace it; otherwise refuse.
+
+    The check reads the marker and then every file: another linkage run that swaps its own
+    report in meanwhile would make the files disagree with the marker read before. So the folder
+    and its marker are compared before and after, and an overtaken check is made again on what
+    is there now (a folder that is gone by then needs no check: ``None``).
+    """
+    for _ in range(_RECHECKS):
+        before = _identity(target)
+        if before is None and not os.path.lexists(target):
+            return None
+        try:
+            marker = _check_once(folder, target, force)
+        except LinkageError:
+            if _identity(target) == before:
+                raise
+            continue
+        if _identity(target) == before:
+            return marker
+    raise LinkageError(
+        f"{_describe(folder, target)} changed while linkage checked it, {_RECHECKS} times over "
+        f"(other runs writing it?); run again when they are done ({_NOTHING})"
+    )
+
+
+def _check_once(folder: Path, target: Path, force: bool) -> dict[str, Any] | None:
+    """:func:`_check_existing` once, on a folder that does not change meanwhile."""
     where = _describe(folder, target)
     marker = read_marker(target)
     if marker is None:
@@ -369,6 +441,202 @@ def _remove_report(folder: Path, marker: dict[str, Any]) -> bool:
     return True
 
 
+@contextlib.contextmanager
+def _parent_locked(parent: Path, wait: bool = True) -> Iterator[bool]:
+    """Hold an exclusive ``flock`` on the folder ``parent`` (no file is created for it).
+
+    Concurrent linkage runs writing into one parent check and swap their folders one at a time.
+    Yields ``False`` only if ``wait`` is false and another process holds the lock. Where the
+    platform or the file system has no ``flock`` the block runs unlocked (the checks are then
+    only repeated when overtaken, see :func:`_check_existing`).
+    """
+    try:
+        import fcntl  # noqa: PLC0415 (POSIX only)
+
+        fd = os.open(parent, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0) | os.O_CLOEXEC)
+    except (ImportError, OSError):
+        yield True
+        return
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX if wait else fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            yield False
+            return
+        except OSError:
+            pass
+        yield True
+    finally:
+        os.close(fd)  # releases the lock
+
+
+TOOL_FILE = re.compile(
+    r"(?:trajectory|rates|torque|cam|gait|stability|slip|synthesis|pareto|designs)\.png"
+    r"|animation\.gif|index\.html|(?:data|candidates|front)\.csv|data\.npz|summary\.json"
+    r"|mechanism\.(?:dxf|svg)|candidates\.parquet|(?:candidate|design)-\d{1,6}\.toml"
+    r"|" + re.escape(MARKER)
+)
+"""The names of the files linkage writes into a report folder (of a run or a design search).
+
+A temporary folder a dead process left is removed only if it holds nothing else."""
+
+_LEFT = re.compile(r"\.(.+)\.(partial|old)-(\d+)(?:-\d+)?")
+"""A temporary (``partial``) or set-aside (``old``) sibling: ``.<name>.<kind>-<pid>[-k]``."""
+
+
+def sweep(parent: Path) -> list[str]:
+    """Clean up what killed linkage runs left in ``parent``; return the names dealt with.
+
+    Only folders (not links) named ``.<name>.partial-<pid>`` or ``.<name>.old-<pid>`` (with an
+    optional ``-k``) whose process is gone are looked at, and of those only:
+
+    - a temporary folder holding nothing but regular files of :data:`TOOL_FILE` names, removed
+      file by file (the run was killed before its report was complete);
+    - a set-aside old report that is whole (its marker lists every file in it, each as written):
+      put back at ``<name>`` if nothing is there (the run was killed between its two renames),
+      else removed as a replaced report is, listed files only; an empty one is removed.
+
+    Anything else is left as it is: it may hold the user's files. Errors are ignored (another run
+    may be sweeping too); call it holding the parent's lock.
+    """
+    done: list[str] = []
+    try:
+        names = sorted(os.listdir(parent))
+    except OSError:
+        return done
+    for name in names:
+        m = _LEFT.fullmatch(name)
+        if m is None or m.group(1) in (".", "..") or pid_alive(int(m.group(3))):
+            continue
+        path = parent / name
+        try:
+            if not stat.S_ISDIR(os.lstat(path).st_mode):
+                continue
+            if m.group(2) == "partial":
+                ok = _sweep_partial(path)
+            else:
+                ok = _sweep_old(path, parent / m.group(1))
+        except (OSError, LinkageError):
+            continue
+        if ok:
+            done.append(name)
+    return done
+
+
+def _sweep_partial(path: Path) -> bool:
+    entries = os.listdir(path)
+    for e in entries:
+        if not TOOL_FILE.fullmatch(e) or not stat.S_ISREG(os.lstat(path / e).st_mode):
+            return False
+    for e in entries:
+        os.unlink(path / e)
+    path.rmdir()
+    return True
+
+
+def _sweep_old(path: Path, target: Path) -> bool:
+    entries = os.listdir(path)
+    if not entries:
+        path.rmdir()  # killed after its last file and its marker were removed
+        return True
+    marker = read_marker(path)
+    if marker is None:
+        return False
+    listed = set(marker["files"])
+    for e in entries:
+        if e != MARKER and (e not in listed or not stat.S_ISREG(os.lstat(path / e).st_mode)):
+            return False
+    if _edited(path, str(path), marker):
+        return False
+    if not os.path.lexists(target):
+        os.rename(path, target)  # the earlier report, back where it was
+        return True
+    return _remove_report(path, marker)
+
+
+_watching: dict[int, tuple[str, list[str]]] = {}
+"""By thread: the folder being filled and the files opened for writing in it, in order."""
+_hooked: list[bool] = []
+
+
+def _audit(event: str, args: tuple[Any, ...]) -> None:
+    """Note the files opened for writing inside a watched folder (an audit hook: never raises)."""
+    if event != "open" or not _watching:
+        return
+    try:
+        watch = _watching.get(threading.get_ident())
+        if watch is None:
+            return
+        path, mode, flags = args
+        if isinstance(flags, int) and flags:
+            writing = bool(flags & (os.O_WRONLY | os.O_RDWR))
+        else:
+            writing = isinstance(mode, str) and any(c in mode for c in "wax+")
+        if writing and isinstance(path, (str, bytes, os.PathLike)):
+            name = os.path.abspath(os.fsdecode(path))
+            if name.startswith(watch[0]):
+                watch[1].append(name)
+    except Exception:  # a hook must not break the open it watches
+        pass
+
+
+@contextlib.contextmanager
+def _opened_for_writing(folder: Path, opened: list[str]) -> Iterator[None]:
+    """Append to ``opened`` every file this thread opens for writing in ``folder``.
+
+    So that a failed write() that names no file (a full disk, a quota, ``ulimit -f``) can be
+    blamed on the file being written: the last one opened. Python's audit hooks see every open,
+    by any library (matplotlib, Pillow, NumPy); the hook, added once, costs nothing unwatched.
+    """
+    if not _hooked:
+        with contextlib.suppress(RuntimeError):
+            sys.addaudithook(_audit)
+        _hooked.append(True)
+    key = threading.get_ident()
+    previous = _watching.get(key)
+    _watching[key] = (os.path.join(os.path.abspath(folder), ""), opened)
+    try:
+        yield
+    finally:
+        if previous is None:
+            del _watching[key]
+        else:
+            _watching[key] = previous
+
+
+_recorders: list[list[Path]] = []
+
+
+@contextlib.contextmanager
+def recording() -> Iterator[list[Path]]:
+    """Collect the folders :func:`write_folder` puts in place while the block runs.
+
+    Each is added in the same step as its rename (no signal in between), so that a command
+    stopped at any moment knows whether it wrote anything.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from linkage.report_folder import recording, write_folder
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> with recording() as written:
+    ...     _ = write_folder(Path(tmp.name) / "out", "demo", lambda f: [])
+    >>> [p.name for p in written]
+    ['out']
+    >>> tmp.cleanup()
+    """
+    written: list[Path] = []
+    _recorders.append(written)
+    try:
+        yield written
+    finally:
+        for k, w in enumerate(_recorders):
+            if w is written:
+                del _recorders[k]
+                break
+
+
 def _os_message(exc: OSError, tmp: Path, folder: Path) -> str:
     reason = exc.strerror or str(exc)
     name = exc.filename
@@ -430,12 +698,18 @@ def write_folder(
     >>> tmp.cleanup()
     """
     target = _resolve(folder)
+    parent = target.parent
+    if parent.is_dir():
+        # Only if no other run holds the folder now (it may be waiting for a run on this one).
+        with _parent_locked(parent, wait=False) as free, _sigint_held():
+            if free:
+                sweep(parent)
     earlier = os.path.lexists(target)
     if earlier:
         _check_existing(folder, target, force)
-    parent = target.parent
     created: list[Path] = []
     tmp: Path | None = None
+    opened: list[str] = []
     try:
         missing = [p for p in (parent, *parent.parents) if not p.exists()]
         # Held off Ctrl-C so that every folder made here is known to the clean-up below.
@@ -444,7 +718,8 @@ def write_folder(
                 p.mkdir()
                 created.append(p)
             tmp = _make_sibling(parent, target.name, "partial")
-        names = list(fill(tmp))
+        with _opened_for_writing(tmp, opened):
+            names = list(fill(tmp))
         marker = {
             "tool": "linkage",
             "version": _version(),
@@ -453,9 +728,13 @@ def write_folder(
             "files": sorted(names),
             _DIGESTS: {n: _sha256(tmp / n) for n in sorted(names)},
         }
+        opened.append(str(tmp / MARKER))
         (tmp / MARKER).write_text(json.dumps(marker, indent=2) + "\n", encoding="utf-8")
-        with _sigint_held():
-            _commit(folder, target, tmp, force)
+        # The lock first, Ctrl-C held off after: waiting for another run's swap can be stopped.
+        with _parent_locked(parent), _sigint_held():
+            _commit(folder, target, tmp, force, earlier)
+            for written in _recorders:
+                written.append(folder)
     except BaseException as exc:
         with _sigint_held():
             if tmp is not None:
@@ -464,6 +743,9 @@ def write_folder(
                 with contextlib.suppress(OSError):
                     p.rmdir()
         if isinstance(exc, OSError):
+            if exc.filename is None and opened:
+                # write() on a full disk, over a quota or over `ulimit -f` names no file
+                exc.filename = opened[-1]
             kept = "; the earlier report is unchanged" if earlier else ""
             raise LinkageError(
                 f"{folder}: cannot write the report: {_os_message(exc, tmp or target, folder)} "
@@ -473,14 +755,24 @@ def write_folder(
     return [target / n for n in names]
 
 
-def _commit(folder: Path, target: Path, tmp: Path, force: bool) -> None:
-    """Move the finished ``tmp`` into place at ``target``, replacing a report linkage wrote."""
+def _commit(folder: Path, target: Path, tmp: Path, force: bool, earlier: bool) -> None:
+    """Move the finished ``tmp`` into place at ``target``, replacing a report linkage wrote.
+
+    ``earlier`` tells whether ``target`` existed when the run began.
+    """
     if not os.path.lexists(target):
         os.rename(tmp, target)
         return
+    if not earlier and not force and read_marker(target) is not None:
+        raise LinkageError(
+            f"another linkage run wrote {_describe(folder, target)} while this one ran; its "
+            f"report is kept, this one was not written ({_NOTHING}; pass --force to replace it)"
+        )
     # Check again: the folder may have changed while the report was computed.
     old = _check_existing(folder, target, force)
-    assert old is not None
+    if old is None:  # gone meanwhile (only a run not holding the lock could do that)
+        os.rename(tmp, target)
+        return
     aside = _make_sibling(target.parent, target.name, "old")
     aside.rmdir()
     os.rename(target, aside)
