@@ -11,13 +11,10 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import os
-import pickle
-import random
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 import distributed
 import numpy as np
@@ -25,8 +22,12 @@ from numpy.typing import NDArray
 from pymoo.algorithms.moo.nsga2 import NSGA2  # type: ignore[import-untyped]
 from pymoo.core.problem import Problem  # type: ignore[import-untyped]
 
+from linkage import report_folder
+from linkage._arrays import _bytes, memory_limit
 from linkage._core import LinkageError
 from linkage._progress import Bar
+from linkage.design import checkpoint as _checkpoint
+from linkage.design.cluster import SchedulerError, connect, gather, scheduler_address
 from linkage.legs import FIGURES, OBJECTIVES, Settings, family
 
 __all__ = [
@@ -35,14 +36,19 @@ __all__ = [
     "Constraints",
     "Evaluator",
     "Front",
+    "SchedulerError",
     "Study",
+    "StudyError",
+    "StudyMemoryError",
     "evaluate_chunk",
     "initial_population",
     "objectives_and_constraints",
+    "param_domain",
     "pareto_front",
     "placement",
     "reference_figures",
     "search",
+    "search_memory",
 ]
 
 Array = NDArray[np.float64]
@@ -71,6 +77,126 @@ class Constraints:
     """Least duty factor (0.5: two legs in antiphase always have a foot down)."""
 
 
+class StudyError(LinkageError):
+    """A study value out of place.
+
+    ``section`` (``["design"]``, ``["design", "bounds"]``…) and ``key`` say which, ``problem``
+    says what (a study file locates it by line).
+    """
+
+    def __init__(self, message: str, section: list[str], key: str, problem: str) -> None:
+        super().__init__(message)
+        self.section = section
+        self.key = key
+        self.problem = problem
+
+
+class StudyMemoryError(StudyError, MemoryError):
+    """A study whose search cannot fit in this process's memory (also a ``MemoryError``)."""
+
+
+_LENGTH, _OFFSET, _RADIANS, _DEGREES, _RATIO = "length", "offset", "radians", "degrees", "ratio"
+_KINDS: dict[str, dict[str, str]] = {
+    "fourbar": {"ground": _LENGTH, "ground_angle": _RADIANS, "coupler": _LENGTH, "rocker": _LENGTH},
+    "jansen": {p: _LENGTH for p in "bcdefghijk"},
+    "klann": {
+        **{p: _LENGTH for p in ("crank", "ground", "pivot_b", "rocker", "coupler", "leg")},
+        **{p: _DEGREES for p in ("pivot_b_angle", "alpha", "foot_angle", "tilt")},
+        "leg_rocker": _LENGTH,
+        "rho": _RATIO,
+    },
+    "guided": {
+        **{p: _LENGTH for p in ("ground", "coupler", "rocker", "guide", "link")},
+        "ground_angle": _RADIANS,
+    },
+}
+"""Each family's parameters by kind; any other (a position or offset) is an ``offset``."""
+
+SIZE_LIMIT = 1e6
+"""Lengths and offsets are bounded by this many times the family's scale (far beyond any leg,
+well within floating point)."""
+
+
+def param_domain(family_name: str) -> dict[str, tuple[float, float, str]]:
+    """Return each parameter's domain: ``{name: (lowest, highest, what)}``.
+
+    Lengths are positive (the lowest is excluded), offsets of either sign; both within
+    :data:`SIZE_LIMIT` times the family's scale. Angles within a turn either way (radians or
+    degrees as the family takes them), ratios positive up to 1000.
+
+    Examples
+    --------
+    >>> from linkage.design.search import param_domain
+    >>> d = param_domain("fourbar")
+    >>> d["coupler"], d["ground_angle"][2], d["along"][:2]
+    ((0.0, 50000000.0, 'a length: more than 0'), 'an angle in radians', (-50000000.0, 50000000.0))
+    """
+    fam = family(family_name)
+    size = SIZE_LIMIT * fam.scale
+    kinds = _KINDS.get(fam.name, {})
+    out: dict[str, tuple[float, float, str]] = {}
+    for p in fam.params:
+        kind = kinds.get(p, _OFFSET)
+        out[p] = {
+            _LENGTH: (0.0, size, "a length: more than 0"),
+            _OFFSET: (-size, size, "a position or offset"),
+            _RADIANS: (-2 * math.pi, 2 * math.pi, "an angle in radians"),
+            _DEGREES: (-360.0, 360.0, "an angle in degrees"),
+            _RATIO: (0.0, 1000.0, "a ratio: more than 0"),
+        }[kind]
+    return out
+
+
+MATRIX_BYTES = 17
+"""Bytes per population² pymoo's NSGA-II holds at its peak in a generation (its duplicate check
+and sorting build population × population matrices: measured 17.7 at 2 000, 18.4 at 1 000
+with the linear part)."""
+INDIVIDUAL_BYTES = 2048
+"""Bytes per individual of pymoo's population objects (measured about 1 400)."""
+
+
+def search_memory(study: Study) -> tuple[int, int]:
+    """Return the bytes a search of ``study`` needs: (the optimiser's, the candidates').
+
+    The optimiser's peak per generation (:data:`MATRIX_BYTES` × population² plus
+    :data:`INDIVIDUAL_BYTES` for the population and its offspring), and every candidate's
+    parameters and figures kept three times over (the lists, the joined arrays, the checkpoint).
+
+    Examples
+    --------
+    >>> from linkage.design.search import Study, search_memory
+    >>> search_memory(Study(population=1000, budget=10_000))
+    (21096000, 3840000)
+    >>> opt, _ = search_memory(Study(population=10**6, budget=10**6))
+    >>> round(opt / 2**40, 2)    # TiB: what a population of a million would need
+    15.47
+    """
+    n = study.population
+    rows = study.generations * n
+    width = len(family(study.family).params) + len(FIGURES)
+    return MATRIX_BYTES * n * n + INDIVIDUAL_BYTES * 2 * n, 3 * 8 * rows * width
+
+
+def _need(study: Study) -> None:
+    """Refuse a study whose search cannot fit in memory, with the estimate."""
+    limit = memory_limit()
+    opt, cands = search_memory(study)
+    if opt > limit:
+        problem = (
+            f"a population of {study.population} needs {_bytes(opt)} for NSGA-II's "
+            f"population × population matrices, more than this process can hold "
+            f"({_bytes(limit)}); use at most {math.isqrt(limit // MATRIX_BYTES):,}"
+        )
+        raise StudyMemoryError(problem, ["design"], "population", problem)
+    if opt + cands > limit:
+        problem = (
+            f"{study.generations * study.population} candidates need {_bytes(cands)} kept "
+            f"with their figures (and {_bytes(opt)} for the optimiser), more than this "
+            f"process can hold ({_bytes(limit)})"
+        )
+        raise StudyMemoryError(problem, ["design"], "budget", problem)
+
+
 @dataclass(frozen=True)
 class Study:
     """A design study: family, bounds, objectives, constraints, budget, seed, execution."""
@@ -92,28 +218,127 @@ class Study:
     name: str = "design"
 
     def __post_init__(self) -> None:
-        """Check the objectives, the bounds (the family's parameters) and the sizes."""
+        """Check every value: a :class:`StudyError` (a ``LinkageError``) naming the key.
+
+        Objectives known and distinct; bounds within the family's domain
+        (:func:`param_domain`); the constraints' angle and fraction in range; the stance
+        tolerance a fraction of at most one half; the scheduler an address this tool can use;
+        the search's memory within this process's (:func:`search_memory`).
+
+        Examples
+        --------
+        >>> from linkage.design.search import Study
+        >>> Study(bounds={"coupler": (-5.0, 30.0)})
+        Traceback (most recent call last):
+        ...
+        linkage.design.search.StudyError: bounds of 'coupler' must be within the family's domain (a length: more than 0), got (-5.0, 30.0)
+        >>> Study(population=10**6, budget=10**6)
+        Traceback (most recent call last):
+        ...
+        linkage.design.search.StudyMemoryError: a population of 1000000 needs 15.5 TiB ...
+        """  # noqa: E501
         fam = family(self.family)
-        for o in self.objectives:
-            if o not in OBJECTIVES:
-                raise LinkageError(f"unknown objective {o!r}; choose from {', '.join(OBJECTIVES)}")
+
+        def bad(section: list[str], key: str, problem: str, message: str | None = None) -> NoReturn:
+            raise StudyError(message or f"{key} {problem}", section, key, problem)
+
+        design = ["design"]
         if not self.objectives:
-            raise LinkageError("a study needs at least one objective")
+            bad(
+                design,
+                "objectives",
+                "needs at least one objective",
+                "a study needs at least one objective",
+            )
+        for o in self.objectives:
+            if not isinstance(o, str) or o not in OBJECTIVES:
+                bad(
+                    design,
+                    "objectives",
+                    f"unknown objective {o!r}; choose from {', '.join(OBJECTIVES)}",
+                    f"unknown objective {o!r}; choose from {', '.join(OBJECTIVES)}",
+                )
+        if len(set(self.objectives)) != len(self.objectives):
+            bad(design, "objectives", f"lists an objective twice: {list(self.objectives)}")
+        domain = param_domain(fam.name)
         for k, (lo, hi) in self.bounds.items():
             if k not in fam.params:
-                raise LinkageError(
-                    f"family {fam.name!r} has no parameter {k!r}; it has {', '.join(fam.params)}"
+                bad(
+                    ["design", "bounds"],
+                    k,
+                    f"family {fam.name!r} has no parameter {k!r}; it has {', '.join(fam.params)}",
+                    f"family {fam.name!r} has no parameter {k!r}; it has {', '.join(fam.params)}",
                 )
             if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-                raise LinkageError(f"bounds of {k!r} must be finite with lower < upper")
+                bad(
+                    ["design", "bounds"],
+                    k,
+                    f"must be [lower, upper] with finite lower < upper, got {[lo, hi]!r}",
+                    f"bounds of {k!r} must be finite with lower < upper",
+                )
+            d_lo, d_hi, what = domain[k]
+            length = what.endswith("more than 0")
+            if (lo <= d_lo if length else lo < d_lo) or hi > d_hi:
+                bad(
+                    ["design", "bounds"],
+                    k,
+                    f"must be within the family's domain ({what}, "
+                    f"up to {d_hi:g}), got {[lo, hi]!r}",
+                    f"bounds of {k!r} must be within "
+                    f"the family's domain ({what}), got {(lo, hi)!r}",
+                )
         if self.population < 4:
-            raise LinkageError(f"population must be at least 4, got {self.population}")
+            bad(
+                design,
+                "population",
+                f"must be at least 4, got {self.population}",
+                f"population must be at least 4, got {self.population}",
+            )
         if self.budget < self.population:
-            raise LinkageError(
-                f"budget ({self.budget}) must be at least one population ({self.population})"
+            bad(
+                design,
+                "budget",
+                f"must be at least one population ({self.population})",
+                f"budget ({self.budget}) must be at least one population ({self.population})",
             )
         if self.workers < 0 or self.chunk < 1:
-            raise LinkageError("workers must be ≥ 0 and chunk ≥ 1")
+            bad(
+                design,
+                "workers" if self.workers < 0 else "chunk",
+                "workers must be ≥ 0 and chunk ≥ 1",
+                "workers must be ≥ 0 and chunk ≥ 1",
+            )
+        st = self.settings
+        if not (isinstance(st.stance_tol, (int, float)) and 0.0 <= st.stance_tol <= 0.5):
+            bad(
+                design,
+                "stance_tol",
+                f"must be a fraction of the path's extent from 0 to 0.5, got {st.stance_tol!r}",
+            )
+        size = SIZE_LIMIT * fam.scale
+        if not (isinstance(st.foot_bar, (int, float)) and 0.0 <= st.foot_bar <= size):
+            bad(design, "foot_bar", f"must be a length from 0 to {size:g}, got {st.foot_bar!r}")
+        c = self.constraints
+        ranges = {
+            "min_transmission": (0.0, 90.0, "an angle in degrees"),
+            "min_duty": (0.0, 1.0, "a fraction"),
+            "foot_below_hip": (-size, size, "a length"),
+            "min_lift": (-size, size, "a length"),
+        }
+        for key, (lo, hi, what) in ranges.items():
+            v = getattr(c, key)
+            if not (isinstance(v, (int, float)) and lo <= v <= hi):
+                bad(
+                    ["design", "constraints"],
+                    key,
+                    f"must be {what} from {lo:g} to {hi:g}, got {v!r}",
+                )
+        if self.scheduler is not None:
+            try:
+                scheduler_address(self.scheduler)
+            except LinkageError as exc:
+                bad(design, "scheduler", str(exc), f"scheduler {exc}")
+        _need(self)
 
     @property
     def generations(self) -> int:
@@ -239,14 +464,18 @@ class Evaluator:
     """Evaluator of candidates in this process, on a LocalCluster or on a scheduler's cluster.
 
     Candidates are evaluated in chunks of ``chunk`` gathered in order (the same figures either way).
+    A scheduler is reached and waited on within bounds (:mod:`linkage.design.cluster`): one that
+    does not answer, or answers as no Dask scheduler does, is a :class:`SchedulerError`.
     """
 
     def __init__(self, study: Study) -> None:
         self.study = study
         self.client: Any = None
         self.cluster: Any = None
-        if study.scheduler:
-            self.client = distributed.Client(study.scheduler, timeout="20s")  # type: ignore[no-untyped-call]
+        self.address: str | None = None
+        if study.scheduler is not None:
+            self.address = scheduler_address(study.scheduler)
+            self.client = connect(self.address)
         elif study.workers > 0:
             self.cluster = distributed.LocalCluster(  # type: ignore[no-untyped-call]
                 n_workers=study.workers,
@@ -265,7 +494,7 @@ class Evaluator:
         futures = self.client.map(
             evaluate_chunk, [s.family] * len(parts), parts, [s.settings] * len(parts), pure=False
         )
-        return np.concatenate(self.client.gather(futures), axis=0)
+        return np.concatenate(gather(self.client, futures, self.address), axis=0)
 
     def close(self) -> None:
         """Close the client and the local cluster, if any.
@@ -400,49 +629,11 @@ class Front:
         return self.figures[self.front]
 
 
-CHECKPOINT_MAGIC = "linkage-design-checkpoint-1"
-
-
-def _save_checkpoint(path: Path, state: dict[str, Any]) -> None:
-    """Write atomically (temp file, then rename) a checkpoint the tool owns."""
-    tmp = path.with_name(f".{path.name}.partial-{os.getpid()}")
-    with open(tmp, "wb") as fh:
-        pickle.dump({"magic": CHECKPOINT_MAGIC, **state}, fh)
-        fh.flush()
-        os.fsync(fh.fileno())
-    os.replace(tmp, path)
-
-
-def _load_checkpoint(path: Path, study: Study) -> dict[str, Any] | None:
-    if not path.exists():
-        return None
-    try:
-        with open(path, "rb") as fh:
-            state = pickle.load(fh)
-    except Exception as exc:
-        raise LinkageError(
-            f"{path}: not a readable design checkpoint ({exc}); remove it or choose another "
-            f"--checkpoint (nothing was overwritten)"
-        ) from None
-    if not isinstance(state, dict) or state.get("magic") != CHECKPOINT_MAGIC:
-        raise LinkageError(
-            f"{path} is not a linkage design checkpoint; refusing to overwrite it "
-            f"(choose another --checkpoint)"
-        )
-    if state.get("fingerprint") != study.fingerprint():
-        raise LinkageError(
-            f"{path} is the checkpoint of a different study (family, bounds, objectives, "
-            f"constraints, population or seed changed, or an earlier version's first "
-            f"population); remove it or choose another --checkpoint"
-        )
-    return state
-
-
 def _uses_global_rng(algorithm: Any) -> bool:
     """Return whether the algorithm draws from the process-wide random generators.
 
-    pymoo 0.6.2 on draws from a generator of its own (``algorithm.random_state``), pickled with
-    the algorithm. Earlier releases (0.6.1, the last for Python 3.9) seed and draw from the
+    pymoo 0.6.2 on draws from a generator of its own (``algorithm.random_state``), whose state
+    the checkpoint holds. Earlier releases (0.6.1, the last for Python 3.9) seed and draw from the
     global ``random`` and ``numpy.random`` generators instead, so a checkpoint must carry their
     states too for a resumed search to reach the same front.
     """
@@ -461,11 +652,12 @@ def search(
     (:func:`initial_population`), so the front, the non-dominated set of every candidate, holds
     the reference or designs that dominate it, and none that it dominates.
 
-    With ``checkpoint`` the state is saved atomically after every generation and a search
-    started again with the same study resumes from it (to the same front: the optimiser's
-    random state is part of the checkpoint, see :func:`_uses_global_rng`). ``stop_after`` ends
-    after that many generations in this call (a stopped search, for tests). ``progress`` draws
-    a bar on stderr.
+    With ``checkpoint`` the state is saved atomically after every generation
+    (:mod:`linkage.design.checkpoint`: plain arrays, never a pickle) and a search started again
+    with the same study resumes from it (to the same front: the optimiser's random state is part
+    of the checkpoint, see :func:`_uses_global_rng`); the temporaries of killed runs beside it
+    are swept first. ``stop_after`` ends after that many generations in this call (a stopped
+    search, for tests). ``progress`` draws a bar on stderr.
 
     Examples
     --------
@@ -487,7 +679,7 @@ def search(
     >>> Study(population=2)
     Traceback (most recent call last):
     ...
-    linkage.LinkageError: population must be at least 4, got 2
+    linkage.design.search.StudyError: population must be at least 4, got 2
     """
     if not isinstance(study, Study):
         raise TypeError(f"study must be a Study, got {type(study).__name__}")
@@ -495,23 +687,23 @@ def search(
     xl, xu = study.box()
     n_con = 6
     path = Path(checkpoint) if checkpoint is not None else None
-    state = _load_checkpoint(path, study) if path is not None else None
+    saved = None
+    if path is not None:
+        _checkpoint.sweep(path)
+        saved = _checkpoint.load(path, study)
     t0 = time.perf_counter()
-    if state is None:
-        problem = _Box(len(fam.params), len(study.objectives), n_con, xl, xu)
-        algorithm = NSGA2(pop_size=study.population, sampling=initial_population(study))
-        algorithm.setup(problem, termination=("n_gen", study.generations), seed=study.seed)
-        xs: list[Array] = []
-        figs: list[Array] = []
-        gen = 0
-    else:
-        algorithm = state["algorithm"]
-        xs, figs, gen = state["x"], state["figures"], state["generation"]
-        if "global_rng" in state:  # saved for pymoo < 0.6.2 (_uses_global_rng)
-            random.setstate(state["global_rng"][0])
-            np.random.set_state(state["global_rng"][1])  # noqa: NPY002
+    problem = _Box(len(fam.params), len(study.objectives), n_con, xl, xu)
+    algorithm = NSGA2(pop_size=study.population, sampling=initial_population(study))
+    algorithm.setup(problem, termination=("n_gen", study.generations), seed=study.seed)
+    xs: list[Array] = []
+    figs: list[Array] = []
+    gen = 0
+    if saved is not None and path is not None:
+        _checkpoint.restore(path, saved, algorithm, study)
+        xs, figs, gen = [np.array(saved.x)], [np.array(saved.figures)], saved.generation
     global_rng = _uses_global_rng(algorithm)
     done_here = 0
+    evaluated = sum(len(v) for v in xs)
     bar = Bar("design search", total=study.generations, enabled=progress)
     bar.done = gen
     with Evaluator(study) as ev:
@@ -522,25 +714,27 @@ def search(
             x = np.asarray(pop.get("X"), dtype=float)
             fig = ev(x)
             f, g = objectives_and_constraints(study, fig)
-            pop.set("F", f, "G", g)
+            # "candidate": each one's row among every candidate (the checkpoint's survivors)
+            pop.set("F", f, "G", g, "candidate", np.arange(evaluated, evaluated + len(x)))
             algorithm.tell(infills=pop)
             xs.append(x)
             figs.append(fig)
+            evaluated += len(x)
             gen += 1
             done_here += 1
             if path is not None:
-                saved = {
-                    "fingerprint": study.fingerprint(),
-                    "algorithm": algorithm,
-                    "x": xs,
-                    "figures": figs,
-                    "generation": gen,
-                }
-                if global_rng:
-                    # pymoo < 0.6.2 draws from the legacy global generators (_uses_global_rng).
-                    saved["global_rng"] = (random.getstate(), np.random.get_state())  # noqa: NPY002
-                _save_checkpoint(path, saved)
-            bar.update(1, f"{sum(len(v) for v in xs)} legs evaluated")
+                # Held off Ctrl-C and SIGTERM: the checkpoint is whole, its temporary removed.
+                with report_folder._sigint_held():
+                    _checkpoint.save(
+                        path,
+                        study,
+                        algorithm,
+                        np.concatenate(xs),
+                        np.concatenate(figs),
+                        gen,
+                        global_rng,
+                    )
+            bar.update(1, f"{evaluated} legs evaluated")
     bar.close()
     x_all = np.concatenate(xs) if xs else np.empty((0, len(fam.params)))
     f_all = np.concatenate(figs) if figs else np.empty((0, len(FIGURES)))
