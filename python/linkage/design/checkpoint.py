@@ -23,15 +23,19 @@ Every failure to read or check one is a :class:`LinkageError` naming the file.
 
 from __future__ import annotations
 
+import contextlib
 import io
 import json
 import math
 import os
 import random
 import re
+import signal
 import stat
+import threading
 import time
 import zipfile
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -42,6 +46,7 @@ from numpy.typing import NDArray
 from linkage._core import LinkageError
 from linkage._files import json_depth, read_bytes, sweep_stale, temp_name_pattern, write_atomic
 from linkage.legs import FIGURES, family
+from linkage.report_folder import STOP_SIGNALS
 
 if TYPE_CHECKING:  # pragma: no cover - imports for annotations only
     from linkage.design.search import Study
@@ -98,7 +103,7 @@ def size_limit(study: Study) -> int:
     >>> from linkage.design.checkpoint import size_limit
     >>> from linkage.design.search import Study
     >>> size_limit(Study(population=4, budget=8))
-    2100008
+    2102400
     """
     params = len(family(study.family).params)
     rows = study.generations * study.population
@@ -127,6 +132,9 @@ def save(
     global_rng: bool,
 ) -> None:
     """Write the checkpoint of ``algorithm`` after ``generation`` atomically to ``path``.
+
+    Ctrl-C, SIGTERM and SIGHUP wait until it is written (then they stop the search as
+    usual): the generation just evaluated is kept, and no temporary is left half written.
 
     ``x`` and ``figures`` are every candidate so far. The population is stored as rows of
     ``x``: each survivor carries its row as ``candidate`` (set by the search as it evaluates).
@@ -162,7 +170,36 @@ def save(
         pop_crowding=crowding,
         pop_gen=born,
     )
-    write_atomic(path, buf.getvalue())
+    with _signals_deferred():
+        write_atomic(path, buf.getvalue())
+
+
+@contextlib.contextmanager
+def _signals_deferred() -> Iterator[None]:
+    """Hold Ctrl-C, SIGTERM and SIGHUP until the block is done, then deliver them.
+
+    Unlike ignoring them, a signal that comes meanwhile is not lost. Main thread only
+    (elsewhere Python delivers no signals).
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+
+    def note(signum: int, frame: object) -> None:
+        caught.append(signum)
+
+    previous: dict[int, Any] = {}
+    with contextlib.suppress(ValueError, OSError):
+        for signum in (signal.SIGINT, *STOP_SIGNALS):
+            previous[signum] = signal.signal(signum, note)
+    try:
+        yield
+    finally:
+        for signum, was in previous.items():
+            signal.signal(signum, was if was is not None else signal.SIG_DFL)
+        for signum in dict.fromkeys(caught):
+            signal.raise_signal(signum)
 
 
 def load(path: Path, study: Study) -> Saved | None:
@@ -190,13 +227,14 @@ def load(path: Path, study: Study) -> Saved | None:
         )
     try:
         arrays = _archive(data)
+        meta = _meta(arrays)
     except _Bad as exc:
         raise LinkageError(
             f"{path} is not a linkage design checkpoint ({exc}); refusing to overwrite it "
             f"(remove it or choose another --checkpoint)"
         ) from None
     try:
-        return _check(arrays, study)
+        return _check(arrays, meta, study)
     except _Bad as exc:
         raise LinkageError(
             f"{path}: a damaged design checkpoint ({exc}); remove it or choose another "
@@ -210,7 +248,11 @@ _ADVICE = "remove it or choose another --checkpoint"
 
 
 class _Bad(Exception):
-    """A checkpoint that is not one, or damaged."""
+    """A damaged checkpoint."""
+
+
+class _NotOne(_Bad):
+    """A file that is not a checkpoint."""
 
 
 class _Other(Exception):
@@ -267,8 +309,8 @@ def _npy(raw: bytes, dtype: np.dtype[Any], ndim: int, name: str) -> NDArray[Any]
     return np.frombuffer(raw, dtype=dtype, count=count, offset=offset).reshape(shape)
 
 
-def _check(a: dict[str, NDArray[Any]], study: Study) -> Saved:
-    """Check the arrays and the meta of a checkpoint against ``study``."""
+def _meta(a: dict[str, NDArray[Any]]) -> dict[str, Any]:
+    """Return the ``meta`` member's JSON object if it has the magic (else :class:`_NotOne`)."""
     if len(a["meta"]) > _META_LIMIT:
         raise _Bad(f"meta of {len(a['meta'])} bytes")
     try:
@@ -279,7 +321,12 @@ def _check(a: dict[str, NDArray[Any]], study: Study) -> Saved:
     except (UnicodeDecodeError, ValueError, RecursionError) as exc:
         raise _Bad(f"meta is not JSON: {exc}") from None
     if not isinstance(meta, dict) or meta.get("magic") != MAGIC:
-        raise _Bad("no magic")
+        raise _NotOne("no magic")
+    return meta
+
+
+def _check(a: dict[str, NDArray[Any]], meta: dict[str, Any], study: Study) -> Saved:
+    """Check the arrays and the meta of a checkpoint against ``study``."""
     if meta.get("version") != VERSION:
         raise _Other(f"another linkage release (version {meta.get('version')!r}, not {VERSION})")
     if meta.get("fingerprint") != study.fingerprint():

@@ -22,7 +22,6 @@ from numpy.typing import NDArray
 from pymoo.algorithms.moo.nsga2 import NSGA2  # type: ignore[import-untyped]
 from pymoo.core.problem import Problem  # type: ignore[import-untyped]
 
-from linkage import report_folder
 from linkage._arrays import _bytes, memory_limit
 from linkage._core import LinkageError
 from linkage._progress import Bar
@@ -165,11 +164,9 @@ def search_memory(study: Study) -> tuple[int, int]:
     Examples
     --------
     >>> from linkage.design.search import Study, search_memory
-    >>> search_memory(Study(population=1000, budget=10_000))
-    (21096000, 3840000)
-    >>> opt, _ = search_memory(Study(population=10**6, budget=10**6))
-    >>> round(opt / 2**40, 2)    # TiB: what a population of a million would need
-    15.47
+    >>> opt, candidates = search_memory(Study(population=1000, budget=10_000))
+    >>> round(opt / 2**20, 1), round(candidates / 2**20, 1)    # MiB
+    (20.1, 3.7)
     """
     n = study.population
     rows = study.generations * n
@@ -184,15 +181,15 @@ def _need(study: Study) -> None:
     if opt > limit:
         problem = (
             f"a population of {study.population} needs {_bytes(opt)} for NSGA-II's "
-            f"population × population matrices, more than this process can hold "
-            f"({_bytes(limit)}); use at most {math.isqrt(limit // MATRIX_BYTES):,}"
+            f"population × population matrices; this process can hold {_bytes(limit)}: "
+            f"use a population of at most {math.isqrt(limit // (MATRIX_BYTES + 1))}"
         )
         raise StudyMemoryError(problem, ["design"], "population", problem)
     if opt + cands > limit:
         problem = (
             f"{study.generations * study.population} candidates need {_bytes(cands)} kept "
-            f"with their figures (and {_bytes(opt)} for the optimiser), more than this "
-            f"process can hold ({_bytes(limit)})"
+            f"with their figures, and the optimiser {_bytes(opt)}; this process can hold "
+            f"{_bytes(limit)}"
         )
         raise StudyMemoryError(problem, ["design"], "budget", problem)
 
@@ -723,17 +720,15 @@ def search(
             gen += 1
             done_here += 1
             if path is not None:
-                # Held off Ctrl-C and SIGTERM: the checkpoint is whole, its temporary removed.
-                with report_folder._sigint_held():
-                    _checkpoint.save(
-                        path,
-                        study,
-                        algorithm,
-                        np.concatenate(xs),
-                        np.concatenate(figs),
-                        gen,
-                        global_rng,
-                    )
+                _checkpoint.save(
+                    path,
+                    study,
+                    algorithm,
+                    np.concatenate(xs),
+                    np.concatenate(figs),
+                    gen,
+                    global_rng,
+                )
             bar.update(1, f"{evaluated} legs evaluated")
     bar.close()
     x_all = np.concatenate(xs) if xs else np.empty((0, len(fam.params)))
