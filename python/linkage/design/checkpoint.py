@@ -384,12 +384,13 @@ def _dict_or_none(v: Any, what: str) -> dict[str, Any] | None:
     return v
 
 
-def restore(path: Path, saved: Saved, algorithm: Any, study: Study) -> None:
+def restore(path: Path, saved: Saved, algorithm: Any, f: Array, g: Array) -> None:
     """Put the checked state ``saved`` into ``algorithm`` (set up for the study, not yet run).
 
-    The population is rebuilt from its rows of the candidates with the objectives and
-    constraints recomputed from their figures; the generation counter, the optimum, the
-    termination's progress and the random states are set as the uninterrupted run left them.
+    The population is rebuilt from its rows of the candidates, with ``f`` and ``g`` its
+    objectives and constraints (the search recomputes them from the survivors' figures, bit for
+    bit as it did); the generation counter, the optimum, the termination's progress and the
+    random states are set as the uninterrupted run left them.
 
     Raises
     ------
@@ -398,10 +399,7 @@ def restore(path: Path, saved: Saved, algorithm: Any, study: Study) -> None:
     """
     from pymoo.core.population import Population  # type: ignore[import-untyped]  # noqa: PLC0415
 
-    from linkage.design.search import objectives_and_constraints  # noqa: PLC0415 (a cycle)
-
     pop_x = np.array(saved.x[saved.pop_index], dtype=float)
-    f, g = objectives_and_constraints(study, np.array(saved.figures[saved.pop_index]))
     pop = Population.new("X", pop_x)
     pop.set("F", f, "G", g)
     survivors = zip(pop, saved.pop_index, saved.pop_rank, saved.pop_crowding, saved.pop_gen)

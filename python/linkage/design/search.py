@@ -696,7 +696,8 @@ def search(
     figs: list[Array] = []
     gen = 0
     if saved is not None and path is not None:
-        _checkpoint.restore(path, saved, algorithm, study)
+        f, g = objectives_and_constraints(study, saved.figures[saved.pop_index])
+        _checkpoint.restore(path, saved, algorithm, f, g)
         xs, figs, gen = [np.array(saved.x)], [np.array(saved.figures)], saved.generation
     global_rng = _uses_global_rng(algorithm)
     done_here = 0
