@@ -371,7 +371,8 @@ def main_design(
     try:
         result = search(sf.study, checkpoint=ck, progress=not quiet)
     except SchedulerError as exc:
-        raise LinkageError(f"{sf.scheduler_at}: {exc} (nothing was written)") from None
+        where = f"{sf.scheduler_at}: " if sf.scheduler_at else f"{sf.path}: "
+        raise LinkageError(f"{where}{exc} (nothing was written)") from None
     except KeyboardInterrupt:
         if ck.is_file() and not ck.is_symlink():
             _note(f"the search so far is kept in {ck}: the same command resumes it")

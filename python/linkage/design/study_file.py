@@ -60,7 +60,8 @@ class StudyFile:
     """A study read from a TOML file, with how many designs to choose and the file it came from.
 
     ``choose`` is how many front designs to draw and export; ``scheduler_at`` locates the
-    scheduler's address (``file:line: [design] scheduler``) for messages about reaching it.
+    scheduler's address (``file:line: [design] scheduler``; empty without one) for messages
+    about reaching it.
     """
 
     study: Study
@@ -245,7 +246,9 @@ def load_study(path: str | Path) -> StudyFile:
         study=study,
         choose=int(d.get("choose", 3)),
         path=p,
-        scheduler_at=f"{p}:{loc.line(['design'], 'scheduler')}: [design] scheduler",
+        scheduler_at=f"{p}:{loc.line(['design'], 'scheduler')}: [design] scheduler"
+        if "scheduler" in d
+        else "",
     )
 
 
