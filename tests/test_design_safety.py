@@ -106,6 +106,13 @@ def test_checkpoint_is_plain_arrays_and_resumes_to_the_same_front(tmp_path):
         np.testing.assert_array_equal(got.x, whole.x)
         np.testing.assert_array_equal(got.figures, whole.figures)
         np.testing.assert_array_equal(got.front, whole.front)
+    # Stopped and resumed after every generation.
+    ck = tmp_path / "each"
+    for gen in range(1, small().generations + 1):
+        got = design.search(small(), checkpoint=ck, stop_after=1)
+        assert got.generations == gen
+    np.testing.assert_array_equal(got.x, whole.x)
+    np.testing.assert_array_equal(got.front, whole.front)
 
 
 def test_global_random_states_round_trip(tmp_path, monkeypatch):
@@ -223,11 +230,15 @@ def test_checkpoint_larger_than_any_of_the_study_is_refused_unread(tmp_path):
         design.search(small(), checkpoint=ck)
 
 
-def test_checkpoint_that_is_a_folder_or_a_link_to_a_device_is_refused(tmp_path):
+def test_checkpoint_that_is_a_folder_a_fifo_or_a_link_to_a_device_is_refused(tmp_path):
     ck = tmp_path / "run.checkpoint"
     ck.mkdir()
     with pytest.raises(linkage.LinkageError, match="folder"):
         design.search(small(), checkpoint=ck)
+    fifo = tmp_path / "fifo.checkpoint"
+    os.mkfifo(fifo)
+    with pytest.raises(linkage.LinkageError, match="pipe"):
+        design.search(small(), checkpoint=fifo)
     zero = tmp_path / "zero.checkpoint"
     os.symlink("/dev/zero", zero)
     with pytest.raises(linkage.LinkageError, match="symbolic link"):
