@@ -7,9 +7,11 @@ of the user's overwritten.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
+import sys
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -17,6 +19,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import report_folder
+from linkage._core import LinkageError
+from linkage.design.cluster import SchedulerError
 from linkage.design.search import (
     Front,
     Study,
@@ -320,6 +324,13 @@ def _write_files(result: Front, folder: Path, choose: int) -> list[str]:
     return names
 
 
+def _note(line: str) -> None:
+    """One line on stderr, as the command's messages are (never raising itself)."""
+    with contextlib.suppress(OSError, ValueError):
+        print(f"linkage: {line}", file=sys.stderr)
+        sys.stderr.flush()
+
+
 def main_design(
     path: str, out: str | None, force: bool, checkpoint: str | None, quiet: bool
 ) -> int:
@@ -329,6 +340,11 @@ def main_design(
     study's name), ``force`` replaces an earlier report, ``checkpoint`` is the search's checkpoint
     file (default: ``.<folder name>.checkpoint`` beside the folder) and ``quiet`` prints nothing.
     Returns the exit status, 0.
+
+    A scheduler that cannot be reached is named with where the study gives it
+    (``file:line: [design] scheduler``). Stopped by Ctrl-C or SIGTERM after a checkpoint was
+    written, it says on stderr that the checkpoint is kept for resuming (no partial
+    temporary is left: see :mod:`linkage.design.checkpoint`).
 
     Examples
     --------
@@ -352,7 +368,15 @@ def main_design(
     folder = Path(out) if out else report_folder.default_folder(sf.study.name)
     report_folder.prepare(folder, force)
     ck = Path(checkpoint) if checkpoint else folder.with_name(f".{folder.name}.checkpoint")
-    result = search(sf.study, checkpoint=ck, progress=not quiet)
+    try:
+        result = search(sf.study, checkpoint=ck, progress=not quiet)
+    except SchedulerError as exc:
+        where = f"{sf.scheduler_at}: " if sf.scheduler_at else f"{sf.path}: "
+        raise LinkageError(f"{where}{exc} (nothing was written)") from None
+    except KeyboardInterrupt:
+        if ck.is_file() and not ck.is_symlink():
+            _note(f"the search so far is kept in {ck}: the same command resumes it")
+        raise
     files = write_report(result, folder, sf.choose, force)
     if not quiet:
         place = placement(sf.study, result)

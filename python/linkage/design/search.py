@@ -10,10 +10,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import math
-import os
-import pickle
-import random
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -25,8 +21,16 @@ from numpy.typing import NDArray
 from pymoo.algorithms.moo.nsga2 import NSGA2  # type: ignore[import-untyped]
 from pymoo.core.problem import Problem  # type: ignore[import-untyped]
 
-from linkage._core import LinkageError
 from linkage._progress import Bar
+from linkage.design import checkpoint as _checkpoint
+from linkage.design.cluster import SchedulerError, connect, gather, scheduler_address
+from linkage.design.limits import (
+    StudyError,
+    StudyMemoryError,
+    check_study,
+    param_domain,
+    search_memory,
+)
 from linkage.legs import FIGURES, OBJECTIVES, Settings, family
 
 __all__ = [
@@ -35,14 +39,19 @@ __all__ = [
     "Constraints",
     "Evaluator",
     "Front",
+    "SchedulerError",
     "Study",
+    "StudyError",
+    "StudyMemoryError",
     "evaluate_chunk",
     "initial_population",
     "objectives_and_constraints",
+    "param_domain",
     "pareto_front",
     "placement",
     "reference_figures",
     "search",
+    "search_memory",
 ]
 
 Array = NDArray[np.float64]
@@ -92,28 +101,8 @@ class Study:
     name: str = "design"
 
     def __post_init__(self) -> None:
-        """Check the objectives, the bounds (the family's parameters) and the sizes."""
-        fam = family(self.family)
-        for o in self.objectives:
-            if o not in OBJECTIVES:
-                raise LinkageError(f"unknown objective {o!r}; choose from {', '.join(OBJECTIVES)}")
-        if not self.objectives:
-            raise LinkageError("a study needs at least one objective")
-        for k, (lo, hi) in self.bounds.items():
-            if k not in fam.params:
-                raise LinkageError(
-                    f"family {fam.name!r} has no parameter {k!r}; it has {', '.join(fam.params)}"
-                )
-            if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-                raise LinkageError(f"bounds of {k!r} must be finite with lower < upper")
-        if self.population < 4:
-            raise LinkageError(f"population must be at least 4, got {self.population}")
-        if self.budget < self.population:
-            raise LinkageError(
-                f"budget ({self.budget}) must be at least one population ({self.population})"
-            )
-        if self.workers < 0 or self.chunk < 1:
-            raise LinkageError("workers must be ≥ 0 and chunk ≥ 1")
+        """Check every value (:func:`linkage.design.limits.check_study`)."""
+        check_study(self)
 
     @property
     def generations(self) -> int:
@@ -239,14 +228,18 @@ class Evaluator:
     """Evaluator of candidates in this process, on a LocalCluster or on a scheduler's cluster.
 
     Candidates are evaluated in chunks of ``chunk`` gathered in order (the same figures either way).
+    A scheduler is reached and waited on within bounds (:mod:`linkage.design.cluster`): one that
+    does not answer, or answers as no Dask scheduler does, is a :class:`SchedulerError`.
     """
 
     def __init__(self, study: Study) -> None:
         self.study = study
         self.client: Any = None
         self.cluster: Any = None
-        if study.scheduler:
-            self.client = distributed.Client(study.scheduler, timeout="20s")  # type: ignore[no-untyped-call]
+        self.address: str | None = None
+        if study.scheduler is not None:
+            self.address = scheduler_address(study.scheduler)
+            self.client = connect(self.address)
         elif study.workers > 0:
             self.cluster = distributed.LocalCluster(  # type: ignore[no-untyped-call]
                 n_workers=study.workers,
@@ -265,7 +258,7 @@ class Evaluator:
         futures = self.client.map(
             evaluate_chunk, [s.family] * len(parts), parts, [s.settings] * len(parts), pure=False
         )
-        return np.concatenate(self.client.gather(futures), axis=0)
+        return np.concatenate(gather(self.client, futures, self.address), axis=0)
 
     def close(self) -> None:
         """Close the client and the local cluster, if any.
@@ -400,49 +393,11 @@ class Front:
         return self.figures[self.front]
 
 
-CHECKPOINT_MAGIC = "linkage-design-checkpoint-1"
-
-
-def _save_checkpoint(path: Path, state: dict[str, Any]) -> None:
-    """Write atomically (temp file, then rename) a checkpoint the tool owns."""
-    tmp = path.with_name(f".{path.name}.partial-{os.getpid()}")
-    with open(tmp, "wb") as fh:
-        pickle.dump({"magic": CHECKPOINT_MAGIC, **state}, fh)
-        fh.flush()
-        os.fsync(fh.fileno())
-    os.replace(tmp, path)
-
-
-def _load_checkpoint(path: Path, study: Study) -> dict[str, Any] | None:
-    if not path.exists():
-        return None
-    try:
-        with open(path, "rb") as fh:
-            state = pickle.load(fh)
-    except Exception as exc:
-        raise LinkageError(
-            f"{path}: not a readable design checkpoint ({exc}); remove it or choose another "
-            f"--checkpoint (nothing was overwritten)"
-        ) from None
-    if not isinstance(state, dict) or state.get("magic") != CHECKPOINT_MAGIC:
-        raise LinkageError(
-            f"{path} is not a linkage design checkpoint; refusing to overwrite it "
-            f"(choose another --checkpoint)"
-        )
-    if state.get("fingerprint") != study.fingerprint():
-        raise LinkageError(
-            f"{path} is the checkpoint of a different study (family, bounds, objectives, "
-            f"constraints, population or seed changed, or an earlier version's first "
-            f"population); remove it or choose another --checkpoint"
-        )
-    return state
-
-
 def _uses_global_rng(algorithm: Any) -> bool:
     """Return whether the algorithm draws from the process-wide random generators.
 
-    pymoo 0.6.2 on draws from a generator of its own (``algorithm.random_state``), pickled with
-    the algorithm. Earlier releases (0.6.1, the last for Python 3.9) seed and draw from the
+    pymoo 0.6.2 on draws from a generator of its own (``algorithm.random_state``), whose state
+    the checkpoint holds. Earlier releases (0.6.1, the last for Python 3.9) seed and draw from the
     global ``random`` and ``numpy.random`` generators instead, so a checkpoint must carry their
     states too for a resumed search to reach the same front.
     """
@@ -461,11 +416,12 @@ def search(
     (:func:`initial_population`), so the front, the non-dominated set of every candidate, holds
     the reference or designs that dominate it, and none that it dominates.
 
-    With ``checkpoint`` the state is saved atomically after every generation and a search
-    started again with the same study resumes from it (to the same front: the optimiser's
-    random state is part of the checkpoint, see :func:`_uses_global_rng`). ``stop_after`` ends
-    after that many generations in this call (a stopped search, for tests). ``progress`` draws
-    a bar on stderr.
+    With ``checkpoint`` the state is saved atomically after every generation
+    (:mod:`linkage.design.checkpoint`: plain arrays, never a pickle) and a search started again
+    with the same study resumes from it (to the same front: the optimiser's random state is part
+    of the checkpoint, see :func:`_uses_global_rng`); the temporaries of killed runs beside it
+    are swept first. ``stop_after`` ends after that many generations in this call (a stopped
+    search, for tests). ``progress`` draws a bar on stderr.
 
     Examples
     --------
@@ -487,7 +443,7 @@ def search(
     >>> Study(population=2)
     Traceback (most recent call last):
     ...
-    linkage.LinkageError: population must be at least 4, got 2
+    linkage.design.limits.StudyError: population must be at least 4, got 2
     """
     if not isinstance(study, Study):
         raise TypeError(f"study must be a Study, got {type(study).__name__}")
@@ -495,23 +451,24 @@ def search(
     xl, xu = study.box()
     n_con = 6
     path = Path(checkpoint) if checkpoint is not None else None
-    state = _load_checkpoint(path, study) if path is not None else None
+    saved = None
+    if path is not None:
+        _checkpoint.sweep(path)
+        saved = _checkpoint.load(path, study)
     t0 = time.perf_counter()
-    if state is None:
-        problem = _Box(len(fam.params), len(study.objectives), n_con, xl, xu)
-        algorithm = NSGA2(pop_size=study.population, sampling=initial_population(study))
-        algorithm.setup(problem, termination=("n_gen", study.generations), seed=study.seed)
-        xs: list[Array] = []
-        figs: list[Array] = []
-        gen = 0
-    else:
-        algorithm = state["algorithm"]
-        xs, figs, gen = state["x"], state["figures"], state["generation"]
-        if "global_rng" in state:  # saved for pymoo < 0.6.2 (_uses_global_rng)
-            random.setstate(state["global_rng"][0])
-            np.random.set_state(state["global_rng"][1])  # noqa: NPY002
+    problem = _Box(len(fam.params), len(study.objectives), n_con, xl, xu)
+    algorithm = NSGA2(pop_size=study.population, sampling=initial_population(study))
+    algorithm.setup(problem, termination=("n_gen", study.generations), seed=study.seed)
+    xs: list[Array] = []
+    figs: list[Array] = []
+    gen = 0
+    if saved is not None and path is not None:
+        f, g = objectives_and_constraints(study, saved.figures[saved.pop_index])
+        _checkpoint.restore(path, saved, algorithm, f, g)
+        xs, figs, gen = [np.array(saved.x)], [np.array(saved.figures)], saved.generation
     global_rng = _uses_global_rng(algorithm)
     done_here = 0
+    evaluated = sum(len(v) for v in xs)
     bar = Bar("design search", total=study.generations, enabled=progress)
     bar.done = gen
     with Evaluator(study) as ev:
@@ -522,25 +479,25 @@ def search(
             x = np.asarray(pop.get("X"), dtype=float)
             fig = ev(x)
             f, g = objectives_and_constraints(study, fig)
-            pop.set("F", f, "G", g)
+            # "candidate": each one's row among every candidate (the checkpoint's survivors)
+            pop.set("F", f, "G", g, "candidate", np.arange(evaluated, evaluated + len(x)))
             algorithm.tell(infills=pop)
             xs.append(x)
             figs.append(fig)
+            evaluated += len(x)
             gen += 1
             done_here += 1
             if path is not None:
-                saved = {
-                    "fingerprint": study.fingerprint(),
-                    "algorithm": algorithm,
-                    "x": xs,
-                    "figures": figs,
-                    "generation": gen,
-                }
-                if global_rng:
-                    # pymoo < 0.6.2 draws from the legacy global generators (_uses_global_rng).
-                    saved["global_rng"] = (random.getstate(), np.random.get_state())  # noqa: NPY002
-                _save_checkpoint(path, saved)
-            bar.update(1, f"{sum(len(v) for v in xs)} legs evaluated")
+                _checkpoint.save(
+                    path,
+                    study,
+                    algorithm,
+                    np.concatenate(xs),
+                    np.concatenate(figs),
+                    gen,
+                    global_rng,
+                )
+            bar.update(1, f"{evaluated} legs evaluated")
     bar.close()
     x_all = np.concatenate(xs) if xs else np.empty((0, len(fam.params)))
     f_all = np.concatenate(figs) if figs else np.empty((0, len(FIGURES)))

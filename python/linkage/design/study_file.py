@@ -16,11 +16,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage._core import LinkageError
+from linkage._files import read_bytes
 from linkage._toml_lines import Locator, NotText, decode
-from linkage.design.search import Constraints, Study
+from linkage.design.search import Constraints, Study, StudyError
 from linkage.legs import FAMILIES, OBJECTIVES, Settings
 
-__all__ = ["StudyFile", "load_study"]
+__all__ = ["STUDY_LIMIT", "StudyFile", "load_study"]
+
+STUDY_LIMIT = 1 << 20
+"""The most bytes a study file may hold (a study is a few hundred)."""
 
 if sys.version_info >= (3, 11):  # pragma: no cover - depends on the interpreter
     import tomllib
@@ -55,12 +59,15 @@ _CONSTRAINT_KEYS = ("min_transmission", "foot_below_hip", "min_lift", "min_duty"
 class StudyFile:
     """A study read from a TOML file, with how many designs to choose and the file it came from.
 
-    ``choose`` is how many front designs to draw and export.
+    ``choose`` is how many front designs to draw and export; ``scheduler_at`` locates the
+    scheduler's address (``file:line: [design] scheduler``; empty without one) for messages
+    about reaching it.
     """
 
     study: Study
     choose: int
     path: Path
+    scheduler_at: str = ""
 
 
 def load_study(path: str | Path) -> StudyFile:
@@ -68,7 +75,10 @@ def load_study(path: str | Path) -> StudyFile:
 
     The file has a ``[design]`` section (family, objectives, population, budget, seed, workers or
     scheduler, chunk, samples, stance_tol, foot_bar, choose) with ``[design.bounds]`` (``parameter =
-    [lower, upper]``) and ``[design.constraints]``. Errors name ``file:line: [section] key``.
+    [lower, upper]``) and ``[design.constraints]``. Errors name ``file:line: [section] key``:
+    every value is checked here (:class:`~linkage.design.search.Study`: bounds within the
+    family's domain, fractions and tolerances in range, the scheduler's address, the search's
+    memory), not when the search reaches it.
 
     Examples
     --------
@@ -90,13 +100,19 @@ def load_study(path: str | Path) -> StudyFile:
     Traceback (most recent call last):
     ...
     linkage.LinkageError: ...legs.toml:4: [design.bounds] ground: must be [lower, upper]...
+
+    A value the family or this machine cannot take, located as well:
+
+    >>> with open(path, "w") as fh:
+    ...     _ = fh.write("[design]\npopulation = 1000000\nbudget = 1000000\n")
+    >>> load_study(path)
+    Traceback (most recent call last):
+    ...
+    linkage.LinkageError: ...legs.toml:2: [design] population: ... needs 15.5 TiB ...
     >>> tmp.cleanup()
     """
     p = Path(path)
-    try:
-        data = p.read_bytes()
-    except OSError as exc:
-        raise LinkageError(f"{p}: cannot read the study: {exc.strerror or exc}") from None
+    data = read_bytes(p, STUDY_LIMIT, "study")
     try:
         text = decode(data)
     except NotText as exc:
@@ -137,6 +153,8 @@ def load_study(path: str | Path) -> StudyFile:
     fam = FAMILIES[fam_name]
     objectives = d.get("objectives", ["stride", "straightness", "speed_variation"])
     for o in objectives:
+        if not isinstance(o, str):
+            raise err(["design"], "objectives", f"must be a list of names, got {o!r} in it")
         if o not in OBJECTIVES:
             raise err(
                 ["design"],
@@ -207,21 +225,31 @@ def load_study(path: str | Path) -> StudyFile:
         stance_tol=float(d.get("stance_tol", 2.5e-3)),
         foot_bar=float(d.get("foot_bar", 0.0)),
     )
-    study = Study(
-        family=fam_name,
-        objectives=tuple(objectives),
-        bounds=bounds,
-        constraints=Constraints(**cons),
-        settings=settings,
-        population=population,
-        budget=budget,
-        seed=int(d.get("seed", 1)),
-        workers=int(d.get("workers", 0)),
-        scheduler=d.get("scheduler"),
-        chunk=int(d.get("chunk", 256)),
-        name=name,
+    try:
+        study = Study(
+            family=fam_name,
+            objectives=tuple(objectives),
+            bounds=bounds,
+            constraints=Constraints(**cons),
+            settings=settings,
+            population=population,
+            budget=budget,
+            seed=int(d.get("seed", 1)),
+            workers=int(d.get("workers", 0)),
+            scheduler=d.get("scheduler"),
+            chunk=int(d.get("chunk", 256)),
+            name=name,
+        )
+    except StudyError as exc:
+        raise err(exc.section, exc.key, exc.problem) from None
+    return StudyFile(
+        study=study,
+        choose=int(d.get("choose", 3)),
+        path=p,
+        scheduler_at=f"{p}:{loc.line(['design'], 'scheduler')}: [design] scheduler"
+        if "scheduler" in d
+        else "",
     )
-    return StudyFile(study=study, choose=int(d.get("choose", 3)), path=p)
 
 
 def _line_of(message: str) -> int:
