@@ -260,6 +260,9 @@ def _design(args: argparse.Namespace, state: dict[str, Path]) -> int:
         from linkage import design  # noqa: PLC0415 (needs the optional extra [design])
     except ImportError as exc:
         raise LinkageError(str(exc)) from None
+    # A search stopped after its first generation keeps its checkpoint (main_design says where):
+    # the closing line then says no report was written, not that nothing was.
+    state["checkpoint"] = Path(args.checkpoint or ".")
     return design.main_design(args.study, args.out, args.force, args.checkpoint, args.quiet)
 
 
@@ -569,6 +572,8 @@ def _signals_noted(signals: list[int]) -> Iterator[None]:
 def _written(state: dict[str, Path]) -> str:
     if "written" in state:
         return f"the report was written to {state['written']}/"
+    if "checkpoint" in state:
+        return "no report was written"
     return "nothing was written"
 
 
