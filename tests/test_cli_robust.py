@@ -468,3 +468,23 @@ def test_a_run_that_finds_another_runs_report_where_there_was_none_is_told_so(tm
     assert "nothing was written" in message and "--force" in message
     assert (out / "data.csv").read_text() == "1\n" and intact(out)
     assert temporaries(tmp_path) == []
+
+
+def test_a_warning_is_one_line_naming_no_source_file(monkeypatch, capsys):
+    """A warning raised during a command (a corrupt default atlas rebuilt, a force with no
+    effect) reads ``linkage: warning: ...``: Python's format had printed the library's file,
+    line and source line."""
+    import warnings
+
+    from linkage import catalog, cli
+
+    def table(**_):
+        warnings.warn("rebuilding the default fourbar atlas: /cache/atlas-x: bad", stacklevel=2)
+        return []
+
+    monkeypatch.setattr(catalog, "table", table)
+    monkeypatch.setattr(catalog, "format_table", lambda rows, tol: ["(no rows)"])
+    assert cli.main(["catalog"]) == 0
+    err = capsys.readouterr().err
+    assert err == "linkage: warning: rebuilding the default fourbar atlas: /cache/atlas-x: bad\n"
+    assert warnings.showwarning.__module__ == "warnings"  # restored after the command

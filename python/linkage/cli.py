@@ -24,6 +24,7 @@ import textwrap
 import threading
 import time
 import traceback
+import warnings
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
@@ -415,7 +416,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     stdout = sys.stdout
     written: list[Path] = []
     try:
-        with _signals_noted(signals), recording() as written, _stdout_named():
+        with _signals_noted(signals), recording() as written, _stdout_named(), _warnings_said():
             code = int(args.func(args, state))
             # Inside: a reader gone away or a full disk shows on this flush, not at exit.
             sys.stdout.flush()
@@ -575,6 +576,22 @@ def _written(state: dict[str, Path]) -> str:
     if "checkpoint" in state:
         return "no report was written"
     return "nothing was written"
+
+
+@contextlib.contextmanager
+def _warnings_said() -> Iterator[None]:
+    """Print each warning a command raises as one ``linkage: warning: ...`` line.
+
+    Python's own format (the library's file and line, then its source line) is for programmers;
+    the message is what the user needs. The previous handler is restored afterwards.
+    """
+
+    def show(message: Warning | str, *_: Any, **__: Any) -> None:
+        _say(f"warning: {message}")
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        yield
 
 
 def _say(line: str) -> None:
