@@ -120,6 +120,30 @@ class FourBar:
         fb._sweeper = None
         return fb
 
+    # -- copies, pickling, equality ---------------------------------------------------------
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as the constructor's arguments: unpickling checks them again."""
+        p = self._p()
+        return (
+            type(self),
+            (None, p[4], p[5], p[6], (p[7], p[8]), p[9], (p[0], p[1]), (p[2], p[3])),
+        )
+
+    def __copy__(self) -> FourBar:
+        return type(self)._from_core(self._core)  # the core cannot be changed: shared
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> FourBar:
+        return self.__copy__()
+
+    def __eq__(self, other: object) -> bool:
+        """Whether ``other`` is a four-bar of the same pivots, lengths, point and assembly."""
+        if not isinstance(other, FourBar):
+            return NotImplemented
+        return self._p() == other._p()
+
+    def __hash__(self) -> int:
+        return hash(self._p())
+
     # -- parameters -----------------------------------------------------------------------
     def _p(self) -> tuple[Any, ...]:
         return tuple(self._core.parameters())
@@ -381,7 +405,7 @@ class FourBar:
         >>> m.joint_names, m.trace, m.links
         (('O', 'C', 'A', 'B', 'P'), 'P', ('ground', 'crank', 'coupler', 'rocker'))
         """
-        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS)
+        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS, base=self)
 
     def sweep(
         self,
@@ -590,4 +614,12 @@ class FourBar:
             "gap": np.where(valid, 0.0, np.nan),
             "velocity": velocity,
         }
-        return Sweep(theta, raw, JOINTS, 4, ("point", "joints", "velocity"), links=LINKS)
+        return Sweep(
+            theta,
+            raw,
+            JOINTS,
+            4,
+            ("point", "joints", "velocity"),
+            links=LINKS,
+            source=(self, "circuit", {"n": count}),
+        )

@@ -87,6 +87,29 @@ class SliderCrank:
             reach,
         )
 
+    # -- copies, pickling, equality ---------------------------------------------------------
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as the constructor's arguments: unpickling checks them again."""
+        p = self._p()
+        return (type(self), (p[4], p[5], p[3], (p[6], p[7]), (p[0], p[1]), p[2], p[8]))
+
+    def __copy__(self) -> SliderCrank:
+        out = type(self).__new__(type(self))
+        out._core = self._core  # the core cannot be changed: shared
+        return out
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> SliderCrank:
+        return self.__copy__()
+
+    def __eq__(self, other: object) -> bool:
+        """Whether ``other`` is a slider-crank of the same pivot, line, lengths, point, reach."""
+        if not isinstance(other, SliderCrank):
+            return NotImplemented
+        return self._p()[:9] == other._p()[:9]
+
+    def __hash__(self) -> int:
+        return hash(self._p()[:9])
+
     # -- parameters -----------------------------------------------------------------------
     def _p(self) -> tuple[Any, ...]:
         return tuple(self._core.parameters())
@@ -253,7 +276,7 @@ class SliderCrank:
         >>> m.joint_names, m.links
         (('O', 'G', 'A', 'B', 'P'), ('ground', 'crank', 'coupler', 'slider'))
         """
-        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS)
+        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS, base=self)
 
     def sweep(
         self,
@@ -314,4 +337,12 @@ class SliderCrank:
             "margin": margin,
             "gap": np.where(valid, 0.0, np.nan),
         }
-        return Sweep(theta, raw, JOINTS, 4, ("point", "joints"), links=LINKS)
+        return Sweep(
+            theta,
+            raw,
+            JOINTS,
+            4,
+            ("point", "joints"),
+            links=LINKS,
+            source=(self, "circuit", {"n": count}),
+        )
