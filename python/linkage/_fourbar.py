@@ -14,8 +14,8 @@ from linkage import _core
 from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
 from linkage._choices import Assembly, Output, SweepMode
 from linkage._core import LinkageError
-from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
-from linkage._sweep import Sweep
+from linkage._mechanism import BASES, DEFAULT_OUTPUTS, Mechanism
+from linkage._sweep import SWEPT_BY, Sweep
 
 if TYPE_CHECKING:  # drive.py imports this module
     from linkage.drive import Drive
@@ -623,3 +623,8 @@ class FourBar:
             links=LINKS,
             source=(self, "circuit", {"n": count}),
         )
+
+
+# A pickled mechanism may be built from a FourBar's; a pickled sweep may be its circuit.
+BASES.append(FourBar)
+SWEPT_BY[FourBar] = "circuit"

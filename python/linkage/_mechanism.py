@@ -27,7 +27,7 @@ from linkage._arrays import (
 from linkage._choices import Output, Reach, Side
 from linkage._core import LinkageError
 from linkage._mobility import Mobility
-from linkage._sweep import OUTPUTS, Sweep
+from linkage._sweep import OUTPUTS, SWEPT_BY, Sweep
 
 if TYPE_CHECKING:  # drive.py imports this module
     from linkage.drive import Drive
@@ -878,6 +878,11 @@ _ARITY = {"fixed": 3, "crank": 5, "dyad": 7, "slider": 9, "point": 4}
 """Length of each kind of building call ``(kind, name, *arguments)`` in a pickled program."""
 
 
+BASES: list[type] = []
+"""The linkage types whose ``mechanism()`` a pickled mechanism may start from (``FourBar``,
+``SliderCrank``: their modules add them, as they import this one)."""
+
+
 def _rebuild(base: Any, calls: Any, trace: Any) -> Mechanism:
     """Build a mechanism again from a pickled program, through the building methods.
 
@@ -893,12 +898,9 @@ def _rebuild(base: Any, calls: Any, trace: Any) -> Mechanism:
     TypeError
         As the building methods raise.
     """
-    from linkage._fourbar import FourBar  # noqa: PLC0415 (they import this module)
-    from linkage._slider_crank import SliderCrank  # noqa: PLC0415
-
     if base is None:
         m = Mechanism()
-    elif isinstance(base, (FourBar, SliderCrank)):
+    elif any(isinstance(base, t) for t in BASES):
         m = base.mechanism()
     else:
         raise TypeError(f"not a pickled Mechanism: it is based on a {type(base).__name__}")
@@ -975,5 +977,7 @@ JOINT_KINDS: dict[str, JointKind] = {
     ),
 }
 """Every joint kind of a scene's joint table, by name (see :class:`JointKind`)."""
+
+SWEPT_BY[Mechanism] = "sweep"
 
 __all__ = ["JOINT_KINDS", "JointKind", "Mechanism", "check_outputs", "check_pairs"]

@@ -13,8 +13,8 @@ from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point,
 from linkage._choices import Output, Reach
 from linkage._core import LinkageError
 from linkage._fourbar import ArrayOrFloat, named_joint
-from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
-from linkage._sweep import Sweep
+from linkage._mechanism import BASES, DEFAULT_OUTPUTS, Mechanism
+from linkage._sweep import SWEPT_BY, Sweep
 
 JOINTS = ("O", "G", "A", "B", "P")
 LINKS = ("ground", "crank", "coupler", "slider")
@@ -346,3 +346,8 @@ class SliderCrank:
             links=LINKS,
             source=(self, "circuit", {"n": count}),
         )
+
+
+# A pickled mechanism may be built from a SliderCrank's; a pickled sweep may be its circuit.
+BASES.append(SliderCrank)
+SWEPT_BY[SliderCrank] = "circuit"

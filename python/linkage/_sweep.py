@@ -498,6 +498,14 @@ def _same(a: Any, b: Any) -> bool:
     return bool(a == b)
 
 
+SWEPT_BY: dict[type, str] = {}
+"""The linkage types a pickled sweep may be of, each with its method that sweeps it again.
+
+Registered by their modules (which import this one): ``Mechanism.sweep``, ``FourBar.circuit``,
+``SliderCrank.circuit``.
+"""
+
+
 def _rebuild(linkage: Any, method: Any, arguments: Any, time: Any) -> Sweep:
     """Sweep again what a pickled sweep was of, through the public methods (which check it).
 
@@ -509,16 +517,11 @@ def _rebuild(linkage: Any, method: Any, arguments: Any, time: Any) -> Sweep:
     TypeError
         For a linkage that is none, or as the sweep raises.
     """
-    from linkage._fourbar import FourBar  # noqa: PLC0415 (they import this module)
-    from linkage._mechanism import Mechanism  # noqa: PLC0415
-    from linkage._slider_crank import SliderCrank  # noqa: PLC0415
-
     keys = {"sweep": {"theta", "omega", "alpha", "outputs", "pairs"}, "circuit": {"n"}}
-    kinds = {"sweep": (Mechanism,), "circuit": (FourBar, SliderCrank)}
     if not (
         isinstance(method, str)
         and method in keys
-        and isinstance(linkage, kinds[method])
+        and any(isinstance(linkage, t) and m == method for t, m in SWEPT_BY.items())
         and isinstance(arguments, Mapping)
         and set(arguments) == keys[method]
     ):
