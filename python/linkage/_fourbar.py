@@ -71,6 +71,15 @@ class FourBar:
     True
     >>> fb.sweep([0.5 * 3.141592653589793]).point.round(9)
     array([[40., 40.]])
+
+    Four-bars of equal parameters are equal (and hash alike); one pickles as its parameters,
+    checked again by this constructor when unpickled:
+
+    >>> import pickle
+    >>> fb == linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+    True
+    >>> pickle.loads(pickle.dumps(fb)) == fb
+    True
     >>> linkage.FourBar(ground=20, crank=10, coupler=-25, rocker=25)
     Traceback (most recent call last):
     ...

@@ -194,6 +194,16 @@ class Mechanism:
     >>> m.dyad("Q", "A", "C", 1, 1)  # cannot reach: only fails when solved
     >>> bool(m.sweep(0.0).valid)
     False
+
+    A sweep is of the mechanism as it is when called: a joint added later (by this thread or
+    another) is not in it, not even in what it computes on first use. Copies (``copy.copy``,
+    ``copy.deepcopy``) are independent programs; a mechanism pickles as its program (built
+    again through the methods above, which check it) and compares equal to one of the same
+    program, names, trace and links (mutable: not hashable):
+
+    >>> import copy, pickle
+    >>> pickle.loads(pickle.dumps(m)) == m, copy.deepcopy(m) == m, m == linkage.Mechanism()
+    (True, True, False)
     """
 
     def __init__(self) -> None:

@@ -32,6 +32,8 @@ class SliderCrank:
     reversed, ``angle + π`` and ``−offset``). The crank turns fully iff
     ``|offset| + crank ≤ coupler``; otherwise it rocks between the positions where the rod is
     perpendicular to the line. The mathematics is the core's (``linkage_core::SliderCrank``).
+    Slider-cranks of equal parameters are equal (and hash alike); one pickles as its parameters,
+    checked again by this constructor when unpickled.
 
     Parameters
     ----------

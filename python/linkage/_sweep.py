@@ -32,6 +32,12 @@ class Sweep:
     Every array has one row per angle, in the order given; a sample that cannot be assembled is
     NaN with ``valid`` False, and ``gap`` says by how much its lengths miss closure.
 
+    A sweep may be read by several threads at once and copied (``copy.copy`` shares the arrays,
+    ``copy.deepcopy`` copies them; each completes on its own what was left for first use). It
+    pickles as what was swept: unpickling sweeps the linkage (rebuilt through its checking
+    constructor) again, giving the same arrays bit for bit. Two sweeps are equal when they are
+    of equal linkages with the same inputs (angles or times, rates, outputs, pairs).
+
     Attributes
     ----------
     theta : (N,) float64
