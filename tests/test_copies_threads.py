@@ -119,6 +119,23 @@ def test_a_copy_of_a_mechanism_is_independent():
     np.testing.assert_array_equal(c.sweep(TH).joints[:, :5], m.sweep(TH).joints)
 
 
+@pytest.mark.parametrize(
+    "which", [0, 5, 7, 10], ids=["fourbar", "slider-crank", "sliders", "jansen"]
+)
+def test_a_mechanism_extended_after_a_sweep_keeps_its_joints_bit_for_bit(which):
+    # The swept core is shared with the sweep, so the new joint goes to a copy of the program:
+    # the same calls, hence the same bits (a slider's direction is normalised by the core).
+    obj = linkages()[which]
+    m = obj if isinstance(obj, Mechanism) else obj.mechanism()
+    before = m.sweep(TH).joints
+    n = len(m)
+    m.point("extra", on=(m.joint_names[0], m.joint_names[2]), at=(1.0, 1.0))
+    after = m.sweep(TH).joints
+    assert after.shape == (TH.size, n + 1, 2)
+    np.testing.assert_array_equal(after[:, :n], before)
+    assert pickle.loads(pickle.dumps(m)) == m
+
+
 def test_unpickling_checks_the_values_again():
     fb = FourBar(ground=20, crank=10, coupler=25, rocker=25)
     func, args = fb.__reduce__()

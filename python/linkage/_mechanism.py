@@ -213,6 +213,7 @@ class Mechanism:
         self._link_names: tuple[str, ...] | None = None
         self._base: Any = None
         self._added: list[tuple[Any, ...]] = []
+        self._ops: list[tuple[str, tuple[Any, ...]]] = []
         self._shared = False
         self._lock = threading.RLock()
 
@@ -237,7 +238,9 @@ class Mechanism:
         m._trace = m._names[trace]
         m._link_names = tuple(links) if links is not None else None
         m._base = base
-        m._added = [] if base is not None else _calls(core.constructions(), m._names)
+        program = [] if base is not None else core.constructions()
+        m._added = _calls(program, m._names)
+        m._ops = _ops(program)
         m._shared = False
         m._lock = threading.RLock()
         return m
@@ -250,7 +253,7 @@ class Mechanism:
         with self._lock:
             m = type(self).__new__(type(self))
             m.__dict__.update(self.__dict__)
-            m._names, m._added = list(self._names), list(self._added)
+            m._names, m._added, m._ops = list(self._names), list(self._added), list(self._ops)
             m._lock = threading.RLock()
             self._shared = m._shared = True
             return m
@@ -379,22 +382,33 @@ class Mechanism:
                 f"{role}: unknown joint {name!r} (defined so far: {known})"
             ) from None
 
-    def _add(self, name: Any, build: Callable[[], Any], call: tuple[Any, ...]) -> None:
-        """Add the joint ``name`` by ``build()`` (on ``self._core``); ``call`` rebuilds it."""
+    def _add(self, name: Any, op: tuple[str, tuple[Any, ...]], call: tuple[Any, ...]) -> None:
+        """Add the joint ``name`` by the core's method and arguments ``op``.
+
+        ``call`` is the building method's name and arguments, which pickle it.
+        """
         if not isinstance(name, str) or not name:
             raise TypeError(f"joint name must be a non-empty str, got {name!r}")
         with self._lock:
             if name in self._names:
                 raise LinkageError(f"joint {name!r} is already defined")
             if self._shared:
-                self._core = _rebuild(self._base, tuple(self._added), None)._core
+                self._core = self._fresh_core()
                 self._shared = False
             try:
-                build()
+                getattr(self._core, op[0])(*op[1])
             except LinkageError as exc:
                 raise type(exc)(f"joint {name!r}: {exc}") from None
             self._names.append(name)
             self._added.append((call[0], name, *call[1:]))
+            self._ops.append(op)
+
+    def _fresh_core(self) -> Any:
+        """Return a new core program equal to this one's (the same calls, the same bits)."""
+        core = _core.Mechanism() if self._base is None else self._base.mechanism()._core
+        for method, args in self._ops:
+            getattr(core, method)(*args)
+        return core
 
     def fixed(self, name: str, at: Sequence[float]) -> None:
         """Add a joint fixed to the frame at ``at = (x, y)``.
@@ -417,7 +431,7 @@ class Mechanism:
         linkage.LinkageError: joint 'O' is already defined
         """
         x, y = as_point(at, "at")
-        self._add(name, lambda: self._core.fixed(x, y), ("fixed", (x, y)))
+        self._add(name, ("fixed", (x, y)), ("fixed", (x, y)))
 
     def crank(self, name: str, centre: str, radius: float, phase: float = 0.0) -> None:
         """Add the driven crank: ``centre + radius·(cos(θ+phase), sin(θ+phase))``.
@@ -448,7 +462,7 @@ class Mechanism:
         c = self._index(centre, "centre")
         r = as_length(radius, "radius")
         ph = as_finite(phase, "phase")
-        self._add(name, lambda: self._core.crank(c, r, ph), ("crank", centre, r, ph))
+        self._add(name, ("crank", (c, r, ph)), ("crank", centre, r, ph))
 
     def dyad(self, name: str, p1: str, p2: str, r1: float, r2: float, side: Side = "left") -> None:
         """Add an RRR dyad: the joint at ``r1`` from ``p1`` and ``r2`` from ``p2``.
@@ -482,7 +496,7 @@ class Mechanism:
         i, j = self._index(p1, "p1"), self._index(p2, "p2")
         a, b = as_length(r1, "r1"), as_length(r2, "r2")
         side = as_choice(side, "side", choices("side"))
-        self._add(name, lambda: self._core.dyad(i, j, a, b, side), ("dyad", p1, p2, a, b, side))
+        self._add(name, ("dyad", (i, j, a, b, side)), ("dyad", p1, p2, a, b, side))
 
     def slider(
         self,
@@ -546,7 +560,7 @@ class Mechanism:
             dx, dy = as_point(direction, "direction")
             self._add(
                 name,
-                lambda: self._core.slider(p, length, o, dx, dy, reach),
+                ("slider", (p, length, o, dx, dy, reach)),
                 ("slider", pivot, length, origin, (dx, dy), None, 0.0, reach),
             )
         else:
@@ -557,7 +571,7 @@ class Mechanism:
             ang = as_finite(angle, "angle")
             self._add(
                 name,
-                lambda: self._core.slider_on_link(p, length, o, f, t, ang, reach),
+                ("slider_on_link", (p, length, o, f, t, ang, reach)),
                 ("slider", pivot, length, origin, None, (link[0], link[1]), ang, reach),
             )
 
@@ -590,7 +604,7 @@ class Mechanism:
         along, left = as_point(at, "at")
         self._add(
             name,
-            lambda: self._core.point(f, t, along, left),
+            ("point", (f, t, along, left)),
             ("point", (on[0], on[1]), (along, left)),
         )
 
@@ -882,6 +896,30 @@ def _calls(constructions: list[dict[str, Any]], names: list[str]) -> list[tuple[
         else:  # pragma: no cover - a construction this module does not know
             raise LinkageError(f"cannot copy a construction of kind {kind!r}")
     return calls
+
+
+def _ops(constructions: list[dict[str, Any]]) -> list[tuple[str, tuple[Any, ...]]]:
+    """Return a core program as the core's calls that make it again (for ``_from_core``)."""
+    ops: list[tuple[str, tuple[Any, ...]]] = []
+    for c in constructions:
+        kind = c["kind"]
+        if kind == "fixed":
+            ops.append(("fixed", tuple(c["at"])))
+        elif kind == "crank":
+            ops.append(("crank", (c["centre"], c["radius"], c["phase"])))
+        elif kind == "dyad":
+            ops.append(("dyad", (c["p1"], c["p2"], c["r1"], c["r2"], c["side"])))
+        elif kind == "slider":
+            d, head = c["direction"], (c["pivot"], c["r"], c["origin"])
+            if d[0] == "fixed":
+                ops.append(("slider", (*head, d[1], d[2], c["reach"])))
+            else:
+                ops.append(("slider_on_link", (*head, d[1], d[2], d[3], c["reach"])))
+        elif kind == "point":
+            ops.append(("point", (c["from"], c["to"], c["along"], c["left"])))
+        else:  # pragma: no cover - a construction this module does not know
+            raise LinkageError(f"cannot copy a construction of kind {kind!r}")
+    return ops
 
 
 _ARITY = {"fixed": 3, "crank": 5, "dyad": 7, "slider": 9, "point": 4}
