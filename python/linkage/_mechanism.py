@@ -273,13 +273,12 @@ class Mechanism:
             return NotImplemented
         if other is self:
             return True
-        a, b = self.__copy__(), other.__copy__()  # each one consistent state
-        return (
-            a._names == b._names
-            and a.trace == b.trace
-            and a.links == b.links
-            and a._core.constructions() == b._core.constructions()
-        )
+        return self._value() == other._value()
+
+    def _value(self) -> tuple[Any, ...]:
+        """Return what equality compares, as one consistent state."""
+        with self._lock:
+            return (self.joint_names, self.trace, self.links, self._core.constructions())
 
     __hash__ = None  # type: ignore[assignment]  # mutable: joints can be added
 
