@@ -23,7 +23,8 @@ def as_angles(value: Any, name: str = "theta", finite: bool = True) -> tuple[Flo
     """Return ``value`` as a contiguous 1-D float64 array, and whether it was a scalar.
 
     Zero-copy when ``value`` already is a contiguous float64 array. Integers are accepted and
-    converted; booleans, complex numbers, strings and objects raise ``TypeError``; arrays of more
+    converted; booleans, complex numbers, strings, objects and masked arrays with a masked value
+    raise ``TypeError``; arrays of more
     than one dimension, empty-but-not-1-D input and (unless ``finite`` is False: the caller's
     extension checks them) non-finite values raise ``LinkageError``.
     """
@@ -33,13 +34,14 @@ def as_angles(value: Any, name: str = "theta", finite: bool = True) -> tuple[Flo
         and value.dtype == np.float64
         and value.ndim == 1
         and value.flags.c_contiguous
+        and value.flags.aligned
     ):
         return value, False  # the common case, without the generic conversions
     arr = _as_real_array(value, name)
     scalar = arr.ndim == 0
     if arr.ndim > 1:
         raise LinkageError(f"{name} must be a scalar or 1-D, got shape {arr.shape}")
-    arr = np.ascontiguousarray(arr.reshape(-1), dtype=np.float64)
+    arr = _contiguous(arr)
     if finite:
         _check_finite(arr, name)
     return arr, scalar
@@ -57,10 +59,19 @@ def as_rate(value: Any, name: str, n: int, finite: bool = True) -> Float1D | Non
         raise LinkageError(
             f"{name} must be a scalar or have one value per angle ({n}), got shape {arr.shape}"
         )
-    arr = np.ascontiguousarray(arr.reshape(-1), dtype=np.float64)
+    arr = _contiguous(arr)
     if finite:
         _check_finite(arr, name)
     return arr
+
+
+def _contiguous(arr: NDArray[Any]) -> Float1D:
+    """Return ``arr`` flat as an aligned C-contiguous float64 array (what the extension takes).
+
+    Aligned too: an array unpickled from a buffer (Dask, pickle protocol 5) can be contiguous
+    and not aligned, which ``np.ascontiguousarray`` would pass through.
+    """
+    return np.require(arr.reshape(-1), dtype=np.float64, requirements=["C", "A"])
 
 
 def as_length(value: Any, name: str) -> float:
@@ -287,7 +298,18 @@ class UnknownNameError(LinkageError, KeyError):
 
 
 def as_real_array(value: Any, name: str) -> NDArray[Any]:
-    """``value`` as an array of real numbers (int, uint or float dtype) of any shape."""
+    """``value`` as an array of real numbers (int, uint or float dtype) of any shape.
+
+    A masked array with a masked value raises ``TypeError`` (one without is taken as its data).
+
+    >>> import numpy as np
+    >>> as_real_array(np.ma.masked_array([1.0, 2.0, 3.0], mask=[0, 1, 0]), "theta")
+    Traceback (most recent call last):
+    ...
+    TypeError: theta is a masked array with 1 masked value(s) (first at flat index 1): masked \
+arrays are not taken: drop the masked values (.compressed() for 1-D) or choose theirs \
+(.filled(value))
+    """
     return _as_real_array(value, name)
 
 
@@ -296,6 +318,19 @@ def _as_real_array(value: Any, name: str) -> NDArray[Any]:
         raise TypeError(f"{name} must be a real number or array of them, got None")
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must hold real numbers, got {type(value).__name__}")
+    if isinstance(value, np.ma.MaskedArray):
+        # np.asarray drops the mask and keeps the hidden values: they would be computed as if
+        # valid. A masked value has no position to give, so it is refused, not guessed.
+        mask = np.ma.getmaskarray(value)
+        if mask.any():
+            k = int(np.flatnonzero(mask)[0])
+            where = "" if value.ndim == 0 else f" (first at flat index {k})"
+            raise TypeError(
+                f"{name} is a masked array with {int(mask.sum())} masked value(s){where}: "
+                "masked arrays are not taken: drop the masked values (.compressed() for 1-D) "
+                "or choose theirs (.filled(value))"
+            )
+        value = np.ma.getdata(value)
     try:
         arr = np.asarray(value)
     except (ValueError, TypeError, OverflowError) as exc:  # ragged nested sequences and the like

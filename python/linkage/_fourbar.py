@@ -14,8 +14,8 @@ from linkage import _core
 from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
 from linkage._choices import Assembly, Output, SweepMode
 from linkage._core import LinkageError
-from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
-from linkage._sweep import Sweep
+from linkage._mechanism import BASES, DEFAULT_OUTPUTS, Mechanism
+from linkage._sweep import SWEPT_BY, Sweep
 
 if TYPE_CHECKING:  # drive.py imports this module
     from linkage.drive import Drive
@@ -71,6 +71,15 @@ class FourBar:
     True
     >>> fb.sweep([0.5 * 3.141592653589793]).point.round(9)
     array([[40., 40.]])
+
+    Four-bars of equal parameters are equal (and hash alike); one pickles as its parameters,
+    checked again by this constructor when unpickled:
+
+    >>> import pickle
+    >>> fb == linkage.FourBar(ground=20, crank=10, coupler=25, rocker=25, point=(50, 0))
+    True
+    >>> pickle.loads(pickle.dumps(fb)) == fb
+    True
     >>> linkage.FourBar(ground=20, crank=10, coupler=-25, rocker=25)
     Traceback (most recent call last):
     ...
@@ -119,6 +128,30 @@ class FourBar:
         fb._core = core
         fb._sweeper = None
         return fb
+
+    # -- copies, pickling, equality ---------------------------------------------------------
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as the constructor's arguments: unpickling checks them again."""
+        p = self._p()
+        return (
+            type(self),
+            (None, p[4], p[5], p[6], (p[7], p[8]), p[9], (p[0], p[1]), (p[2], p[3])),
+        )
+
+    def __copy__(self) -> FourBar:
+        return type(self)._from_core(self._core)  # the core cannot be changed: shared
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> FourBar:
+        return self.__copy__()
+
+    def __eq__(self, other: object) -> bool:
+        """Whether ``other`` is a four-bar of the same pivots, lengths, point and assembly."""
+        if not isinstance(other, FourBar):
+            return NotImplemented
+        return self._p() == other._p()
+
+    def __hash__(self) -> int:
+        return hash(self._p())
 
     # -- parameters -----------------------------------------------------------------------
     def _p(self) -> tuple[Any, ...]:
@@ -381,7 +414,7 @@ class FourBar:
         >>> m.joint_names, m.trace, m.links
         (('O', 'C', 'A', 'B', 'P'), 'P', ('ground', 'crank', 'coupler', 'rocker'))
         """
-        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS)
+        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS, base=self)
 
     def sweep(
         self,
@@ -590,4 +623,17 @@ class FourBar:
             "gap": np.where(valid, 0.0, np.nan),
             "velocity": velocity,
         }
-        return Sweep(theta, raw, JOINTS, 4, ("point", "joints", "velocity"), links=LINKS)
+        return Sweep(
+            theta,
+            raw,
+            JOINTS,
+            4,
+            ("point", "joints", "velocity"),
+            links=LINKS,
+            source=(self, "circuit", {"n": count}),
+        )
+
+
+# A pickled mechanism may be built from a FourBar's; a pickled sweep may be its circuit.
+BASES.append(FourBar)
+SWEPT_BY[FourBar] = "circuit"

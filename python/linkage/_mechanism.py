@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import math
+import threading
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
@@ -26,7 +27,7 @@ from linkage._arrays import (
 from linkage._choices import Output, Reach, Side
 from linkage._core import LinkageError
 from linkage._mobility import Mobility
-from linkage._sweep import OUTPUTS, Sweep
+from linkage._sweep import OUTPUTS, SWEPT_BY, Sweep
 
 if TYPE_CHECKING:  # drive.py imports this module
     from linkage.drive import Drive
@@ -193,6 +194,16 @@ class Mechanism:
     >>> m.dyad("Q", "A", "C", 1, 1)  # cannot reach: only fails when solved
     >>> bool(m.sweep(0.0).valid)
     False
+
+    A sweep is of the mechanism as it is when called: a joint added later (by this thread or
+    another) is not in it, not even in what it computes on first use. Copies (``copy.copy``,
+    ``copy.deepcopy``) are independent programs; a mechanism pickles as its program (built
+    again through the methods above, which check it) and compares equal to one of the same
+    program, names, trace and links (mutable: not hashable):
+
+    >>> import copy, pickle
+    >>> pickle.loads(pickle.dumps(m)) == m, copy.deepcopy(m) == m, m == linkage.Mechanism()
+    (True, True, False)
     """
 
     def __init__(self) -> None:
@@ -200,17 +211,76 @@ class Mechanism:
         self._names: list[str] = []
         self._trace: str | None = None
         self._link_names: tuple[str, ...] | None = None
+        self._base: Any = None
+        self._added: list[tuple[Any, ...]] = []
+        self._ops: list[tuple[str, tuple[Any, ...]]] = []
+        self._shared = False
+        self._lock = threading.RLock()
 
     @classmethod
     def _from_core(
-        cls, core: Any, names: Sequence[str], trace: int, links: Sequence[str] | None = None
+        cls,
+        core: Any,
+        names: Sequence[str],
+        trace: int,
+        links: Sequence[str] | None = None,
+        base: Any = None,
     ) -> Mechanism:
+        """Wrap a core program made elsewhere.
+
+        ``base`` is the ``FourBar`` or ``SliderCrank`` whose ``mechanism()`` makes ``core``
+        again; without one, the program is read back from the core (exactly: a catalogue
+        linkage has no slider, whose direction the core normalises).
+        """
         m = cls.__new__(cls)  # no empty core program to build and throw away
         m._core = core
         m._names = list(names)
         m._trace = m._names[trace]
         m._link_names = tuple(links) if links is not None else None
+        m._base = base
+        program = [] if base is not None else core.constructions()
+        m._added = _calls(program, m._names)
+        m._ops = _ops(program)
+        m._shared = False
+        m._lock = threading.RLock()
         return m
+
+    # -- copies, pickling, equality ---------------------------------------------------------
+    # The core program is shared by copies and by sweeps (whose lazy outputs sweep it again),
+    # and copied on write: the next joint added to a mechanism whose core is shared is added
+    # to a core rebuilt from the program, so a sweep or a copy never sees a joint added after.
+    def __copy__(self) -> Mechanism:
+        with self._lock:
+            m = type(self).__new__(type(self))
+            m.__dict__.update(self.__dict__)
+            m._names, m._added, m._ops = list(self._names), list(self._added), list(self._ops)
+            m._lock = threading.RLock()
+            self._shared = m._shared = True
+            return m
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> Mechanism:
+        """Return an independent mechanism (its program is copied when either is extended)."""
+        return self.__copy__()
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as the program: unpickling builds it again through the building methods."""
+        with self._lock:
+            return (_rebuild, (self._base, tuple(self._added), self._trace))
+
+    def __eq__(self, other: object) -> bool:
+        """Whether ``other`` is a mechanism of the same program, names, trace and links."""
+        if not isinstance(other, Mechanism):
+            return NotImplemented
+        if other is self:
+            return True
+        return self._value() == other._value()
+
+    def _value(self) -> tuple[Any, ...]:
+        """Return what equality compares, as one consistent state."""
+        with self._lock:
+            return (self.joint_names, self.trace, self.links, self._core.constructions())
+
+    __hash__ = None  # type: ignore[assignment]  # mutable: joints can be added
 
     # -- building -------------------------------------------------------------------------
     @property
@@ -234,14 +304,16 @@ class Mechanism:
         """
         if self._link_names is not None:
             return self._link_names
+        with self._lock:
+            bodies, joint = self._core.bodies(), list(self._names)
         names = []
-        for k, members in enumerate(self._core.bodies()):
+        for k, members in enumerate(bodies):
             if k == 0:
                 names.append("ground")
             elif len(members) == 1:
-                names.append(f"{self._names[members[0]]}-block")
+                names.append(f"{joint[members[0]]}-block")
             else:
-                names.append("-".join(self._names[j] for j in members))
+                names.append("-".join(joint[j] for j in members))
         return tuple(names)
 
     def link_members(self) -> tuple[tuple[str, ...], ...]:
@@ -261,7 +333,9 @@ class Mechanism:
         >>> m.link_members()
         (('O', 'C'), ('O', 'A'), ('A', 'B', 'P'), ('C', 'B'))
         """
-        return tuple(tuple(self._names[j] for j in ms) for ms in self._core.bodies())
+        with self._lock:
+            bodies, joint = self._core.bodies(), list(self._names)
+        return tuple(tuple(joint[j] for j in ms) for ms in bodies)
 
     def mobility(self) -> Mobility:
         """Kutzbach–Gruebler count of the program's links and pairs (see :func:`mobility`).
@@ -307,16 +381,33 @@ class Mechanism:
                 f"{role}: unknown joint {name!r} (defined so far: {known})"
             ) from None
 
-    def _add(self, name: Any, build: Any) -> None:
+    def _add(self, name: Any, op: tuple[str, tuple[Any, ...]], call: tuple[Any, ...]) -> None:
+        """Add the joint ``name`` by the core's method and arguments ``op``.
+
+        ``call`` is the building method's name and arguments, which pickle it.
+        """
         if not isinstance(name, str) or not name:
             raise TypeError(f"joint name must be a non-empty str, got {name!r}")
-        if name in self._names:
-            raise LinkageError(f"joint {name!r} is already defined")
-        try:
-            build()
-        except LinkageError as exc:
-            raise type(exc)(f"joint {name!r}: {exc}") from None
-        self._names.append(name)
+        with self._lock:
+            if name in self._names:
+                raise LinkageError(f"joint {name!r} is already defined")
+            if self._shared:
+                self._core = self._fresh_core()
+                self._shared = False
+            try:
+                getattr(self._core, op[0])(*op[1])
+            except LinkageError as exc:
+                raise type(exc)(f"joint {name!r}: {exc}") from None
+            self._names.append(name)
+            self._added.append((call[0], name, *call[1:]))
+            self._ops.append(op)
+
+    def _fresh_core(self) -> Any:
+        """Return a new core program equal to this one's (the same calls, the same bits)."""
+        core = _core.Mechanism() if self._base is None else self._base.mechanism()._core
+        for method, args in self._ops:
+            getattr(core, method)(*args)
+        return core
 
     def fixed(self, name: str, at: Sequence[float]) -> None:
         """Add a joint fixed to the frame at ``at = (x, y)``.
@@ -339,7 +430,7 @@ class Mechanism:
         linkage.LinkageError: joint 'O' is already defined
         """
         x, y = as_point(at, "at")
-        self._add(name, lambda: self._core.fixed(x, y))
+        self._add(name, ("fixed", (x, y)), ("fixed", (x, y)))
 
     def crank(self, name: str, centre: str, radius: float, phase: float = 0.0) -> None:
         """Add the driven crank: ``centre + radius·(cos(θ+phase), sin(θ+phase))``.
@@ -370,7 +461,7 @@ class Mechanism:
         c = self._index(centre, "centre")
         r = as_length(radius, "radius")
         ph = as_finite(phase, "phase")
-        self._add(name, lambda: self._core.crank(c, r, ph))
+        self._add(name, ("crank", (c, r, ph)), ("crank", centre, r, ph))
 
     def dyad(self, name: str, p1: str, p2: str, r1: float, r2: float, side: Side = "left") -> None:
         """Add an RRR dyad: the joint at ``r1`` from ``p1`` and ``r2`` from ``p2``.
@@ -404,7 +495,7 @@ class Mechanism:
         i, j = self._index(p1, "p1"), self._index(p2, "p2")
         a, b = as_length(r1, "r1"), as_length(r2, "r2")
         side = as_choice(side, "side", choices("side"))
-        self._add(name, lambda: self._core.dyad(i, j, a, b, side))
+        self._add(name, ("dyad", (i, j, a, b, side)), ("dyad", p1, p2, a, b, side))
 
     def slider(
         self,
@@ -466,14 +557,22 @@ class Mechanism:
             raise LinkageError("slider needs exactly one of direction=(dx, dy) or link=(from, to)")
         if direction is not None:
             dx, dy = as_point(direction, "direction")
-            self._add(name, lambda: self._core.slider(p, length, o, dx, dy, reach))
+            self._add(
+                name,
+                ("slider", (p, length, o, dx, dy, reach)),
+                ("slider", pivot, length, origin, (dx, dy), None, 0.0, reach),
+            )
         else:
             assert link is not None
             if len(link) != 2:
                 raise LinkageError("link must be a pair of joint names (from, to)")
             f, t = self._index(link[0], "link[0]"), self._index(link[1], "link[1]")
             ang = as_finite(angle, "angle")
-            self._add(name, lambda: self._core.slider_on_link(p, length, o, f, t, ang, reach))
+            self._add(
+                name,
+                ("slider_on_link", (p, length, o, f, t, ang, reach)),
+                ("slider", pivot, length, origin, None, (link[0], link[1]), ang, reach),
+            )
 
     def point(self, name: str, on: tuple[str, str], at: Sequence[float]) -> None:
         """Add a point carried by the link ``on = (from, to)`` at ``at = (along, left)``.
@@ -502,7 +601,11 @@ class Mechanism:
             raise LinkageError("on must be a pair of joint names (from, to)")
         f, t = self._index(on[0], "on[0]"), self._index(on[1], "on[1]")
         along, left = as_point(at, "at")
-        self._add(name, lambda: self._core.point(f, t, along, left))
+        self._add(
+            name,
+            ("point", (f, t, along, left)),
+            ("point", (on[0], on[1]), (along, left)),
+        )
 
     def add_joint(self, joint: Mapping[str, Any]) -> None:
         """Add one joint given as a scene's joint table (the one reader of that form).
@@ -691,7 +794,11 @@ class Mechanism:
         ...
         linkage.LinkageError: outputs 'velocity'/'acceleration' need omega (crank speed, rad/s)
         """
-        if not self._names:
+        # One consistent state (program, names, links) though another thread adds joints: a
+        # joint added later goes to a new core (see _add), never to the one swept here.
+        frozen = self.__copy__()
+        core, names, links = frozen._core, tuple(frozen._names), frozen.links
+        if not names:
             raise LinkageError("the mechanism has no joints")
         times = None
         if drive is not None or time is not None:
@@ -711,7 +818,7 @@ class Mechanism:
         if pairs is not None:
             if not asked["instant_centres"]:
                 raise LinkageError("pairs= names instant centres: add 'instant_centres' to outputs")
-            link_pairs, index = check_pairs(pairs, self.links)
+            link_pairs, index = check_pairs(pairs, links)
             asked = {**asked, "pairs": index}
         # Non-finite angles and rates are refused by the extension, with the same messages.
         th, scalar = as_angles(theta, "theta", finite=False)
@@ -720,8 +827,7 @@ class Mechanism:
         n = th.shape[0]
         w = as_rate(omega, "omega", n, finite=False)
         a = as_rate(alpha, "alpha", n, finite=False)
-        trace = self._index(self.trace, "trace")
-        core = self._core
+        trace = frozen._index(frozen.trace, "trace")
         # Without "joints" the per-joint outputs hold the trace point only, and the margin,
         # gap and regular flags are left out: every joint and the flags are computed on first
         # use (Sweep.joints, .margin, ...), with the same positions bit for bit.
@@ -738,19 +844,127 @@ class Mechanism:
             _same_as_before(raw, more, None if full else trace)
             return more
 
+        inputs = {
+            "theta": th.reshape(()) if scalar else th,
+            "omega": w,
+            "alpha": a,
+            "outputs": out,
+            "pairs": link_pairs,
+        }
         s = Sweep(
             th,
             raw,
-            self.joint_names,
+            names,
             trace,
             out,
             scalar,
-            links=self.links,
+            links=links,
             complete=complete,
             link_pairs=link_pairs,
+            source=(frozen, "sweep", inputs),
         )
         s.time = None if times is None else times.reshape(()) if scalar else times
         return s
+
+
+def _calls(constructions: list[dict[str, Any]], names: list[str]) -> list[tuple[Any, ...]]:
+    """Return a core program as the building calls that make it (for ``_from_core``)."""
+    calls: list[tuple[Any, ...]] = []
+    for name, c in zip(names, constructions):
+        kind = c["kind"]
+        if kind == "fixed":
+            calls.append(("fixed", name, tuple(c["at"])))
+        elif kind == "crank":
+            calls.append(("crank", name, names[c["centre"]], c["radius"], c["phase"]))
+        elif kind == "dyad":
+            p1, p2 = names[c["p1"]], names[c["p2"]]
+            calls.append(("dyad", name, p1, p2, c["r1"], c["r2"], c["side"]))
+        elif kind == "slider":
+            d = c["direction"]
+            line = (
+                ((d[1], d[2]), None, 0.0)
+                if d[0] == "fixed"
+                else (None, (names[d[1]], names[d[2]]), d[3])
+            )
+            calls.append(
+                ("slider", name, names[c["pivot"]], c["r"], names[c["origin"]], *line, c["reach"])
+            )
+        elif kind == "point":
+            on = (names[c["from"]], names[c["to"]])
+            calls.append(("point", name, on, (c["along"], c["left"])))
+        else:  # pragma: no cover - a construction this module does not know
+            raise LinkageError(f"cannot copy a construction of kind {kind!r}")
+    return calls
+
+
+def _ops(constructions: list[dict[str, Any]]) -> list[tuple[str, tuple[Any, ...]]]:
+    """Return a core program as the core's calls that make it again (for ``_from_core``)."""
+    ops: list[tuple[str, tuple[Any, ...]]] = []
+    for c in constructions:
+        kind = c["kind"]
+        if kind == "fixed":
+            ops.append(("fixed", tuple(c["at"])))
+        elif kind == "crank":
+            ops.append(("crank", (c["centre"], c["radius"], c["phase"])))
+        elif kind == "dyad":
+            ops.append(("dyad", (c["p1"], c["p2"], c["r1"], c["r2"], c["side"])))
+        elif kind == "slider":
+            d, head = c["direction"], (c["pivot"], c["r"], c["origin"])
+            if d[0] == "fixed":
+                ops.append(("slider", (*head, d[1], d[2], c["reach"])))
+            else:
+                ops.append(("slider_on_link", (*head, d[1], d[2], d[3], c["reach"])))
+        elif kind == "point":
+            ops.append(("point", (c["from"], c["to"], c["along"], c["left"])))
+        else:  # pragma: no cover - a construction this module does not know
+            raise LinkageError(f"cannot copy a construction of kind {kind!r}")
+    return ops
+
+
+_ARITY = {"fixed": 3, "crank": 5, "dyad": 7, "slider": 9, "point": 4}
+"""Length of each kind of building call ``(kind, name, *arguments)`` in a pickled program."""
+
+
+BASES: list[type] = []
+"""The linkage types whose ``mechanism()`` a pickled mechanism may start from (``FourBar``,
+``SliderCrank``: their modules add them, as they import this one)."""
+
+
+def _rebuild(base: Any, calls: Any, trace: Any) -> Mechanism:
+    """Build a mechanism again from a pickled program, through the building methods.
+
+    ``base`` is None or the ``FourBar``/``SliderCrank`` it came from, ``calls`` the building
+    calls ``(kind, name, *arguments)`` made since, ``trace`` the trace joint (None: the last).
+    Nothing is trusted: every value is checked again as the methods check a user's.
+
+    Raises
+    ------
+    LinkageError
+        For a program that is not one (an unknown kind, a wrong number of arguments), or as
+        the building methods raise.
+    TypeError
+        As the building methods raise.
+    """
+    if base is None:
+        m = Mechanism()
+    elif any(isinstance(base, t) for t in BASES):
+        m = base.mechanism()
+    else:
+        raise TypeError(f"not a pickled Mechanism: it is based on a {type(base).__name__}")
+    if not isinstance(calls, tuple) or len(calls) > _core.CAPACITY:
+        raise LinkageError("not a pickled Mechanism: its program is not a tuple of joints")
+    for k, call in enumerate(calls):
+        if not (
+            isinstance(call, tuple)
+            and call
+            and isinstance(call[0], str)
+            and _ARITY.get(call[0]) == len(call)
+        ):
+            raise LinkageError(f"not a pickled Mechanism: joint {k} is not a building call")
+        getattr(m, call[0])(*call[1:])
+    if trace is not None:
+        m.trace = trace
+    return m
 
 
 @dataclass(frozen=True)
@@ -810,5 +1024,7 @@ JOINT_KINDS: dict[str, JointKind] = {
     ),
 }
 """Every joint kind of a scene's joint table, by name (see :class:`JointKind`)."""
+
+SWEPT_BY[Mechanism] = "sweep"
 
 __all__ = ["JOINT_KINDS", "JointKind", "Mechanism", "check_outputs", "check_pairs"]

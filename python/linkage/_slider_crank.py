@@ -13,8 +13,8 @@ from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point,
 from linkage._choices import Output, Reach
 from linkage._core import LinkageError
 from linkage._fourbar import ArrayOrFloat, named_joint
-from linkage._mechanism import DEFAULT_OUTPUTS, Mechanism
-from linkage._sweep import Sweep
+from linkage._mechanism import BASES, DEFAULT_OUTPUTS, Mechanism
+from linkage._sweep import SWEPT_BY, Sweep
 
 JOINTS = ("O", "G", "A", "B", "P")
 LINKS = ("ground", "crank", "coupler", "slider")
@@ -32,6 +32,8 @@ class SliderCrank:
     reversed, ``angle + π`` and ``−offset``). The crank turns fully iff
     ``|offset| + crank ≤ coupler``; otherwise it rocks between the positions where the rod is
     perpendicular to the line. The mathematics is the core's (``linkage_core::SliderCrank``).
+    Slider-cranks of equal parameters are equal (and hash alike); one pickles as its parameters,
+    checked again by this constructor when unpickled.
 
     Parameters
     ----------
@@ -86,6 +88,29 @@ class SliderCrank:
             as_point(point, "point"),
             reach,
         )
+
+    # -- copies, pickling, equality ---------------------------------------------------------
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as the constructor's arguments: unpickling checks them again."""
+        p = self._p()
+        return (type(self), (p[4], p[5], p[3], (p[6], p[7]), (p[0], p[1]), p[2], p[8]))
+
+    def __copy__(self) -> SliderCrank:
+        out = type(self).__new__(type(self))
+        out._core = self._core  # the core cannot be changed: shared
+        return out
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> SliderCrank:
+        return self.__copy__()
+
+    def __eq__(self, other: object) -> bool:
+        """Whether ``other`` is a slider-crank of the same pivot, line, lengths, point, reach."""
+        if not isinstance(other, SliderCrank):
+            return NotImplemented
+        return self._p()[:9] == other._p()[:9]
+
+    def __hash__(self) -> int:
+        return hash(self._p()[:9])
 
     # -- parameters -----------------------------------------------------------------------
     def _p(self) -> tuple[Any, ...]:
@@ -253,7 +278,7 @@ class SliderCrank:
         >>> m.joint_names, m.links
         (('O', 'G', 'A', 'B', 'P'), ('ground', 'crank', 'coupler', 'slider'))
         """
-        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS)
+        return Mechanism._from_core(self._core.mechanism(), JOINTS, 4, LINKS, base=self)
 
     def sweep(
         self,
@@ -314,4 +339,17 @@ class SliderCrank:
             "margin": margin,
             "gap": np.where(valid, 0.0, np.nan),
         }
-        return Sweep(theta, raw, JOINTS, 4, ("point", "joints"), links=LINKS)
+        return Sweep(
+            theta,
+            raw,
+            JOINTS,
+            4,
+            ("point", "joints"),
+            links=LINKS,
+            source=(self, "circuit", {"n": count}),
+        )
+
+
+# A pickled mechanism may be built from a SliderCrank's; a pickled sweep may be its circuit.
+BASES.append(SliderCrank)
+SWEPT_BY[SliderCrank] = "circuit"

@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import copy
 import functools
-from collections.abc import Callable
+import threading
+from collections.abc import Callable, Mapping
 from typing import Any, get_args
 
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._arrays import UnknownNameError, as_real
+from linkage._arrays import UnknownNameError, as_angles, as_real
 from linkage._choices import Output
 from linkage._core import RATE_MARGIN, LinkageError
 
@@ -29,6 +31,12 @@ class Sweep:
 
     Every array has one row per angle, in the order given; a sample that cannot be assembled is
     NaN with ``valid`` False, and ``gap`` says by how much its lengths miss closure.
+
+    A sweep may be read by several threads at once and copied (``copy.copy`` shares the arrays,
+    ``copy.deepcopy`` copies them; each completes on its own what was left for first use). It
+    pickles as what was swept: unpickling sweeps the linkage (rebuilt through its checking
+    constructor) again, giving the same arrays bit for bit. Two sweeps are equal when they are
+    of equal linkages with the same inputs (angles or times, rates, outputs, pairs).
 
     Attributes
     ----------
@@ -78,6 +86,7 @@ class Sweep:
         links: tuple[str, ...] = (),
         complete: Callable[[], dict[str, Any]] | None = None,
         link_pairs: tuple[tuple[str, str], ...] | None = None,
+        source: tuple[Any, str, dict[str, Any]] | None = None,
     ) -> None:
         self.joint_names = joint_names
         self.time: NDArray[np.float64] | None = None
@@ -90,33 +99,106 @@ class Sweep:
         self.outputs = outputs
         self._trace = trace
         self._scalar = scalar
-        self._raw = raw
         # Per-joint arrays hold every joint, or (a sweep asked for the point only) the trace
-        # point alone; `complete` recomputes every joint and the flags on first use.
-        self._full = raw["joints"].shape[-2] == len(joint_names)
-        self._complete = complete
+        # point alone; `complete` recomputes every joint and the flags on first use. The three
+        # are one state, replaced whole (never changed in place) under the lock: a reader takes
+        # it once, so threads and copies each see a whole state, before or after completion.
+        self._state: tuple[dict[str, Any], bool, Callable[[], dict[str, Any]] | None] = (
+            raw,
+            raw["joints"].shape[-2] == len(joint_names),
+            complete,
+        )
+        self._lock = threading.Lock()
+        # What was swept: (linkage, method, its arguments), to pickle and compare a sweep by.
+        self._source = source
         self.theta: NDArray[np.float64] = self._pick(theta)
         self.valid: NDArray[np.bool_] = self._pick(raw["valid"])
+
+    @property
+    def _raw(self) -> dict[str, Any]:
+        return self._state[0]
 
     def _pick(self, a: Any) -> Any:
         return a[0] if self._scalar else a
 
-    def _column(self) -> int:
-        return self._trace if self._full else 0
+    def _column(self, full: bool) -> int:
+        return self._trace if full else 0
 
-    def _get_raw(self, key: str, full: bool) -> Any:
+    def _get_raw(self, key: str, full: bool, axis: int | None = None) -> Any:
         """Return ``raw[key]``, completing a point-only sweep first when needed.
 
         Every joint and the flags are computed first when ``full`` is asked of a point-only
-        sweep or the key is missing (the same positions, bit for bit).
+        sweep or the key is missing (the same positions, bit for bit), once, by one thread.
+        With ``axis`` (the joint axis), the trace point's part only, from the same state.
         """
-        if (full and not self._full) or key not in self._raw:
-            if self._complete is None:
-                raise AttributeError(f"{key} was not computed")
-            self._raw.update(self._complete())
-            self._full = True
-            self._complete = None
-        return self._pick(self._raw[key])
+        raw, whole, _ = self._state
+        if (full and not whole) or key not in raw:
+            with self._lock:
+                raw, whole, complete = self._state
+                if (full and not whole) or key not in raw:
+                    if complete is None:
+                        raise AttributeError(f"{key} was not computed")
+                    raw, whole = {**raw, **complete()}, True
+                    self._state = (raw, whole, None)
+        arr = self._pick(raw[key])
+        if axis is None:
+            return arr
+        return arr[(..., self._column(whole)) + (slice(None),) * (-1 - axis)]  # a view
+
+    # -- copies, pickling, equality ---------------------------------------------------------
+    def __copy__(self) -> Sweep:
+        """Return a sweep sharing the arrays, completed on its own."""
+        s = type(self).__new__(type(self))
+        s.__dict__.update(self.__dict__)
+        s._lock = threading.Lock()
+        return s
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> Sweep:
+        """Return a sweep with copies of every array, completed on its own."""
+        s = type(self).__new__(type(self))
+        memo[id(self)] = s
+        for key, value in self.__dict__.items():
+            if key == "_state":
+                raw, whole, complete = value
+                value = (copy.deepcopy(raw, memo), whole, complete)
+            elif key != "_lock":
+                value = copy.deepcopy(value, memo)
+            s.__dict__[key] = value
+        s._lock = threading.Lock()
+        return s
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as what was swept: unpickling sweeps the linkage (itself rebuilt) again.
+
+        The same linkage and inputs give the same arrays, bit for bit; nothing of the pickled
+        data is taken as a result.
+        """
+        if self._source is None:
+            raise TypeError("this Sweep does not know what was swept: it cannot be pickled")
+        linkage, method, arguments = self._source
+        return (_rebuild, (linkage, method, dict(arguments), self.time))
+
+    def __eq__(self, other: object) -> bool:
+        """Whether ``other`` is a sweep of an equal linkage with the same inputs.
+
+        The same crank angles (or times), rates, outputs and pairs: the same arrays.
+        """
+        if not isinstance(other, Sweep):
+            return NotImplemented
+        if other is self:
+            return True
+        if self._source is None or other._source is None:
+            return False
+        (a, how, args), (b, other_how, other_args) = self._source, other._source
+        return (
+            how == other_how
+            and a == b
+            and args.keys() == other_args.keys()
+            and all(_same(args[k], other_args[k]) for k in args)
+            and _same(self.time, other.time)
+        )
+
+    __hash__ = None  # type: ignore[assignment]  # its arrays can be written
 
     @property
     def joints(self) -> NDArray[np.float64]:
@@ -142,7 +224,8 @@ class Sweep:
     @property
     def regular(self) -> NDArray[np.bool_]:
         """Valid and clear of the rate margin, shape (N,) (see the class)."""
-        if "regular" in self._raw or self._complete is not None:
+        raw, _, complete = self._state
+        if "regular" in raw or complete is not None:
             arr: NDArray[np.bool_] = self._get_raw("regular", False)
             return arr
         with np.errstate(invalid="ignore"):
@@ -253,21 +336,25 @@ class Sweep:
     @property
     def point(self) -> NDArray[np.float64]:
         """The trace point, shape (N, 2)."""
-        arr: NDArray[np.float64] = self._pick(self._raw["joints"])[..., self._column(), :]
+        raw, whole, _ = self._state
+        arr: NDArray[np.float64] = self._pick(raw["joints"])[..., self._column(whole), :]
         return arr
 
-    def _rate(self, kind: str, full: bool = False) -> NDArray[np.float64]:
-        if kind not in self.outputs or kind not in self._raw:
+    def _rate(self, kind: str, full: bool = False, axis: int | None = None) -> NDArray[np.float64]:
+        if kind not in self.outputs or kind not in self._state[0]:
             raise AttributeError(
                 f"{kind} was not computed: pass outputs=(..., {kind!r}) and omega to sweep()"
             )
-        arr: NDArray[np.float64] = self._get_raw(kind, full)
+        arr: NDArray[np.float64] = self._get_raw(kind, full, axis)
         return arr
 
-    def _get(self, key: str, output: str, full: bool = False) -> NDArray[Any]:
-        if key not in self._raw and (output not in self.outputs or self._complete is None):
+    def _get(
+        self, key: str, output: str, full: bool = False, axis: int | None = None
+    ) -> NDArray[Any]:
+        raw, _, complete = self._state
+        if key not in raw and (output not in self.outputs or complete is None):
             raise AttributeError(f"{output} was not computed: pass outputs=(..., {output!r})")
-        arr: NDArray[Any] = self._get_raw(key, full)
+        arr: NDArray[Any] = self._get_raw(key, full, axis)
         return arr
 
     @property
@@ -368,7 +455,7 @@ class Sweep:
     @property
     def curvature(self) -> NDArray[np.float64]:
         """Signed curvature of the trace point's path, shape (N,)."""
-        arr: NDArray[np.float64] = self._get("curvature", "curvature")[..., self._column()]
+        arr: NDArray[np.float64] = self._get("curvature", "curvature", axis=-1)
         return arr
 
     @property
@@ -384,19 +471,18 @@ class Sweep:
     @property
     def curvature_centre(self) -> NDArray[np.float64]:
         """Centre of curvature of the trace point's path, shape (N, 2)."""
-        arr = self._get("curvature_centres", "curvature")
-        out: NDArray[np.float64] = arr[..., self._column(), :]
+        out: NDArray[np.float64] = self._get("curvature_centres", "curvature", axis=-2)
         return out
 
     @property
     def velocity(self) -> NDArray[np.float64]:
         """Velocity of the trace point, shape (N, 2)."""
-        return self._rate("velocity")[..., self._column(), :]
+        return self._rate("velocity", axis=-2)
 
     @property
     def acceleration(self) -> NDArray[np.float64]:
         """Acceleration of the trace point, shape (N, 2)."""
-        return self._rate("acceleration")[..., self._column(), :]
+        return self._rate("acceleration", axis=-2)
 
     @property
     def joint_velocities(self) -> NDArray[np.float64]:
@@ -407,3 +493,49 @@ class Sweep:
     def joint_accelerations(self) -> NDArray[np.float64]:
         """Accelerations of every joint, shape (N, J, 2)."""
         return self._rate("acceleration", full=True)
+
+
+def _same(a: Any, b: Any) -> bool:
+    """Whether two inputs of a sweep are equal: arrays of one shape and the same values."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        if not (isinstance(a, np.ndarray) and isinstance(b, np.ndarray)):
+            return False
+        return a.shape == b.shape and bool(np.array_equal(a, b, equal_nan=True))
+    return bool(a == b)
+
+
+SWEPT_BY: dict[type, str] = {}
+"""The linkage types a pickled sweep may be of, each with its method that sweeps it again.
+
+Registered by their modules (which import this one): ``Mechanism.sweep``, ``FourBar.circuit``,
+``SliderCrank.circuit``.
+"""
+
+
+def _rebuild(linkage: Any, method: Any, arguments: Any, time: Any) -> Sweep:
+    """Sweep again what a pickled sweep was of, through the public methods (which check it).
+
+    Raises
+    ------
+    LinkageError
+        For a pickle that is not a sweep's (another method, unknown arguments, times that do
+        not match the samples), or as the sweep raises.
+    TypeError
+        For a linkage that is none, or as the sweep raises.
+    """
+    keys = {"sweep": {"theta", "omega", "alpha", "outputs", "pairs"}, "circuit": {"n"}}
+    if not (
+        isinstance(method, str)
+        and method in keys
+        and any(isinstance(linkage, t) and m == method for t, m in SWEPT_BY.items())
+        and isinstance(arguments, Mapping)
+        and set(arguments) == keys[method]
+    ):
+        raise LinkageError("not a pickled Sweep: unknown linkage, method or arguments")
+    s: Sweep = getattr(linkage, method)(**arguments)
+    if time is not None:
+        t, scalar = as_angles(time, "time")
+        if t.shape[0] != len(s) or scalar != s._scalar:
+            raise LinkageError("not a pickled Sweep: its times do not match its samples")
+        s.time = t.reshape(()) if scalar else t
+    return s

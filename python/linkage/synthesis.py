@@ -768,6 +768,27 @@ class Candidate(Generic[LinkageT]):
         """:attr:`min_transmission` in degrees."""
         return math.degrees(self.min_transmission)
 
+    def __eq__(self, other: object) -> bool:
+        """Whether ``other`` holds an equal linkage and the same figures (NaN equal to NaN).
+
+        The dataclass's own comparison would say a copy differs (``back`` is NaN for an open
+        target) or raise (``params`` is an array).
+        """
+        if not isinstance(other, Candidate):
+            return NotImplemented
+        for name in self.__dataclass_fields__:
+            a, b = getattr(self, name), getattr(other, name)
+            if isinstance(a, (str, FourBar, SliderCrank)) or isinstance(
+                b, (str, FourBar, SliderCrank)
+            ):
+                if a != b:
+                    return False
+            elif np.shape(a) != np.shape(b) or not np.array_equal(a, b, equal_nan=True):
+                return False
+        return True
+
+    __hash__ = None  # type: ignore[assignment]  # mutable, as the dataclass is
+
 
 CONSTRAINT_NAMES = ("full_turn", "min_transmission", "lengths", "pivots")
 """:func:`path`'s constraints, in the order :attr:`Candidates.removed` names them."""
