@@ -90,6 +90,43 @@ def test_a_scene_file_over_the_size_limit_is_refused_unread(tmp_path, capsys):
     refused(capsys, f"{big}: not a scene: larger than {scene.FILE_MAX // 1024} KiB")
 
 
+def test_a_device_or_a_folder_as_the_scene_is_refused(tmp_path, capsys):
+    assert main(["check", "/dev/zero"]) == 2
+    refused(capsys, "/dev/zero: the scene is a device, not a regular file")
+    assert main(["check", str(tmp_path)]) == 2
+    refused(capsys, f"{tmp_path}: the scene is a folder, not a regular file")
+
+
+def test_a_named_pipe_nobody_writes_does_not_hang_and_a_written_one_is_read(tmp_path):
+    """A FIFO as the scene had blocked ``linkage check`` in open() for ever; a pipe with a writer
+    (the shell's ``<(cat scene.toml)``) is still a way to pass a scene."""
+    import os
+    import subprocess
+    import sys
+    import threading
+
+    fifo = tmp_path / "scene.toml"
+    os.mkfifo(fifo)
+    lone = subprocess.run(
+        [sys.executable, "-m", "linkage", "check", str(fifo)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert lone.returncode == 2 and "Traceback" not in lone.stderr, lone.stderr
+    body = (ROOT / "examples" / "hoecken.toml").read_bytes()
+    child = subprocess.Popen(
+        [sys.executable, "-m", "linkage", "check", str(fifo)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    writer = threading.Thread(target=lambda: fifo.write_bytes(body), daemon=True)
+    writer.start()
+    out, err = child.communicate(timeout=60)
+    assert child.returncode == 0 and out.startswith("ok: hoecken"), err
+
+
 def test_brackets_inside_strings_and_comments_do_not_count_as_nesting(tmp_path, capsys):
     ok = tmp_path / "ok.toml"
     body = (ROOT / "examples" / "hoecken.toml").read_text()

@@ -33,6 +33,7 @@ from typing import Any, Union
 from linkage._core import LinkageError
 
 __all__ = [
+    "TooLarge",
     "json_depth",
     "pid_alive",
     "read_bytes",
@@ -50,16 +51,23 @@ JSON_DEPTH = 32
 writes nests three levels at most)."""
 
 
+class TooLarge(LinkageError):
+    """A file larger than the reader's limit (a :class:`LinkageError`, naming the file)."""
+
+
 def _why(exc: OSError) -> str:
     return exc.strerror or str(exc)
 
 
-def read_bytes(path: PathLike, limit: int, what: str = "file") -> bytes:
+def read_bytes(path: PathLike, limit: int, what: str = "file", pipe: bool = False) -> bytes:
     """Return the bytes of the regular file ``path``, refusing anything else.
 
     The file is opened without blocking, checked on the open descriptor (so a file swapped for a
     pipe or a device between a check and the open is still refused), and read up to ``limit``
     bytes; a larger file is refused before it is read. ``what`` names the file in messages.
+
+    With ``pipe``, a pipe is read too (a shell's ``<(command)``), up to ``limit`` bytes: a named
+    pipe that no program writes to reads as empty instead of blocking the open.
 
     Raises
     ------
@@ -91,7 +99,9 @@ def read_bytes(path: PathLike, limit: int, what: str = "file") -> bytes:
         raise LinkageError(f"{p}: cannot read the {what}: {_why(exc)}") from None
     try:
         info = os.fstat(fd)
-        if not stat.S_ISREG(info.st_mode):
+        if pipe and stat.S_ISFIFO(info.st_mode):
+            os.set_blocking(fd, True)  # a writer's data are awaited; no writer is the end
+        elif not stat.S_ISREG(info.st_mode):
             kind = (
                 "a folder"
                 if stat.S_ISDIR(info.st_mode)
@@ -100,8 +110,8 @@ def read_bytes(path: PathLike, limit: int, what: str = "file") -> bytes:
                 else "a pipe or socket"
             )
             raise LinkageError(f"{p}: the {what} is {kind}, not a regular file")
-        if info.st_size > limit:
-            raise LinkageError(
+        if stat.S_ISREG(info.st_mode) and info.st_size > limit:
+            raise TooLarge(
                 f"{p}: the {what} is {info.st_size} bytes, more than the {limit} it may hold"
             )
         chunks = []
@@ -114,7 +124,7 @@ def read_bytes(path: PathLike, limit: int, what: str = "file") -> bytes:
             left -= len(chunk)
         data = b"".join(chunks)
         if len(data) > limit:  # it grew while being read
-            raise LinkageError(f"{p}: the {what} is more than the {limit} bytes it may hold")
+            raise TooLarge(f"{p}: the {what} is more than the {limit} bytes it may hold")
         return data
     except OSError as exc:
         raise LinkageError(f"{p}: cannot read the {what}: {_why(exc)}") from None

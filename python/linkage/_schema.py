@@ -27,6 +27,7 @@ from linkage import catalog
 from linkage._arrays import choices, one_of
 from linkage._choices import PathKind
 from linkage._core import LinkageError
+from linkage._files import TooLarge, read_bytes
 from linkage._mechanism import JOINT_KINDS as _JOINT_KINDS
 from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
 from linkage.drive import LAWS
@@ -362,12 +363,11 @@ def read_text(path: Path) -> str:
         larger than :data:`FILE_MAX` or is not text.
     """
     try:
-        with path.open("rb") as fh:
-            data = fh.read(FILE_MAX + 1)
-    except OSError as exc:
-        raise SceneError(f"{path}: cannot read the scene: {exc.strerror or exc}") from None
-    if len(data) > FILE_MAX:
-        raise SceneError(f"{path}: not a scene: larger than {FILE_MAX // 1024} KiB")
+        data = read_bytes(path, FILE_MAX, "scene", pipe=True)
+    except TooLarge:
+        raise SceneError(f"{path}: not a scene: larger than {FILE_MAX // 1024} KiB") from None
+    except LinkageError as exc:
+        raise SceneError(str(exc)) from None
     try:
         return decode(data)
     except NotText as exc:
