@@ -90,6 +90,7 @@ mod support;
 mod sweep;
 mod tracker;
 mod trig;
+mod turns;
 mod uniform_sweep;
 
 // Path synthesis (feature `synthesis`, needs `std` for its threads).
