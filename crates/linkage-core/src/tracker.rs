@@ -240,6 +240,17 @@ impl<T: RealField + Copy, const N: usize> Snapshot<T, N> {
 /// first one (or from the start angle), one placement a sample, in any order: the walk's bits,
 /// checked by a property test against the walk itself.
 ///
+/// # Large angles
+/// Every angle is reduced exactly to two turns before it is used ([`crate::turns`]: crank pins,
+/// flat-position parities, the grid point before a sample), so a sample at `θ = 10³⁰⁰` gets the
+/// pose of `θ mod 2π` to rounding. Up to `2⁴⁰` pairs of turns (`|θ| ≲ 1.4·10¹³` rad) the grid
+/// index is exact. Beyond, a sample's turn count is replaced by a representative congruent to
+/// it modulo `2⁴⁰` turns and at least `2⁴¹` turns from the origin, on the same side: exact
+/// when the tracked state's period in turns divides `2⁴⁰` (every period that is a power of
+/// two, one turn for every catalogue linkage); a jump there whose state has another period is
+/// refused ([`Error::OutOfRange`]). Two such samples are walked between by their
+/// representatives, which differ by the true difference modulo `2⁴⁰` turns.
+///
 /// A grid point where a construction is undetermined (a kite's crank pin exactly on the rocker
 /// pivot) is stepped over. A sample that cannot assemble writes NaN joints, returns its error
 /// and changes nothing else. A path that cannot be walked (a locked zone lies between two
