@@ -197,4 +197,5 @@ pub use sweep::{
 };
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
 pub use trig::{sin_cos_f64, sin_cos_f64_slice};
+pub use turns::reduce_angle;
 pub use uniform_sweep::{AngleMode, MAX_TABLE};

@@ -146,6 +146,23 @@ pub(crate) fn reduce<T: RealField + Copy>(theta: T) -> T {
     T::from_subset(&split_f64(to_f64(theta)).1)
 }
 
+/// A driver angle reduced exactly to two turns, the reduction every mechanism sweep applies
+/// first: `θ' ∈ [0, 4π]` with `θ' ≡ θ (mod 4π)` to within an ulp of `4π` for `|θ| ≥ 64`, and
+/// `θ` itself below that or when not finite. Idempotent. Adding a phase to a large angle
+/// (`θ + φ` rounds to a multiple of `ulp(θ)`) keeps full accuracy when it is added to this
+/// instead: `reduce_angle(θ) + φ`. Anything periodic in `2π` or `4π` may take `θ'` for `θ`.
+///
+/// ```
+/// use linkage_core::reduce_angle;
+/// // 10²² mod 4π = 5.263007914620499 (mpmath); `10²² % (4π as f64)` gives 1.063…, all wrong.
+/// assert!((reduce_angle(1e22_f64) - 5.263007914620499).abs() < 2e-15);
+/// assert_eq!(reduce_angle(1.5_f64), 1.5);
+/// assert!((reduce_angle(-1e300_f64) - 2.1838724841522326).abs() < 2e-15);
+/// ```
+pub fn reduce_angle<T: RealField + Copy>(theta: T) -> T {
+    reduce(theta)
+}
+
 /// `θ = 4π·k + θ'` for `|θ| ≥ REDUCE_FROM` and finite: `(k mod 2⁶⁴, θ')`; `(0, θ)` otherwise.
 #[inline]
 pub(crate) fn split<T: RealField + Copy>(theta: T) -> (u64, T) {
