@@ -241,7 +241,7 @@ impl<T: RealField + Copy, const N: usize> Snapshot<T, N> {
 /// checked by a property test against the walk itself.
 ///
 /// # Large angles
-/// Every angle is reduced exactly to two turns before it is used ([`crate::turns`]: crank pins,
+/// Every angle is reduced exactly to two turns before it is used ([`crate::reduce_angle`]: crank pins,
 /// flat-position parities, the grid point before a sample), so a sample at `θ = 10³⁰⁰` gets the
 /// pose of `θ mod 2π` to rounding. Up to `2⁴⁰` pairs of turns (`|θ| ≲ 1.4·10¹³` rad) the grid
 /// index is exact. Beyond, a sample's turn count is replaced by a representative congruent to
