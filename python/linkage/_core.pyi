@@ -45,6 +45,7 @@ __all__ = [
     "polyline_distance_each",
     "program_discontinuities",
     "program_eval",
+    "reduce_angle",
     "schedule_eval",
     "stance_schedule",
     "straight_run",
@@ -197,6 +198,7 @@ class SliderCrank:
     ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]: ...
 
 def sweep_simd() -> str: ...
+def reduce_angle(theta: NDArray[np.float64]) -> NDArray[np.float64]: ...
 def sweep_mechanisms(
     mechanisms: list[Mechanism], theta: NDArray[np.float64], threads: int = 1
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]: ...

@@ -248,7 +248,7 @@ impl<'a, T: RealField + Copy> FourBarBatch<'a, T> {
     }
 
     /// Whether every linkage passes tests sufficient for [`FourBar::with_pivots`] to accept it
-    /// (finite numbers, positive lengths, pivots whose squared distance is positive and finite,
+    /// (finite numbers, normal positive lengths, pivots whose squared distance is positive and finite,
     /// so `|c − o|` is too), in one pass without early exit (it vectorises): most batches are
     /// proved valid so, and only the others are searched linkage by linkage.
     fn plainly_valid(&self) -> bool {
@@ -258,9 +258,12 @@ impl<'a, T: RealField + Copy> FourBarBatch<'a, T> {
             let n2 = dx * dx + dy * dy;
             ok & o.x.is_finite() & o.y.is_finite() & c.x.is_finite() & c.y.is_finite() & pos(n2)
         });
+        // A length must also be a normal number (`check_length`).
+        let normal = crate::scalar::min_normal::<T>();
+        let length = |v: T| v.is_finite() & (v >= normal);
         let lengths = [self.crank, self.coupler, self.rocker]
             .iter()
-            .all(|s| s.iter().fold(true, |ok, &v| ok & pos(v)));
+            .all(|s| s.iter().fold(true, |ok, &v| ok & length(v)));
         let points = [self.along, self.left]
             .iter()
             .all(|s| s.iter().fold(true, |ok, &v| ok & v.is_finite()));

@@ -29,6 +29,23 @@ pub enum Error {
         /// The value given.
         value: f64,
     },
+    /// A length that is positive but subnormal (below the scalar type's smallest normal number,
+    /// `2.2e-308` in `f64`, `1.2e-38` in `f32`): it carries fewer significant bits than the
+    /// type, and the solver's products and power-of-two scalings of it lose the rest, so such a
+    /// linkage would construct but never assemble. Scale the linkage up.
+    ///
+    /// ```
+    /// use linkage_core::{Assembly, Error, FourBar};
+    /// let e = FourBar::new(2.0_f64, 1e-309, 2.0, 2.0, (0.0, 0.0), Assembly::Open).unwrap_err();
+    /// assert_eq!(e, Error::SubnormalLength { what: "crank", value: 1e-309 });
+    /// assert!(e.to_string().starts_with("crank = 1e-309 is subnormal"));
+    /// ```
+    SubnormalLength {
+        /// Which length.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// A coordinate, angle or other value that must be finite is not.
     NotFinite {
         /// Which value.
@@ -183,6 +200,13 @@ impl fmt::Display for Error {
                     Num(value)
                 )
             }
+            Error::SubnormalLength { what, value } => write!(
+                f,
+                "{what} = {} is subnormal (below the smallest normal float, 2.2e-308 in f64): \
+                 too few significant bits for the solver, so the linkage could never be \
+                 assembled; scale the linkage up",
+                Num(value)
+            ),
             Error::NotFinite { what, value } => {
                 write!(f, "{what} must be finite, got {}", Num(value))
             }
@@ -313,12 +337,19 @@ impl fmt::Display for Sig3 {
     }
 }
 
-/// Checks that `value` is a positive finite length.
+/// Checks that `value` is a positive finite length, and a normal number
+/// ([`Error::SubnormalLength`] otherwise).
 pub(crate) fn check_length<T: nalgebra::RealField + Copy>(
     what: &'static str,
     value: T,
 ) -> Result<T, Error> {
     if value.is_finite() && value > T::zero() {
+        if value < crate::scalar::min_normal::<T>() {
+            return Err(Error::SubnormalLength {
+                what,
+                value: crate::scalar::to_f64(value),
+            });
+        }
         Ok(value)
     } else {
         Err(Error::InvalidLength {

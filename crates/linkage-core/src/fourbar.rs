@@ -239,7 +239,8 @@ impl<T: RealField + Copy> FourBar<T> {
     ///
     /// # Errors
     /// [`Error::InvalidLength`] for a length that is not positive and finite,
-    /// [`Error::NotFinite`] for a non-finite point coordinate.
+    /// [`Error::SubnormalLength`] for a subnormal one, [`Error::NotFinite`] for a non-finite
+    /// point coordinate.
     pub fn new(
         ground: T,
         crank: T,

@@ -162,6 +162,16 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
     /// [`Self::prepare`].
     #[inline(always)]
     pub(crate) fn pose(&mut self, mech: &Mechanism<T, N>, theta: &[T; BLOCK], watched: &[bool]) {
+        // Large angles reduced to two turns as the scalar pose does ([`crate::turns`]): the
+        // same bits, a comparison per sample where none is large.
+        let reduced;
+        let from = lit::<T>(crate::turns::REDUCE_FROM);
+        let theta = if theta.iter().any(|t| t.abs() >= from) {
+            reduced = theta.map(crate::turns::reduce);
+            &reduced
+        } else {
+            theta
+        };
         let one = T::one();
         // Whole blocks (entries past n are never read): constant-length loops, no memset calls.
         self.margin = [one; BLOCK];

@@ -90,6 +90,7 @@ mod support;
 mod sweep;
 mod tracker;
 mod trig;
+mod turns;
 mod uniform_sweep;
 
 // Path synthesis (feature `synthesis`, needs `std` for its threads).
@@ -196,4 +197,5 @@ pub use sweep::{
 };
 pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
 pub use trig::{sin_cos_f64, sin_cos_f64_slice};
+pub use turns::reduce_angle;
 pub use uniform_sweep::{AngleMode, MAX_TABLE};

@@ -181,9 +181,10 @@ impl<T: RealField + Copy> FlatParity<T> {
         self.zero || self.pi
     }
 
-    /// The parity at driver angle `t`.
+    /// The parity at driver angle `t`, reduced to two turns first ([`crate::turns`]: the
+    /// parity's period is `4π`), so `t + phase − β` does not round away at a large `t`.
     pub(crate) fn at(&self, t: T) -> bool {
-        let (s, c) = crate::trig::sin_cos(self.half(t));
+        let (s, c) = crate::trig::sin_cos(self.half(crate::turns::reduce(t)));
         self.of(s, c)
     }
 }
@@ -315,7 +316,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     ///
     /// # Errors
     /// [`Error::CapacityExceeded`], [`Error::UnknownJoint`] for a reference to a joint not
-    /// placed before it, [`Error::InvalidLength`] / [`Error::NotFinite`] for bad numbers,
+    /// placed before it, [`Error::InvalidLength`] / [`Error::SubnormalLength`] /
+    /// [`Error::NotFinite`] for bad numbers,
     /// [`Error::SecondDriver`] for a second crank, [`Error::Coincident`] when a link or
     /// direction is built on one joint twice.
     pub fn push(&mut self, c: Construction<T>) -> Result<usize, Error> {
@@ -704,6 +706,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         watched: &[bool],
         flipped: &[bool; N],
     ) -> Result<(T, T), Error> {
+        let theta = crate::turns::reduce(theta);
         let mut margin = T::one();
         let mut least = T::one();
         for i in 0..self.len {
@@ -787,7 +790,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         }
     }
 
-    /// Where joint `i` may go at driver angle `theta`, given the joints before it.
+    /// Where joint `i` may go at driver angle `theta`, given the joints before it. The angle
+    /// is reduced to two turns first ([`crate::turns`]), so a crank angle of any size is exact.
     ///
     /// `slack` widens the toggle tolerance (length units, see [`Dyad::solve`]).
     pub(crate) fn candidates(
@@ -797,7 +801,8 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         pos: &[Vec2<T>],
         slack: T,
     ) -> Result<Candidates<T>, Error> {
-        let c = self.solve_step(i, theta, pos, slack)?;
+        // Idempotent: callers that pose every joint reduce once, and this is a comparison.
+        let c = self.solve_step(i, crate::turns::reduce(theta), pos, slack)?;
         // Numbers so large that the arithmetic overflows give no position, not garbage.
         let finite = |p: Vec2<T>| p.x.is_finite() && p.y.is_finite();
         let ok = match c {
@@ -900,6 +905,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                 got: joints.len(),
             });
         }
+        let theta = crate::turns::reduce(theta);
         let mut margin = T::one();
         for i in 0..self.len {
             joints[i] = match self.candidates(i, theta, joints, T::zero())? {

@@ -61,6 +61,18 @@ pub(crate) fn tiny_square<T: RealField + Copy>() -> T {
     }
 }
 
+/// The smallest positive normal number of `T`: `f64::MIN_POSITIVE` (2.2e-308) for f64; that
+/// literal is zero in f32, whose own (1.2e-38) is used there.
+#[inline]
+pub(crate) fn min_normal<T: RealField + Copy>() -> T {
+    let m = T::from_subset(&f64::MIN_POSITIVE);
+    if m > T::zero() {
+        m
+    } else {
+        T::from_subset(&f64::from(f32::MIN_POSITIVE))
+    }
+}
+
 /// The max-abs size `max(|x|, |y|)` of a vector: within `√2` of its length, with no square
 /// root and no squares to overflow. For tolerances, which need a size, not a distance.
 #[inline(always)]

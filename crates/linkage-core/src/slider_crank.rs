@@ -111,7 +111,8 @@ impl<T: RealField + Copy> SliderCrank<T> {
     /// coupler lengths, coupler point `(along, left)` and `reach`.
     ///
     /// # Errors
-    /// [`Error::InvalidLength`] for a crank or coupler that is not positive and finite;
+    /// [`Error::InvalidLength`] for a crank or coupler that is not positive and finite,
+    /// [`Error::SubnormalLength`] for a subnormal one;
     /// [`Error::NotFinite`] for any other number that is not finite.
     pub fn new(
         o: Vec2<T>,

@@ -149,6 +149,10 @@ enum Choice {
     Probe,
 }
 
+/// Pairs of turns (`4π` each) beyond which a sample's turn count is kept modulo
+/// `FAR_TURNS / 2` (`2³⁹` pairs, about `1.4·10¹³` rad): grid indices stay within `i64`.
+const FAR_TURNS: u64 = 1 << 40;
+
 /// Turns a jump walks looking for the period of the tracked state; a longer jump whose state has
 /// not repeated by then is refused ([`Error::OutOfRange`]) rather than walked turn by turn.
 const PERIOD_SEARCH: i64 = 1024;
@@ -236,6 +240,17 @@ impl<T: RealField + Copy, const N: usize> Snapshot<T, N> {
 /// first one (or from the start angle), one placement a sample, in any order: the walk's bits,
 /// checked by a property test against the walk itself.
 ///
+/// # Large angles
+/// Every angle is reduced exactly to two turns before it is used ([`crate::reduce_angle`]: crank pins,
+/// flat-position parities, the grid point before a sample), so a sample at `θ = 10³⁰⁰` gets the
+/// pose of `θ mod 2π` to rounding. Up to `2⁴⁰` pairs of turns (`|θ| ≲ 1.4·10¹³` rad) the grid
+/// index is exact. Beyond, a sample's turn count is replaced by a representative congruent to
+/// it modulo `2⁴⁰` turns and at least `2⁴¹` turns from the origin, on the same side: exact
+/// when the tracked state's period in turns divides `2⁴⁰` (every period that is a power of
+/// two, one turn for every catalogue linkage); a jump there whose state has another period is
+/// refused ([`Error::OutOfRange`]). Two such samples are walked between by their
+/// representatives, which differ by the true difference modulo `2⁴⁰` turns.
+///
 /// A grid point where a construction is undetermined (a kite's crank pin exactly on the rocker
 /// pivot) is stepped over. A sample that cannot assemble writes NaN joints, returns its error
 /// and changes nothing else. A path that cannot be walked (a locked zone lies between two
@@ -293,6 +308,9 @@ pub struct Tracker<'m, T: RealField + Copy, const N: usize> {
     /// Whether every orientation is a function of the angle ([`Mechanism::branches_in_closed_form`]):
     /// samples are then placed from the first one with no walk between.
     closed_form: bool,
+    /// Whether the sample being placed is beyond `FAR_TURNS` pairs of turns, its turn count
+    /// known modulo a power of two only (`at_of`).
+    far: bool,
 }
 
 impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
@@ -351,6 +369,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             work: 0,
             parity,
             closed_form: mech.branches_in_closed_form(),
+            far: false,
         })
     }
 
@@ -443,18 +462,49 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         lit::<T>(idx.rem_euclid(self.fine) as f64) * self.h()
     }
 
-    /// Driver angle of grid point `idx` along the path (not reduced).
+    /// Driver angle of grid point `idx` along the path, for the parity of the flat positions
+    /// passed: `idx·h` near the origin, else reduced to two turns exactly (the parity's
+    /// period), as [`crate::turns::reduce`] reduces a sample's angle.
     fn grid_path_angle(&self, idx: i64) -> T {
-        lit::<T>(idx as f64) * self.h()
+        let two_turns = self.fine.saturating_mul(2);
+        let angle = lit::<T>(idx as f64) * self.h();
+        if angle.abs() < lit::<T>(crate::turns::REDUCE_FROM) {
+            angle
+        } else {
+            lit::<T>(idx.rem_euclid(two_turns) as f64) * self.h()
+        }
     }
 
-    /// Where `theta` lies on the grid.
-    fn at_of(&self, theta: T) -> At<T> {
-        let bound = lit::<T>(4.0e18);
-        let u = (theta / self.h()).max(-bound).min(bound);
+    /// Where `theta` lies on the grid: from its exact reduction `θ = 4π·k + θ'`
+    /// ([`crate::turns::split`]) at large angles, so the grid point before a sample is the one
+    /// its pose is computed at. Beyond [`FAR_TURNS`] pairs of turns, `k` is replaced by a
+    /// representative congruent to it modulo `FAR_TURNS / 2` and at least `FAR_TURNS` in size,
+    /// with its sign (see [`Tracker`]'s docs); the second value says so.
+    fn at_of(&self, theta: T) -> (At<T>, bool) {
+        let (k, reduced) = crate::turns::split(theta);
+        let h = self.h();
+        let u = reduced / h;
         let fl = u.floor();
-        let idx = fl.to_subset().unwrap_or(0.0) as i64;
-        At { idx, frac: u - fl }
+        let j = fl.to_subset().unwrap_or(0.0);
+        if reduced == theta || !theta.is_finite() {
+            // Small (or not finite: refused by the callers).
+            let bound = 4.0e18;
+            let idx = j.max(-bound).min(bound) as i64;
+            return (At { idx, frac: u - fl }, false);
+        }
+        let negative = theta < T::zero();
+        let magnitude = if negative { k.wrapping_neg() } else { k };
+        let far = magnitude >= FAR_TURNS;
+        let pairs = if far {
+            FAR_TURNS + (magnitude & (FAR_TURNS / 2 - 1))
+        } else {
+            magnitude
+        } as i64;
+        let pairs = if negative { -pairs } else { pairs };
+        let idx = pairs
+            .saturating_mul(self.fine.saturating_mul(2))
+            .saturating_add(j as i64);
+        (At { idx, frac: u - fl }, far)
     }
 
     /// Solves every joint at `theta` (the point `at` of the path, at driver angle `path` before
@@ -470,6 +520,8 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
         joints: &mut [Vec2<T>],
     ) -> Result<(T, bool), Error> {
         self.work = self.work.saturating_add(1);
+        // Reduced once here rather than by every construction ([`crate::turns`]).
+        let theta = crate::turns::reduce(theta);
         let mech = self.mech;
         let mut margin = T::one();
         let mut would_flip = false;
@@ -711,6 +763,16 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
             walked += 1;
         }
         if let Some(p) = period {
+            if self.far && !p.unsigned_abs().is_power_of_two() {
+                // The target's turn count is known modulo a power of two only (`at_of`): a
+                // period that does not divide it cannot be skipped exactly.
+                return Err(Error::OutOfRange {
+                    what: "turns in the period of a tracked state that is not a power of two, \
+                           jumping beyond 2^40 turns",
+                    value: usize::try_from(p).unwrap_or(usize::MAX),
+                    max: 1,
+                });
+            }
             let skip = left / p * p;
             let shift = skip.saturating_mul(turn);
             for at in self.hist_at.iter_mut() {
@@ -802,12 +864,13 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
     /// Walks the canonical path toward `theta` and places the sample there. A sample that
     /// cannot be placed leaves the walk as it was.
     fn advance(&mut self, theta: T, joints: &mut [Vec2<T>]) -> Result<T, Error> {
-        let at = self.at_of(theta);
+        let (at, far) = self.at_of(theta);
+        self.far = far;
         if self.nhist == 0 {
             // With a start angle (Mechanism::set_start_angle) the declared sides hold there,
             // and the first sample is reached by the walk below; else they hold at `theta`.
             let started = self.mech.start_angle().is_some_and(|a0| {
-                let at0 = self.at_of(a0);
+                let (at0, _) = self.at_of(a0);
                 self.restart(a0, at0, joints).is_ok()
             });
             if !started {

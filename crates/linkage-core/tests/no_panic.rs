@@ -750,8 +750,21 @@ fn rates_scale_with_the_linkage() {
 
 #[test]
 fn inflection_circle_beyond_the_float_range_is_none() {
-    // D12: a subnormal crank made the inflection pole and radius infinite.
-    let fb = FourBar::new(1.0_f64, 5e-324, 1.0, 1.0, (0.0, 0.0), Assembly::Open).unwrap();
+    // D12: a subnormal crank made the inflection pole and radius infinite. A subnormal length
+    // is refused now (issue 29); the smallest normal crank is the extreme left.
+    assert!(matches!(
+        FourBar::new(1.0_f64, 5e-324, 1.0, 1.0, (0.0, 0.0), Assembly::Open),
+        Err(linkage_core::Error::SubnormalLength { .. })
+    ));
+    let fb = FourBar::new(
+        1.0_f64,
+        f64::MIN_POSITIVE,
+        1.0,
+        1.0,
+        (0.0, 0.0),
+        Assembly::Open,
+    )
+    .unwrap();
     if let Some(i) = fb.coupler_inflection(0.0) {
         assert!(
             i.radius.is_finite() && i.centre.x.is_finite() && i.inflection_pole.y.is_finite(),

@@ -212,3 +212,54 @@ pub fn mid_sentence(e: impl std::fmt::Display) -> String {
         None => s,
     }
 }
+
+/// The message for an `out` array that numpy holds unaligned: results are written in place,
+/// so no copy can stand in for it.
+pub const UNALIGNED_OUT: &str = "out is an unaligned float64 array (a view of a buffer at an \
+     offset that is not a multiple of 8 bytes), which results cannot be written into: pass an \
+     aligned array, e.g. np.empty_like(out)";
+
+/// A float64 numpy array argument that the core can borrow as a slice: the caller's array when
+/// numpy holds it aligned, else an aligned copy made once by numpy. An array viewing a byte
+/// buffer at an odd offset (`np.frombuffer(b, dtype=np.float64, offset=1)`) is C-contiguous
+/// but unaligned, and no Rust slice may point into it: it used to be refused as "not a
+/// contiguous float64 array". Dereferences to the `PyReadonlyArray` it holds.
+pub struct F64Array<'py, D: numpy::ndarray::Dimension>(numpy::PyReadonlyArray<'py, f64, D>);
+
+/// A 1-D [`F64Array`].
+pub type F64Array1<'py> = F64Array<'py, numpy::Ix1>;
+/// A 2-D [`F64Array`].
+pub type F64Array2<'py> = F64Array<'py, numpy::Ix2>;
+/// A 3-D [`F64Array`].
+pub type F64Array3<'py> = F64Array<'py, numpy::Ix3>;
+
+impl<'py, D: numpy::ndarray::Dimension> std::ops::Deref for F64Array<'py, D> {
+    type Target = numpy::PyReadonlyArray<'py, f64, D>;
+
+    fn deref(&self) -> &Self::Target {
+        &self.0
+    }
+}
+
+impl<'a, 'py, D: numpy::ndarray::Dimension + 'a> FromPyObject<'a, 'py> for F64Array<'py, D> {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> Result<Self, Self::Error> {
+        use numpy::PyUntypedArrayMethods;
+        let array = obj.extract::<numpy::PyReadonlyArray<'py, f64, D>>()?;
+        if array.is_aligned() {
+            return Ok(F64Array(array));
+        }
+        // numpy's copy is aligned (and C-contiguous): one copy, read element by element by
+        // numpy, which handles unaligned data.
+        let copy = obj.call_method1("copy", ("C",))?;
+        let copy = copy.extract::<numpy::PyReadonlyArray<'py, f64, D>>()?;
+        if copy.is_aligned() {
+            Ok(F64Array(copy))
+        } else {
+            Err(linkage_error(
+                "an unaligned float64 array could not be copied aligned: pass np.array(a) instead",
+            ))
+        }
+    }
+}

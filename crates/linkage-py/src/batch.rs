@@ -1,9 +1,7 @@
 //! Mirrors `linkage_core::batch`: many four-bars swept over shared crank angles.
 
 use linkage_core::{Assembly, FourBarBatch, Vec2};
-use numpy::{
-    PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
-};
+use numpy::{PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
@@ -84,13 +82,13 @@ batch_with_features! {
 }
 
 /// A contiguous 1-D float64 argument as a slice.
-fn slice1<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+fn slice1<'a>(name: &str, a: &'a crate::args::F64Array1<'_>) -> PyResult<&'a [f64]> {
     a.as_slice()
         .map_err(|_| linkage_error(format!("{name} must be a contiguous float64 array")))
 }
 
 /// A contiguous `(M, 2)` float64 argument as points.
-fn points2<'a>(name: &str, a: &'a PyReadonlyArray2<'_, f64>) -> PyResult<&'a [Vec2<f64>]> {
+fn points2<'a>(name: &str, a: &'a crate::args::F64Array2<'_>) -> PyResult<&'a [Vec2<f64>]> {
     if a.shape()[1] != 2 {
         return Err(linkage_error(format!(
             "{name} must have shape (M, 2), got {:?}",
@@ -102,7 +100,7 @@ fn points2<'a>(name: &str, a: &'a PyReadonlyArray2<'_, f64>) -> PyResult<&'a [Ve
         .map_err(|e| linkage_error(format!("{name} must be an aligned float64 array ({e})")))
 }
 
-fn slice1_2<'a>(name: &str, a: &'a PyReadonlyArray2<'_, f64>) -> PyResult<&'a [f64]> {
+fn slice1_2<'a>(name: &str, a: &'a crate::args::F64Array2<'_>) -> PyResult<&'a [f64]> {
     a.as_slice()
         .map_err(|_| linkage_error(format!("{name} must be a C-contiguous float64 array")))
 }
@@ -125,15 +123,15 @@ type Outputs<'py> = (Bound<'py, PyArray3<f64>>, Bound<'py, PyArray2<bool>>);
 )]
 pub fn batch_sweep<'py>(
     py: Python<'py>,
-    o: PyReadonlyArray2<'py, f64>,
-    c: PyReadonlyArray2<'py, f64>,
-    crank: PyReadonlyArray1<'py, f64>,
-    coupler: PyReadonlyArray1<'py, f64>,
-    rocker: PyReadonlyArray1<'py, f64>,
-    along: PyReadonlyArray1<'py, f64>,
-    left: PyReadonlyArray1<'py, f64>,
+    o: crate::args::F64Array2<'py>,
+    c: crate::args::F64Array2<'py>,
+    crank: crate::args::F64Array1<'py>,
+    coupler: crate::args::F64Array1<'py>,
+    rocker: crate::args::F64Array1<'py>,
+    along: crate::args::F64Array1<'py>,
+    left: crate::args::F64Array1<'py>,
     crossed: PyReadonlyArray1<'py, bool>,
-    theta: PyReadonlyArray1<'py, f64>,
+    theta: crate::args::F64Array1<'py>,
     #[pyo3(from_py_with = named::threads)] threads: usize,
     out: Option<Outputs<'py>>,
 ) -> PyResult<Outputs<'py>> {
@@ -188,6 +186,9 @@ pub fn batch_sweep<'py>(
             }
             if !p.is_c_contiguous() || !v.is_c_contiguous() {
                 return Err(linkage_error("out arrays must be C-contiguous"));
+            }
+            if !p.is_aligned() {
+                return Err(linkage_error(crate::args::UNALIGNED_OUT));
             }
             (p, v)
         }

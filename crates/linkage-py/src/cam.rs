@@ -1,7 +1,7 @@
 //! Mirrors `linkage_core::cam`.
 
 use linkage_core::{CamPoint, FlatFollower, RollerFollower};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -15,8 +15,8 @@ use crate::memory;
 #[pyo3(signature = (phi, y, base_radius, roller_radius=None, offset=0.0))]
 pub fn cam_geometry<'py>(
     py: Python<'py>,
-    phi: PyReadonlyArray1<'py, f64>,
-    y: PyReadonlyArray2<'py, f64>,
+    phi: crate::args::F64Array1<'py>,
+    y: crate::args::F64Array2<'py>,
     base_radius: Real,
     roller_radius: Option<Real>,
     #[pyo3(from_py_with = crate::args::real)] offset: f64,

@@ -2,7 +2,7 @@
 //! points.
 
 use linkage_core::{circumcentre, path_curvature, straight_part, Centre, Vec2};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -11,7 +11,7 @@ use crate::error::linkage_error;
 use crate::memory;
 
 /// Reads an (M, 2) contiguous float64 array as points.
-fn points(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<Vec2<f64>>> {
+fn points(name: &str, a: &crate::args::F64Array2<'_>) -> PyResult<Vec<Vec2<f64>>> {
     let s = a
         .as_slice()
         .map_err(|_| linkage_error(format!("{name} must be a contiguous float64 array")))?;
@@ -42,9 +42,9 @@ fn finite_xy(c: Centre<f64>) -> [f64; 2] {
 #[pyfunction]
 pub fn curvature_centres<'py>(
     py: Python<'py>,
-    point: PyReadonlyArray2<'py, f64>,
-    velocity: PyReadonlyArray2<'py, f64>,
-    acceleration: PyReadonlyArray2<'py, f64>,
+    point: crate::args::F64Array2<'py>,
+    velocity: crate::args::F64Array2<'py>,
+    acceleration: crate::args::F64Array2<'py>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyArray1<f64>>)> {
     let (p, v, a) = (
         points("point", &point)?,
@@ -75,9 +75,9 @@ pub fn curvature_centres<'py>(
 #[pyfunction]
 pub fn circumcentres<'py>(
     py: Python<'py>,
-    p0: PyReadonlyArray2<'py, f64>,
-    p1: PyReadonlyArray2<'py, f64>,
-    p2: PyReadonlyArray2<'py, f64>,
+    p0: crate::args::F64Array2<'py>,
+    p1: crate::args::F64Array2<'py>,
+    p2: crate::args::F64Array2<'py>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (a, b, c) = (points("p0", &p0)?, points("p1", &p1)?, points("p2", &p2)?);
     same_rows(&["p0", "p1", "p2"], &[a.len(), b.len(), c.len()])?;
@@ -94,10 +94,10 @@ pub fn circumcentres<'py>(
 #[pyo3(signature = (path, tol, closed, velocity=None))]
 pub fn straight_run<'py>(
     py: Python<'py>,
-    path: PyReadonlyArray2<'py, f64>,
+    path: crate::args::F64Array2<'py>,
     tol: Real,
     closed: bool,
-    velocity: Option<PyReadonlyArray2<'py, f64>>,
+    velocity: Option<crate::args::F64Array2<'py>>,
 ) -> PyResult<Option<Bound<'py, PyDict>>> {
     let tol = tol.0;
     let p = points("path", &path)?;

@@ -1,7 +1,7 @@
 //! Mirrors `linkage_core::motion_law`, `linkage_core::gear_train` and `linkage_core::schedule`.
 
 use linkage_core::{Discontinuity, GearTrain, MotionLaw, Program, ScheduleTable, Segment};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
 use crate::args::{count_u32, Real, Strict};
@@ -18,7 +18,7 @@ fn law(name: &str) -> PyResult<MotionLaw> {
     })
 }
 
-fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+fn slice<'a>(name: &str, a: &'a crate::args::F64Array1<'_>) -> PyResult<&'a [f64]> {
     a.as_slice()
         .map_err(|_| linkage_error(format!("{name} must be a contiguous float64 array")))
 }
@@ -34,7 +34,7 @@ pub fn motion_law_names() -> Vec<&'static str> {
 pub fn motion_law_eval<'py>(
     py: Python<'py>,
     name: &str,
-    u: PyReadonlyArray1<'py, f64>,
+    u: crate::args::F64Array1<'py>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let l = law(name)?;
     let u = slice("u", &u)?;
@@ -81,7 +81,7 @@ pub fn program_eval<'py>(
     durations: Vec<Real>,
     rises: Vec<Real>,
     laws: Vec<Option<String>>,
-    t: PyReadonlyArray1<'py, f64>,
+    t: crate::args::F64Array1<'py>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let segs = segments(&durations, &rises, &laws)?;
     let t = slice("t", &t)?;
@@ -164,9 +164,9 @@ pub fn schedule_eval<'py>(
     py: Python<'py>,
     dt: Real,
     advance: Real,
-    theta: PyReadonlyArray1<'py, f64>,
-    omega: PyReadonlyArray1<'py, f64>,
-    t: PyReadonlyArray1<'py, f64>,
+    theta: crate::args::F64Array1<'py>,
+    omega: crate::args::F64Array1<'py>,
+    t: crate::args::F64Array1<'py>,
     single: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (th, w, t) = (
@@ -215,8 +215,8 @@ pub fn schedule_eval<'py>(
 )]
 pub fn stance_schedule<'py>(
     py: Python<'py>,
-    theta: PyReadonlyArray1<'py, f64>,
-    u: PyReadonlyArray1<'py, f64>,
+    theta: crate::args::F64Array1<'py>,
+    u: crate::args::F64Array1<'py>,
     foot_speed: Real,
     duty_factor: Real,
     samples: &Bound<'py, PyAny>,

@@ -1,7 +1,7 @@
 //! Mirrors `linkage_core::fourbar`.
 
 use linkage_core::{AngleMode, Assembly, FourBar as CoreFourBar, InputRange, Vec2};
-use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use crate::args::{choice, mid_sentence, named, xy, Real, RealPair};
@@ -215,7 +215,7 @@ impl FourBar {
     fn transmission_angle<'py>(
         &self,
         py: Python<'py>,
-        theta: PyReadonlyArray1<'py, f64>,
+        theta: crate::args::F64Array1<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let th = theta
             .as_slice()
@@ -361,6 +361,9 @@ impl FourBar {
         // `as_slice_mut` also accepts Fortran order, whose memory order is not (x, y) pairs.
         if !out.is_c_contiguous() {
             return Err(linkage_error("out must be C-contiguous"));
+        }
+        if !out.is_aligned() {
+            return Err(linkage_error(crate::args::UNALIGNED_OUT));
         }
         {
             let mut view = out.try_readwrite().map_err(|e| {

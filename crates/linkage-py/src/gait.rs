@@ -1,9 +1,7 @@
 //! Mirrors `linkage_core::gait`: leg figures of a foot path, and of a batch of four-bar legs.
 
 use linkage_core::{Assembly, FourBarBatch, FourBarGait, GaitScratch, LegGait, Vec2};
-use numpy::{
-    PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
-};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -49,7 +47,7 @@ fn row(g: &FourBarGait<f64>) -> [f64; 13] {
     ]
 }
 
-fn points<'a>(name: &str, a: &'a PyReadonlyArray2<'_, f64>) -> PyResult<&'a [Vec2<f64>]> {
+fn points<'a>(name: &str, a: &'a crate::args::F64Array2<'_>) -> PyResult<&'a [Vec2<f64>]> {
     if a.shape()[1] != 2 {
         return Err(linkage_error(format!(
             "{name} must have shape (N, 2), got {:?}",
@@ -63,7 +61,7 @@ fn points<'a>(name: &str, a: &'a PyReadonlyArray2<'_, f64>) -> PyResult<&'a [Vec
         .map_err(|e| linkage_error(format!("{name} must be an aligned float64 array ({e})")))
 }
 
-fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+fn slice<'a>(name: &str, a: &'a crate::args::F64Array1<'_>) -> PyResult<&'a [f64]> {
     a.as_slice()
         .map_err(|_| linkage_error(format!("{name} must be a contiguous float64 array")))
 }
@@ -75,8 +73,8 @@ fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]
 #[pyo3(signature = (path, rate, tol, ground=None))]
 pub fn leg_gait<'py>(
     py: Python<'py>,
-    path: PyReadonlyArray2<'py, f64>,
-    rate: PyReadonlyArray2<'py, f64>,
+    path: crate::args::F64Array2<'py>,
+    rate: crate::args::F64Array2<'py>,
     tol: f64,
     ground: Option<f64>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyArray1<bool>>)> {
@@ -114,13 +112,13 @@ pub fn leg_gait<'py>(
 )]
 pub fn four_bar_gaits<'py>(
     py: Python<'py>,
-    o: PyReadonlyArray2<'py, f64>,
-    c: PyReadonlyArray2<'py, f64>,
-    crank: PyReadonlyArray1<'py, f64>,
-    coupler: PyReadonlyArray1<'py, f64>,
-    rocker: PyReadonlyArray1<'py, f64>,
-    along: PyReadonlyArray1<'py, f64>,
-    left: PyReadonlyArray1<'py, f64>,
+    o: crate::args::F64Array2<'py>,
+    c: crate::args::F64Array2<'py>,
+    crank: crate::args::F64Array1<'py>,
+    coupler: crate::args::F64Array1<'py>,
+    rocker: crate::args::F64Array1<'py>,
+    along: crate::args::F64Array1<'py>,
+    left: crate::args::F64Array1<'py>,
     crossed: PyReadonlyArray1<'py, bool>,
     samples: usize,
     rel_tol: f64,

@@ -1,7 +1,7 @@
 //! Mirrors `linkage_core::kinetostatics`: driver torque and joint reactions along a sweep.
 
 use linkage_core::{Bodies, BodyId, Dynamics, ForceSweep, Inertia, LoadSeries, Vec2};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -10,7 +10,7 @@ use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
 use crate::memory;
 
-fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+fn slice<'a>(name: &str, a: &'a crate::args::F64Array1<'_>) -> PyResult<&'a [f64]> {
     a.as_slice()
         .map_err(|_| linkage_error(format!("{name} must be a contiguous float64 array")))
 }
@@ -29,17 +29,17 @@ fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]
 pub fn forces<'py>(
     py: Python<'py>,
     mech: &Mechanism,
-    theta: PyReadonlyArray1<'py, f64>,
-    omega: PyReadonlyArray1<'py, f64>,
-    alpha: PyReadonlyArray1<'py, f64>,
+    theta: crate::args::F64Array1<'py>,
+    omega: crate::args::F64Array1<'py>,
+    alpha: crate::args::F64Array1<'py>,
     inertia: Vec<Strict<(Real, Real, Real, Real)>>,
     gravity: RealPair,
     loads: Vec<
         Strict<(
             Bound<'py, PyAny>,
             Bound<'py, PyAny>,
-            PyReadonlyArray2<'py, f64>,
-            PyReadonlyArray1<'py, f64>,
+            crate::args::F64Array2<'py>,
+            crate::args::F64Array1<'py>,
         )>,
     >,
 ) -> PyResult<Bound<'py, PyDict>> {

@@ -93,6 +93,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(gait::four_bar_gaits, m)?)?;
     m.add_function(wrap_pyfunction!(gait::gait_columns, m)?)?;
     m.add_function(wrap_pyfunction!(mechanism::sweep_mechanisms, m)?)?;
+    m.add_function(wrap_pyfunction!(mechanism::reduce_angle, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_atlas_build, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_arc_atlas_build, m)?)?;
     m.add_function(wrap_pyfunction!(synthesis::synth_arc_frame, m)?)?;

@@ -5,10 +5,7 @@ use linkage_core::{
     Bodies, Columns, Construction, LineDirection, Mechanism as CoreMechanism, Pairs, Rate, Reach,
     Side, SweepOutputs, Vec2,
 };
-use numpy::{
-    Ix1, Ix2, Ix3, PyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3,
-    PyReadwriteArray, PyUntypedArrayMethods,
-};
+use numpy::{Ix1, Ix2, Ix3, PyArray, PyArrayMethods, PyReadwriteArray, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -22,7 +19,7 @@ use crate::CAPACITY;
 /// Reads an optional rate array: absent is `default`, length 1 is a scalar, length `n` per sample.
 fn rate<'a>(
     name: &str,
-    arr: &'a Option<PyReadonlyArray1<'_, f64>>,
+    arr: &'a Option<crate::args::F64Array1<'_>>,
     n: usize,
     default: f64,
 ) -> PyResult<Rate<'a, f64>> {
@@ -207,7 +204,7 @@ impl Mechanism {
         &self,
         py: Python<'py>,
         #[pyo3(from_py_with = named::joint)] joint: usize,
-        joints: PyReadonlyArray3<'py, f64>,
+        joints: crate::args::F64Array3<'py>,
     ) -> PyResult<Bound<'py, PyArray<f64, Ix2>>> {
         let m = self.snapshot();
         let rows = joint_rows("joints", &joints, m.len())?;
@@ -234,14 +231,14 @@ impl Mechanism {
 
     /// The loop-closure residual of swept joints `(n, j, 2)` (`linkage_core::Bodies::
     /// closure_residual`): the largest change of a distance within one moving link.
-    fn closure_residual(&self, joints: PyReadonlyArray3<'_, f64>) -> PyResult<f64> {
+    fn closure_residual(&self, joints: crate::args::F64Array3<'_>) -> PyResult<f64> {
         let m = self.snapshot();
         let rows = joint_rows("joints", &joints, m.len())?;
         Ok(Bodies::of(&m).closure_residual(rows))
     }
 
     /// The longest distance between two joints of one moving link in a pose `(j, 2)`.
-    fn longest_link(&self, pose: PyReadonlyArray2<'_, f64>) -> PyResult<f64> {
+    fn longest_link(&self, pose: crate::args::F64Array2<'_>) -> PyResult<f64> {
         let m = self.snapshot();
         let flat = pose
             .as_slice()
@@ -285,9 +282,9 @@ impl Mechanism {
     fn sweep<'py>(
         &self,
         py: Python<'py>,
-        theta: PyReadonlyArray1<'py, f64>,
-        omega: Option<PyReadonlyArray1<'py, f64>>,
-        alpha: Option<PyReadonlyArray1<'py, f64>>,
+        theta: crate::args::F64Array1<'py>,
+        omega: Option<crate::args::F64Array1<'py>>,
+        alpha: Option<crate::args::F64Array1<'py>>,
         velocity: bool,
         acceleration: bool,
         instant_centres: bool,
@@ -444,7 +441,7 @@ type Joints4<'py> = Bound<'py, PyArray<f64, numpy::ndarray::Ix4>>;
 pub fn sweep_mechanisms<'py>(
     py: Python<'py>,
     mechanisms: Vec<PyRef<'py, Mechanism>>,
-    theta: PyReadonlyArray1<'py, f64>,
+    theta: crate::args::F64Array1<'py>,
     threads: usize,
 ) -> PyResult<(Joints4<'py>, Bound<'py, PyArray<bool, Ix2>>)> {
     let th = theta
@@ -643,7 +640,7 @@ fn construction<'py>(py: Python<'py>, c: &Construction<f64>) -> PyResult<Bound<'
 /// Rows of `j` joints from a C-contiguous `(n, j, 2)` float64 array.
 fn joint_rows<'a>(
     what: &str,
-    a: &'a PyReadonlyArray3<'_, f64>,
+    a: &'a crate::args::F64Array3<'_>,
     j: usize,
 ) -> PyResult<&'a [Vec2<f64>]> {
     let shape = a.shape();
@@ -700,4 +697,21 @@ pub(crate) fn as_points<'a, D: numpy::ndarray::Dimension>(
 ) -> PyResult<&'a mut [Vec2<f64>]> {
     bytemuck::try_cast_slice_mut(as_slice(a)?)
         .map_err(|e| linkage_error(format!("internal error: output misaligned ({e})")))
+}
+
+/// Each angle of `theta` reduced exactly to two turns (`linkage_core::reduce_angle`): the
+/// reduction every sweep applies first, for callers that add a phase to a large angle
+/// (`reduce_angle(θ) + φ` keeps the phase where `θ + φ` rounds it away).
+#[pyfunction]
+pub fn reduce_angle<'py>(
+    py: Python<'py>,
+    theta: crate::args::F64Array1<'py>,
+) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+    let th = theta
+        .as_slice()
+        .map_err(|_| linkage_error("theta must be a contiguous float64 array"))?;
+    let what = || format!("{} reduced angles", th.len());
+    let mut out = memory::with_capacity(&what, th.len())?;
+    out.extend(th.iter().map(|&t| linkage_core::reduce_angle(t)));
+    Ok(numpy::PyArray1::from_vec(py, out))
 }

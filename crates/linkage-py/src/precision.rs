@@ -5,7 +5,7 @@ use linkage_core::{
     centre_point, chebyshev_spacing, circle_point, common_pole, Assembly, BodyPose, BurmesterCurve,
     BurmesterPair, Defect, Error, FunctionGenerator, MotionCandidate, Vec2,
 };
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -66,7 +66,7 @@ pub fn burmester_common_pole(poses: Vec<(f64, f64, f64)>) -> PyResult<Option<(f6
 pub fn burmester_curve<'py>(
     py: Python<'py>,
     poses: Vec<(f64, f64, f64)>,
-    beta: PyReadonlyArray1<'py, f64>,
+    beta: crate::args::F64Array1<'py>,
     free: Option<usize>,
 ) -> PyResult<(
     usize,
@@ -158,11 +158,11 @@ fn pose_error(e: &Error) -> bool {
 pub fn motion_candidates<'py>(
     py: Python<'py>,
     poses: Vec<(f64, f64, f64)>,
-    crank: PyReadonlyArray2<'py, f64>,
-    rocker: PyReadonlyArray2<'py, f64>,
+    crank: crate::args::F64Array2<'py>,
+    rocker: crate::args::F64Array2<'py>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let p = poses_of(&poses)?;
-    let rows = |name: &str, a: &PyReadonlyArray2<'py, f64>| -> PyResult<Vec<BurmesterPair<f64>>> {
+    let rows = |name: &str, a: &crate::args::F64Array2<'py>| -> PyResult<Vec<BurmesterPair<f64>>> {
         if a.as_array().ncols() != 4 {
             return Err(linkage_error(format!("{name} must have shape (M, 4)")));
         }
@@ -285,10 +285,10 @@ pub fn chebyshev_points<'py>(
 #[pyfunction]
 pub fn function_generator<'py>(
     py: Python<'py>,
-    phi: PyReadonlyArray1<'py, f64>,
-    psi: PyReadonlyArray1<'py, f64>,
+    phi: crate::args::F64Array1<'py>,
+    psi: crate::args::F64Array1<'py>,
     ground: f64,
-    samples: PyReadonlyArray1<'py, f64>,
+    samples: crate::args::F64Array1<'py>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (phi, psi) = (phi.as_slice()?, psi.as_slice()?);
     let samples = samples.as_slice()?;

@@ -2,7 +2,7 @@
 //! circuit (see `linkage.SliderCrank` for the documented Python class).
 
 use linkage_core::{InputRange, Reach, SliderCircuit, SliderCrank as CoreSliderCrank, Vec2};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
 use crate::args::{choice, named, xy, Real, RealPair};
@@ -109,7 +109,7 @@ impl SliderCrank {
     fn transmission<'py>(
         &self,
         py: Python<'py>,
-        theta: PyReadonlyArray1<'py, f64>,
+        theta: crate::args::F64Array1<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let th = theta
             .as_slice()

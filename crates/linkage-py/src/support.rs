@@ -1,7 +1,7 @@
 //! Mirrors `linkage_core::support`: support polygons and stability margins per sample.
 
 use linkage_core::{support_margins as core_support_margins, Vec2};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
 use crate::error::linkage_error;
@@ -17,8 +17,8 @@ use crate::memory;
 )]
 pub fn support_margins<'py>(
     py: Python<'py>,
-    points: PyReadonlyArray3<'py, f64>,
-    cg: PyReadonlyArray2<'py, f64>,
+    points: crate::args::F64Array3<'py>,
+    cg: crate::args::F64Array2<'py>,
 ) -> PyResult<(
     Bound<'py, PyArray1<f64>>,
     Bound<'py, PyAny>,

@@ -44,7 +44,7 @@ fn rows<'a, T: numpy::Element>(
         .map_err(|_| linkage_error(format!("{what} must be a C-contiguous array")))
 }
 
-fn points<'a>(what: &str, a: &'a PyReadonlyArray2<'_, f64>) -> PyResult<&'a [Vec2<f64>]> {
+fn points<'a>(what: &str, a: &'a crate::args::F64Array2<'_>) -> PyResult<&'a [Vec2<f64>]> {
     bytemuck::try_cast_slice(rows(what, a, 2)?)
         .map_err(|e| linkage_error(format!("{what} must be an aligned float64 array ({e})")))
 }
@@ -142,7 +142,7 @@ fn arc_params(slider: bool) -> usize {
 #[pyo3(signature = (entry, harmonics, samples, phases, slider=false))]
 pub fn synth_arc_frame<'py>(
     py: Python<'py>,
-    entry: PyReadonlyArray1<'py, f64>,
+    entry: crate::args::F64Array1<'py>,
     harmonics: usize,
     samples: usize,
     phases: usize,
@@ -228,7 +228,7 @@ pub fn synth_atlas_nearest<'py>(
 #[pyo3(signature = (points, harmonics, closed))]
 pub fn synth_descriptors<'py>(
     py: Python<'py>,
-    points: PyReadonlyArray2<'py, f64>,
+    points: crate::args::F64Array2<'py>,
     harmonics: usize,
     closed: bool,
 ) -> PyResult<(Arr2<'py, f32>, Arr1<'py, f64>)> {
@@ -255,7 +255,7 @@ pub fn synth_descriptors<'py>(
 #[pyo3(signature = (params, crossed, harmonics, samples))]
 pub fn synth_frame<'py>(
     py: Python<'py>,
-    params: PyReadonlyArray1<'py, f64>,
+    params: crate::args::F64Array1<'py>,
     crossed: bool,
     harmonics: usize,
     samples: usize,
@@ -272,7 +272,7 @@ pub fn synth_frame<'py>(
 #[pyo3(signature = (params, harmonics, samples))]
 pub fn synth_slider_frame<'py>(
     py: Python<'py>,
-    params: PyReadonlyArray1<'py, f64>,
+    params: crate::args::F64Array1<'py>,
     harmonics: usize,
     samples: usize,
 ) -> PyResult<Arr1<'py, f64>> {
@@ -283,7 +283,7 @@ pub fn synth_slider_frame<'py>(
     Ok(frame_array(py, &frame))
 }
 
-fn contiguous<'a>(params: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+fn contiguous<'a>(params: &'a crate::args::F64Array1<'_>) -> PyResult<&'a [f64]> {
     params
         .as_slice()
         .map_err(|_| linkage_error("params must be contiguous"))
@@ -295,10 +295,10 @@ fn contiguous<'a>(params: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> 
 #[pyo3(signature = (params, crossed, targets, s))]
 pub fn synth_residuals<'py>(
     py: Python<'py>,
-    params: PyReadonlyArray2<'py, f64>,
+    params: crate::args::F64Array2<'py>,
     crossed: PyReadonlyArray1<'py, bool>,
-    targets: PyReadonlyArray2<'py, f64>,
-    s: PyReadonlyArray2<'py, f64>,
+    targets: crate::args::F64Array2<'py>,
+    s: crate::args::F64Array2<'py>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     let p = rows("params", &params, PLACED_PARAMS)?;
     let cr = flags("crossed", &crossed)?;
@@ -312,9 +312,9 @@ pub fn synth_residuals<'py>(
 #[pyo3(signature = (params, targets, s))]
 pub fn synth_slider_residuals<'py>(
     py: Python<'py>,
-    params: PyReadonlyArray2<'py, f64>,
-    targets: PyReadonlyArray2<'py, f64>,
-    s: PyReadonlyArray2<'py, f64>,
+    params: crate::args::F64Array2<'py>,
+    targets: crate::args::F64Array2<'py>,
+    s: crate::args::F64Array2<'py>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     let p = rows("params", &params, SLIDER_PARAMS)?;
     let t = points("targets", &targets)?;
@@ -356,9 +356,9 @@ fn residual_array<'py>(
 )]
 pub fn synth_errors<'py>(
     py: Python<'py>,
-    params: PyReadonlyArray2<'py, f64>,
+    params: crate::args::F64Array2<'py>,
     crossed: PyReadonlyArray1<'py, bool>,
-    targets: PyReadonlyArray2<'py, f64>,
+    targets: crate::args::F64Array2<'py>,
     samples: usize,
     exact: bool,
     closed: bool,
@@ -379,8 +379,8 @@ pub fn synth_errors<'py>(
 #[pyo3(signature = (params, targets, samples=256, exact=false, closed=true, threads=1))]
 pub fn synth_slider_errors<'py>(
     py: Python<'py>,
-    params: PyReadonlyArray2<'py, f64>,
-    targets: PyReadonlyArray2<'py, f64>,
+    params: crate::args::F64Array2<'py>,
+    targets: crate::args::F64Array2<'py>,
     samples: usize,
     exact: bool,
     closed: bool,
@@ -437,7 +437,7 @@ type Info = (Option<String>, bool, f64, f64, f64, bool);
 #[pyo3(signature = (params, crossed, s_lo, s_hi, check_samples=2048))]
 pub fn synth_info(
     py: Python<'_>,
-    params: PyReadonlyArray1<'_, f64>,
+    params: crate::args::F64Array1<'_>,
     crossed: bool,
     s_lo: f64,
     s_hi: f64,
@@ -452,7 +452,7 @@ pub fn synth_info(
 #[pyo3(signature = (params, s_lo, s_hi, check_samples=2048))]
 pub fn synth_slider_info(
     py: Python<'_>,
-    params: PyReadonlyArray1<'_, f64>,
+    params: crate::args::F64Array1<'_>,
     s_lo: f64,
     s_hi: f64,
     check_samples: usize,
@@ -483,7 +483,7 @@ fn info_of(
 }
 
 /// A frame `[cx, cy, scale, rotation]` as the core's normalisation.
-fn frame_of(what: &str, f: &PyReadonlyArray1<'_, f64>) -> PyResult<Normalisation<f64>> {
+fn frame_of(what: &str, f: &crate::args::F64Array1<'_>) -> PyResult<Normalisation<f64>> {
     match f.as_slice() {
         Ok(&[cx, cy, scale, rotation]) => Ok(Normalisation {
             centre: Vec2::new(cx, cy),
@@ -498,7 +498,7 @@ fn frame_of(what: &str, f: &PyReadonlyArray1<'_, f64>) -> PyResult<Normalisation
 }
 
 /// The first `K` numbers of an atlas entry (a contiguous array).
-fn entry_head<const K: usize>(entry: &PyReadonlyArray1<'_, f64>) -> PyResult<[f64; K]> {
+fn entry_head<const K: usize>(entry: &crate::args::F64Array1<'_>) -> PyResult<[f64; K]> {
     entry
         .as_slice()
         .ok()
@@ -514,9 +514,9 @@ fn entry_head<const K: usize>(entry: &PyReadonlyArray1<'_, f64>) -> PyResult<[f6
 #[pyo3(signature = (entry, curve, target, flip))]
 pub fn synth_place<'py>(
     py: Python<'py>,
-    entry: PyReadonlyArray1<'py, f64>,
-    curve: PyReadonlyArray1<'py, f64>,
-    target: PyReadonlyArray1<'py, f64>,
+    entry: crate::args::F64Array1<'py>,
+    curve: crate::args::F64Array1<'py>,
+    target: crate::args::F64Array1<'py>,
     flip: bool,
 ) -> PyResult<Arr1<'py, f64>> {
     let e = entry_head::<5>(&entry)?;
@@ -530,9 +530,9 @@ pub fn synth_place<'py>(
 #[pyo3(signature = (entry, curve, target, flip))]
 pub fn synth_slider_place<'py>(
     py: Python<'py>,
-    entry: PyReadonlyArray1<'py, f64>,
-    curve: PyReadonlyArray1<'py, f64>,
-    target: PyReadonlyArray1<'py, f64>,
+    entry: crate::args::F64Array1<'py>,
+    curve: crate::args::F64Array1<'py>,
+    target: crate::args::F64Array1<'py>,
     flip: bool,
 ) -> PyResult<Arr1<'py, f64>> {
     let e = entry_head::<4>(&entry)?;
@@ -548,8 +548,8 @@ pub fn synth_slider_place<'py>(
 #[pyo3(signature = (points, path))]
 pub fn polyline_distance<'py>(
     py: Python<'py>,
-    points: PyReadonlyArray2<'py, f64>,
-    path: PyReadonlyArray2<'py, f64>,
+    points: crate::args::F64Array2<'py>,
+    path: crate::args::F64Array2<'py>,
 ) -> PyResult<Arr1<'py, f64>> {
     let (q, p) = (
         self::points("points", &points)?,
@@ -564,8 +564,8 @@ pub fn polyline_distance<'py>(
 #[pyo3(signature = (points, paths, stride))]
 pub fn polyline_distance_each<'py>(
     py: Python<'py>,
-    points: PyReadonlyArray2<'py, f64>,
-    paths: PyReadonlyArray2<'py, f64>,
+    points: crate::args::F64Array2<'py>,
+    paths: crate::args::F64Array2<'py>,
     stride: usize,
 ) -> PyResult<Arr1<'py, f64>> {
     let (q, p) = (
@@ -597,7 +597,7 @@ fn distances<'py>(
 /// (`linkage_core::covering_arc`).
 #[pyfunction]
 #[pyo3(signature = (feet))]
-pub fn synth_arc(feet: PyReadonlyArray1<'_, f64>) -> PyResult<Option<(f64, f64)>> {
+pub fn synth_arc(feet: crate::args::F64Array1<'_>) -> PyResult<Option<(f64, f64)>> {
     let f = feet
         .as_slice()
         .map_err(|_| linkage_error("feet must be a contiguous float64 array"))?;
@@ -615,7 +615,7 @@ type SliderCurveArrays<'py> = (Arr2<'py, f64>, Arr1<'py, f64>, Arr1<'py, f64>, f
 #[pyo3(signature = (points,))]
 pub fn synth_slider_curve_equation<'py>(
     py: Python<'py>,
-    points: PyReadonlyArray2<'py, f64>,
+    points: crate::args::F64Array2<'py>,
 ) -> PyResult<SliderCurveArrays<'py>> {
     let pts = self::points("points", &points)?;
     let found = py.detach(|| slider_cranks_from_curve(pts)).map_err(to_py)?;
@@ -643,7 +643,7 @@ type CurveArrays<'py> = (Arr2<'py, f64>, Arr1<'py, f64>, Arr2<'py, f64>, f64, f6
 #[pyo3(signature = (points,))]
 pub fn synth_curve_equation<'py>(
     py: Python<'py>,
-    points: PyReadonlyArray2<'py, f64>,
+    points: crate::args::F64Array2<'py>,
 ) -> PyResult<CurveArrays<'py>> {
     let pts = self::points("points", &points)?;
     let found = py.detach(|| fourbars_from_curve(pts)).map_err(to_py)?;
