@@ -622,7 +622,8 @@ class Candidates(list[Candidate[Any]]):
 def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
     """Read target points as an ``(n, 2)`` float64 array, from an array-like or a CSV file.
 
-    A CSV file has two numeric columns and an optional header line. The numbers are separated
+    A CSV file has two numeric columns and an optional header line (a first line none of whose
+    fields starts as a number does: ``x,y``, ``x (mm) y (mm)``). The numbers are separated
     by a comma, semicolon, tab or spaces; with semicolons or tabs, decimal commas are read too
     (``3,5;0,25``: a spreadsheet's export in a locale that writes them).
 
@@ -662,8 +663,8 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
             try:
                 row = [float(c) for c in cells]
             except ValueError:
-                if not rows and k == 1:
-                    continue  # a header line
+                if k == 1 and not any(_NUMBER_LIKE.match(c) for c in cells):
+                    continue  # a header line ("x,y"): a mistyped first point is an error
                 raise LinkageError(
                     f"{p}:{k}: not two numbers (x, y; separated by a comma, semicolon, tab or "
                     f"spaces): {line.strip()!r}"
@@ -697,12 +698,17 @@ _SEPARATORS = re.compile(r"[,;\s]+")
 _DECIMAL_COMMA_SEPARATORS = re.compile(r"[;\s]+")
 """What separates x from y in a line with decimal commas: semicolons, tabs or spaces."""
 
+_NUMBER_LIKE = re.compile(r"[+-]?\.?\d")
+"""A cell that starts as a number does (``2.o``, ``1e``): a first line with one is a point, not a
+header, and an error when it does not read."""
+
 
 def _csv_text(p: Path) -> str:
     """Return the text of the points file ``p``.
 
     UTF-8 (a byte-order mark allowed) or UTF-16 with its byte-order mark (a spreadsheet's
-    "Unicode text").
+    "Unicode text"), or without it, its byte order told by where the NUL bytes of the ASCII
+    digits lie (:func:`_utf16_without_bom`).
 
     A folder, a device or pipe, a file over :data:`POINTS_FILE_MAX` and bytes that are no such
     text are :class:`LinkageError`.
@@ -729,14 +735,39 @@ def _csv_text(p: Path) -> str:
     elif data.startswith(b"\xef\xbb\xbf"):
         encoding = "utf-8-sig"
     else:
-        encoding = "utf-8"
+        encoding = _utf16_without_bom(data) or "utf-8"
     try:
         return data.decode(encoding)
     except UnicodeDecodeError as exc:
+        if encoding in ("utf-16-le", "utf-16-be"):
+            raise LinkageError(
+                f"{p}: looks like UTF-16 without a byte-order mark (NUL bytes every other byte), "
+                f"but is not {encoding.upper()} text (bytes at offset {exc.start}): save it as "
+                "UTF-8"
+            ) from None
         raise LinkageError(
             f"{p}: not UTF-8 text, nor UTF-16 with a byte-order mark "
             f"(byte 0x{data[exc.start]:02x} at offset {exc.start})"
         ) from None
+
+
+def _utf16_without_bom(data: bytes) -> str | None:
+    """Return ``"utf-16-le"`` or ``"utf-16-be"`` for such text without its byte-order mark.
+
+    Digits, separators and line ends are ASCII: in UTF-16 every other byte of them is NUL, the
+    odd ones in little-endian, the even ones in big-endian. Text that UTF-8 reads has no NUL, and
+    a points file has none either; ``None`` when the NULs are not so.
+    """
+    if len(data) < 2 or len(data) % 2 or b"\x00" not in data:
+        return None
+    even, odd = data[0::2], data[1::2]
+    # Most of one half NUL, little of the other: a few non-ASCII characters (a header's "µm")
+    # leave NUL out of their high byte.
+    if odd.count(0) >= 0.9 * len(odd) and even.count(0) <= 0.1 * len(even):
+        return "utf-16-le"
+    if even.count(0) >= 0.9 * len(even) and odd.count(0) <= 0.1 * len(odd):
+        return "utf-16-be"
+    return None
 
 
 def clean_target(points: Float2D, closed: bool) -> Float2D:
@@ -748,8 +779,9 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
     Raises
     ------
     LinkageError
-        For fewer than :data:`MIN_POINTS` distinct points, points that all coincide, or a closed
-        target whose points are all collinear.
+        For fewer than :data:`MIN_POINTS` distinct points, points that all coincide, a point far
+        out of the others' scale (half of them within :data:`EXACT` of its distance from their
+        median point), or a closed target whose points are all collinear.
 
     Examples
     --------
@@ -784,6 +816,18 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
     m = float(np.max(np.abs(pts)))
     unit = _pow2(m) if m > 0 and math.isfinite(m) else 1.0
     q = pts / unit
+    # A point far out of the others' scale (1e300 among points within 1): the rest lie within
+    # what a fit counted exact (EXACT of the size) may miss them by, or below float64's
+    # resolution at that scale, and "collinear" (they are, to 1e-300) would name the wrong cause.
+    reach = np.hypot(*(q - np.median(q, axis=0)).T)
+    far = int(np.argmax(reach))
+    if np.median(reach) < EXACT * reach[far]:
+        row = int(np.flatnonzero(np.all(points == pts[far], axis=1))[0])
+        raise LinkageError(
+            f"points[{row}] = {pts[far].tolist()} is far out of the scale of the others (half "
+            f"of them lie within {float(np.median(reach)) * unit:.3g} of their median point): "
+            "float64 cannot fit a curve to both scales; a mistyped point?"
+        )
     sv = np.linalg.svd(q - q.mean(axis=0), compute_uv=False)
     if sv[0] == 0:
         raise LinkageError("the points all coincide")
