@@ -71,3 +71,54 @@ def test_a_curve_at_any_scale_is_not_out_of_scale(scale: float) -> None:
     t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
     pts = np.c_[np.cos(t), 0.3 * np.sin(t)] * scale + (2.0 * scale, 0.0)
     assert len(synthesis.clean_target(pts, True)) == 40
+
+
+# -- the work on a target no linkage draws --------------------------------------------------
+
+
+def test_the_later_stages_budget_falls_with_the_points() -> None:
+    full = synthesis.LATER_EVALUATIONS
+    assert synthesis._Budget.of(5).left == full
+    assert synthesis._Budget.of(synthesis.LATER_POINTS).left == full
+    assert synthesis._Budget.of(100).left == pytest.approx(full * 0.4**3)
+    assert synthesis._Budget.of(synthesis.FIT_POINTS).left < full / 20
+
+
+def test_an_unfittable_open_target_stops_its_later_stages_at_the_budget(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    arcs = synthesis.Atlas.build(2000, kind="fourbar-arcs", threads=1)
+    pts = np.random.default_rng(0).uniform(-1.0, 1.0, (30, 2))
+    rows = [0]
+    residuals = synthesis._residuals
+
+    def counted(kind, params, *rest):  # type: ignore[no-untyped-def]
+        rows[0] += len(params)
+        return residuals(kind, params, *rest)
+
+    budgets: list[synthesis._Budget] = []
+    of = synthesis._Budget.of
+
+    def recorded(points: int) -> synthesis._Budget:
+        budgets.append(of(points))
+        return budgets[-1]
+
+    monkeypatch.setattr(synthesis, "_residuals", counted)
+    monkeypatch.setattr(synthesis._Budget, "of", staticmethod(recorded))
+    monkeypatch.setattr(synthesis, "LATER_EVALUATIONS", 20_000)
+    kw = dict(closed=False, top=1, atlas=arcs, refine=2, global_search=False)
+    found = synthesis.path(pts, **kw)  # type: ignore[arg-type]
+    assert found and found[0].error > 0.05 * synthesis.target_size(pts)  # none draws it
+    (b,) = budgets
+    assert b.left == 20_000 and b.out
+    # A stage stops between fits: the budget is overrun by at most one long fit's evaluations
+    # (three rounds; each evaluation of a Jacobian 4 × 10 rows, of the residuals 1).
+    one_fit = 3 * (synthesis.POLISH_NFEV + synthesis.POLISH_NFEV // 5) * 41
+    assert b.spent <= b.left + one_fit
+    bounded = rows[0]
+    # Without the budget the same search evaluates far more.
+    rows[0] = 0
+    budgets.clear()
+    monkeypatch.setattr(synthesis, "LATER_EVALUATIONS", 10**12)
+    synthesis.path(pts, **kw)  # type: ignore[arg-type]
+    assert rows[0] > bounded + b.left
