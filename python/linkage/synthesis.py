@@ -827,7 +827,8 @@ class Candidates(list[Candidate[Any]]):
 def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
     """Read target points as an ``(n, 2)`` float64 array, from an array-like or a CSV file.
 
-    A CSV file has two numeric columns and an optional header line. The numbers are separated
+    A CSV file has two numeric columns and an optional header line (a first line none of whose
+    fields starts as a number does: ``x,y``, ``x (mm) y (mm)``). The numbers are separated
     by a comma, semicolon, tab or spaces; with semicolons or tabs, decimal commas are read too
     (``3,5;0,25``: a spreadsheet's export in a locale that writes them).
 
@@ -867,8 +868,8 @@ def read_points(points: str | os.PathLike[str] | ArrayLike) -> Float2D:
             try:
                 row = [float(c) for c in cells]
             except ValueError:
-                if not rows and k == 1:
-                    continue  # a header line
+                if k == 1 and not any(_NUMBER_LIKE.match(c) for c in cells):
+                    continue  # a header line ("x,y"): a mistyped first point is an error
                 raise LinkageError(
                     f"{p}:{k}: not two numbers (x, y; separated by a comma, semicolon, tab or "
                     f"spaces): {line.strip()!r}"
@@ -902,12 +903,17 @@ _SEPARATORS = re.compile(r"[,;\s]+")
 _DECIMAL_COMMA_SEPARATORS = re.compile(r"[;\s]+")
 """What separates x from y in a line with decimal commas: semicolons, tabs or spaces."""
 
+_NUMBER_LIKE = re.compile(r"[+-]?\.?\d")
+"""A cell that starts as a number does (``2.o``, ``1e``): a first line with one is a point, not a
+header, and an error when it does not read."""
+
 
 def _csv_text(p: Path) -> str:
     """Return the text of the points file ``p``.
 
     UTF-8 (a byte-order mark allowed) or UTF-16 with its byte-order mark (a spreadsheet's
-    "Unicode text").
+    "Unicode text"), or without it, its byte order told by where the NUL bytes of the ASCII
+    digits lie (:func:`_utf16_without_bom`).
 
     A folder, a device or pipe, a file over :data:`POINTS_FILE_MAX` and bytes that are no such
     text are :class:`LinkageError`.
@@ -934,14 +940,39 @@ def _csv_text(p: Path) -> str:
     elif data.startswith(b"\xef\xbb\xbf"):
         encoding = "utf-8-sig"
     else:
-        encoding = "utf-8"
+        encoding = _utf16_without_bom(data) or "utf-8"
     try:
         return data.decode(encoding)
     except UnicodeDecodeError as exc:
+        if encoding in ("utf-16-le", "utf-16-be"):
+            raise LinkageError(
+                f"{p}: looks like UTF-16 without a byte-order mark (NUL bytes every other byte), "
+                f"but is not {encoding.upper()} text (bytes at offset {exc.start}): save it as "
+                "UTF-8"
+            ) from None
         raise LinkageError(
             f"{p}: not UTF-8 text, nor UTF-16 with a byte-order mark "
             f"(byte 0x{data[exc.start]:02x} at offset {exc.start})"
         ) from None
+
+
+def _utf16_without_bom(data: bytes) -> str | None:
+    """Return ``"utf-16-le"`` or ``"utf-16-be"`` for such text without its byte-order mark.
+
+    Digits, separators and line ends are ASCII: in UTF-16 every other byte of them is NUL, the
+    odd ones in little-endian, the even ones in big-endian. Text that UTF-8 reads has no NUL, and
+    a points file has none either; ``None`` when the NULs are not so.
+    """
+    if len(data) < 2 or len(data) % 2 or b"\x00" not in data:
+        return None
+    even, odd = data[0::2], data[1::2]
+    # Most of one half NUL, little of the other: a few non-ASCII characters (a header's "µm")
+    # leave NUL out of their high byte.
+    if odd.count(0) >= 0.9 * len(odd) and even.count(0) <= 0.1 * len(even):
+        return "utf-16-le"
+    if even.count(0) >= 0.9 * len(even) and odd.count(0) <= 0.1 * len(odd):
+        return "utf-16-be"
+    return None
 
 
 def clean_target(points: Float2D, closed: bool) -> Float2D:
@@ -953,8 +984,9 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
     Raises
     ------
     LinkageError
-        For fewer than :data:`MIN_POINTS` distinct points, points that all coincide, or a closed
-        target whose points are all collinear.
+        For fewer than :data:`MIN_POINTS` distinct points, points that all coincide, a point far
+        out of the others' scale (half of them within :data:`EXACT` of its distance from their
+        median point), or a closed target whose points are all collinear.
 
     Examples
     --------
@@ -989,6 +1021,18 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
     m = float(np.max(np.abs(pts)))
     unit = _pow2(m) if m > 0 and math.isfinite(m) else 1.0
     q = pts / unit
+    # A point far out of the others' scale (1e300 among points within 1): the rest lie within
+    # what a fit counted exact (EXACT of the size) may miss them by, or below float64's
+    # resolution at that scale, and "collinear" (they are, to 1e-300) would name the wrong cause.
+    reach = np.hypot(*(q - np.median(q, axis=0)).T)
+    far = int(np.argmax(reach))
+    if np.median(reach) < EXACT * reach[far]:
+        row = int(np.flatnonzero(np.all(points == pts[far], axis=1))[0])
+        raise LinkageError(
+            f"points[{row}] = {pts[far].tolist()} is far out of the scale of the others (half "
+            f"of them lie within {float(np.median(reach)) * unit:.3g} of their median point): "
+            "float64 cannot fit a curve to both scales; a mistyped point?"
+        )
     sv = np.linalg.svd(q - q.mean(axis=0), compute_uv=False)
     if sv[0] == 0:
         raise LinkageError("the points all coincide")
@@ -1125,6 +1169,7 @@ def _refine(
     max_nfev: int,
     kind: _Kind = FOURBAR,
     geodesic: bool = False,
+    budget: _Budget | None = None,
 ) -> NDArray[np.float64]:
     """Fit the true point-to-curve distance by least squares.
 
@@ -1132,6 +1177,7 @@ def _refine(
     each target point's circuit parameter, the residuals ``P(s_i) − t_i`` evaluated in Rust.
     ``geodesic`` (the long fits of open targets) starts with :func:`_geodesic_lm` where only the
     lengths' positivity bounds the fit, then finishes with MINPACK's Levenberg-Marquardt.
+    Every residual evaluation is charged to ``budget`` (when given).
     """
     # scipy.optimize costs ~0.3 s to import: only when a fit runs.
     from scipy.optimize import least_squares  # type: ignore[import-untyped]  # noqa: PLC0415
@@ -1147,6 +1193,8 @@ def _refine(
 
     def batch(rows: NDArray[np.float64]) -> NDArray[np.float64]:
         m = len(rows)
+        if budget is not None:
+            budget.spent += m
         r = _residuals(kind, rows[:, :q], np.full(m, crossed), target, rows[:, q:]).reshape(m, -1)
         out: NDArray[np.float64] = np.where(np.isfinite(r), r, penalty)
         return out
@@ -1233,7 +1281,7 @@ def _refine(
         if geodesic:
             # Geodesic steps down the valley, then MINPACK's (a fifth as many evaluations more)
             # for the last digits, which its convergence near the answer gives sooner.
-            x = _geodesic_lm(fun, jac, x, max_nfev)
+            x = _geodesic_lm(fun, jac, x, max_nfev, q)
             common["max_nfev"] = max_nfev // 5
 
         # SciPy's C MINPACK (1.15 on) reads one element past its copy of the Jacobian when it
@@ -1275,11 +1323,23 @@ GUARD = 1e-100
 far below any column of a fit's Jacobian, far above the smallest normal number when squared."""
 
 
+STALL_WINDOW = 100
+"""Evaluations over which a long fit (:func:`_geodesic_lm`) must lower its sum of squares by
+:data:`STALL`, or stop."""
+
+STALL = 1e-3
+"""Least relative decrease of a long fit's sum of squares over :data:`STALL_WINDOW` evaluations.
+A fit crawling down a valley to an exact linkage lowers it by far more: random#6 of
+``bench/open_arcs.py`` from 1.4e-5 to 1.6e-6 of the size in 1,500 evaluations, a factor of 76
+in the sum, 1.3 a window on average."""
+
+
 def _geodesic_lm(
     fun: Callable[[NDArray[np.float64]], NDArray[np.float64]],
     jac: Callable[[NDArray[np.float64]], NDArray[np.float64]],
     x0: NDArray[np.float64],
     max_nfev: int,
+    dense: int | None = None,
 ) -> NDArray[np.float64]:
     """Minimise ``|fun(x)|²`` by Levenberg-Marquardt with geodesic acceleration.
 
@@ -1289,11 +1349,16 @@ def _geodesic_lm(
     ``(JᵀJ + λD²) v = −Jᵀr`` for the velocity, estimates the second directional derivative
     ``r_vv ≈ (2/h)((r(x + hv) − r(x))/h − Jv)`` (``h = 0.1``), solves
     ``(JᵀJ + λD²) a = −Jᵀr_vv`` for the acceleration and tries ``x + v + a/2`` when
-    ``|Da| ≤ 0.75 |Dv|``; both solves by one QR factorisation of ``[J D⁻¹; √λ I]``. An accepted
+    ``|Da| ≤ 0.75 |Dv|``; both solves by one QR factorisation of ``[J D⁻¹; √λ I]``
+    (:func:`_damped_solver`: of its first ``dense`` columns, those of ``J`` that are dense, and
+    a reflection of each point's rows; ``None``: all). An accepted
     step divides ``λ`` by 3, a rejected one multiplies it by ``ν`` (2, doubling while rejections
     go on; Nielsen's rule). It stops after ``max_nfev`` evaluations of ``fun`` (two an
-    iteration), when a step is below 1e-15 of ``|Dx|``, or when ``λ`` reaches 1e30 (no step
-    lowers the sum: a minimum to rounding).
+    iteration), when a step is below 1e-15 of ``|Dx|``, when ``λ`` reaches 1e30 (no step
+    lowers the sum: a minimum to rounding), or when :data:`STALL_WINDOW` evaluations lowered the
+    sum by less than the fraction :data:`STALL` of it (a fit of points no linkage draws creeps
+    on by hairs: 36 long fits of 1,500 evaluations had taken 48 s of a 75 s search of 100 random
+    points, #29).
 
     The acceleration bends each step along the curved, narrow valley of near-fits that a
     short arc's fit follows (the scaled Jacobian's singular values span 10⁷ … 10⁹), where
@@ -1308,18 +1373,21 @@ def _geodesic_lm(
     nfev, m = 1, len(x)
     d2 = np.zeros(m)
     lam, nu = 1e-3, 2.0
+    # The sum of squares at the start of the current window of STALL_WINDOW evaluations.
+    mark_nfev, mark_cost = nfev, cost
     while nfev < max_nfev:
+        if nfev - mark_nfev >= STALL_WINDOW:
+            if cost > (1.0 - STALL) * mark_cost:
+                break  # stalled: a window of evaluations lowered the sum by less than STALL
+            mark_nfev, mark_cost = nfev, cost
         d2 = np.maximum(d2, np.sum(j * j, axis=0))
         d = np.sqrt(np.maximum(d2, 1e-300))
-        # A QR of a (2n + m) × m matrix (m = 49 for 40 points): small enough that the BLAS
-        # keeps it on one thread (CPU time stayed below wall time on a loaded 2-core VM).
-        q, rr = np.linalg.qr(np.vstack([j / d, math.sqrt(lam) * np.eye(m)]))
-        qt = q[: len(r)].T
-        vy = np.linalg.solve(rr, -(qt @ r))
+        solve = _damped_solver(j / d, lam, m if dense is None else dense)
+        vy = solve(r)
         v = vy / d
         r_h = fun(x + 0.1 * v)
         nfev += 1
-        ay = np.linalg.solve(rr, -(qt @ ((2.0 / 0.1) * ((r_h - r) / 0.1 - j @ v))))
+        ay = solve((2.0 / 0.1) * ((r_h - r) / 0.1 - j @ v))
         new_cost = math.inf
         if np.linalg.norm(ay) <= 0.75 * np.linalg.norm(vy):
             x_new = x + v + 0.5 * ay / d
@@ -1337,6 +1405,71 @@ def _geodesic_lm(
             if lam >= 1e30:
                 break
     return x
+
+
+def _damped_solver(
+    js: NDArray[np.float64], lam: float, q: int
+) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+    """Return the solver of ``min |[J; √λ I] y + [b; 0]|`` for right-hand sides ``b``.
+
+    ``J`` (``js``, ``2n × (q + n)``) is a fit's scaled Jacobian: ``q`` dense columns, then one
+    column per target point ``i`` whose only entries are in rows ``2i`` and ``2i + 1`` (its
+    circuit parameter moves its residual alone). A Householder reflection of each point's three
+    rows (its two, and its damping row ``√λ`` in column ``q + i``) leaves that column one entry
+    (Golub and Van Loan, *Matrix Computations*, 4th ed., 5.1.2), and a QR of the remaining
+    ``(2n + q) × q`` rows solves the dense part, then each point's parameter by substitution:
+    orthogonal steps, as a QR of the whole ``(3n + q) × (q + n)`` matrix, in ``O(n q²)`` where
+    that takes ``O(n³)`` (the whole QR of 100 points took 2-13 ms, most of a long fit, and
+    more threads than a loaded machine had, #29).
+    """
+    n = js.shape[1] - q
+    root = math.sqrt(lam)
+    if n == 0:
+        # Every column dense: one QR of the (2n + m) × m matrix.
+        q0, r0 = np.linalg.qr(np.vstack([js, root * np.eye(q)]))
+        qt0 = q0[: len(js)].T
+
+        def solve_dense(b: NDArray[np.float64]) -> NDArray[np.float64]:
+            out: NDArray[np.float64] = np.linalg.solve(r0, -(qt0 @ b))
+            return out
+
+        return solve_dense
+    a = js[:, :q]
+    w = np.column_stack(
+        [
+            js[2 * np.arange(n), q + np.arange(n)],
+            js[2 * np.arange(n) + 1, q + np.arange(n)],
+            np.full(n, root),
+        ]
+    )
+    sigma = np.linalg.norm(w, axis=1)
+    alpha = -np.copysign(sigma, w[:, 0])  # H w = alpha e₁, no cancellation in u₀
+    u = w.copy()
+    u[:, 0] -= alpha
+    beta = 2.0 / np.einsum("ij,ij->i", u, u)  # u ≠ 0: |u₀| ≥ σ ≥ √λ > 0
+
+    def reflect(rows: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Apply each point's reflection to its three rows (``(n, 3, ...)``)."""
+        c = beta.reshape((n,) + (1,) * (rows.ndim - 2)) * np.einsum("ij,ij...->i...", u, rows)
+        out: NDArray[np.float64] = rows - u.reshape(u.shape + (1,) * (rows.ndim - 2)) * c[:, None]
+        return out
+
+    blocks = np.zeros((n, 3, q))
+    blocks[:, 0], blocks[:, 1] = a[0::2], a[1::2]
+    hb = reflect(blocks)
+    pivot = hb[:, 0]
+    qq, rr = np.linalg.qr(np.vstack([hb[:, 1:].reshape(2 * n, q), root * np.eye(q)]))
+    qt = qq[: 2 * n].T
+
+    def solve(b: NDArray[np.float64]) -> NDArray[np.float64]:
+        rows = np.zeros((n, 3))
+        rows[:, 0], rows[:, 1] = b[0::2], b[1::2]
+        hr = reflect(rows)
+        yp = np.linalg.solve(rr, -(qt @ hr[:, 1:].reshape(2 * n)))
+        ys = -(hr[:, 0] + pivot @ yp) / alpha
+        return np.concatenate([yp, ys])
+
+    return solve
 
 
 def _arc(feet: NDArray[np.float64], closed: bool) -> tuple[float, float]:
@@ -1778,13 +1911,18 @@ def path(
         mine = ahead + mine
         # Restarts and the global search are judged by the candidates the constraints admit:
         # an exact fit they reject must not end the search for one they admit.
+        # The later stages of an open search share one budget of evaluations, smaller the more
+        # points a fit has (a target no linkage draws runs them all; #29).
+        later = _Budget.of(len(target))
         if not closed and name is not None and mine and best_usable(mine) > goal:
             # An open target no match fitted exactly: long fits of the best, then more matches
             # and long fits of theirs (docs/synthesis.md, step 4).
             polished: list[NDArray[np.float64]] = []
             starts = [c for c in mine if usable(c)] or mine
-            mine += _polish(starts, polished, target, size, bounds, nthreads, bar, k, usable)
-            if best_usable(mine) > goal:
+            mine += _polish(
+                starts, polished, target, size, bounds, nthreads, bar, k, usable, budget=later
+            )
+            if best_usable(mine) > goal and not later.out:
                 seen = {x.tobytes() for x, _, _ in pool}
                 wider = _atlas_pool(k, at, target, placed + WIDER, 4 * many, nthreads)
                 if full_turn or min_transmission > 0:
@@ -1805,14 +1943,24 @@ def path(
                     k,
                     usable,
                     exact_at=EXACT,
+                    budget=later,
                 )
                 mine += more
                 if more and best_usable(mine) > goal:
                     starts = [c for c in more if usable(c)] or more
                     mine += _polish(
-                        starts, polished, target, size, bounds, nthreads, bar, k, usable
+                        starts,
+                        polished,
+                        target,
+                        size,
+                        bounds,
+                        nthreads,
+                        bar,
+                        k,
+                        usable,
+                        budget=later,
                     )
-            if best_usable(mine) > goal:
+            if best_usable(mine) > goal and not later.out:
                 # The same nearest shapes re-placed along their curves (_slid), ranked again
                 # and fitted as the first (docs/synthesis.md, step 4).
                 slid = _atlas_pool(k, at, target, 4 * SLID, 4 * many, nthreads, slide=SLIDES)
@@ -1834,10 +1982,11 @@ def path(
                     k,
                     usable,
                     exact_at=EXACT,
+                    budget=later,
                 )
         if not closed and mine and best_usable(mine) > goal:
             starts = [c for c in mine if admissible(c)] or mine
-            mine += _hops(starts, target, size, bounds, seed, nthreads, k)
+            mine += _hops(starts, target, size, bounds, seed, nthreads, k, later)
         if closed and refine > 0 and best_usable(mine) > goal:
             # A closed target no match fitted exactly: parts of it searched as open arcs, their
             # best fits refined on the whole target (docs/synthesis.md, step 4).
@@ -2079,6 +2228,45 @@ is exact."""
 POLISH_NFEV = 1500
 """Evaluations in each round of a long fit (:func:`_polish`; a first fit's rounds take 60)."""
 
+LATER_EVALUATIONS = 1_000_000
+"""Residual evaluations (of one placed linkage on every point: a Jacobian by differences takes
+``2(q + 1)`` or ``4(q + 1)``) the later stages of an open search of up to
+:data:`LATER_POINTS` points may spend (:class:`_Budget`). ``bench/open_arcs.py`` with seeds 0
+and 1: the arcs those stages recovered spent at most 348,370 (seed 1 random#33), the two misses
+616,866 and 886,645."""
+
+LATER_POINTS = 40
+"""Points of an open target up to which its later stages have all of :data:`LATER_EVALUATIONS`;
+beyond, ``(LATER_POINTS / n)²`` of them."""
+
+
+@dataclass
+class _Budget:
+    """The residual evaluations the later stages of an open search may spend, and spent.
+
+    The later stages: long fits, wider and re-placed matches, restarts; :attr:`out` once spent.
+
+    Those stages run on a target no linkage draws, each fit to its end, and an evaluation's
+    cost, with the linear algebra of the fit, grows with the points: 100 random points had taken
+    75-125 s, 23,928 QR factorisations (#29). With ``(LATER_POINTS / n)²`` of the evaluations
+    for ``n`` points the time grows about as ``n``; a target of up to :data:`LATER_POINTS` (the
+    40 of ``bench/open_arcs.py``) keeps them all. A stage checks it between fits: the last fit
+    may overrun it by one fit's evaluations.
+    """
+
+    left: float
+    spent: int = 0
+
+    @classmethod
+    def of(cls, points: int) -> _Budget:
+        """Return the budget of a target of ``points`` points."""
+        return cls(LATER_EVALUATIONS * min(1.0, (LATER_POINTS / max(points, 1)) ** 3))
+
+    @property
+    def out(self) -> bool:
+        """Whether it is spent."""
+        return self.spent >= self.left
+
 
 def _polish(
     found: list[Candidate[Any]],
@@ -2092,6 +2280,7 @@ def _polish(
     admissible: Callable[[Candidate[Any]], bool],
     exact: float | None = None,
     closed: bool = False,
+    budget: _Budget | None = None,
 ) -> list[Candidate[Any]]:
     """Refine the best :data:`POLISH` distinct fits at length, stopping at the first exact one.
 
@@ -2102,7 +2291,8 @@ def _polish(
     at 60 (measured in docs/synthesis.md). These fits take geodesic acceleration
     (:func:`_geodesic_lm`), whose steps follow the valley's bend. Fits whose parameters all lie
     within 1e-3 of the size of a better one's, or of one in ``polished`` (the starts of earlier
-    calls, to which this call's are added), are one start.
+    calls, to which this call's are added), are one start. No start is fitted once ``budget``
+    is spent.
     """
     picked: list[Candidate[Any]] = []
     for c in sorted(found, key=lambda c: c.error):
@@ -2115,6 +2305,8 @@ def _polish(
         bar.stage("long fits", len(picked))
     out: list[Candidate[Any]] = []
     for c in picked:
+        if budget is not None and budget.out:
+            break
         crossed = _crossed(c)
         out += _finish(
             [(c.params, crossed, c.source)],
@@ -2128,6 +2320,7 @@ def _polish(
             kind=kind,
             nfev=POLISH_NFEV,
             geodesic=True,
+            budget=budget,
         )
         if any(o.error <= (exact or EXACT) * size and admissible(o) for o in out):
             break
@@ -2146,9 +2339,11 @@ def _hops(
     seed: int,
     threads: int,
     kind: _Kind,
+    budget: _Budget | None = None,
 ) -> list[Candidate[Any]]:
     """Refine perturbed copies of the best three fits, stopping at the first exact one.
 
+    No copy is fitted once ``budget`` is spent.
     Every parameter moves by a normal step of 5 %, then 1 %, of the target's size, in turn.
     An arc is matched to ~1e-5 of its size by many linkages; the fit stalls in such a basin,
     and a restart from near it often reaches the exact one (measured in docs/synthesis.md).
@@ -2157,12 +2352,23 @@ def _hops(
     starts = sorted(found, key=lambda c: c.error)[:3]
     out: list[Candidate[Any]] = []
     for t in range(HOPS):
+        if budget is not None and budget.out:
+            break
         c = starts[t % len(starts)]
         step = (0.05 if t % 2 == 0 else 0.01) * size
         x = c.params + step * rng.standard_normal(len(c.params))
         crossed = _crossed(c)
         out += _finish(
-            [(x, crossed, "atlas")], target, False, size, bounds, 1, threads, None, kind=kind
+            [(x, crossed, "atlas")],
+            target,
+            False,
+            size,
+            bounds,
+            1,
+            threads,
+            None,
+            kind=kind,
+            budget=budget,
         )
         if out and min(o.error for o in out) <= 1e-10 * size:
             break
@@ -2774,18 +2980,22 @@ def _finish(
     nfev: int = 60,
     exact_at: float = 1e-10,
     geodesic: bool = False,
+    budget: _Budget | None = None,
 ) -> list[Candidate[Any]]:
     """Refine the first ``refine`` of ``pool``, then measure and check every one.
 
     Each refinement is up to three rounds of least squares of at most ``nfev`` evaluations each
     (``geodesic``: :func:`_refine`'s).
     Stop early once ``enough`` distinct candidates that are ``admissible`` (meet the caller's
-    constraints) draw the target to ``exact_at`` of its size.
+    constraints) draw the target to ``exact_at`` of its size, or once ``budget`` is spent (the
+    rest of ``pool`` is left out).
     """
     out: list[Candidate[Any]] = []
     exact: list[NDArray[np.float64]] = []
     for k, (x, crossed, source) in enumerate(pool):
         if enough is not None and len(exact) >= enough:
+            break
+        if budget is not None and budget.out:
             break
         if k < refine:
             # Rounds of least squares, each from every target point's true nearest curve point
@@ -2810,7 +3020,9 @@ def _finish(
                 if r == 3 or not np.all(np.isfinite(feet)) or err <= 1e-10 * size:
                     break
                 try:
-                    x = _refine(x, crossed, target, feet[0], size, bounds, nfev, kind, geodesic)
+                    x = _refine(
+                        x, crossed, target, feet[0], size, bounds, nfev, kind, geodesic, budget
+                    )
                 except (ValueError, LinkageError):
                     break
                 rounds.append(x)
