@@ -62,6 +62,7 @@ __all__ = [
     "prepare",
     "read_marker",
     "recording",
+    "sweep",
     "write_folder",
 ]
 
