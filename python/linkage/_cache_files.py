@@ -16,6 +16,7 @@ import hashlib
 import math
 import os
 import stat
+from typing import Any, BinaryIO
 
 import numpy as np
 from numpy.lib import format as npy_format
@@ -23,7 +24,7 @@ from numpy.lib import format as npy_format
 from linkage import _core
 from linkage._core import LinkageError
 
-__all__ = ["core_identity", "read_npy"]
+__all__ = ["core_identity", "npy_header", "read_npy"]
 
 
 @functools.lru_cache(maxsize=1)
@@ -68,6 +69,27 @@ _NPY_ERRORS = (
 short file, an absurd shape)."""
 
 
+def npy_header(f: BinaryIO) -> tuple[tuple[int, ...], bool, np.dtype[Any], int]:
+    """Read the header of the ``.npy`` array at ``f``'s position, without ``pickle``.
+
+    Returns ``(shape, fortran_order, dtype, offset of the data)``. Whatever numpy's parser raises
+    on a damaged header (a literal it cannot evaluate, a short file, an absurd shape, an unknown
+    version) is a ``ValueError`` saying what: the one header parser of the caches' arrays and of
+    the design search's checkpoints.
+    """
+    try:
+        version = npy_format.read_magic(f)
+        if version == (1, 0):
+            shape, fortran, dt = npy_format.read_array_header_1_0(f)
+        elif version == (2, 0):
+            shape, fortran, dt = npy_format.read_array_header_2_0(f)
+        else:
+            raise ValueError(f"unsupported format version {version}")
+        return shape, fortran, dt, f.tell()
+    except _NPY_ERRORS as exc:
+        raise ValueError(str(exc) or type(exc).__name__) from None
+
+
 def read_npy(path: str | os.PathLike[str], dtype: type, what: str) -> np.ndarray:
     """Return the 2-D C-ordered ``dtype`` array of the ``.npy`` file ``path``, memory-mapped.
 
@@ -104,15 +126,8 @@ def read_npy(path: str | os.PathLike[str], dtype: type, what: str) -> np.ndarray
         if not stat.S_ISREG(info.st_mode):
             raise LinkageError(f"{p}: the {what} are not in a regular file")
         try:
-            version = npy_format.read_magic(f)
-            if version == (1, 0):
-                shape, fortran, dt = npy_format.read_array_header_1_0(f)
-            elif version == (2, 0):
-                shape, fortran, dt = npy_format.read_array_header_2_0(f)
-            else:
-                raise ValueError(f"unsupported format version {version}")
-            offset = f.tell()
-        except _NPY_ERRORS as exc:
+            shape, fortran, dt, offset = npy_header(f)
+        except ValueError as exc:
             raise LinkageError(f"{p}: the {what} are not a .npy array: {exc}") from None
         want = np.dtype(dtype)
         if dt != want or dt.hasobject:

@@ -43,6 +43,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage._cache_files import npy_header
 from linkage._core import LinkageError
 from linkage._files import json_depth, read_bytes, sweep_stale, temp_name_pattern, write_atomic
 from linkage.legs import FIGURES, family
@@ -287,23 +288,13 @@ def _archive(data: bytes) -> dict[str, NDArray[Any]]:
 
 def _npy(raw: bytes, dtype: np.dtype[Any], ndim: int, name: str) -> NDArray[Any]:
     """Parse one ``.npy`` member: its header's dtype and shape must fit the bytes after it."""
-    fh = io.BytesIO(raw)
     try:
-        version = np.lib.format.read_magic(fh)
-        if version == (1, 0):
-            shape, fortran, got = np.lib.format.read_array_header_1_0(fh)
-        elif version == (2, 0):
-            shape, fortran, got = np.lib.format.read_array_header_2_0(fh)
-        else:
-            raise _Bad(f"{name}: .npy version {version}")
-    except _Bad:
-        raise
-    except (ValueError, OSError, EOFError, SyntaxError, TypeError) as exc:
+        shape, fortran, got, offset = npy_header(io.BytesIO(raw))
+    except ValueError as exc:
         raise _Bad(f"{name}: not an array ({exc})") from None
     if got != dtype or fortran or len(shape) != ndim:
         raise _Bad(f"{name}: {got} {'F-ordered ' if fortran else ''}{shape}, not {ndim}-D {dtype}")
     count = math.prod(shape)
-    offset = fh.tell()
     if count * dtype.itemsize != len(raw) - offset:
         raise _Bad(f"{name}: shape {shape} does not fit its {len(raw) - offset} bytes")
     return np.frombuffer(raw, dtype=dtype, count=count, offset=offset).reshape(shape)
