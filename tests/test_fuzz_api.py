@@ -403,7 +403,10 @@ def test_geometry_functions(p, v, a, step, tol, closed):
 
 @FAST
 @given(fb=st.one_of(sound_fourbar(), HOSTILE), theta=HOSTILE)
-@example(fb=linkage.FourBar(ground=1.0, crank=2.2250738585072014e-308, coupler=1.0, rocker=1.0), theta=0.0)
+@example(
+    fb=linkage.FourBar(ground=1.0, crank=2.2250738585072014e-308, coupler=1.0, rocker=1.0),
+    theta=0.0,
+)
 def test_inflection_circle(fb, theta):
     inf = call(lambda: geometry.inflection_circle(fb, theta))
     if inf is not None:

@@ -203,11 +203,14 @@ mod tests {
         for t in [64.0, 1e6, -1e16, 1e300, f64::MAX, -f64::MAX] {
             let r = reduce(t);
             assert!((0.0..=FOUR_PI_HI).contains(&r), "{t}: {r}");
-            assert_eq!(reduce(r), r);
+            assert_eq!(reduce(r), r, "reduce is idempotent at {t}");
         }
         // f32 through f64 (exact conversion), rounded back.
         let r32 = reduce(1e30_f32);
-        assert!((f64::from(r32) - split_f64(f64::from(1e30_f32)).1).abs() < 1e-6);
+        assert!(
+            (f64::from(r32) - split_f64(f64::from(1e30_f32)).1).abs() < 1e-6,
+            "f32 reduced as its f64 value: {r32}"
+        );
     }
 
     #[rustfmt::skip]

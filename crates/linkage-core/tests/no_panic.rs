@@ -752,10 +752,13 @@ fn rates_scale_with_the_linkage() {
 fn inflection_circle_beyond_the_float_range_is_none() {
     // D12: a subnormal crank made the inflection pole and radius infinite. A subnormal length
     // is refused now (issue 29); the smallest normal crank is the extreme left.
-    assert!(matches!(
-        FourBar::new(1.0_f64, 5e-324, 1.0, 1.0, (0.0, 0.0), Assembly::Open),
-        Err(linkage_core::Error::SubnormalLength { .. })
-    ));
+    assert!(
+        matches!(
+            FourBar::new(1.0_f64, 5e-324, 1.0, 1.0, (0.0, 0.0), Assembly::Open),
+            Err(linkage_core::Error::SubnormalLength { .. })
+        ),
+        "a subnormal crank is refused"
+    );
     let fb = FourBar::new(
         1.0_f64,
         f64::MIN_POSITIVE,

@@ -6,7 +6,7 @@ use linkage_core::{Assembly, Error, FourBar, Mechanism, Side, Vec2};
 #[test]
 fn four_bars_refuse_a_subnormal_length() {
     let tiny = 1e-309_f64;
-    assert!(tiny > 0.0 && !tiny.is_normal());
+    assert!(tiny > 0.0 && !tiny.is_normal(), "{tiny} is not subnormal");
     for (dims, what) in [
         ([tiny, 1.0, 1.0, 1.0], "ground"),
         ([1.0, tiny, 1.0, 1.0], "crank"),
@@ -21,7 +21,11 @@ fn four_bars_refuse_a_subnormal_length() {
             (0.0, 0.0),
             Assembly::Open,
         );
-        assert_eq!(e.unwrap_err(), Error::SubnormalLength { what, value: tiny });
+        assert_eq!(
+            e.unwrap_err(),
+            Error::SubnormalLength { what, value: tiny },
+            "a subnormal {what}"
+        );
     }
     // Pivots a subnormal distance apart.
     let e = FourBar::with_pivots(
@@ -41,14 +45,20 @@ fn four_bars_refuse_a_subnormal_length() {
     // scales by powers of two).
     let m = f64::MIN_POSITIVE;
     let fb = FourBar::new(2.0 * m, m, 2.0 * m, 2.0 * m, (0.0, 0.0), Assembly::Open).unwrap();
-    assert!(fb.pose(0.5).is_ok());
+    assert!(
+        fb.pose(0.5).is_ok(),
+        "lengths of the smallest normal size assemble"
+    );
     // f32 has its own threshold (1.2e-38).
     let e = FourBar::new(1.0_f32, 1e-39, 1.0, 1.0, (0.0, 0.0), Assembly::Open).unwrap_err();
     assert!(
         matches!(e, Error::SubnormalLength { what: "crank", .. }),
         "{e:?}"
     );
-    assert!(FourBar::new(1.0_f32, 1e-37, 1.0, 1.0, (0.0, 0.0), Assembly::Open).is_ok());
+    assert!(
+        FourBar::new(1.0_f32, 1e-37, 1.0, 1.0, (0.0, 0.0), Assembly::Open).is_ok(),
+        "1e-37 is a normal f32"
+    );
 }
 
 #[test]
@@ -63,7 +73,8 @@ fn mechanisms_refuse_a_subnormal_length() {
         Error::SubnormalLength {
             what: "crank radius",
             value: tiny
-        }
+        },
+        "a subnormal crank radius"
     );
     let a = m.crank(o, 1.0, 0.0).unwrap();
     let e = m.dyad(a, c, 3.0, tiny, Side::Left).unwrap_err();
@@ -72,7 +83,8 @@ fn mechanisms_refuse_a_subnormal_length() {
         Error::SubnormalLength {
             what: "dyad r2",
             value: tiny
-        }
+        },
+        "a subnormal dyad link"
     );
     assert!(e.to_string().contains("subnormal"), "{e}");
 }
@@ -96,6 +108,7 @@ fn slider_cranks_refuse_a_subnormal_length() {
         Error::SubnormalLength {
             what: "crank",
             value: 1e-309
-        }
+        },
+        "a subnormal slider-crank crank"
     );
 }
