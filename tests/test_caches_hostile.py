@@ -101,6 +101,19 @@ def _header(name: str, old: bytes, new: bytes) -> Callable[[Path], None]:
     return _bytes(name, change)
 
 
+def _deep_header(name: str, depth: int) -> Callable[[Path], None]:
+    """A tampering whose header is ``{'descr': `` and ``depth`` nested parentheses, unclosed,
+    its length field right (numpy's parser fails on it with ``tokenize.TokenError``, which had
+    leaked as exit 3)."""
+
+    def change(data: bytes) -> bytes:
+        body = data[10 + int.from_bytes(data[8:10], "little") :]
+        header = b"{'descr': " + b"(" * depth + b")" * depth
+        return data[:8] + len(header).to_bytes(2, "little") + header + body
+
+    return _bytes(name, change)
+
+
 def _set(a: np.ndarray, at: tuple[int, ...], v: float) -> np.ndarray:
     a[at] = v
     return a
@@ -184,6 +197,18 @@ TAMPERINGS: list[tuple[str, str, Callable[[Path], None], str]] = [
     ("params-width", "fourbar", _array(P, lambda a: a[:, :5].copy()), r"params must have shape"),
     ("params-fewer", "fourbar", _array(P, lambda a: a[:63].copy()), "params have 63 entries, descriptors 64"),
     ("params-int", "fourbar", _array(P, lambda a: a.astype(np.int64)), "hold int64 values"),
+    # found by a hostile re-trial: a folder as an array's file ("3: Is a directory", the file
+    # descriptor for the path), a header numpy's parser fails on with tokenize.TokenError (exit 3),
+    # and link lengths or flags that are no linkage's (loaded and searched with)
+    ("params-folder", "fourbar", _replace(P, Path.mkdir), "parameters are not in a regular file"),
+    ("desc-header-deep", "fourbar", _deep_header(D, 95),
+     "descriptors are not a .npy array"),
+    ("params-negative", "fourbar", _array(P, lambda a: _set(a, (7, 1), -0.5)),
+     "params of entry 7: a link length is not a positive normal float"),
+    ("params-subnormal", "fourbar", _array(P, lambda a: _set(a, (2, 0), 1e-310)),
+     "params of entry 2: a link length is not a positive normal float"),
+    ("params-crossed", "fourbar", _array(P, lambda a: _set(a, (9, 5), 0.5)),
+     "params of entry 9: the crossed flag 0.5 is not 0 or 1"),
     # arc atlases: phases and the entries' indices
     ("arc-phases-0", "arcs", _meta(phases=0), r"phases must be from 1 to samples \(128\), got 0"),
     ("arc-phases-129", "arcs", _meta(phases=129), "phases must be an int from 0 to 128, got 129"),

@@ -54,21 +54,6 @@ def core_identity() -> str:
     return digest.hexdigest()
 
 
-_NPY_ERRORS = (
-    ValueError,
-    EOFError,
-    OSError,
-    SyntaxError,
-    TypeError,
-    OverflowError,
-    RecursionError,
-    UnicodeDecodeError,
-    MemoryError,
-)
-"""What numpy's header parser raises on a damaged header (a literal it cannot evaluate, a
-short file, an absurd shape)."""
-
-
 def npy_header(f: BinaryIO) -> tuple[tuple[int, ...], bool, np.dtype[Any], int]:
     """Read the header of the ``.npy`` array at ``f``'s position, without ``pickle``.
 
@@ -86,7 +71,9 @@ def npy_header(f: BinaryIO) -> tuple[tuple[int, ...], bool, np.dtype[Any], int]:
         else:
             raise ValueError(f"unsupported format version {version}")
         return shape, fortran, dt, f.tell()
-    except _NPY_ERRORS as exc:
+    except Exception as exc:  # untrusted bytes: whatever the parser raises
+        # (ValueError, SyntaxError, tokenize.TokenError on a deeply nested literal, EOFError,
+        # OverflowError, RecursionError, MemoryError...) means the header is not one numpy wrote
         raise ValueError(str(exc) or type(exc).__name__) from None
 
 
@@ -120,11 +107,16 @@ def read_npy(path: str | os.PathLike[str], dtype: type, what: str) -> np.ndarray
         fd = os.open(p, flags)
     except OSError as exc:
         raise LinkageError(f"{p}: cannot read the {what}: {exc.strerror or exc}") from None
-    with os.fdopen(fd, "rb") as f:
+    try:
         info = os.fstat(fd)
-        size = info.st_size
-        if not stat.S_ISREG(info.st_mode):
-            raise LinkageError(f"{p}: the {what} are not in a regular file")
+    except OSError as exc:
+        os.close(fd)
+        raise LinkageError(f"{p}: cannot read the {what}: {exc.strerror or exc}") from None
+    if not stat.S_ISREG(info.st_mode):  # checked before fdopen, which refuses a folder itself
+        os.close(fd)
+        raise LinkageError(f"{p}: the {what} are not in a regular file")
+    size = info.st_size
+    with os.fdopen(fd, "rb") as f:
         try:
             shape, fortran, dt, offset = npy_header(f)
         except ValueError as exc:
@@ -148,5 +140,5 @@ def read_npy(path: str | os.PathLike[str], dtype: type, what: str) -> np.ndarray
             return np.empty(shape, dtype=want)
         try:
             return np.memmap(f, dtype=want, mode="r", offset=offset, shape=shape)
-        except _NPY_ERRORS as exc:
+        except (ValueError, OSError, OverflowError, MemoryError) as exc:
             raise LinkageError(f"{p}: cannot map the {what}: {exc}") from None

@@ -296,6 +296,20 @@ def _check_atlas(at: Atlas) -> None:
         if not np.isfinite(a).all():  # the whole array at once: per row only to name one
             bad = _first_false(np.isfinite(a).all(axis=1))
             raise LinkageError(f"{name} of entry {bad} are not all finite")
+    slider = at.kind in ("slider-crank", SLIDER_ARCS)
+    # The links (crank, coupler, rocker; a slider-crank's coupler) are lengths: positive normal
+    # floats, as the linkages' constructors require. A four-bar's assembly flag is 0 or 1.
+    links = at.params[:, :1] if slider else at.params[:, :3]
+    ok = (links >= np.finfo(np.float64).tiny).all(axis=1)
+    if not ok.all():
+        bad = _first_false(ok)
+        raise LinkageError(f"params of entry {bad}: a link length is not a positive normal float")
+    if not slider:
+        flag = at.params[:, 5]
+        ok = (flag == 0) | (flag == 1)
+        if not ok.all():
+            bad = _first_false(ok)
+            raise LinkageError(f"params of entry {bad}: the crossed flag {flag[bad]} is not 0 or 1")
     if arcs:
         for col, high, what in ((-2, at.phases, "phase"), (-1, _ARC_FRACTIONS, "fraction")):
             c = at.params[:, col]
