@@ -443,6 +443,17 @@ def test_bad_study_values_are_refused_at_load_located(tmp_path, line, key, words
     assert msg.startswith(f"{p}:3: [design] {key}:") and words in msg, msg
 
 
+@pytest.mark.parametrize("depth", [600, 50_000])
+def test_a_study_nested_deeper_than_a_scene_may_be_is_refused_located(tmp_path, depth):
+    """Brackets nested 600 deep overflowed the TOML parser's recursion (RecursionError, exit 3);
+    scenes had refused them, studies did not (found by a hostile re-trial)."""
+    p = tmp_path / "deep.toml"
+    p.write_text(f"[design.bounds]\ncoupler = {'[' * depth}1{']' * depth}\n")
+    with pytest.raises(linkage.LinkageError) as e:
+        design.load_study(p)
+    assert str(e.value) == f"{p}:2: not a study: brackets nested more than 32 deep"
+
+
 @pytest.mark.parametrize(
     "section, line, key, words",
     [

@@ -17,7 +17,7 @@ from numpy.typing import NDArray
 
 from linkage._core import LinkageError
 from linkage._files import read_bytes
-from linkage._toml_lines import Locator, NotText, decode
+from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, nesting
 from linkage.design.search import Constraints, Study, StudyError
 from linkage.legs import FAMILIES, OBJECTIVES, Settings
 
@@ -117,6 +117,9 @@ def load_study(path: str | Path) -> StudyFile:
         text = decode(data)
     except NotText as exc:
         raise LinkageError(f"{p}:{exc.line}: {exc.problem}") from None
+    deep = nesting(text)
+    if deep is not None:  # the TOML parser recurses: a few hundred levels overflow its stack
+        raise LinkageError(f"{p}:{deep}: not a study: brackets nested more than {MAX_NESTING} deep")
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
