@@ -298,6 +298,24 @@ def test_interrupted_checkpoint_write_leaves_no_temporary_and_says_what_is_kept(
     assert "the search so far is kept in" in capsys.readouterr().err
 
 
+def test_ctrl_c_while_the_report_is_written_says_the_search_is_kept(tmp_path, monkeypatch, capsys):
+    """The search is done and in the checkpoint: the note says so (a hostile re-trial saw a stop
+    here end with no word of the checkpoint)."""
+    from linkage.design import report as design_report
+
+    study = tmp_path / "s.toml"
+    study.write_text(STUDY)
+
+    def stopped(*_a, **_k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(design_report, "write_report", stopped)
+    with pytest.raises(KeyboardInterrupt):
+        design.main_design(str(study), str(tmp_path / "rep"), False, None, quiet=True)
+    assert sorted(os.listdir(tmp_path)) == [".rep.checkpoint", "s.toml"]
+    assert "the search so far is kept in" in capsys.readouterr().err
+
+
 def test_ctrl_c_during_the_cli_search(tmp_path):
     study = tmp_path / "s.toml"
     study.write_text(STUDY.replace("budget = 32", "budget = 4000"))

@@ -370,6 +370,8 @@ def main_design(
     ck = Path(checkpoint) if checkpoint else folder.with_name(f".{folder.name}.checkpoint")
     try:
         result = search(sf.study, checkpoint=ck, progress=not quiet)
+        # Stopped while the report is written, the finished search is in the checkpoint too.
+        files = write_report(result, folder, sf.choose, force)
     except SchedulerError as exc:
         where = f"{sf.scheduler_at}: " if sf.scheduler_at else f"{sf.path}: "
         raise LinkageError(f"{where}{exc} (nothing was written)") from None
@@ -377,7 +379,6 @@ def main_design(
         if ck.is_file() and not ck.is_symlink():
             _note(f"the search so far is kept in {ck}: the same command resumes it")
         raise
-    files = write_report(result, folder, sf.choose, force)
     if not quiet:
         place = placement(sf.study, result)
         print(
