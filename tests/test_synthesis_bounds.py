@@ -122,3 +122,12 @@ def test_an_unfittable_open_target_stops_its_later_stages_at_the_budget(
     monkeypatch.setattr(synthesis, "LATER_EVALUATIONS", 10**12)
     synthesis.path(pts, **kw)  # type: ignore[arg-type]
     assert rows[0] > bounded + b.left
+
+
+def test_a_target_too_small_for_normal_floats_is_refused_for_that_reason():
+    """Points scaled by 1e-310 had been refused as "ground = 4.15e-310 is subnormal ... scale the
+    linkage up", a link the user never gave (found by a hostile re-trial)."""
+    square = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0], [0.7, 0.7]])
+    with pytest.raises(LinkageError, match=r"the points span 2e-310, below the 9\.33e-302"):
+        synthesis.clean_target(square * 1e-310, True)
+    assert synthesis.clean_target(square * 1e-300, True).shape == (5, 2)

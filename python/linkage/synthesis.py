@@ -300,13 +300,13 @@ def _check_atlas(at: Atlas) -> None:
     # The links (crank, coupler, rocker; a slider-crank's coupler) are lengths: positive normal
     # floats, as the linkages' constructors require. A four-bar's assembly flag is 0 or 1.
     links = at.params[:, :1] if slider else at.params[:, :3]
-    ok = (links >= np.finfo(np.float64).tiny).all(axis=1)
+    ok = np.asarray((links >= np.finfo(np.float64).tiny).all(axis=1), dtype=bool)
     if not ok.all():
         bad = _first_false(ok)
         raise LinkageError(f"params of entry {bad}: a link length is not a positive normal float")
     if not slider:
         flag = at.params[:, 5]
-        ok = (flag == 0) | (flag == 1)
+        ok = np.asarray((flag == 0) | (flag == 1), dtype=bool)
         if not ok.all():
             bad = _first_false(ok)
             raise LinkageError(f"params of entry {bad}: the crossed flag {flag[bad]} is not 0 or 1")
@@ -1050,12 +1050,26 @@ def clean_target(points: Float2D, closed: bool) -> Float2D:
     sv = np.linalg.svd(q - q.mean(axis=0), compute_uv=False)
     if sv[0] == 0:
         raise LinkageError("the points all coincide")
+    extent = float(np.max(np.ptp(q, axis=0))) * unit
+    if extent < SMALLEST_EXTENT:
+        # Its linkage's links would be subnormal floats (too few bits for the solver): the
+        # constructors refuse them, and the message would have named a link the user never gave.
+        raise LinkageError(
+            f"the points span {extent:.3g}, below the {SMALLEST_EXTENT:.3g} a target may span "
+            "(its linkage's lengths would be subnormal floats): scale the points up"
+        )
     if closed and sv[1] <= 1e-12 * sv[0]:
         raise LinkageError(
             "the points are all collinear: a closed curve through them encloses nothing "
             "(an open path: closed = false)"
         )
     return np.ascontiguousarray(pts)
+
+
+SMALLEST_EXTENT = 2.0**-1000
+"""The smallest span (largest coordinate range) of a target, about 9.3e-302: 2²² (4·10⁶) times
+the smallest normal float64 (2.2e-308), so that the links of its linkages, down to about 1e-6 of
+its span, are normal floats."""
 
 
 def rounded_to(x: float, size: float, digits: int) -> float:
