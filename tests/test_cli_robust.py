@@ -488,3 +488,12 @@ def test_a_warning_is_one_line_naming_no_source_file(monkeypatch, capsys):
     err = capsys.readouterr().err
     assert err == "linkage: warning: rebuilding the default fourbar atlas: /cache/atlas-x: bad\n"
     assert warnings.showwarning.__module__ == "warnings"  # restored after the command
+
+
+def test_a_straightness_tolerance_of_a_whole_size_or_more_is_refused(capsys):
+    """``linkage catalog --tol 1e300`` printed a table of parts "within 1e+300 × size"."""
+    from linkage import cli
+
+    assert cli.main(["catalog", "--tol", "1e300", "--no-cache"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("linkage: error: rel_tol must be above 0 and below 1"), err

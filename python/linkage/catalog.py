@@ -486,11 +486,13 @@ def figures(rel_tol: float = 1e-3, samples: int = 20001) -> list[Figures]:
     >>> linkage.catalog.figures(rel_tol=0)
     Traceback (most recent call last):
     ...
-    linkage.LinkageError: rel_tol must be positive, got 0.0
+    linkage.LinkageError: rel_tol must be above 0 and below 1 (a fraction of the size), got 0.0
     """
     rel_tol = as_finite(rel_tol, "rel_tol")
-    if rel_tol <= 0:
-        raise LinkageError(f"rel_tol must be positive, got {rel_tol}")
+    if not 0 < rel_tol < 1:  # within a whole size of a line, any path is "straight"
+        raise LinkageError(
+            f"rel_tol must be above 0 and below 1 (a fraction of the size), got {rel_tol}"
+        )
     samples = as_count(samples, "samples", 3)
     # Per sample: angles, every joint's position and velocity, flags (Jansen has 8 joints).
     check_memory(samples * 8 * 80, f"catalogue figures at {samples} samples")
