@@ -406,14 +406,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     syn.add_argument("--quiet", action="store_true", help="no progress bar")
     syn.set_defaults(func=lambda a, _s: __import__("linkage.synthesis").synthesis.command(a))
-    args = parser.parse_args(argv)
+    stdout = sys.stdout
+    try:
+        try:
+            args = parser.parse_args(argv)
+        finally:
+            # --help and --version exit inside: a reader gone away shows on this flush (on
+            # Python 3.9 already on the write), not at the interpreter's exit.
+            sys.stdout.flush()
+    except BrokenPipeError:
+        return _pipe_closed(stdout)
     if getattr(args, "samples", None) is not None and args.samples < 8:
         parser.error("--samples must be at least 8")
     if not 2 <= getattr(args, "frames", 2) <= MAX_FRAMES:
         parser.error(f"--frames must be between 2 and {MAX_FRAMES}")
     state: dict[str, Path] = {}
     signals: list[int] = []
-    stdout = sys.stdout
     written: list[Path] = []
     try:
         with _signals_noted(signals), recording() as written, _stdout_named(), _warnings_said():
@@ -488,11 +496,20 @@ def _pipe_closed(stdout: Any) -> int:
     The standard output is pointed at ``os.devnull`` so that the interpreter's own flush at exit
     does not fail again; the status is 128 + SIGPIPE, what a shell shows for a Unix tool there.
     """
+    _discard_output(stdout)
+    return EXIT_PIPE
+
+
+def _discard_output(stdout: Any) -> None:
+    """Point the standard output at ``os.devnull``: what is still buffered goes nowhere.
+
+    After a write to it failed (a closed pipe, a full disk, ``ulimit -f``), the interpreter's
+    own flush at exit would fail again and print "Exception ignored" under our one line.
+    """
     with contextlib.suppress(OSError, ValueError, AttributeError):
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, stdout.fileno())
         os.close(devnull)
-    return EXIT_PIPE
 
 
 def _stopped(signum: int, state: dict[str, Path]) -> int:
@@ -523,6 +540,7 @@ def _failed(exc: BaseException, state: dict[str, Path]) -> int:
                 f"error: cannot write to the standard output: {exc.strerror or exc}; the output "
                 f"is incomplete{report}"
             )
+            _discard_output(sys.stdout)
             return EXIT_ERROR
         where = f"{exc.filename}: " if exc.filename is not None else ""
         _say(f"error: {where}{exc.strerror or exc} ({_written(state)})")

@@ -410,6 +410,13 @@ def restore(path: Path, saved: Saved, algorithm: Any, f: Array, g: Array) -> Non
     algorithm.n_iter = saved.generation + 1
     state = getattr(algorithm, "random_state", None)
     try:
+        if saved.rng is not None:
+            # Checked whatever this pymoo draws from (0.6.1, the last for Python 3.9, uses the
+            # global generators and would otherwise ignore it): set on a fresh bit generator.
+            kind = getattr(np.random, str(saved.rng.get("bit_generator")), None)
+            if not (isinstance(kind, type) and issubclass(kind, np.random.BitGenerator)):
+                raise ValueError(f"no bit generator {saved.rng.get('bit_generator')!r}")
+            kind().state = saved.rng
         if isinstance(state, np.random.Generator):
             if (
                 saved.rng is None

@@ -148,7 +148,8 @@ def _bounded(fn: Callable[[], T], seconds: float) -> T:
 async def _identity(address: str, seconds: float) -> Any:
     comm = await distributed.comm.core.connect(address, timeout=seconds)  # type: ignore[no-untyped-call]
     try:
-        await comm.write({"op": "identity", "n_workers": 0, "reply": True})
+        # No n_workers: older distributed (2024.8, on Python 3.9) refuses the argument.
+        await comm.write({"op": "identity", "reply": True})
         return await comm.read()
     finally:
         comm.abort()
@@ -222,9 +223,8 @@ def gather(client: Any, futures: list[Any], address: str | None) -> list[NDArray
         except (TimeoutError, distributed.TimeoutError):
             pass
         try:
-            info = client.sync(
-                client.scheduler.identity, n_workers=-1, callback_timeout=CONNECT_TIMEOUT
-            )
+            # Every worker listed (no n_workers: older distributed has no such argument)
+            info = client.sync(client.scheduler.identity, callback_timeout=CONNECT_TIMEOUT)
         except Exception as exc:
             raise SchedulerError(
                 where, f"stopped answering while evaluating ({type(exc).__name__}: {exc})"
