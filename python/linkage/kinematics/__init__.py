@@ -1,0 +1,5 @@
+"""The kinematics API: mechanisms, four-bars, slider-cranks, their sweeps, mobility and batches.
+
+The public names are those of :mod:`linkage` (``linkage.Mechanism``, ``linkage.FourBar``, ...)."""
+
+__all__: list[str] = []

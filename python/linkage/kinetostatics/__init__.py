@@ -1,0 +1,3 @@
+"""Joint reactions and driver torque (:mod:`linkage.forces`)."""
+
+__all__: list[str] = []
