@@ -4,7 +4,7 @@ use linkage_core::catalog as core_catalog;
 use pyo3::prelude::*;
 
 use crate::error::linkage_error;
-use crate::fourbar::FourBar;
+use crate::linkages::fourbar::FourBar;
 use crate::mechanism::Mechanism;
 use crate::CAPACITY;
 

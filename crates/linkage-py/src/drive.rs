@@ -4,6 +4,8 @@ use linkage_core::{Discontinuity, GearTrain, MotionLaw, Program, ScheduleTable, 
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
+pub mod cam;
+
 use crate::args::{count_u32, Real, Strict};
 use crate::error::{linkage_error, to_py};
 use crate::memory;
