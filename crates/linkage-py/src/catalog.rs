@@ -10,6 +10,7 @@ use crate::CAPACITY;
 
 /// Names of the catalogued four-bars and multi-loop linkages.
 #[pyfunction]
+#[pyo3(name = "names")]
 pub fn catalog_names() -> (Vec<&'static str>, Vec<&'static str>) {
     (
         core_catalog::FOUR_BARS.to_vec(),
@@ -19,6 +20,7 @@ pub fn catalog_names() -> (Vec<&'static str>, Vec<&'static str>) {
 
 /// A catalogued four-bar by name.
 #[pyfunction]
+#[pyo3(name = "four_bar")]
 pub fn catalog_four_bar(name: &str) -> PyResult<FourBar> {
     core_catalog::four_bar_by_name::<f64>(name)
         .map(FourBar::from_core)
@@ -28,6 +30,7 @@ pub fn catalog_four_bar(name: &str) -> PyResult<FourBar> {
 /// A catalogued multi-loop linkage: `(mechanism, joint names, trace index)`. `scale` is the
 /// pantograph's (ignored by the others).
 #[pyfunction]
+#[pyo3(name = "linkage")]
 #[pyo3(signature = (name, scale=2.0))]
 pub fn catalog_linkage(
     name: &str,
@@ -49,4 +52,17 @@ pub fn catalog_linkage(
         linkage.joint_names.to_vec(),
         linkage.trace,
     ))
+}
+
+/// Adds the submodule `_core.catalog` (named classic linkages (`linkage_core::catalog`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "catalog",
+        "Named classic linkages (`linkage_core::catalog`).",
+    )?;
+    m.add_function(wrap_pyfunction!(crate::catalog::catalog_four_bar, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::catalog::catalog_linkage, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::catalog::catalog_names, &m)?)?;
+    Ok(())
 }

@@ -33,6 +33,7 @@ pub fn motion_law_names() -> Vec<&'static str> {
 
 /// `(N, 4)` displacement, velocity, acceleration, jerk of a law at `u`.
 #[pyfunction]
+#[pyo3(name = "evaluate_motion_law")]
 pub fn motion_law_eval<'py>(
     py: Python<'py>,
     name: &str,
@@ -77,6 +78,7 @@ fn segments(
 
 /// `(N, 4)` value and first three derivatives of a program at `t`.
 #[pyfunction]
+#[pyo3(name = "evaluate_program")]
 pub fn program_eval<'py>(
     py: Python<'py>,
     start: Real,
@@ -133,6 +135,7 @@ pub fn program_discontinuities(
 
 /// `(ratio, sign)` of a simple train given tooth counts in mesh order.
 #[pyfunction]
+#[pyo3(name = "simple_gear_train")]
 pub fn gear_train_simple(teeth: Vec<Bound<'_, PyAny>>) -> PyResult<(f64, i8)> {
     let teeth = teeth
         .iter()
@@ -144,6 +147,7 @@ pub fn gear_train_simple(teeth: Vec<Bound<'_, PyAny>>) -> PyResult<(f64, i8)> {
 
 /// `(ratio, sign)` of a compound train given `(driver, driven)` meshes.
 #[pyfunction]
+#[pyo3(name = "compound_gear_train")]
 #[allow(
     clippy::type_complexity,
     reason = "a list of (driver, driven) pairs, each an int converted with its own message"
@@ -162,6 +166,7 @@ pub fn gear_train_compound(
 /// `(N, 3)` θ, ω, α of a schedule table at `t`, evaluated in `f32` when `single` (the table
 /// and times are rounded to `f32` first, as firmware would store them) or `f64`.
 #[pyfunction]
+#[pyo3(name = "evaluate_schedule")]
 pub fn schedule_eval<'py>(
     py: Python<'py>,
     dt: Real,
@@ -257,4 +262,23 @@ pub fn stance_schedule<'py>(
         stance_time,
         angles,
     ))
+}
+
+/// Adds the submodule `_core.drive` (motion laws, programs, gear trains, schedules and cams (`linkage_core` `drive/`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "drive",
+        "Motion laws, programs, gear trains, schedules and cams (`linkage_core` `drive/`).",
+    )?;
+    m.add_function(wrap_pyfunction!(crate::drive::motion_law_names, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::motion_law_eval, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::program_eval, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::program_discontinuities, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::gear_train_simple, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::gear_train_compound, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::schedule_eval, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::stance_schedule, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::cam::cam_geometry, &m)?)?;
+    Ok(())
 }

@@ -138,3 +138,14 @@ pub fn forces<'py>(
     d.set_item("reaction_links", layout)?;
     Ok(d)
 }
+
+/// Adds the submodule `_core.kinetostatics` (joint forces and driving torque over a sweep (`linkage_core::kinetostatics`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "kinetostatics",
+        "Joint forces and driving torque over a sweep (`linkage_core::kinetostatics`).",
+    )?;
+    m.add_function(wrap_pyfunction!(crate::kinetostatics::forces, &m)?)?;
+    Ok(())
+}

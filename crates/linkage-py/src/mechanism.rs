@@ -700,3 +700,22 @@ pub(crate) fn as_points<'a, D: numpy::ndarray::Dimension>(
     bytemuck::try_cast_slice_mut(as_slice(a)?)
         .map_err(|e| linkage_error(format!("internal error: output misaligned ({e})")))
 }
+
+/// Adds the submodule `_core.mechanism` (the mechanism builder and its mobility (`linkage_core` `mechanism/`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "mechanism",
+        "The mechanism builder and its mobility (`linkage_core` `mechanism/`).",
+    )?;
+    m.add_class::<crate::mechanism::Mechanism>()?;
+    m.add_function(wrap_pyfunction!(
+        crate::mechanism::bodies::degrees_of_freedom,
+        &m
+    )?)?;
+    // Maximum joints of a mechanism built from Python.
+    m.add("CAPACITY", crate::CAPACITY)?;
+    // Below this assembly margin rates are NaN (`linkage_core::rate_margin`).
+    m.add("RATE_MARGIN", linkage_core::rate_margin::<f64>())?;
+    Ok(())
+}

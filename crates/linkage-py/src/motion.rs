@@ -140,3 +140,16 @@ pub fn straight_run<'py>(
     }
     Ok(Some(d))
 }
+
+/// Adds the submodule `_core.motion` (instant centres, path curvature and straight runs (`linkage_core` `motion/`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "motion",
+        "Instant centres, path curvature and straight runs (`linkage_core` `motion/`).",
+    )?;
+    m.add_function(wrap_pyfunction!(crate::motion::curvature_centres, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::motion::circumcentres, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::motion::straight_run, &m)?)?;
+    Ok(())
+}

@@ -21,3 +21,14 @@ pub fn reduce_angle<'py>(
     out.extend(th.iter().map(|&t| linkage_core::reduce_angle(t)));
     Ok(numpy::PyArray1::from_vec(py, out))
 }
+
+/// Adds the submodule `_core.numeric` (exact angle reduction (`linkage_core` `numeric/`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "numeric",
+        "Exact angle reduction (`linkage_core` `numeric/`).",
+    )?;
+    m.add_function(wrap_pyfunction!(crate::numeric::reduce_angle, &m)?)?;
+    Ok(())
+}

@@ -64,6 +64,7 @@ fn frame_array<'py>(py: Python<'py>, f: &linkage_core::Normalisation<f64>) -> Ar
 
 /// Builds an atlas: `(descriptors (N, D) float32, params (N, 6) float64, candidate (N,) uint64)`.
 #[pyfunction]
+#[pyo3(name = "build_atlas")]
 #[pyo3(signature = (entries, harmonics=8, samples=64, threads=1))]
 pub fn synth_atlas_build<'py>(
     py: Python<'py>,
@@ -81,6 +82,7 @@ pub fn synth_atlas_build<'py>(
 /// Builds a slider-crank atlas (`linkage_core::Atlas::build_slider_cranks`): `(descriptors
 /// (N, D) float32, params (N, 4) float64 [coupler, offset, along, left], candidate (N,))`.
 #[pyfunction]
+#[pyo3(name = "build_slider_atlas")]
 #[pyo3(signature = (entries, harmonics=8, samples=64, threads=1))]
 pub fn synth_slider_atlas_build<'py>(
     py: Python<'py>,
@@ -101,6 +103,7 @@ pub fn synth_slider_atlas_build<'py>(
 /// (`Atlas::build_slider_arcs`, params `(N, 6)` `[coupler, offset, along, left, phase,
 /// fraction]`).
 #[pyfunction]
+#[pyo3(name = "build_arc_atlas")]
 #[pyo3(signature = (entries, harmonics=8, samples=128, phases=8, threads=1, slider=false))]
 pub fn synth_arc_atlas_build<'py>(
     py: Python<'py>,
@@ -139,6 +142,7 @@ fn arc_params(slider: bool) -> usize {
 /// (`linkage_core::arc_frame`; with `slider`, of a slider-crank arc entry,
 /// `linkage_core::slider_arc_frame`).
 #[pyfunction]
+#[pyo3(name = "arc_entry_frame")]
 #[pyo3(signature = (entry, harmonics, samples, phases, slider=false))]
 pub fn synth_arc_frame<'py>(
     py: Python<'py>,
@@ -198,6 +202,7 @@ fn atlas_arrays<'py>(
 
 /// The `k` atlas entries nearest any target descriptor: `(entry, squared distance, target)`.
 #[pyfunction]
+#[pyo3(name = "nearest_entries")]
 #[pyo3(signature = (descriptors, targets, k, threads=1))]
 pub fn synth_atlas_nearest<'py>(
     py: Python<'py>,
@@ -225,6 +230,7 @@ pub fn synth_atlas_nearest<'py>(
 /// The query descriptors of a target curve (`linkage_core::query_descriptors`):
 /// `(descriptors (4, D) float32, frame [cx, cy, scale, rotation])`.
 #[pyfunction]
+#[pyo3(name = "query_descriptors")]
 #[pyo3(signature = (points, harmonics, closed))]
 pub fn synth_descriptors<'py>(
     py: Python<'py>,
@@ -252,6 +258,7 @@ pub fn synth_descriptors<'py>(
 /// The normalisation frame `[cx, cy, scale, rotation]` of a placed four-bar's circuit curve
 /// (`samples` points).
 #[pyfunction]
+#[pyo3(name = "circuit_frame")]
 #[pyo3(signature = (params, crossed, harmonics, samples))]
 pub fn synth_frame<'py>(
     py: Python<'py>,
@@ -269,6 +276,7 @@ pub fn synth_frame<'py>(
 
 /// [`synth_frame`] of a placed slider-crank (`params (8,)`).
 #[pyfunction]
+#[pyo3(name = "slider_circuit_frame")]
 #[pyo3(signature = (params, harmonics, samples))]
 pub fn synth_slider_frame<'py>(
     py: Python<'py>,
@@ -292,6 +300,7 @@ fn contiguous<'a>(params: &'a crate::args::F64Array1<'_>) -> PyResult<&'a [f64]>
 /// Residuals `P(s_i) − target_i` of `M` placed four-bars (`params (M, 9)`, `crossed (M,)`) at
 /// circuit parameters `s (M, n)`: `(M, n, 2)`, NaN where a linkage or sample does not assemble.
 #[pyfunction]
+#[pyo3(name = "residuals")]
 #[pyo3(signature = (params, crossed, targets, s))]
 pub fn synth_residuals<'py>(
     py: Python<'py>,
@@ -309,6 +318,7 @@ pub fn synth_residuals<'py>(
 
 /// [`synth_residuals`] of `M` placed slider-cranks (`params (M, 8)`).
 #[pyfunction]
+#[pyo3(name = "slider_residuals")]
 #[pyo3(signature = (params, targets, s))]
 pub fn synth_slider_residuals<'py>(
     py: Python<'py>,
@@ -349,6 +359,7 @@ fn residual_array<'py>(
 /// point, otherwise the nearest segment of a `samples`-point polyline. NaN rows for a linkage
 /// whose circuit does not assemble throughout.
 #[pyfunction]
+#[pyo3(name = "path_errors")]
 #[pyo3(signature = (params, crossed, targets, samples=256, exact=false, closed=true, threads=1))]
 #[allow(
     clippy::too_many_arguments,
@@ -376,6 +387,7 @@ pub fn synth_errors<'py>(
 /// [`synth_errors`] of `M` placed slider-cranks (`params (M, 8)`,
 /// `linkage_core::slider_path_errors`).
 #[pyfunction]
+#[pyo3(name = "slider_path_errors")]
 #[pyo3(signature = (params, targets, samples=256, exact=false, closed=true, threads=1))]
 pub fn synth_slider_errors<'py>(
     py: Python<'py>,
@@ -434,6 +446,7 @@ type Info = (Option<String>, bool, f64, f64, f64, bool);
 /// Validity of a placed four-bar's circuit and its figures over the arc `s_lo … s_hi`:
 /// `(problem or None, full_turn, theta_lo, theta_hi, min transmission angle, through a limit)`.
 #[pyfunction]
+#[pyo3(name = "circuit_info")]
 #[pyo3(signature = (params, crossed, s_lo, s_hi, check_samples=2048))]
 pub fn synth_info(
     py: Python<'_>,
@@ -449,6 +462,7 @@ pub fn synth_info(
 
 /// [`synth_info`] of a placed slider-crank (`params (8,)`).
 #[pyfunction]
+#[pyo3(name = "slider_circuit_info")]
 #[pyo3(signature = (params, s_lo, s_hi, check_samples=2048))]
 pub fn synth_slider_info(
     py: Python<'_>,
@@ -511,6 +525,7 @@ fn entry_head<const K: usize>(entry: &crate::args::F64Array1<'_>) -> PyResult<[f
 /// its curve's frame `curve` onto the target's `target` (`flip`: the other end of the major
 /// axis): the 9 placed parameters (`linkage_core::place_entry`).
 #[pyfunction]
+#[pyo3(name = "place_entry")]
 #[pyo3(signature = (entry, curve, target, flip))]
 pub fn synth_place<'py>(
     py: Python<'py>,
@@ -527,6 +542,7 @@ pub fn synth_place<'py>(
 /// A slider-crank atlas entry `[coupler, offset, along, left]` placed as [`synth_place`]
 /// places a four-bar's: the 8 placed parameters (`linkage_core::place_slider_entry`).
 #[pyfunction]
+#[pyo3(name = "place_slider_entry")]
 #[pyo3(signature = (entry, curve, target, flip))]
 pub fn synth_slider_place<'py>(
     py: Python<'py>,
@@ -596,6 +612,7 @@ fn distances<'py>(
 /// The circuit-parameter arc `(start, end)` holding every finite foot, or None
 /// (`linkage_core::covering_arc`).
 #[pyfunction]
+#[pyo3(name = "covering_arc")]
 #[pyo3(signature = (feet))]
 pub fn synth_arc(feet: crate::args::F64Array1<'_>) -> PyResult<Option<(f64, f64)>> {
     let f = feet
@@ -612,6 +629,7 @@ type SliderCurveArrays<'py> = (Arr2<'py, f64>, Arr1<'py, f64>, Arr1<'py, f64>, f
 /// least residual first, their residuals `(k,)`, the crank pivot `(2,)`, and the fit's `misfit`
 /// and `spread`.
 #[pyfunction]
+#[pyo3(name = "slider_cranks_from_curve")]
 #[pyo3(signature = (points,))]
 pub fn synth_slider_curve_equation<'py>(
     py: Python<'py>,
@@ -640,6 +658,7 @@ type CurveArrays<'py> = (Arr2<'py, f64>, Arr1<'py, f64>, Arr2<'py, f64>, f64, f6
 /// (`linkage_core::fourbars_from_curve`): placed parameters `(k, 9)` least residual first,
 /// their residuals `(k,)`, the curve's foci `(3, 2)`, and the fit's `misfit` and `spread`.
 #[pyfunction]
+#[pyo3(name = "fourbars_from_curve")]
 #[pyo3(signature = (points,))]
 pub fn synth_curve_equation<'py>(
     py: Python<'py>,
