@@ -3,7 +3,9 @@ and the core's constants (crates/linkage-py)."""
 
 import importlib
 import sys
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -59,7 +61,8 @@ def test_every_function_at_top_level_is_in_the_table() -> None:
     functions = {
         n for n in dir(_core) if type(getattr(_core, n)).__name__ == "builtin_function_or_method"
     }
-    assert functions == listed
+    # The shared helpers (memory wording) are top level by design.
+    assert functions - {"size_text_of", "memory_message"} == listed
 
 
 def test_classes_and_errors_stay_at_top_level() -> None:
@@ -80,7 +83,7 @@ def test_classes_and_errors_stay_at_top_level() -> None:
         (lambda: linkage.SliderCrank(crank=10, coupler=3, offset=60, point=(12, 9)), 47.0),
     ],
 )
-def test_assembly_error_carries_joint_and_gap(obj, gap) -> None:
+def test_assembly_error_carries_joint_and_gap(obj: Callable[[], Any], gap: float) -> None:
     # The core's error, as the binding raises it: the joint's index.
     core = obj()._core
     with pytest.raises(_core.AssemblyError) as raw:
@@ -155,3 +158,20 @@ def test_constants_are_the_cores(module: str, name: str, value: object) -> None:
                 tuple(value) if isinstance(value, list) else value
             ).replace(" ", ""), text
     assert _core.synthesis.SLIDER_ARC_ENTRY_PARAMS == _core.synthesis.SLIDER_ENTRY_PARAMS + 2
+
+
+def test_one_size_wording() -> None:
+    from linkage._arrays import _bytes, check_memory
+
+    assert _core.size_text_of(3 << 30) == "3 GiB (3221225472 bytes)"
+    assert _core.size_text_of(1023) == "1023 bytes"
+    assert _core.size_text_of(1 << 130) == f"1180591620717411303424 EiB ({1 << 130} bytes)"
+    assert (
+        _bytes(12_345_678_901)
+        == _core.size_text_of(12_345_678_901)
+        == "11.5 GiB (12345678901 bytes)"
+    )
+    with pytest.raises(
+        MemoryError, match=r"^a test needs 1 EiB \(1152921504606846976 bytes\), more than"
+    ):
+        check_memory(1 << 60, "a test")

@@ -296,6 +296,7 @@ __all__ = [
     "leg_gait",
     "linkages",
     "mechanism",
+    "memory_message",
     "motion",
     "motion_candidates",
     "motion_law_eval",
@@ -307,6 +308,7 @@ __all__ = [
     "program_eval",
     "reduce_angle",
     "schedule_eval",
+    "size_text_of",
     "stance_schedule",
     "straight_run",
     "support_margins",
@@ -340,6 +342,9 @@ CAPACITY: int
 CHOICES: dict[str, list[str]]
 ASSEMBLY_SIDES: dict[str, str]
 RATE_MARGIN: float
+
+def size_text_of(n: int) -> str: ...
+def memory_message(what: str, nbytes: int, limit: int) -> str: ...
 
 class LinkageError(ValueError): ...
 

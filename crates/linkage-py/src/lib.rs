@@ -166,6 +166,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         sides.set_item(a.name(), a.side().name())?;
     }
     m.add("ASSEMBLY_SIDES", sides)?;
+    // One wording of sizes and memory errors, the Python checks' too.
+    m.add_function(wrap_pyfunction!(memory::size_text_of, m)?)?;
+    m.add_function(wrap_pyfunction!(memory::memory_message, m)?)?;
     // Lowest layer first, as the core's folders.
     numeric::register(m)?;
     drive::register(m)?;
