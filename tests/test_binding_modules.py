@@ -175,3 +175,21 @@ def test_one_size_wording() -> None:
         MemoryError, match=r"^a test needs 1 EiB \(1152921504606846976 bytes\), more than"
     ):
         check_memory(1 << 60, "a test")
+
+
+def test_results_with_a_shape_are_typed() -> None:
+    import numpy as np
+
+    path = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]])
+    run = _core.motion.straight_run(path, 1e-9, False)
+    assert isinstance(run, _core.motion.StraightRun)
+    assert (run.start, run.count, run.length) == (0, 4, 3.0)
+    assert (run.lift, run.mean_speed, run.speed_variation) == (None, None, None)
+    with pytest.raises(AttributeError):
+        run.count = 1  # type: ignore[misc]
+    phi = np.linspace(0.0, 1.0, 5)
+    cam = _core.drive.cam_geometry(phi, np.zeros((5, 3)), 2.0)
+    assert isinstance(cam, _core.drive.CamGeometry)
+    assert cam.pitch.shape == cam.profile.shape == (5, 2)
+    assert cam.pressure_angle.shape == cam.pitch_radius.shape == cam.profile_radius.shape == (5,)
+    assert _core.drive.CamGeometry.__doc__ and _core.motion.StraightRun.length.__doc__

@@ -271,6 +271,7 @@ pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
         "drive",
         "Motion laws, programs, gear trains, schedules and cams (`linkage_core` `drive/`).",
     )?;
+    m.add_class::<cam::CamGeometry>()?;
     m.add_function(wrap_pyfunction!(crate::drive::motion_law_names, &m)?)?;
     m.add_function(wrap_pyfunction!(crate::drive::motion_law_eval, &m)?)?;
     m.add_function(wrap_pyfunction!(crate::drive::program_eval, &m)?)?;

@@ -5,8 +5,10 @@ Motion laws, programs, gear trains, schedules and cams.
 
 import numpy as np
 from numpy.typing import NDArray
+from typing_extensions import final
 
 __all__ = [
+    "CamGeometry",
     "cam_geometry",
     "compound_gear_train",
     "evaluate_motion_law",
@@ -53,4 +55,19 @@ def cam_geometry(
     base_radius: float,
     roller_radius: float | None = None,
     offset: float = 0.0,
-) -> dict[str, NDArray[np.float64]]: ...
+) -> CamGeometry: ...
+
+@final
+class CamGeometry:
+    """A cam's geometry sampled at ``n`` cam angles (``linkage_core::CamPoint`` by columns)."""
+
+    @property
+    def pitch(self) -> NDArray[np.float64]: ...
+    @property
+    def profile(self) -> NDArray[np.float64]: ...
+    @property
+    def pressure_angle(self) -> NDArray[np.float64]: ...
+    @property
+    def pitch_radius(self) -> NDArray[np.float64]: ...
+    @property
+    def profile_radius(self) -> NDArray[np.float64]: ...

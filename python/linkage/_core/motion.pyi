@@ -3,12 +3,12 @@
 Instant centres, path curvature and straight runs.
 """
 
-from typing import Any
-
 import numpy as np
 from numpy.typing import NDArray
+from typing_extensions import final
 
 __all__ = [
+    "StraightRun",
     "circumcentres",
     "curvature_centres",
     "straight_run",
@@ -25,4 +25,27 @@ def straight_run(
     tol: float,
     closed: bool,
     velocity: NDArray[np.float64] | None = None,
-) -> dict[str, Any] | None: ...
+) -> StraightRun | None: ...
+
+@final
+class StraightRun:
+    """The longest near-straight run of a path (``linkage_core::StraightPart``)."""
+
+    @property
+    def start(self) -> int: ...
+    @property
+    def count(self) -> int: ...
+    @property
+    def point(self) -> tuple[float, float]: ...
+    @property
+    def direction(self) -> tuple[float, float]: ...
+    @property
+    def max_deviation(self) -> float: ...
+    @property
+    def length(self) -> float: ...
+    @property
+    def lift(self) -> float | None: ...
+    @property
+    def mean_speed(self) -> float | None: ...
+    @property
+    def speed_variation(self) -> float | None: ...
