@@ -7,6 +7,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 
 import linkage
@@ -143,13 +144,15 @@ def core_constant(name: str) -> str:
         ("sweep", "DEFAULT_TOGGLE_MARGIN", 0.2),
         ("linkages", "MAX_TABLE", 256),
         ("mechanism", "CAPACITY", 64),
+        ("catalog", "FOUR_BARS", list(_core.catalog.names()[0])),
+        ("catalog", "MULTI_LOOP", list(_core.catalog.names()[1])),
     ],
 )
 def test_constants_are_the_cores(module: str, name: str, value: object) -> None:
     got = getattr(getattr(_core, module), name)
     assert got == value
     assert getattr(_core, name) is got
-    if name not in ("CAPACITY", "SLIDER_ARC_ENTRY_PARAMS"):
+    if name not in ("CAPACITY", "SLIDER_ARC_ENTRY_PARAMS", "FOUR_BARS", "MULTI_LOOP"):
         text = core_constant(name)
         if isinstance(value, (int, float)):
             assert type(value)(text.replace("_", "")) == value, text
@@ -178,7 +181,6 @@ def test_one_size_wording() -> None:
 
 
 def test_results_with_a_shape_are_typed() -> None:
-    import numpy as np
 
     path = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]])
     run = _core.motion.straight_run(path, 1e-9, False)
@@ -193,3 +195,27 @@ def test_results_with_a_shape_are_typed() -> None:
     assert cam.pitch.shape == cam.profile.shape == (5, 2)
     assert cam.pressure_angle.shape == cam.pitch_radius.shape == cam.profile_radius.shape == (5,)
     assert _core.drive.CamGeometry.__doc__ and _core.motion.StraightRun.length.__doc__
+
+
+def test_typed_results_keep_the_old_shapes_for_the_flat_names() -> None:
+    # 0.1 callers unpack tuples and index dicts; the flat names return the same objects.
+    ratio, sign = _core.gear_train_simple([10, 20])
+    train = _core.drive.simple_gear_train([10, 20])
+    assert isinstance(train, _core.drive.GearRatio)
+    assert (ratio, sign) == (train.ratio, train.sign) == train.astuple() == (0.5, -1)
+    assert (len(train), train[0], train[-1]) == (2, 0.5, -1)
+    found = _core.catalog.linkage("hart")
+    mech, names, trace = _core.catalog_linkage("hart")
+    assert isinstance(mech, _core.Mechanism)
+    assert (names, trace) == (found.joint_names, found.trace)
+    assert isinstance(found.mechanism, _core.Mechanism) and found[0] is found.mechanism
+    with pytest.raises(IndexError):
+        found[3]
+    cam = _core.cam_geometry(np.linspace(0.0, 1.0, 3), np.zeros((3, 3)), 2.0)
+    assert cam["pitch"] is cam.pitch
+    with pytest.raises(KeyError):
+        cam["nope"]
+    run = _core.straight_run(np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]), 1e-9, False)
+    assert run is not None and run["count"] == 3
+    with pytest.raises(KeyError):
+        run["lift"]  # only for a closed path, as the 0.1 dict

@@ -38,6 +38,12 @@ from linkage._core import (
     walking as walking,
 )
 from linkage._core.catalog import (
+    FOUR_BARS as FOUR_BARS,
+)
+from linkage._core.catalog import (
+    MULTI_LOOP as MULTI_LOOP,
+)
+from linkage._core.catalog import (
     four_bar as catalog_four_bar,
 )
 from linkage._core.catalog import (
@@ -255,10 +261,12 @@ __all__ = [
     "DEFAULT_TOGGLE_MARGIN",
     "ENTRY_PARAMS",
     "FOOT_STARTS",
+    "FOUR_BARS",
     "LENGTH_RANGE",
     "MAX_POSES",
     "MAX_TABLE",
     "MIN_CURVE_POINTS",
+    "MULTI_LOOP",
     "PLACED_PARAMS",
     "QUERY_VARIANTS",
     "RATE_MARGIN",

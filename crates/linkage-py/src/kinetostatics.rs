@@ -33,6 +33,19 @@ pub struct JointForces {
     pub reaction_links: Vec<(usize, usize, usize)>,
 }
 
+#[pymethods]
+impl JointForces {
+    /// `result[key]`, the 0.1 dict's keys, kept while the flat name is.
+    fn __getitem__<'py>(slf: &Bound<'py, Self>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match key {
+            "torque" | "power_torque" | "valid" | "reactions" | "couples" | "reaction_links" => {
+                slf.getattr(key)
+            }
+            _ => Err(pyo3::exceptions::PyKeyError::new_err(key.to_string())),
+        }
+    }
+}
+
 /// Kinetostatics along a sweep.
 ///
 /// `inertia`: `(mass, along, left, inertia)` per body, ground first; `loads`: `(body index,

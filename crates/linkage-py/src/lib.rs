@@ -91,7 +91,9 @@ const FLAT_NAMES: [(&str, &str); 53] = [
 ];
 
 /// The core constants the submodules export, also at `_core` top level.
-const FLAT_CONSTANTS: [(&str, &str); 16] = [
+const FLAT_CONSTANTS: [(&str, &str); 18] = [
+    ("FOUR_BARS", "catalog.FOUR_BARS"),
+    ("MULTI_LOOP", "catalog.MULTI_LOOP"),
     ("DEFAULT_TOGGLE_MARGIN", "sweep.DEFAULT_TOGGLE_MARGIN"),
     ("MAX_TABLE", "linkages.MAX_TABLE"),
     ("CURVE_EQUATION_POINTS", "synthesis.CURVE_EQUATION_POINTS"),

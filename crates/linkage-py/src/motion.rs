@@ -112,6 +112,24 @@ pub struct StraightRun {
     pub speed_variation: Option<f64>,
 }
 
+#[pymethods]
+impl StraightRun {
+    /// `run[key]`, the 0.1 dict's keys (`lift`, `mean_speed`, `speed_variation` only when
+    /// computed), kept while the flat `_core.straight_run` is.
+    fn __getitem__<'py>(slf: &Bound<'py, Self>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        let absent = match key {
+            "start" | "count" | "point" | "direction" | "max_deviation" | "length" => false,
+            "lift" => slf.get().lift.is_none(),
+            "mean_speed" | "speed_variation" => slf.get().mean_speed.is_none(),
+            _ => true,
+        };
+        if absent {
+            return Err(pyo3::exceptions::PyKeyError::new_err(key.to_string()));
+        }
+        slf.getattr(key)
+    }
+}
+
 /// The longest near-straight run of a path (see `linkage_core::straight_part`), or
 /// None; with `lift` (`StraightPart::lift`) for a closed path, and `mean_speed`,
 /// `speed_variation` (`StraightPart::speed`) when the path's `velocity` is given.

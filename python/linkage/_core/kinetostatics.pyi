@@ -3,6 +3,8 @@
 Joint forces and driving torque over a sweep.
 """
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 from typing_extensions import final
@@ -40,3 +42,4 @@ class JointForces:
     def couples(self) -> NDArray[np.float64]: ...
     @property
     def reaction_links(self) -> list[tuple[int, int, int]]: ...
+    def __getitem__(self, key: str, /) -> Any: ...

@@ -3,6 +3,8 @@
 Instant centres, path curvature and straight runs.
 """
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 from typing_extensions import final
@@ -49,3 +51,4 @@ class StraightRun:
     def mean_speed(self) -> float | None: ...
     @property
     def speed_variation(self) -> float | None: ...
+    def __getitem__(self, key: str, /) -> Any: ...

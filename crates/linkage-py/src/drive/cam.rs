@@ -26,6 +26,19 @@ pub struct CamGeometry {
     pub profile_radius: Py<PyArray1<f64>>,
 }
 
+#[pymethods]
+impl CamGeometry {
+    /// `result[key]`, the 0.1 dict's keys, kept while the flat name is.
+    fn __getitem__<'py>(slf: &Bound<'py, Self>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match key {
+            "pitch" | "profile" | "pressure_angle" | "pitch_radius" | "profile_radius" => {
+                slf.getattr(key)
+            }
+            _ => Err(pyo3::exceptions::PyKeyError::new_err(key.to_string())),
+        }
+    }
+}
+
 /// Cam geometry at cam angles `phi` for follower motion `y` (N, 3: s, ds/dφ, d²s/dφ²).
 /// `roller_radius` None means a flat-faced follower.
 #[pyfunction]
