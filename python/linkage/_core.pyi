@@ -7,12 +7,273 @@ from numpy.typing import NDArray
 from typing_extensions import final
 
 from linkage._choices import Assembly, Reach, Side, SweepMode
+from linkage._core import (
+    catalog as catalog,
+)
+from linkage._core import (
+    drive as drive,
+)
+from linkage._core import (
+    kinetostatics as kinetostatics,
+)
+from linkage._core import (
+    linkages as linkages,
+)
+from linkage._core import (
+    mechanism as mechanism,
+)
+from linkage._core import (
+    motion as motion,
+)
+from linkage._core import (
+    numeric as numeric,
+)
+from linkage._core import (
+    sweep as sweep,
+)
+from linkage._core import (
+    synthesis as synthesis,
+)
+from linkage._core import (
+    walking as walking,
+)
+from linkage._core.catalog import (
+    FOUR_BARS as FOUR_BARS,
+)
+from linkage._core.catalog import (
+    MULTI_LOOP as MULTI_LOOP,
+)
+from linkage._core.catalog import (
+    four_bar as catalog_four_bar,
+)
+from linkage._core.catalog import (
+    linkage as catalog_linkage,
+)
+from linkage._core.catalog import (
+    names as catalog_names,
+)
+from linkage._core.drive import (
+    cam_geometry as cam_geometry,
+)
+from linkage._core.drive import (
+    compound_gear_train as gear_train_compound,
+)
+from linkage._core.drive import (
+    evaluate_motion_law as motion_law_eval,
+)
+from linkage._core.drive import (
+    evaluate_program as program_eval,
+)
+from linkage._core.drive import (
+    evaluate_schedule as schedule_eval,
+)
+from linkage._core.drive import (
+    motion_law_names as motion_law_names,
+)
+from linkage._core.drive import (
+    program_discontinuities as program_discontinuities,
+)
+from linkage._core.drive import (
+    simple_gear_train as gear_train_simple,
+)
+from linkage._core.drive import (
+    stance_schedule as stance_schedule,
+)
+from linkage._core.kinetostatics import (
+    forces as forces,
+)
+from linkage._core.linkages import (
+    MAX_TABLE as MAX_TABLE,
+)
+from linkage._core.linkages import (
+    sweep_four_bar_batch as batch_sweep,
+)
+from linkage._core.mechanism import (
+    degrees_of_freedom as degrees_of_freedom,
+)
+from linkage._core.motion import (
+    circumcentres as circumcentres,
+)
+from linkage._core.motion import (
+    curvature_centres as curvature_centres,
+)
+from linkage._core.motion import (
+    straight_run as straight_run,
+)
+from linkage._core.numeric import (
+    reduce_angle as reduce_angle,
+)
+from linkage._core.sweep import (
+    DEFAULT_TOGGLE_MARGIN as DEFAULT_TOGGLE_MARGIN,
+)
+from linkage._core.sweep import (
+    instruction_set as sweep_simd,
+)
+from linkage._core.sweep import (
+    sweep_mechanisms as sweep_mechanisms,
+)
+from linkage._core.synthesis import (
+    ARC_ENTRY_PARAMS as ARC_ENTRY_PARAMS,
+)
+from linkage._core.synthesis import (
+    ARC_FRACTIONS as ARC_FRACTIONS,
+)
+from linkage._core.synthesis import (
+    CURVE_EQUATION_POINTS as CURVE_EQUATION_POINTS,
+)
+from linkage._core.synthesis import (
+    ENTRY_PARAMS as ENTRY_PARAMS,
+)
+from linkage._core.synthesis import (
+    FOOT_STARTS as FOOT_STARTS,
+)
+from linkage._core.synthesis import (
+    LENGTH_RANGE as LENGTH_RANGE,
+)
+from linkage._core.synthesis import (
+    MAX_POSES as MAX_POSES,
+)
+from linkage._core.synthesis import (
+    MIN_CURVE_POINTS as MIN_CURVE_POINTS,
+)
+from linkage._core.synthesis import (
+    PLACED_PARAMS as PLACED_PARAMS,
+)
+from linkage._core.synthesis import (
+    QUERY_VARIANTS as QUERY_VARIANTS,
+)
+from linkage._core.synthesis import (
+    SLIDER_ARC_ENTRY_PARAMS as SLIDER_ARC_ENTRY_PARAMS,
+)
+from linkage._core.synthesis import (
+    SLIDER_ENTRY_PARAMS as SLIDER_ENTRY_PARAMS,
+)
+from linkage._core.synthesis import (
+    SLIDER_EQUATION_POINTS as SLIDER_EQUATION_POINTS,
+)
+from linkage._core.synthesis import (
+    SLIDER_PARAMS as SLIDER_PARAMS,
+)
+from linkage._core.synthesis import (
+    arc_entry_frame as synth_arc_frame,
+)
+from linkage._core.synthesis import (
+    build_arc_atlas as synth_arc_atlas_build,
+)
+from linkage._core.synthesis import (
+    build_atlas as synth_atlas_build,
+)
+from linkage._core.synthesis import (
+    build_slider_atlas as synth_slider_atlas_build,
+)
+from linkage._core.synthesis import (
+    burmester_centre_point as burmester_centre_point,
+)
+from linkage._core.synthesis import (
+    burmester_circle_point as burmester_circle_point,
+)
+from linkage._core.synthesis import (
+    burmester_common_pole as burmester_common_pole,
+)
+from linkage._core.synthesis import (
+    burmester_curve as burmester_curve,
+)
+from linkage._core.synthesis import (
+    chebyshev_points as chebyshev_points,
+)
+from linkage._core.synthesis import (
+    circuit_frame as synth_frame,
+)
+from linkage._core.synthesis import (
+    circuit_info as synth_info,
+)
+from linkage._core.synthesis import (
+    covering_arc as synth_arc,
+)
+from linkage._core.synthesis import (
+    fourbars_from_curve as synth_curve_equation,
+)
+from linkage._core.synthesis import (
+    function_generator as function_generator,
+)
+from linkage._core.synthesis import (
+    motion_candidates as motion_candidates,
+)
+from linkage._core.synthesis import (
+    nearest_entries as synth_atlas_nearest,
+)
+from linkage._core.synthesis import (
+    path_errors as synth_errors,
+)
+from linkage._core.synthesis import (
+    place_entry as synth_place,
+)
+from linkage._core.synthesis import (
+    place_slider_entry as synth_slider_place,
+)
+from linkage._core.synthesis import (
+    polyline_distance as polyline_distance,
+)
+from linkage._core.synthesis import (
+    polyline_distance_each as polyline_distance_each,
+)
+from linkage._core.synthesis import (
+    query_descriptors as synth_descriptors,
+)
+from linkage._core.synthesis import (
+    residuals as synth_residuals,
+)
+from linkage._core.synthesis import (
+    slider_circuit_frame as synth_slider_frame,
+)
+from linkage._core.synthesis import (
+    slider_circuit_info as synth_slider_info,
+)
+from linkage._core.synthesis import (
+    slider_cranks_from_curve as synth_slider_curve_equation,
+)
+from linkage._core.synthesis import (
+    slider_path_errors as synth_slider_errors,
+)
+from linkage._core.synthesis import (
+    slider_residuals as synth_slider_residuals,
+)
+from linkage._core.walking import (
+    four_bar_gaits as four_bar_gaits,
+)
+from linkage._core.walking import (
+    gait_columns as gait_columns,
+)
+from linkage._core.walking import (
+    leg_gait as leg_gait,
+)
+from linkage._core.walking import (
+    support_margins as support_margins,
+)
 
 __all__ = [
+    "ARC_ENTRY_PARAMS",
+    "ARC_FRACTIONS",
     "ASSEMBLY_SIDES",
     "CAPACITY",
     "CHOICES",
+    "CURVE_EQUATION_POINTS",
+    "DEFAULT_TOGGLE_MARGIN",
+    "ENTRY_PARAMS",
+    "FOOT_STARTS",
+    "FOUR_BARS",
+    "LENGTH_RANGE",
+    "MAX_POSES",
+    "MAX_TABLE",
+    "MIN_CURVE_POINTS",
+    "MULTI_LOOP",
+    "PLACED_PARAMS",
+    "QUERY_VARIANTS",
     "RATE_MARGIN",
+    "SLIDER_ARC_ENTRY_PARAMS",
+    "SLIDER_ENTRY_PARAMS",
+    "SLIDER_EQUATION_POINTS",
+    "SLIDER_PARAMS",
     "AssemblyError",
     "FourBar",
     "LinkageError",
@@ -24,6 +285,7 @@ __all__ = [
     "burmester_common_pole",
     "burmester_curve",
     "cam_geometry",
+    "catalog",
     "catalog_four_bar",
     "catalog_linkage",
     "catalog_names",
@@ -31,25 +293,34 @@ __all__ = [
     "circumcentres",
     "curvature_centres",
     "degrees_of_freedom",
+    "drive",
     "forces",
     "four_bar_gaits",
     "function_generator",
     "gait_columns",
     "gear_train_compound",
     "gear_train_simple",
+    "kinetostatics",
     "leg_gait",
+    "linkages",
+    "mechanism",
+    "memory_message",
+    "motion",
     "motion_candidates",
     "motion_law_eval",
     "motion_law_names",
+    "numeric",
     "polyline_distance",
     "polyline_distance_each",
     "program_discontinuities",
     "program_eval",
     "reduce_angle",
     "schedule_eval",
+    "size_text_of",
     "stance_schedule",
     "straight_run",
     "support_margins",
+    "sweep",
     "sweep_mechanisms",
     "sweep_simd",
     "synth_arc",
@@ -71,6 +342,8 @@ __all__ = [
     "synth_slider_info",
     "synth_slider_place",
     "synth_slider_residuals",
+    "synthesis",
+    "walking",
 ]
 
 CAPACITY: int
@@ -78,8 +351,18 @@ CHOICES: dict[str, list[str]]
 ASSEMBLY_SIDES: dict[str, str]
 RATE_MARGIN: float
 
+def size_text_of(n: int) -> str: ...
+def memory_message(what: str, nbytes: int, limit: int) -> str: ...
+
 class LinkageError(ValueError): ...
-class AssemblyError(LinkageError): ...
+
+class AssemblyError(LinkageError):
+    joint: int | str | None
+    """The joint that cannot be placed: the core's index, or its name once named."""
+    gap: float | None
+    """How far the lengths miss closure (length units); None when the joints coincide."""
+    reason: str | None
+    """The message after ``joint <joint>``."""
 
 @final
 class Mechanism:
@@ -197,223 +480,6 @@ class SliderCrank:
         self, n: int
     ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]: ...
 
-def sweep_simd() -> str: ...
-def reduce_angle(theta: NDArray[np.float64]) -> NDArray[np.float64]: ...
-def sweep_mechanisms(
-    mechanisms: list[Mechanism], theta: NDArray[np.float64], threads: int = 1
-) -> tuple[NDArray[np.float64], NDArray[np.bool_]]: ...
-def batch_sweep(
-    o: NDArray[np.float64],
-    c: NDArray[np.float64],
-    crank: NDArray[np.float64],
-    coupler: NDArray[np.float64],
-    rocker: NDArray[np.float64],
-    along: NDArray[np.float64],
-    left: NDArray[np.float64],
-    crossed: NDArray[np.bool_],
-    theta: NDArray[np.float64],
-    threads: int = 1,
-    out: tuple[NDArray[np.float64], NDArray[np.bool_]] | None = None,
-) -> tuple[NDArray[np.float64], NDArray[np.bool_]]: ...
-def catalog_names() -> tuple[list[str], list[str]]: ...
-def catalog_four_bar(name: str) -> FourBar: ...
-def catalog_linkage(name: str, scale: float = 2.0) -> tuple[Mechanism, list[str], int]: ...
-def curvature_centres(
-    point: NDArray[np.float64], velocity: NDArray[np.float64], acceleration: NDArray[np.float64]
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
-def circumcentres(
-    p0: NDArray[np.float64], p1: NDArray[np.float64], p2: NDArray[np.float64]
-) -> NDArray[np.float64]: ...
-def straight_run(
-    path: NDArray[np.float64],
-    tol: float,
-    closed: bool,
-    velocity: NDArray[np.float64] | None = None,
-) -> dict[str, Any] | None: ...
-def motion_law_names() -> list[str]: ...
-def motion_law_eval(name: str, u: NDArray[np.float64]) -> NDArray[np.float64]: ...
-def program_eval(
-    start: float,
-    durations: list[float],
-    rises: list[float],
-    laws: list[str | None],
-    t: NDArray[np.float64],
-) -> NDArray[np.float64]: ...
-def program_discontinuities(
-    start: float, durations: list[float], rises: list[float], laws: list[str | None], tol: float
-) -> list[tuple[int, int, float]]: ...
-def gear_train_simple(teeth: list[int]) -> tuple[float, int]: ...
-def gear_train_compound(stages: list[tuple[int, int]]) -> tuple[float, int]: ...
-def schedule_eval(
-    dt: float,
-    advance: float,
-    theta: NDArray[np.float64],
-    omega: NDArray[np.float64],
-    t: NDArray[np.float64],
-    single: bool,
-) -> NDArray[np.float64]: ...
-def stance_schedule(
-    theta: NDArray[np.float64],
-    u: NDArray[np.float64],
-    foot_speed: float,
-    duty_factor: float,
-    samples: int,
-) -> tuple[float, NDArray[np.float64], NDArray[np.float64], float, tuple[float, float]]: ...
-def cam_geometry(
-    phi: NDArray[np.float64],
-    y: NDArray[np.float64],
-    base_radius: float,
-    roller_radius: float | None = None,
-    offset: float = 0.0,
-) -> dict[str, NDArray[np.float64]]: ...
-def degrees_of_freedom(links: int, lower_pairs: int, higher_pairs: int) -> int: ...
-def forces(
-    mech: Mechanism,
-    theta: NDArray[np.float64],
-    omega: NDArray[np.float64],
-    alpha: NDArray[np.float64],
-    inertia: list[tuple[float, float, float, float]],
-    gravity: tuple[float, float],
-    loads: list[tuple[int, int, NDArray[np.float64], NDArray[np.float64]]],
-) -> dict[str, Any]: ...
-def support_margins(
-    points: NDArray[np.float64], cg: NDArray[np.float64]
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.uint64]]: ...
-
 # Precision-point synthesis (crates/linkage-py/src/precision.rs).
-def burmester_centre_point(
-    poses: list[tuple[float, float, float]], circle: tuple[float, float]
-) -> tuple[float, float]: ...
-def burmester_circle_point(
-    poses: list[tuple[float, float, float]], centre: tuple[float, float]
-) -> tuple[float, float]: ...
-def burmester_common_pole(
-    poses: list[tuple[float, float, float]],
-) -> tuple[float, float] | None: ...
-def burmester_curve(
-    poses: list[tuple[float, float, float]], beta: NDArray[np.float64], free: int | None = None
-) -> tuple[int, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]: ...
-def motion_candidates(
-    poses: list[tuple[float, float, float]],
-    crank: NDArray[np.float64],
-    rocker: NDArray[np.float64],
-) -> dict[str, Any]: ...
-def chebyshev_points(x0: float, x1: float, n: int) -> NDArray[np.float64]: ...
-def function_generator(
-    phi: NDArray[np.float64],
-    psi: NDArray[np.float64],
-    ground: float,
-    samples: NDArray[np.float64],
-) -> dict[str, Any]: ...
-def leg_gait(
-    path: NDArray[np.float64],
-    rate: NDArray[np.float64],
-    tol: float,
-    ground: float | None = None,
-) -> tuple[dict[str, float], NDArray[np.bool_]]: ...
-def four_bar_gaits(
-    o: NDArray[np.float64],
-    c: NDArray[np.float64],
-    crank: NDArray[np.float64],
-    coupler: NDArray[np.float64],
-    rocker: NDArray[np.float64],
-    along: NDArray[np.float64],
-    left: NDArray[np.float64],
-    crossed: NDArray[np.bool_],
-    samples: int,
-    rel_tol: float,
-    threads: int = 1,
-) -> NDArray[np.float64]: ...
-def gait_columns() -> list[str]: ...
 
 # -- path synthesis (crates/linkage-py/src/synthesis.rs) --------------------------------------
-def synth_atlas_build(
-    entries: int, harmonics: int = 8, samples: int = 64, threads: int = 1
-) -> tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.uint64]]: ...
-def synth_arc_atlas_build(
-    entries: int,
-    harmonics: int = 8,
-    samples: int = 128,
-    phases: int = 8,
-    threads: int = 1,
-    slider: bool = False,
-) -> tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.uint64]]: ...
-def synth_arc_frame(
-    entry: NDArray[np.float64], harmonics: int, samples: int, phases: int, slider: bool = False
-) -> NDArray[np.float64]: ...
-def synth_atlas_nearest(
-    descriptors: NDArray[np.float32], targets: NDArray[np.float32], k: int, threads: int = 1
-) -> tuple[NDArray[np.int64], NDArray[np.float32], NDArray[np.int64]]: ...
-def synth_descriptors(
-    points: NDArray[np.float64], harmonics: int, closed: bool
-) -> tuple[NDArray[np.float32], NDArray[np.float64]]: ...
-def synth_frame(
-    params: NDArray[np.float64], crossed: bool, harmonics: int, samples: int
-) -> NDArray[np.float64]: ...
-def synth_place(
-    entry: NDArray[np.float64],
-    curve: NDArray[np.float64],
-    target: NDArray[np.float64],
-    flip: bool,
-) -> NDArray[np.float64]: ...
-def synth_arc(feet: NDArray[np.float64]) -> tuple[float, float] | None: ...
-def synth_curve_equation(
-    points: NDArray[np.float64],
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float, float]: ...
-def synth_slider_curve_equation(
-    points: NDArray[np.float64],
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float, float]: ...
-def polyline_distance(
-    points: NDArray[np.float64], path: NDArray[np.float64]
-) -> NDArray[np.float64]: ...
-def polyline_distance_each(
-    points: NDArray[np.float64], paths: NDArray[np.float64], stride: int
-) -> NDArray[np.float64]: ...
-def synth_residuals(
-    params: NDArray[np.float64],
-    crossed: NDArray[np.bool_],
-    targets: NDArray[np.float64],
-    s: NDArray[np.float64],
-) -> NDArray[np.float64]: ...
-def synth_errors(
-    params: NDArray[np.float64],
-    crossed: NDArray[np.bool_],
-    targets: NDArray[np.float64],
-    samples: int = 256,
-    exact: bool = False,
-    closed: bool = True,
-    threads: int = 1,
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
-def synth_info(
-    params: NDArray[np.float64],
-    crossed: bool,
-    s_lo: float,
-    s_hi: float,
-    check_samples: int = 2048,
-) -> tuple[str | None, bool, float, float, float, bool]: ...
-def synth_slider_atlas_build(
-    entries: int, harmonics: int = 8, samples: int = 64, threads: int = 1
-) -> tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.uint64]]: ...
-def synth_slider_frame(
-    params: NDArray[np.float64], harmonics: int, samples: int
-) -> NDArray[np.float64]: ...
-def synth_slider_place(
-    entry: NDArray[np.float64],
-    curve: NDArray[np.float64],
-    target: NDArray[np.float64],
-    flip: bool,
-) -> NDArray[np.float64]: ...
-def synth_slider_residuals(
-    params: NDArray[np.float64], targets: NDArray[np.float64], s: NDArray[np.float64]
-) -> NDArray[np.float64]: ...
-def synth_slider_errors(
-    params: NDArray[np.float64],
-    targets: NDArray[np.float64],
-    samples: int = 256,
-    exact: bool = False,
-    closed: bool = True,
-    threads: int = 1,
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
-def synth_slider_info(
-    params: NDArray[np.float64], s_lo: float, s_hi: float, check_samples: int = 2048
-) -> tuple[str | None, bool, float, float, float, bool]: ...

@@ -85,8 +85,8 @@ def _four_bar(name: str) -> FourBar:
 
 
 def _linkage(name: str, scale: float = 2.0) -> Mechanism:
-    core, names, trace = _core.catalog_linkage(name, as_finite(scale, "scale"))
-    return Mechanism._from_core(core, names, trace)
+    found = _core.catalog_linkage(name, as_finite(scale, "scale"))
+    return Mechanism._from_core(found.mechanism, found.joint_names, found.trace)
 
 
 def watt() -> FourBar:

@@ -1,9 +1,8 @@
 //! Mirrors `linkage_core::kinetostatics`: driver torque and joint reactions along a sweep.
 
 use linkage_core::{Bodies, BodyId, Dynamics, ForceSweep, Inertia, LoadSeries, Vec2};
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 use crate::args::{count, xy, Real, RealPair, Strict};
 use crate::error::{linkage_error, to_py};
@@ -13,6 +12,38 @@ use crate::memory;
 fn slice<'a>(name: &str, a: &'a crate::args::F64Array1<'_>) -> PyResult<&'a [f64]> {
     a.as_slice()
         .map_err(|_| linkage_error(format!("{name} must be a contiguous float64 array")))
+}
+
+/// Driving torque and joint reactions of a mechanism over a sweep
+/// (`linkage_core::Dynamics::sweep`), one row a sample; NaN where a sample does not assemble or
+/// sits at a toggle where statics cannot decide the reactions.
+#[pyclass(module = "linkage._core.kinetostatics", frozen, get_all)]
+pub struct JointForces {
+    /// Driving torque `(N,)` by Newton–Euler.
+    pub torque: Py<PyArray1<f64>>,
+    /// Driving torque `(N,)` by the power method (a check of `torque`).
+    pub power_torque: Py<PyArray1<f64>>,
+    /// Whether each sample was solved `(N,)`.
+    pub valid: Py<PyArray1<bool>>,
+    /// Reaction forces `(N, R, 2)`, in the order of `reaction_links`.
+    pub reactions: Py<PyArrayDyn<f64>>,
+    /// Slider couples `(N, R)`; zero at pins.
+    pub couples: Py<PyArrayDyn<f64>>,
+    /// `(joint, from body, to body)` of each reaction, bodies by index (ground 0).
+    pub reaction_links: Vec<(usize, usize, usize)>,
+}
+
+#[pymethods]
+impl JointForces {
+    /// `result[key]`, the 0.1 dict's keys, kept while the flat name is.
+    fn __getitem__<'py>(slf: &Bound<'py, Self>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match key {
+            "torque" | "power_torque" | "valid" | "reactions" | "couples" | "reaction_links" => {
+                slf.getattr(key)
+            }
+            _ => Err(pyo3::exceptions::PyKeyError::new_err(key.to_string())),
+        }
+    }
 }
 
 /// Kinetostatics along a sweep.
@@ -42,7 +73,7 @@ pub fn forces<'py>(
             crate::args::F64Array1<'py>,
         )>,
     >,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<JointForces> {
     let th = slice("theta", &theta)?;
     let n = th.len();
     let (w, a) = (slice("omega", &omega)?, slice("alpha", &alpha)?);
@@ -126,15 +157,28 @@ pub fn forces<'py>(
     });
     result.map_err(to_py)?;
     let forces: Vec<f64> = reactions.iter().flat_map(|r| [r.x, r.y]).collect();
-    let d = PyDict::new(py);
-    d.set_item("torque", PyArray1::from_vec(py, torque))?;
-    d.set_item("power_torque", PyArray1::from_vec(py, power))?;
-    d.set_item("valid", PyArray1::from_vec(py, valid))?;
-    d.set_item(
-        "reactions",
-        PyArray1::from_vec(py, forces).reshape([n, nr, 2])?,
+    Ok(JointForces {
+        torque: PyArray1::from_vec(py, torque).unbind(),
+        power_torque: PyArray1::from_vec(py, power).unbind(),
+        valid: PyArray1::from_vec(py, valid).unbind(),
+        reactions: PyArray1::from_vec(py, forces)
+            .reshape(vec![n, nr, 2])?
+            .unbind(),
+        couples: PyArray1::from_vec(py, couples)
+            .reshape(vec![n, nr])?
+            .unbind(),
+        reaction_links: layout,
+    })
+}
+
+/// Adds the submodule `_core.kinetostatics` (joint forces and driving torque over a sweep (`linkage_core::kinetostatics`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "kinetostatics",
+        "Joint forces and driving torque over a sweep (`linkage_core::kinetostatics`).",
     )?;
-    d.set_item("couples", PyArray1::from_vec(py, couples).reshape([n, nr])?)?;
-    d.set_item("reaction_links", layout)?;
-    Ok(d)
+    m.add_class::<JointForces>()?;
+    m.add_function(wrap_pyfunction!(crate::kinetostatics::forces, &m)?)?;
+    Ok(())
 }

@@ -16,6 +16,8 @@ use crate::error::{linkage_error, to_py};
 use crate::memory;
 use crate::CAPACITY;
 
+pub mod bodies;
+
 /// Reads an optional rate array: absent is `default`, length 1 is a scalar, length `n` per sample.
 fn rate<'a>(
     name: &str,
@@ -391,7 +393,7 @@ impl Mechanism {
                         false
                     }
                 };
-                let simd = crate::fourbar::simd_level();
+                let simd = crate::linkages::fourbar::simd_level();
                 match &mech {
                     Sweepable::S8(m) => sweep_isa(simd, m, th, (w, a), out, &mut go_on),
                     Sweepable::S16(m) => sweep_isa(simd, m, th, (w, a), out, &mut go_on),
@@ -475,14 +477,14 @@ pub fn sweep_mechanisms<'py>(
 /// same in every build, so are the bits. Only the small capacities (up to 16 joints: four-bars,
 /// six-bars, Jansen's and Klann's legs) carry the extra builds.
 fn sweep_isa<const N: usize>(
-    simd: crate::fourbar::Simd,
+    simd: crate::linkages::fourbar::Simd,
     m: &CoreMechanism<f64, N>,
     theta: &[f64],
     (omega, alpha): (Rate<'_, f64>, Rate<'_, f64>),
     out: SweepOutputs<'_, f64>,
     go_on: &mut dyn FnMut() -> bool,
 ) -> Result<linkage_core::Swept, linkage_core::Error> {
-    use crate::fourbar::Simd;
+    use crate::linkages::fourbar::Simd;
     match simd {
         #[cfg(target_arch = "x86_64")]
         Simd::Avx512 => {
@@ -699,19 +701,21 @@ pub(crate) fn as_points<'a, D: numpy::ndarray::Dimension>(
         .map_err(|e| linkage_error(format!("internal error: output misaligned ({e})")))
 }
 
-/// Each angle of `theta` reduced exactly to two turns (`linkage_core::reduce_angle`): the
-/// reduction every sweep applies first, for callers that add a phase to a large angle
-/// (`reduce_angle(θ) + φ` keeps the phase where `θ + φ` rounds it away).
-#[pyfunction]
-pub fn reduce_angle<'py>(
-    py: Python<'py>,
-    theta: crate::args::F64Array1<'py>,
-) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
-    let th = theta
-        .as_slice()
-        .map_err(|_| linkage_error("theta must be a contiguous float64 array"))?;
-    let what = || format!("{} reduced angles", th.len());
-    let mut out = memory::with_capacity(&what, th.len())?;
-    out.extend(th.iter().map(|&t| linkage_core::reduce_angle(t)));
-    Ok(numpy::PyArray1::from_vec(py, out))
+/// Adds the submodule `_core.mechanism` (the mechanism builder and its mobility (`linkage_core` `mechanism/`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "mechanism",
+        "The mechanism builder and its mobility (`linkage_core` `mechanism/`).",
+    )?;
+    m.add_class::<crate::mechanism::Mechanism>()?;
+    m.add_function(wrap_pyfunction!(
+        crate::mechanism::bodies::degrees_of_freedom,
+        &m
+    )?)?;
+    // Maximum joints of a mechanism built from Python.
+    m.add("CAPACITY", crate::CAPACITY)?;
+    // Below this assembly margin rates are NaN (`linkage_core::rate_margin`).
+    m.add("RATE_MARGIN", linkage_core::rate_margin::<f64>())?;
+    Ok(())
 }

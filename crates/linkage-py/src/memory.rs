@@ -10,7 +10,8 @@
 use std::sync::OnceLock;
 
 use pyo3::exceptions::PyMemoryError;
-use pyo3::PyErr;
+use pyo3::prelude::*;
+use pyo3::types::PyInt;
 
 /// Bytes `len` values of `T` take, without overflow.
 pub fn bytes_of<T>(len: u128) -> u128 {
@@ -31,36 +32,78 @@ fn machine_bytes() -> Option<u128> {
     })
 }
 
-/// A size as the Python package words it (`linkage._arrays._bytes`): three significant digits in
-/// the largest binary unit from MiB to EiB that fits, with the exact bytes; bytes alone below.
+/// The binary units a size is worded in, largest first.
+const UNITS: [(&str, u32); 5] = [
+    ("EiB", 60),
+    ("PiB", 50),
+    ("TiB", 40),
+    ("GiB", 30),
+    ("MiB", 20),
+];
+
+/// A size as every `MemoryError` of the package words it: three significant digits in the
+/// largest binary unit from MiB to EiB that fits, with the exact bytes; bytes alone below.
 fn size_text(n: u128) -> String {
-    for (unit, size) in [
-        ("EiB", 1u128 << 60),
-        ("PiB", 1 << 50),
-        ("TiB", 1 << 40),
-        ("GiB", 1 << 30),
-        ("MiB", 1 << 20),
-    ] {
+    for (unit, shift) in UNITS {
+        let size = 1u128 << shift;
         if n >= size {
-            let v = n as f64 / size as f64;
-            // Python's `.3g`: no decimals from 100 up, one from 10, two below.
-            let digits = if v >= 99.95 {
-                0
-            } else if v >= 9.995 {
-                1
-            } else {
-                2
-            };
-            let text = format!("{v:.digits$}");
-            let text = if text.contains('.') {
-                text.trim_end_matches('0').trim_end_matches('.').to_string()
-            } else {
-                text
-            };
-            return format!("{text} {unit} ({n} bytes)");
+            return sized(n as f64 / size as f64, unit, n);
         }
     }
     format!("{n} bytes")
+}
+
+/// `v` (the size in `unit`, at least 1) to three significant digits, then the exact bytes.
+fn sized(v: f64, unit: &str, exact: impl std::fmt::Display) -> String {
+    // Python's `.3g` without exponent: no decimals from 100 up, one from 10, two below.
+    let digits = if v >= 99.95 {
+        0
+    } else if v >= 9.995 {
+        1
+    } else {
+        2
+    };
+    let text = format!("{v:.digits$}");
+    let text = if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    };
+    format!("{text} {unit} ({exact} bytes)")
+}
+
+/// A size in bytes (any Python int) worded as every `MemoryError` words it
+/// (`linkage._arrays` calls this: one wording, here).
+#[pyfunction]
+pub fn size_text_of(n: &Bound<'_, PyInt>) -> PyResult<String> {
+    if let Ok(v) = n.extract::<u128>() {
+        return Ok(size_text(v));
+    }
+    // Past u128 (Python's exact sizes get there: a product of huge counts) or negative: the
+    // same wording from Python's int arithmetic (its true division is correctly rounded, as
+    // `n as f64 / size as f64` is for a u128).
+    for (unit, shift) in UNITS {
+        let size = 1u128 << shift;
+        if n.ge(size)? {
+            let v: f64 = n.div(size)?.extract()?;
+            return Ok(sized(v, unit, n.str()?));
+        }
+    }
+    Ok(format!("{} bytes", n.str()?))
+}
+
+/// The `MemoryError` message for `what` needing `nbytes` where this process can hold `limit`.
+#[pyfunction]
+pub fn memory_message(
+    what: &str,
+    nbytes: &Bound<'_, PyInt>,
+    limit: &Bound<'_, PyInt>,
+) -> PyResult<String> {
+    Ok(format!(
+        "{what} needs {}, more than this process can hold ({})",
+        size_text_of(nbytes)?,
+        size_text_of(limit)?
+    ))
 }
 
 /// `what needs X GiB (N bytes)` as a `MemoryError`, with the reason.

@@ -262,27 +262,12 @@ def check_memory(nbytes: int, what: str) -> None:
     """
     limit = memory_limit()
     if nbytes > limit:
-        raise MemoryError(
-            f"{what} needs {_bytes(nbytes)}, more than this process can hold ({_bytes(limit)})"
-        )
+        raise MemoryError(_core.memory_message(what, nbytes, limit))
 
 
 def _bytes(n: int) -> str:
-    """Word a size as every MemoryError does (the Rust half words it alike).
-
-    Three significant digits, no exponent, in the largest binary unit from MiB to EiB that fits,
-    with the exact bytes; bytes alone below.
-    """
-    for unit, shift in (("EiB", 60), ("PiB", 50), ("TiB", 40), ("GiB", 30), ("MiB", 20)):
-        size = 1 << shift
-        if n >= size:
-            v = n / size
-            digits = 0 if v >= 99.95 else 1 if v >= 9.995 else 2
-            text = f"{v:.{digits}f}"
-            if "." in text:
-                text = text.rstrip("0").rstrip(".")
-            return f"{text} {unit} ({n} bytes)"
-    return f"{n} bytes"
+    """Word a size as every MemoryError does (the core's wording, ``_core.size_text_of``)."""
+    return _core.size_text_of(n)
 
 
 def _short(value: Any) -> str:

@@ -187,11 +187,11 @@ class DiscCam:
         prof = CamProfile(
             phi=phi,
             displacement=s,
-            pitch=raw["pitch"],
-            profile=raw["profile"],
-            pressure_angle=raw["pressure_angle"],
-            pitch_radius=raw["pitch_radius"],
-            profile_radius=raw["profile_radius"],
+            pitch=raw.pitch,
+            profile=raw.profile,
+            pressure_angle=raw.pressure_angle,
+            pitch_radius=raw.pitch_radius,
+            profile_radius=raw.profile_radius,
         )
         prof.problems = self._problems(prof)
         return prof

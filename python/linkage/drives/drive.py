@@ -355,7 +355,8 @@ class GearTrain:
         ...
         linkage.LinkageError: tooth counts must be positive, got 0
         """
-        return cls(*_core.gear_train_simple([_teeth(z) for z in teeth]))
+        train = _core.gear_train_simple([_teeth(z) for z in teeth])
+        return cls(train.ratio, train.sign)
 
     @classmethod
     def compound(cls, stages: Sequence[tuple[int, int]]) -> GearTrain:
@@ -398,7 +399,8 @@ class GearTrain:
                     f"stages must be (driver, driven) pairs, got {len(stage)} values"
                 )
             pairs.append((_teeth(stage[0]), _teeth(stage[1])))
-        return cls(*_core.gear_train_compound(pairs))
+        train = _core.gear_train_compound(pairs)
+        return cls(train.ratio, train.sign)
 
     def output_speed(self, input_speed: float) -> float:
         """Return the signed output speed for an input speed.
@@ -768,9 +770,9 @@ def crank_schedule(
     th_st, u, d = stance.theta, stance.u, stance.direction
     # The schedule itself (stance at V/u, a swing closing the turn) is the core's
     # StanceSchedule; here only the stance is found and the result measured.
-    dt, th_tab, w_tab, stance_time, stance_angles = _core.stance_schedule(
-        th_st, u, v_target, beta, samples
-    )
+    table = _core.stance_schedule(th_st, u, v_target, beta, samples)
+    dt, th_tab, w_tab = table.dt, table.theta, table.omega
+    stance_time, stance_angles = table.stance_time, table.stance_angles
     period = dt * samples
     sched = CrankSchedule(
         dt=dt,

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, Any, Union, cast
 
@@ -31,11 +30,12 @@ def named_joint(exc: _core.AssemblyError, joints: tuple[str, ...]) -> _core.Asse
     The core numbers joints: "joint 3 cannot be assembled" is B's for a four-bar and a
     slider-crank alike.
     """
-    text = str(exc)
-    m = re.match(r"joint (\d+) ", text)
-    if m is not None and int(m[1]) < len(joints):
-        text = f"joint {joints[int(m[1])]} {text[m.end() :]}"
-    return _core.AssemblyError(text)
+    joint = exc.joint
+    if not isinstance(joint, int) or not 0 <= joint < len(joints):
+        return exc
+    named = _core.AssemblyError(f"joint {joints[joint]} {exc.reason}")
+    named.joint, named.gap, named.reason = joints[joint], exc.gap, exc.reason
+    return named
 
 
 class FourBar:

@@ -321,11 +321,11 @@ def joint_forces(
     names = mech.joint_names
     return Forces(
         theta=th,
-        torque=raw["torque"],
-        power_torque=raw["power_torque"],
-        valid=raw["valid"],
-        reactions=raw["reactions"],
-        reaction_links=[(names[j], links[f], links[t]) for j, f, t in raw["reaction_links"]],
+        torque=raw.torque,
+        power_torque=raw.power_torque,
+        valid=raw.valid,
+        reactions=raw.reactions,
+        reaction_links=[(names[j], links[f], links[t]) for j, f, t in raw.reaction_links],
         time=times,
     )
 

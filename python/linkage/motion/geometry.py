@@ -298,18 +298,18 @@ def straightness(
     run = _core.straight_run(np.ascontiguousarray(p), t, closed, v)
     if run is None:
         return None
-    idx = (run["start"] + np.arange(run["count"])) % len(p)
-    mean = None if v is None else float(run["mean_speed"])
-    var = None if v is None else float(run["speed_variation"])
+    idx = (run.start + np.arange(run.count)) % len(p)
+    mean = None if v is None else run.mean_speed
+    var = None if v is None else run.speed_variation
     return StraightPart(
         indices=idx,
-        length=float(run["length"]),
-        max_deviation=float(run["max_deviation"]),
-        point=tuple(run["point"]),
-        direction=tuple(run["direction"]),
+        length=run.length,
+        max_deviation=run.max_deviation,
+        point=run.point,
+        direction=run.direction,
         mean_speed=mean,
         speed_variation=var,
-        lift=run.get("lift"),
+        lift=run.lift,
     )
 
 

@@ -4,6 +4,8 @@ use linkage_core::{Discontinuity, GearTrain, MotionLaw, Program, ScheduleTable, 
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
+pub mod cam;
+
 use crate::args::{count_u32, Real, Strict};
 use crate::error::{linkage_error, to_py};
 use crate::memory;
@@ -31,6 +33,7 @@ pub fn motion_law_names() -> Vec<&'static str> {
 
 /// `(N, 4)` displacement, velocity, acceleration, jerk of a law at `u`.
 #[pyfunction]
+#[pyo3(name = "evaluate_motion_law")]
 pub fn motion_law_eval<'py>(
     py: Python<'py>,
     name: &str,
@@ -75,6 +78,7 @@ fn segments(
 
 /// `(N, 4)` value and first three derivatives of a program at `t`.
 #[pyfunction]
+#[pyo3(name = "evaluate_program")]
 pub fn program_eval<'py>(
     py: Python<'py>,
     start: Real,
@@ -129,37 +133,75 @@ pub fn program_discontinuities(
         .collect())
 }
 
-/// `(ratio, sign)` of a simple train given tooth counts in mesh order.
+/// The ratio of a gear train (`linkage_core::GearTrain`).
+#[pyclass(module = "linkage._core.drive", frozen, get_all)]
+pub struct GearRatio {
+    /// `|output/input|` speed ratio.
+    pub ratio: f64,
+    /// `+1` if the output turns with the input, `-1` against it.
+    pub sign: i8,
+}
+
+#[pymethods]
+impl GearRatio {
+    /// The 0.1 tuple `(ratio, sign)`, kept while the flat name is.
+    fn astuple<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
+        pyo3::types::PyTuple::new(slf.py(), [slf.getattr("ratio")?, slf.getattr("sign")?])
+    }
+
+    fn __len__(&self) -> usize {
+        2
+    }
+
+    fn __getitem__<'py>(slf: &Bound<'py, Self>, index: isize) -> PyResult<Bound<'py, PyAny>> {
+        Self::astuple(slf)?.as_any().get_item(index)
+    }
+
+    fn __iter__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        Ok(Self::astuple(slf)?.as_any().try_iter()?.into_any())
+    }
+}
+
+/// The ratio of a simple train given tooth counts in mesh order.
 #[pyfunction]
-pub fn gear_train_simple(teeth: Vec<Bound<'_, PyAny>>) -> PyResult<(f64, i8)> {
+#[pyo3(name = "simple_gear_train")]
+pub fn gear_train_simple(teeth: Vec<Bound<'_, PyAny>>) -> PyResult<GearRatio> {
     let teeth = teeth
         .iter()
         .map(|z| count_u32("gear tooth count", z))
         .collect::<PyResult<Vec<u32>>>()?;
     let t = GearTrain::simple(&teeth).map_err(to_py)?;
-    Ok((t.ratio(), t.sign()))
+    Ok(GearRatio {
+        ratio: t.ratio(),
+        sign: t.sign(),
+    })
 }
 
-/// `(ratio, sign)` of a compound train given `(driver, driven)` meshes.
+/// The ratio of a compound train given `(driver, driven)` meshes.
 #[pyfunction]
+#[pyo3(name = "compound_gear_train")]
 #[allow(
     clippy::type_complexity,
     reason = "a list of (driver, driven) pairs, each an int converted with its own message"
 )]
 pub fn gear_train_compound(
     stages: Vec<Strict<(Bound<'_, PyAny>, Bound<'_, PyAny>)>>,
-) -> PyResult<(f64, i8)> {
+) -> PyResult<GearRatio> {
     let stages = stages
         .iter()
         .map(|Strict((a, b))| Ok((count_u32("driver teeth", a)?, count_u32("driven teeth", b)?)))
         .collect::<PyResult<Vec<(u32, u32)>>>()?;
     let t = GearTrain::compound(&stages).map_err(to_py)?;
-    Ok((t.ratio(), t.sign()))
+    Ok(GearRatio {
+        ratio: t.ratio(),
+        sign: t.sign(),
+    })
 }
 
 /// `(N, 3)` θ, ω, α of a schedule table at `t`, evaluated in `f32` when `single` (the table
 /// and times are rounded to `f32` first, as firmware would store them) or `f64`.
 #[pyfunction]
+#[pyo3(name = "evaluate_schedule")]
 pub fn schedule_eval<'py>(
     py: Python<'py>,
     dt: Real,
@@ -204,15 +246,55 @@ pub fn schedule_eval<'py>(
         .into_any())
 }
 
+/// A constant-foot-speed crank schedule tabulated at uniform times
+/// (`linkage_core::StanceSchedule::fill`).
+#[pyclass(module = "linkage._core.drive", frozen, get_all)]
+pub struct StanceScheduleTable {
+    /// Time step of the table (s): one period / samples.
+    pub dt: f64,
+    /// Crank angle at each time `k·dt` `(samples,)`.
+    pub theta: Py<PyArray1<f64>>,
+    /// Crank speed at each time `k·dt` `(samples,)`.
+    pub omega: Py<PyArray1<f64>>,
+    /// Time in stance (s).
+    pub stance_time: f64,
+    /// Crank angles where stance starts and ends.
+    pub stance_angles: (f64, f64),
+}
+
+#[pymethods]
+impl StanceScheduleTable {
+    /// The 0.1 tuple `(dt, theta, omega, stance_time, stance_angles)`, kept while the flat name is.
+    fn astuple<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
+        pyo3::types::PyTuple::new(
+            slf.py(),
+            [
+                slf.getattr("dt")?,
+                slf.getattr("theta")?,
+                slf.getattr("omega")?,
+                slf.getattr("stance_time")?,
+                slf.getattr("stance_angles")?,
+            ],
+        )
+    }
+
+    fn __len__(&self) -> usize {
+        5
+    }
+
+    fn __getitem__<'py>(slf: &Bound<'py, Self>, index: isize) -> PyResult<Bound<'py, PyAny>> {
+        Self::astuple(slf)?.as_any().get_item(index)
+    }
+
+    fn __iter__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        Ok(Self::astuple(slf)?.as_any().try_iter()?.into_any())
+    }
+}
+
 /// The constant-foot-speed crank schedule (`linkage_core::StanceSchedule`) fitted to stance
 /// samples `theta` (increasing crank angles) and `u` (foot speed along the stance line per
-/// radian), tabulated at `samples` uniform times. Returns `(dt, theta (samples,), omega
-/// (samples,), stance_time, (stance start, stance end))`.
+/// radian), tabulated at `samples` uniform times.
 #[pyfunction]
-#[allow(
-    clippy::type_complexity,
-    reason = "the Python tuple returned, spelled out where it is built"
-)]
 pub fn stance_schedule<'py>(
     py: Python<'py>,
     theta: crate::args::F64Array1<'py>,
@@ -220,13 +302,7 @@ pub fn stance_schedule<'py>(
     foot_speed: Real,
     duty_factor: Real,
     samples: &Bound<'py, PyAny>,
-) -> PyResult<(
-    f64,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    f64,
-    (f64, f64),
-)> {
+) -> PyResult<StanceScheduleTable> {
     let (th, u) = (slice("theta", &theta)?, slice("u", &u)?);
     let samples = crate::args::count("samples", samples)?;
     if samples == 0 {
@@ -248,11 +324,33 @@ pub fn stance_schedule<'py>(
             Ok::<_, linkage_core::Error>((dt, s.stance_time(), s.stance_angles()))
         })
         .map_err(to_py)?;
-    Ok((
+    Ok(StanceScheduleTable {
         dt,
-        PyArray1::from_vec(py, tab_th),
-        PyArray1::from_vec(py, tab_w),
+        theta: PyArray1::from_vec(py, tab_th).unbind(),
+        omega: PyArray1::from_vec(py, tab_w).unbind(),
         stance_time,
-        angles,
-    ))
+        stance_angles: angles,
+    })
+}
+
+/// Adds the submodule `_core.drive` (motion laws, programs, gear trains, schedules and cams (`linkage_core` `drive/`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "drive",
+        "Motion laws, programs, gear trains, schedules and cams (`linkage_core` `drive/`).",
+    )?;
+    m.add_class::<cam::CamGeometry>()?;
+    m.add_class::<GearRatio>()?;
+    m.add_class::<StanceScheduleTable>()?;
+    m.add_function(wrap_pyfunction!(crate::drive::motion_law_names, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::motion_law_eval, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::program_eval, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::program_discontinuities, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::gear_train_simple, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::gear_train_compound, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::schedule_eval, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::stance_schedule, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::drive::cam::cam_geometry, &m)?)?;
+    Ok(())
 }

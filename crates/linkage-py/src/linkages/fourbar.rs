@@ -97,6 +97,7 @@ pub(crate) fn simd_level() -> Simd {
 
 /// The instruction set the fast uniform sweep uses here: `"avx512"`, `"avx2"` or `"portable"`.
 #[pyfunction]
+#[pyo3(name = "instruction_set")]
 pub fn sweep_simd() -> &'static str {
     match simd_level() {
         Simd::Avx512 => "avx512",

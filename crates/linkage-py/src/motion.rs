@@ -4,7 +4,6 @@
 use linkage_core::{circumcentre, path_curvature, straight_part, Centre, Vec2};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 use crate::args::Real;
 use crate::error::linkage_error;
@@ -87,7 +86,51 @@ pub fn circumcentres<'py>(
     Ok(PyArray1::from_vec(py, out).reshape([m, 2])?.into_any())
 }
 
-/// The longest near-straight run of a path (see `linkage_core::straight_part`), as a dict, or
+/// The longest near-straight run of a path (`linkage_core::StraightPart`, with its lift and
+/// speed when asked).
+#[pyclass(module = "linkage._core.motion", frozen, get_all)]
+pub struct StraightRun {
+    /// Index of the run's first sample.
+    pub start: usize,
+    /// Number of samples in the run (on a closed path it may wrap past the last sample).
+    pub count: usize,
+    /// A point of the best-fit line: the run's centroid.
+    pub point: (f64, f64),
+    /// Unit direction of the best-fit line, pointing from the run's first sample to its last.
+    pub direction: (f64, f64),
+    /// Largest distance of a run sample from the line.
+    pub max_deviation: f64,
+    /// Extent of the run along the line.
+    pub length: f64,
+    /// How far the rest of a closed path rises off the run's line, to the side it lies on
+    /// (`StraightPart::lift`: the obstacle a foot on this path steps over); None for an open
+    /// path.
+    pub lift: Option<f64>,
+    /// Mean speed along the run (`StraightPart::speed`); None without velocities.
+    pub mean_speed: Option<f64>,
+    /// `(max − min)/mean` of the speed along the run; None without velocities.
+    pub speed_variation: Option<f64>,
+}
+
+#[pymethods]
+impl StraightRun {
+    /// `run[key]`, the 0.1 dict's keys (`lift`, `mean_speed`, `speed_variation` only when
+    /// computed), kept while the flat `_core.straight_run` is.
+    fn __getitem__<'py>(slf: &Bound<'py, Self>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        let absent = match key {
+            "start" | "count" | "point" | "direction" | "max_deviation" | "length" => false,
+            "lift" => slf.get().lift.is_none(),
+            "mean_speed" | "speed_variation" => slf.get().mean_speed.is_none(),
+            _ => true,
+        };
+        if absent {
+            return Err(pyo3::exceptions::PyKeyError::new_err(key.to_string()));
+        }
+        slf.getattr(key)
+    }
+}
+
+/// The longest near-straight run of a path (see `linkage_core::straight_part`), or
 /// None; with `lift` (`StraightPart::lift`) for a closed path, and `mean_speed`,
 /// `speed_variation` (`StraightPart::speed`) when the path's `velocity` is given.
 #[pyfunction]
@@ -98,7 +141,7 @@ pub fn straight_run<'py>(
     tol: Real,
     closed: bool,
     velocity: Option<crate::args::F64Array2<'py>>,
-) -> PyResult<Option<Bound<'py, PyDict>>> {
+) -> PyResult<Option<StraightRun>> {
     let tol = tol.0;
     let p = points("path", &path)?;
     let v = velocity
@@ -124,19 +167,29 @@ pub fn straight_run<'py>(
     let Some((s, lift, speed)) = found else {
         return Ok(None);
     };
-    let d = PyDict::new(py);
-    d.set_item("start", s.start)?;
-    d.set_item("count", s.count)?;
-    d.set_item("point", (s.point.x, s.point.y))?;
-    d.set_item("direction", (s.direction.x, s.direction.y))?;
-    d.set_item("max_deviation", s.max_deviation)?;
-    d.set_item("length", s.length)?;
-    if let Some(lift) = lift {
-        d.set_item("lift", lift)?;
-    }
-    if let Some((mean, variation)) = speed {
-        d.set_item("mean_speed", mean)?;
-        d.set_item("speed_variation", variation)?;
-    }
-    Ok(Some(d))
+    Ok(Some(StraightRun {
+        start: s.start,
+        count: s.count,
+        point: (s.point.x, s.point.y),
+        direction: (s.direction.x, s.direction.y),
+        max_deviation: s.max_deviation,
+        length: s.length,
+        lift,
+        mean_speed: speed.map(|(mean, _)| mean),
+        speed_variation: speed.map(|(_, variation)| variation),
+    }))
+}
+
+/// Adds the submodule `_core.motion` (instant centres, path curvature and straight runs (`linkage_core` `motion/`)).
+pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
+    let m = crate::submodule(
+        parent,
+        "motion",
+        "Instant centres, path curvature and straight runs (`linkage_core` `motion/`).",
+    )?;
+    m.add_class::<StraightRun>()?;
+    m.add_function(wrap_pyfunction!(crate::motion::curvature_centres, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::motion::circumcentres, &m)?)?;
+    m.add_function(wrap_pyfunction!(crate::motion::straight_run, &m)?)?;
+    Ok(())
 }

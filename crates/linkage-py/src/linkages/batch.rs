@@ -116,6 +116,7 @@ type Outputs<'py> = (Bound<'py, PyArray3<f64>>, Bound<'py, PyArray2<bool>>);
 /// of new arrays (and is returned): a search that evaluates batch after batch reuses it. A call of more than
 /// about a millisecond of work runs on worker threads while this thread checks for Ctrl-C.
 #[pyfunction]
+#[pyo3(name = "sweep_four_bar_batch")]
 #[pyo3(signature = (o, c, crank, coupler, rocker, along, left, crossed, theta, threads=1, out=None))]
 #[allow(
     clippy::too_many_arguments,
@@ -225,7 +226,7 @@ pub fn batch_sweep<'py>(
         let ok = vw
             .as_slice_mut()
             .map_err(|_| linkage_error("internal error: output not contiguous"))?;
-        let simd = crate::fourbar::sweep_simd();
+        let simd = crate::linkages::fourbar::sweep_simd();
         // Work in fast samples (a tracked sample counted as TRACKED_COST): a small call runs
         // here; a larger one on worker threads while this thread watches for Ctrl-C.
         let (lo, hi) = th

@@ -1,16 +1,46 @@
 //! Mirrors `linkage_core::cam`.
 
 use linkage_core::{CamPoint, FlatFollower, RollerFollower};
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 use crate::args::Real;
 use crate::error::{linkage_error, to_py};
 use crate::memory;
 
+/// A cam's geometry sampled at `n` cam angles (`linkage_core::CamPoint` by columns).
+#[pyclass(module = "linkage._core.drive", frozen, get_all)]
+pub struct CamGeometry {
+    /// Pitch-curve points `(n, 2)`: the roller centre (for a flat face, the face's point on the
+    /// axis).
+    pub pitch: Py<PyArray2<f64>>,
+    /// Cam-profile points `(n, 2)` in contact with the follower.
+    pub profile: Py<PyArray2<f64>>,
+    /// Pressure angles `(n,)`: between the follower's axis and the contact normal (radians,
+    /// signed).
+    pub pressure_angle: Py<PyArray1<f64>>,
+    /// Signed radii of curvature `(n,)` of the pitch curve (positive where convex).
+    pub pitch_radius: Py<PyArray1<f64>>,
+    /// Signed radii of curvature `(n,)` of the profile (positive where convex; a convex part
+    /// with a negative value is undercut).
+    pub profile_radius: Py<PyArray1<f64>>,
+}
+
+#[pymethods]
+impl CamGeometry {
+    /// `result[key]`, the 0.1 dict's keys, kept while the flat name is.
+    fn __getitem__<'py>(slf: &Bound<'py, Self>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match key {
+            "pitch" | "profile" | "pressure_angle" | "pitch_radius" | "profile_radius" => {
+                slf.getattr(key)
+            }
+            _ => Err(pyo3::exceptions::PyKeyError::new_err(key.to_string())),
+        }
+    }
+}
+
 /// Cam geometry at cam angles `phi` for follower motion `y` (N, 3: s, ds/dφ, d²s/dφ²).
-/// `roller_radius` None means a flat-faced follower. Returns a dict of arrays.
+/// `roller_radius` None means a flat-faced follower.
 #[pyfunction]
 #[pyo3(signature = (phi, y, base_radius, roller_radius=None, offset=0.0))]
 pub fn cam_geometry<'py>(
@@ -20,7 +50,7 @@ pub fn cam_geometry<'py>(
     base_radius: Real,
     roller_radius: Option<Real>,
     #[pyo3(from_py_with = crate::args::real)] offset: f64,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<CamGeometry> {
     let (base_radius, roller_radius) = (base_radius.0, roller_radius.map(|r| r.0));
     let phi = phi
         .as_slice()
@@ -61,11 +91,11 @@ pub fn cam_geometry<'py>(
             profile_radius.push(c.profile_radius);
         }
     });
-    let d = PyDict::new(py);
-    d.set_item("pitch", PyArray1::from_vec(py, pitch).reshape([n, 2])?)?;
-    d.set_item("profile", PyArray1::from_vec(py, profile).reshape([n, 2])?)?;
-    d.set_item("pressure_angle", PyArray1::from_vec(py, pressure))?;
-    d.set_item("pitch_radius", PyArray1::from_vec(py, pitch_radius))?;
-    d.set_item("profile_radius", PyArray1::from_vec(py, profile_radius))?;
-    Ok(d)
+    Ok(CamGeometry {
+        pitch: PyArray1::from_vec(py, pitch).reshape([n, 2])?.unbind(),
+        profile: PyArray1::from_vec(py, profile).reshape([n, 2])?.unbind(),
+        pressure_angle: PyArray1::from_vec(py, pressure).unbind(),
+        pitch_radius: PyArray1::from_vec(py, pitch_radius).unbind(),
+        profile_radius: PyArray1::from_vec(py, profile_radius).unbind(),
+    })
 }
