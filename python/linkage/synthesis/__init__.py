@@ -41,7 +41,7 @@ from linkage._choices import AtlasKind, LinkageKind, PathKind
 from linkage._core import LinkageError
 from linkage._files import read_json, sweep_stale
 from linkage._fourbar import FourBar
-from linkage._precision import (
+from linkage.synthesis.precision_points import (
     Dyad,
     FunctionGenerator,
     MotionCandidate,
