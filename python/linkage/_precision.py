@@ -1,4 +1,4 @@
-"""Old path of :mod:`linkage.synthesis.precision_points` (Burmester, Freudenstein), kept importable."""
+"""Old path of :mod:`linkage.synthesis.precision_points` (Burmester, Freudenstein)."""
 
 from linkage.synthesis.precision_points import (
     Dyad,

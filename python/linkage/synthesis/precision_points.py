@@ -71,6 +71,9 @@ class Dyad:
         return math.hypot(self.circle[0] - self.centre[0], self.circle[1] - self.centre[1])
 
 
+Dyad.__module__ = "linkage._precision"  # as before the split: pickles and reprs name it so
+
+
 @dataclass(frozen=True)
 class MotionCandidate:
     """A four-bar that carries the body through the poses, with the check of its sweep.
@@ -116,6 +119,11 @@ class MotionCandidate:
         measures a path candidate.
         """
         return _longest_link(self.linkage)
+
+
+MotionCandidate.__module__ = (
+    "linkage._precision"  # as before the split: pickles and reprs name it so
+)
 
 
 def _longest_link(fb: FourBar) -> float:
@@ -166,6 +174,11 @@ class FunctionGenerator:
     grashof: str
     x_reached: tuple[float, float] = (math.nan, math.nan)
     structural_error_reached: float = math.nan
+
+
+FunctionGenerator.__module__ = (
+    "linkage._precision"  # as before the split: pickles and reprs name it so
+)
 
 
 def _poses(
