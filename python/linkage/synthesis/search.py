@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -20,6 +20,7 @@ from linkage._size import mean as _mean
 from linkage._size import pow2 as _pow2
 from linkage.synthesis import stages
 from linkage.synthesis.atlas import (
+    Atlas,
     AtlasArg,
     _atlases,
     _note_builds,
@@ -38,15 +39,7 @@ from linkage.synthesis.candidates import (
     _ranked,
 )
 from linkage.synthesis.fitting import _bounds, _Budget, _distinct, _finish, _measure
-from linkage.synthesis.kinds import (
-    _KIND,
-    EXACT,
-    FOURBAR,
-    TIGHT,
-    Float2D,
-    _kind,
-    _threads,
-)
+from linkage.synthesis.kinds import _KIND, EXACT, FOURBAR, TIGHT, Float2D, _Kind, _kind, _threads
 from linkage.synthesis.stages import (
     SLID,
     SLIDES,
@@ -189,6 +182,96 @@ def path(
     ...
     linkage.LinkageError: the points are all collinear: a closed curve through them encloses ...
     """
+    search, target = _read_arguments(**locals())  # every argument (nothing else is bound yet)
+    size = target_size(target)
+    frame = _unit_frame(target, size)
+    if frame is not None:
+        # An extreme scale or a far centre: searched moved to the origin at unit size.
+        return _at_unit_size(search, target, *frame)
+    threads = _threads(search.threads)
+    if len(target) > FIT_POINTS:
+        # Many points: searched through FIT_POINTS of them, then measured on every point.
+        return _through_fewer_points(search, target, size, threads)
+    run = _Run.start(search, target, size, threads)
+    found: list[Candidate[Any]] = []
+    for k in search.kinds:
+        found += _search_kind(run, k)
+    if _runs_global_search(run, found):
+        found += _global_search(run)
+    if run.bar is not None:
+        run.bar.close()
+    found += _cognate_candidates(found, target, search.closed, size, threads, search.top)
+    return _ranked_distinct(search, found, target, size)
+
+
+@dataclass(frozen=True)
+class _Search:
+    """The arguments of :func:`path` but the points, checked."""
+
+    kind: PathKind
+    kinds: list[_Kind]
+    closed: bool
+    top: int
+    atlas: AtlasArg | Sequence[AtlasArg]
+    refine: int
+    global_search: bool | None
+    full_turn: bool
+    min_transmission: float
+    lengths: tuple[float, float] | None
+    pivots: tuple[tuple[float, float], tuple[float, float]] | None
+    max_link: float | None
+    tol: float
+    maxiter: int
+    seed: int
+    threads: int | None
+    progress: bool
+    accept: float | None
+
+    def kept(self) -> dict[str, Any]:
+        """Return the settings a search of the target moved or thinned keeps (by name)."""
+        return {
+            "kind": self.kind,
+            "atlas": self.atlas,
+            "refine": self.refine,
+            "global_search": self.global_search,
+            "full_turn": self.full_turn,
+            "min_transmission": self.min_transmission,
+            "max_link": self.max_link,
+            "tol": self.tol,
+            "maxiter": self.maxiter,
+            "seed": self.seed,
+            "threads": self.threads,
+            "progress": self.progress,
+        }
+
+    def limit(self, size: float) -> float:
+        """Return the longest link that does not rank a candidate last (``max_link`` sizes)."""
+        return (
+            math.inf if self.lengths is not None or self.max_link is None else self.max_link * size
+        )
+
+
+def _read_arguments(
+    points: str | os.PathLike[str] | ArrayLike,
+    closed: bool,
+    top: int,
+    kind: PathKind,
+    atlas: AtlasArg | Sequence[AtlasArg],
+    refine: int,
+    global_search: bool | None,
+    full_turn: bool,
+    min_transmission: float,
+    lengths: tuple[float, float] | None,
+    pivots: tuple[tuple[float, float], tuple[float, float]] | None,
+    max_link: float | None,
+    tol: float,
+    maxiter: int,
+    seed: int,
+    threads: int | None,
+    progress: bool,
+    accept: float | None,
+) -> tuple[_Search, Float2D]:
+    """Check :func:`path`'s arguments in turn (the first wrong one named), then read the target."""
     kinds = list(_KIND.values()) if kind == "any" else [_kind(kind, "any")]
     closed = as_flag(closed, "closed")
     top = as_count(top, "top")
@@ -231,315 +314,406 @@ def path(
         if isinstance(pivots, (str, bytes)) or np.ndim(pivots) == 0 or len(pivots) != 2:
             raise TypeError("pivots must be ((xmin, ymin), (xmax, ymax))")
         pivots = (as_point(pivots[0], "pivots[0]"), as_point(pivots[1], "pivots[1]"))
-    target = _target(points, closed)
-    size = target_size(target)
-    frame = _unit_frame(target, size)
-    # The settings a search of a moved or thinned target keeps.
-    same: dict[str, Any] = {
-        "kind": kind,
-        "atlas": atlas,
-        "refine": refine,
-        "global_search": global_search,
-        "full_turn": full_turn,
-        "min_transmission": min_transmission,
-        "max_link": max_link,
-        "tol": tol,
-        "maxiter": maxiter,
-        "seed": seed,
-        "threads": threads,
-        "progress": progress,
-    }
-    if frame is not None:
-        # An extreme scale or a far centre: search the target moved to the origin and scaled
-        # by a power of two to unit size, and move the candidates back.
-        origin, unit = frame
-        at_unit = path(
-            (target - origin) / unit,
-            closed,
-            top,
-            **same,
-            lengths=None if lengths is None else (lengths[0] / unit, lengths[1] / unit),
-            pivots=(
-                None
-                if pivots is None
-                else (
-                    (
-                        (pivots[0][0] - origin[0]) / unit,
-                        (pivots[0][1] - origin[1]) / unit,
-                    ),
-                    (
-                        (pivots[1][0] - origin[0]) / unit,
-                        (pivots[1][1] - origin[1]) / unit,
-                    ),
-                )
-            ),
-            accept=None if accept is None else accept / unit,
-        )
-        gone = at_unit.closest_removed
-        return Candidates(
-            [_moved(cand, origin, unit) for cand in at_unit],
-            at_unit.removed,
-            None if gone is None else _moved(gone, origin, unit),
-            at_unit.closest_fails,
-        )
-    nthreads = _threads(threads)
-    if len(target) > FIT_POINTS:
-        # Many points: search through FIT_POINTS of them spread along the target (a fit's cost
-        # grows with the cube of the points it fits), then measure, check and rank the
-        # candidates on every point.
-        some = path(
-            target[_spread(target, closed, FIT_POINTS)],
-            closed,
-            min(SYNTHESIS_TOP_MAX, 2 * top),
-            **same,
-            lengths=lengths,
-            pivots=pivots,
-            accept=accept,
-        )
+    search = _Search(
+        kind,
+        kinds,
+        closed,
+        top,
+        atlas,
+        refine,
+        global_search,
+        full_turn,
+        min_transmission,
+        lengths,
+        pivots,
+        max_link,
+        tol,
+        maxiter,
+        seed,
+        threads,
+        progress,
+        accept,
+    )
+    return search, _target(points, closed)
 
-        def on_every_point(c: Candidate[Any]) -> Candidate[Any] | None:
-            kind = _KIND[c.kind]
-            return _measure(c.params, _crossed(c), target, closed, c.source, nthreads, kind)
 
-        measured = [m for m in map(on_every_point, some) if m is not None]
-        gone = some.closest_removed
-        thin = Candidates((), some.removed, None if gone is None else on_every_point(gone))
-        every, result = _kept(measured, full_turn, min_transmission, lengths, pivots, thin)
-        limit = math.inf if lengths is not None or max_link is None else max_link * size
-        result.extend(_distinct(_ranked(every, size, limit), target, closed, size, top))
-        return result
-    centre = target.mean(axis=0)
-    fits = refine if closed else 3 * refine
-    bar = _bar(progress, fits * len(kinds))
-    atlases = _atlases(atlas, kinds)
-    _note_builds(missing_atlases(kind, closed, atlases), bar)
-    found: list[Candidate[Any]] = []
+def _at_unit_size(
+    search: _Search, target: Float2D, origin: NDArray[np.float64], unit: float
+) -> Candidates:
+    """Search ``target`` moved to the origin and scaled by ``unit`` (a power of two), moved back."""
+    lengths, pivots, accept = search.lengths, search.pivots, search.accept
+    at_unit = path(
+        (target - origin) / unit,
+        search.closed,
+        search.top,
+        **search.kept(),
+        lengths=None if lengths is None else (lengths[0] / unit, lengths[1] / unit),
+        pivots=(
+            None
+            if pivots is None
+            else (
+                ((pivots[0][0] - origin[0]) / unit, (pivots[0][1] - origin[1]) / unit),
+                ((pivots[1][0] - origin[0]) / unit, (pivots[1][1] - origin[1]) / unit),
+            )
+        ),
+        accept=None if accept is None else accept / unit,
+    )
+    gone = at_unit.closest_removed
+    return Candidates(
+        [_moved(cand, origin, unit) for cand in at_unit],
+        at_unit.removed,
+        None if gone is None else _moved(gone, origin, unit),
+        at_unit.closest_fails,
+    )
 
-    def admissible(c: Candidate[Any]) -> bool:
-        return not _failed(c, full_turn, min_transmission, lengths, pivots)
 
-    def best(cs: list[Candidate[Any]]) -> float:
+def _through_fewer_points(
+    search: _Search, target: Float2D, size: float, threads: int
+) -> Candidates:
+    """Search through :data:`FIT_POINTS` of the target's points spread along it.
+
+    A fit's cost grows with the cube of the points it fits: the candidates are then measured,
+    checked and ranked on every point.
+    """
+    closed = search.closed
+    some = path(
+        target[_spread(target, closed, FIT_POINTS)],
+        closed,
+        min(SYNTHESIS_TOP_MAX, 2 * search.top),
+        **search.kept(),
+        lengths=search.lengths,
+        pivots=search.pivots,
+        accept=search.accept,
+    )
+
+    def on_every_point(c: Candidate[Any]) -> Candidate[Any] | None:
+        kind = _KIND[c.kind]
+        return _measure(c.params, _crossed(c), target, closed, c.source, threads, kind)
+
+    measured = [m for m in map(on_every_point, some) if m is not None]
+    gone = some.closest_removed
+    thin = Candidates((), some.removed, None if gone is None else on_every_point(gone))
+    return _ranked_distinct(search, measured, target, size, thin)
+
+
+def _ranked_distinct(
+    search: _Search,
+    found: list[Candidate[Any]],
+    target: Float2D,
+    size: float,
+    removed: Candidates | None = None,
+) -> Candidates:
+    """Return the best ``top`` distinct candidates the constraints keep, and what they removed."""
+    s = search
+    ok, result = _kept(found, s.full_turn, s.min_transmission, s.lengths, s.pivots, removed)
+    result.extend(_distinct(_ranked(ok, size, s.limit(size)), target, s.closed, size, s.top))
+    return result
+
+
+@dataclass
+class _Run:
+    """One search of a target: its settings, size, threads, progress bar and the atlases given."""
+
+    search: _Search
+    target: Float2D
+    size: float
+    threads: int
+    centre: NDArray[np.float64]
+    fits: int  # atlas matches refined first, of each kind
+    bar: Bar | None
+    atlases: dict[str, Atlas]
+    limit: float  # the longest link that ranks a candidate with the others
+    goal: float  # the error that ends the later stages
+
+    @classmethod
+    def start(cls, search: _Search, target: Float2D, size: float, threads: int) -> _Run:
+        """Start the search: the progress bar, the atlases given, and the builds to come."""
+        closed, accept = search.closed, search.accept
+        centre = target.mean(axis=0)
+        fits = search.refine if closed else 3 * search.refine
+        bar = _bar(search.progress, fits * len(search.kinds))
+        atlases = _atlases(search.atlas, search.kinds)
+        _note_builds(missing_atlases(search.kind, closed, atlases), bar)
+        goal = EXACT * size if accept is None else max(EXACT * size, accept)
+        limit = search.limit(size)
+        return cls(search, target, size, threads, centre, fits, bar, atlases, limit, goal)
+
+    def admissible(self, c: Candidate[Any]) -> bool:
+        """Whether ``c`` meets the constraints."""
+        s = self.search
+        return not _failed(c, s.full_turn, s.min_transmission, s.lengths, s.pivots)
+
+    def best(self, cs: list[Candidate[Any]]) -> float:
         """Return the least error of the admissible candidates (∞ if none is)."""
-        return min((c.error for c in cs if admissible(c)), default=math.inf)
+        return min((c.error for c in cs if self.admissible(c)), default=math.inf)
 
-    limit = math.inf if lengths is not None or max_link is None else max_link * size
-    # The error that ends the search's later stages.
-    goal = EXACT * size if accept is None else max(EXACT * size, accept)
-
-    def usable(c: Candidate[Any]) -> bool:
+    def usable(self, c: Candidate[Any]) -> bool:
         """Whether ``c`` is admissible and ranks before the long-linked (``max_link``)."""
-        return admissible(c) and _longest(c) <= limit
+        return self.admissible(c) and _longest(c) <= self.limit
 
-    def best_usable(cs: list[Candidate[Any]]) -> float:
+    def best_usable(self, cs: list[Candidate[Any]]) -> float:
         """Return the least error of the usable candidates.
 
         An open target's further stages go on while its only exact fits have a link ranked last.
         """
-        return min((c.error for c in cs if usable(c)), default=math.inf)
+        return min((c.error for c in cs if self.usable(c)), default=math.inf)
 
-    for k in kinds:
-        bounds = _bounds(lengths, pivots, size, k)
-        pool = []
-        # A four-bar from the equation of the curve through the points, refined: exact for a
-        # curve a four-bar draws, closed or an arc that singles it out (docs/synthesis.md,
-        # step 0).
-        equation = _equation_pool(target, closed, nthreads, k)
-        ahead = _finish(
-            equation,
-            target,
-            closed,
-            size,
-            bounds,
-            len(equation),
-            nthreads,
-            None,
-            top,
-            k,
-            admissible,
-            exact_at=1e-10 if accept is None else max(1e-10, accept / size),
+    def exact_at(self) -> float:
+        """Return the error, in sizes, at which the first fits stop (``accept`` or round-off)."""
+        accept = self.search.accept
+        return 1e-10 if accept is None else max(1e-10, accept / self.size)
+
+
+@dataclass
+class _Matches:
+    """A kind's atlas matches for the first fits, and how many were sought (for later stages)."""
+
+    atlas: Atlas
+    pool: list[tuple[NDArray[np.float64], bool, str]]
+    placed: int  # matches refined first
+    many: int  # nearest shapes they are chosen from
+
+
+def _search_kind(run: _Run, k: _Kind) -> list[Candidate[Any]]:
+    """Search for linkages of kind ``k``: the first fits, then the later stages while none is exact.
+
+    The first fits are the refined linkages of the curve's equation and of the atlas matches
+    (docs/synthesis.md, steps 0-3); the later stages (step 4) are judged by the candidates the
+    constraints admit: an exact fit they reject must not end the search for one they admit.
+    """
+    s, target, size = run.search, run.target, run.size
+    bounds = _bounds(s.lengths, s.pivots, size, k)
+    # A four-bar from the equation of the curve through the points, refined: exact for a
+    # curve a four-bar draws, closed or an arc that singles it out (docs/synthesis.md,
+    # step 0).
+    equation = _equation_pool(target, s.closed, run.threads, k)
+    ahead = _finish(
+        equation,
+        target,
+        s.closed,
+        size,
+        bounds,
+        len(equation),
+        run.threads,
+        None,
+        s.top,
+        k,
+        run.admissible,
+        exact_at=run.exact_at(),
+    )
+    matches = _atlas_matches(run, k)
+    mine = _finish(
+        matches.pool,
+        target,
+        s.closed,
+        size,
+        bounds,
+        run.fits,
+        run.threads,
+        run.bar,
+        s.top,
+        k,
+        run.admissible,
+        exact_at=run.exact_at(),
+    )
+    mine = ahead + mine
+    # The later stages of an open search share one budget of evaluations, smaller the more
+    # points a fit has (a target no linkage draws runs them all; #29).
+    later = _Budget.of(len(target))
+    if not s.closed and mine and run.best_usable(mine) > run.goal:
+        _open_later_stages(run, k, bounds, matches, mine, later)
+    if not s.closed and mine and run.best_usable(mine) > run.goal:
+        starts = [c for c in mine if run.admissible(c)] or mine
+        mine += _hops(starts, target, size, bounds, s.seed, run.threads, k, later)
+    if s.closed and s.refine > 0 and run.best_usable(mine) > run.goal:
+        # A closed target no match fitted exactly: parts of it searched as open arcs, their
+        # best fits refined on the whole target (docs/synthesis.md, step 4).
+        given = run.atlases.get(k.arcs)
+        if given is None:
+            _note_builds(missing_atlases(k.name, False), run.bar)
+        arcs = given or default_atlas(kind=k.arcs)
+        mine += _from_parts(
+            target, size, bounds, s.refine, arcs, run.threads, run.bar, k, run.usable
         )
-        # Open targets are matched against open arcs of the kind's circuits.
-        name: AtlasKind | None = k.name if closed else k.arcs
-        if name is not None:
-            at = atlases.get(name) or default_atlas(kind=name)
-            many = 4 * max(top, refine) if closed else 16 * max(top, refine)
-            placed = max(refine, top) if closed else 3 * refine
-            if full_turn or min_transmission > 0:
-                # Refine the best matches whose circuit meets the constraints asked for (a
-                # full-turn crank, the transmission angle), from four times as many, first.
-                pool = _atlas_pool(k, at, target, 4 * placed, 4 * many, nthreads)
-                pool.sort(key=lambda e: _shape_order(e, k, full_turn, min_transmission))
-                pool = pool[:placed]
-            else:
-                pool = _atlas_pool(k, at, target, placed, many, nthreads)
-        mine = _finish(
-            pool,
+    return _tightened(run, k, bounds, mine)
+
+
+def _atlas_matches(run: _Run, k: _Kind) -> _Matches:
+    """Return the matches of the target in the atlas of ``k`` to refine first.
+
+    Open targets are matched against open arcs of the kind's circuits.
+    """
+    s, target = run.search, run.target
+    name: AtlasKind = k.name if s.closed else k.arcs
+    at = run.atlases.get(name) or default_atlas(kind=name)
+    many = 4 * max(s.top, s.refine) if s.closed else 16 * max(s.top, s.refine)
+    placed = max(s.refine, s.top) if s.closed else 3 * s.refine
+    if s.full_turn or s.min_transmission > 0:
+        # Refine the best matches whose circuit meets the constraints asked for (a
+        # full-turn crank, the transmission angle), from four times as many, first.
+        pool = _atlas_pool(k, at, target, 4 * placed, 4 * many, run.threads)
+        pool.sort(key=lambda e: _shape_order(e, k, s.full_turn, s.min_transmission))
+        pool = pool[:placed]
+    else:
+        pool = _atlas_pool(k, at, target, placed, many, run.threads)
+    return _Matches(at, pool, placed, many)
+
+
+def _open_later_stages(
+    run: _Run,
+    k: _Kind,
+    bounds: tuple[NDArray[np.float64], NDArray[np.float64]],
+    matches: _Matches,
+    mine: list[Candidate[Any]],
+    later: _Budget,
+) -> None:
+    """Add to ``mine`` the later stages' fits of an open target no match fitted exactly.
+
+    Long fits of the best, then more matches and long fits of theirs, then the nearest shapes
+    re-placed along their curves (docs/synthesis.md, step 4), while none is exact and ``later``
+    is not spent.
+    """
+    s, target, size, bar = run.search, run.target, run.size, run.bar
+    at, placed, many = matches.atlas, matches.placed, matches.many
+    polished: list[NDArray[np.float64]] = []
+    starts = [c for c in mine if run.usable(c)] or mine
+    mine += stages._polish(
+        starts, polished, target, size, bounds, run.threads, bar, k, run.usable, budget=later
+    )
+    if run.best_usable(mine) > run.goal and not later.out:
+        seen = {x.tobytes() for x, _, _ in matches.pool}
+        wider = _atlas_pool(k, at, target, placed + stages.WIDER, 4 * many, run.threads)
+        if s.full_turn or s.min_transmission > 0:
+            wider.sort(key=lambda e: _shape_order(e, k, s.full_turn, s.min_transmission))
+        wider = [w for w in wider if w[0].tobytes() not in seen][: stages.WIDER]
+        if bar is not None:
+            bar.stage("more matches", len(wider))
+        more = _finish(
+            wider,
             target,
-            closed,
+            False,
             size,
             bounds,
-            fits,
-            nthreads,
+            len(wider),
+            run.threads,
             bar,
-            top,
+            1,
             k,
-            admissible,
-            exact_at=1e-10 if accept is None else max(1e-10, accept / size),
+            run.usable,
+            exact_at=EXACT,
+            budget=later,
         )
-        mine = ahead + mine
-        # Restarts and the global search are judged by the candidates the constraints admit:
-        # an exact fit they reject must not end the search for one they admit.
-        # The later stages of an open search share one budget of evaluations, smaller the more
-        # points a fit has (a target no linkage draws runs them all; #29).
-        later = _Budget.of(len(target))
-        if not closed and name is not None and mine and best_usable(mine) > goal:
-            # An open target no match fitted exactly: long fits of the best, then more matches
-            # and long fits of theirs (docs/synthesis.md, step 4).
-            polished: list[NDArray[np.float64]] = []
-            starts = [c for c in mine if usable(c)] or mine
+        mine += more
+        if more and run.best_usable(mine) > run.goal:
+            starts = [c for c in more if run.usable(c)] or more
             mine += stages._polish(
                 starts,
                 polished,
                 target,
                 size,
                 bounds,
-                nthreads,
+                run.threads,
                 bar,
                 k,
-                usable,
+                run.usable,
                 budget=later,
             )
-            if best_usable(mine) > goal and not later.out:
-                seen = {x.tobytes() for x, _, _ in pool}
-                wider = _atlas_pool(k, at, target, placed + stages.WIDER, 4 * many, nthreads)
-                if full_turn or min_transmission > 0:
-                    wider.sort(key=lambda e: _shape_order(e, k, full_turn, min_transmission))
-                wider = [w for w in wider if w[0].tobytes() not in seen][: stages.WIDER]
-                if bar is not None:
-                    bar.stage("more matches", len(wider))
-                more = _finish(
-                    wider,
-                    target,
-                    False,
-                    size,
-                    bounds,
-                    len(wider),
-                    nthreads,
-                    bar,
-                    1,
-                    k,
-                    usable,
-                    exact_at=EXACT,
-                    budget=later,
-                )
-                mine += more
-                if more and best_usable(mine) > goal:
-                    starts = [c for c in more if usable(c)] or more
-                    mine += stages._polish(
-                        starts,
-                        polished,
-                        target,
-                        size,
-                        bounds,
-                        nthreads,
-                        bar,
-                        k,
-                        usable,
-                        budget=later,
-                    )
-            if best_usable(mine) > goal and not later.out:
-                # The same nearest shapes re-placed along their curves (_slid), ranked again
-                # and fitted as the first (docs/synthesis.md, step 4).
-                slid = _atlas_pool(k, at, target, 4 * SLID, 4 * many, nthreads, slide=SLIDES)
-                if full_turn or min_transmission > 0:
-                    slid.sort(key=lambda e: _shape_order(e, k, full_turn, min_transmission))
-                slid = slid[:SLID]
-                if bar is not None:
-                    bar.stage("matches re-placed", len(slid))
-                mine += _finish(
-                    slid,
-                    target,
-                    False,
-                    size,
-                    bounds,
-                    len(slid),
-                    nthreads,
-                    bar,
-                    1,
-                    k,
-                    usable,
-                    exact_at=EXACT,
-                    budget=later,
-                )
-        if not closed and mine and best_usable(mine) > goal:
-            starts = [c for c in mine if admissible(c)] or mine
-            mine += _hops(starts, target, size, bounds, seed, nthreads, k, later)
-        if closed and refine > 0 and best_usable(mine) > goal:
-            # A closed target no match fitted exactly: parts of it searched as open arcs, their
-            # best fits refined on the whole target (docs/synthesis.md, step 4).
-            given = atlases.get(k.arcs)
-            if given is None:
-                _note_builds(missing_atlases(k.name, False), bar)
-            arcs = given or default_atlas(kind=k.arcs)
-            mine += _from_parts(target, size, bounds, refine, arcs, nthreads, bar, k, usable)
-        loose = min((c for c in mine if usable(c)), key=lambda c: c.error, default=None)
-        if (
-            not closed
-            and accept is None
-            and loose is not None
-            and TIGHT * size < loose.error <= goal
-        ):
-            # An exact fit (within EXACT) that the first fits left in a valley above round-off
-            # (8.9e-7 of the size, links 1e-3 off, where the drawing linkage is at 4e-14): one
-            # long fit takes it down (docs/synthesis.md, step 4), and replaces it when better
-            # (else the same design would be listed twice, with its cognate measured from it).
-            tight = stages._polish(
-                [loose], [], target, size, bounds, nthreads, bar, k, usable, TIGHT
-            )
-            if min((c.error for c in tight), default=math.inf) < loose.error:
-                mine = [c for c in mine if c is not loose] + tight
-        found += mine
-    enough = tol * size if accept is None else accept
-    run_global = global_search if global_search is not None else best(found) > enough
-    if run_global:
-        for k in kinds:
-            if bar is not None:
-                # Generations (of both assemblies for four-bars), then refinements.
-                bar.stage(
-                    f"global search ({k.name})",
-                    (2 if k is FOURBAR else 1) * maxiter + 8,
-                )
-            de = _de(
-                target,
-                closed,
-                size,
-                centre,
-                seed,
-                maxiter,
-                nthreads,
-                bar,
-                kind=k,
-                full_turn=full_turn,
-                min_transmission=min_transmission,
-            )
-            found += _finish(
-                [(x, c, "global") for x, c in de],
-                target,
-                closed,
-                size,
-                _bounds(lengths, pivots, size, k),
-                min(refine, len(de)),
-                nthreads,
-                bar,
-                kind=k,
-                admissible=admissible,
-            )
-    if bar is not None:
-        bar.close()
-    found += _cognate_candidates(found, target, closed, size, nthreads, top)
-    ok, result = _kept(found, full_turn, min_transmission, lengths, pivots)
-    result.extend(_distinct(_ranked(ok, size, limit), target, closed, size, top))
-    return result
+    if run.best_usable(mine) > run.goal and not later.out:
+        # The same nearest shapes re-placed along their curves (_slid), ranked again
+        # and fitted as the first (docs/synthesis.md, step 4).
+        slid = _atlas_pool(k, at, target, 4 * SLID, 4 * many, run.threads, slide=SLIDES)
+        if s.full_turn or s.min_transmission > 0:
+            slid.sort(key=lambda e: _shape_order(e, k, s.full_turn, s.min_transmission))
+        slid = slid[:SLID]
+        if bar is not None:
+            bar.stage("matches re-placed", len(slid))
+        mine += _finish(
+            slid,
+            target,
+            False,
+            size,
+            bounds,
+            len(slid),
+            run.threads,
+            bar,
+            1,
+            k,
+            run.usable,
+            exact_at=EXACT,
+            budget=later,
+        )
+
+
+def _tightened(
+    run: _Run,
+    k: _Kind,
+    bounds: tuple[NDArray[np.float64], NDArray[np.float64]],
+    mine: list[Candidate[Any]],
+) -> list[Candidate[Any]]:
+    """Return ``mine``, its best usable fit of an open target taken down to round-off.
+
+    An exact fit (within EXACT) that the first fits left in a valley above round-off (8.9e-7
+    of the size, links 1e-3 off, where the drawing linkage is at 4e-14): one long fit takes it
+    down (docs/synthesis.md, step 4), and replaces it when better (else the same design would
+    be listed twice, with its cognate measured from it).
+    """
+    s, size = run.search, run.size
+    loose = min((c for c in mine if run.usable(c)), key=lambda c: c.error, default=None)
+    if (
+        not s.closed
+        and s.accept is None
+        and loose is not None
+        and TIGHT * size < loose.error <= run.goal
+    ):
+        tight = stages._polish(
+            [loose], [], run.target, size, bounds, run.threads, run.bar, k, run.usable, TIGHT
+        )
+        if min((c.error for c in tight), default=math.inf) < loose.error:
+            mine = [c for c in mine if c is not loose] + tight
+    return mine
+
+
+def _runs_global_search(run: _Run, found: list[Candidate[Any]]) -> bool:
+    """Whether the global search runs: as asked, else when no admissible fit is within ``tol``."""
+    s = run.search
+    enough = s.tol * run.size if s.accept is None else s.accept
+    return s.global_search if s.global_search is not None else run.best(found) > enough
+
+
+def _global_search(run: _Run) -> list[Candidate[Any]]:
+    """Return the refined fits of the global search of each kind (differential evolution)."""
+    s, bar = run.search, run.bar
+    found: list[Candidate[Any]] = []
+    for k in s.kinds:
+        if bar is not None:
+            # Generations (of both assemblies for four-bars), then refinements.
+            bar.stage(f"global search ({k.name})", (2 if k is FOURBAR else 1) * s.maxiter + 8)
+        de = _de(
+            run.target,
+            s.closed,
+            run.size,
+            run.centre,
+            s.seed,
+            s.maxiter,
+            run.threads,
+            bar,
+            kind=k,
+            full_turn=s.full_turn,
+            min_transmission=s.min_transmission,
+        )
+        found += _finish(
+            [(x, c, "global") for x, c in de],
+            run.target,
+            s.closed,
+            run.size,
+            _bounds(s.lengths, s.pivots, run.size, k),
+            min(s.refine, len(de)),
+            run.threads,
+            bar,
+            kind=k,
+            admissible=run.admissible,
+        )
+    return found
 
 
 def _pair(value: Any, name: str) -> tuple[float, float]:
