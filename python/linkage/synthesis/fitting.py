@@ -140,32 +140,7 @@ def _refine(
         return out
 
     def jac(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        # Central differences of all q + 1 directions (the q parameters, then every s at once:
-        # s_i moves residual i only) in one batched call. The long fits take the fourth-order
-        # stencil (8(r(x+h) − r(x−h)) − (r(x+2h) − r(x−2h)))/12h, error O(h⁴) + O(ε/h), about
-        # 1e-12 of the Jacobian's scale at h = 3e-4, where the central O(h²) + O(ε/h) at
-        # h = 1e-6 is about 2e-10: the long fits' scaled Jacobians span singular values of
-        # 10⁷ … 10⁹, and the directions along the valley are the small ones. Two arcs of
-        # `bench/open_arcs.py --seed 2` are recovered only so (docs/synthesis.md); the first
-        # fits keep the central differences (half the evaluations a Jacobian).
-        d = np.zeros((q + 1, q + n))
-        d[np.arange(q), np.arange(q)] = steps[:q]
-        d[q, q:] = steps[q]
-        m = q + 1
-        if geodesic:
-            r = batch(np.concatenate([x + d, x - d, x + 2 * d, x - 2 * d]))
-            g = (8 * (r[:m] - r[m : 2 * m]) - (r[2 * m : 3 * m] - r[3 * m :])) / (
-                12 * steps[:, None]
-            )
-        else:
-            r = batch(np.concatenate([x + d, x - d]))
-            g = (r[:m] - r[m:]) / (2 * steps[:, None])
-        j = np.zeros((2 * n, q + n))
-        j[:, :q] = g[:q].T
-        rows = np.arange(n)
-        j[2 * rows, q + rows] = g[q, 0::2]
-        j[2 * rows + 1, q + rows] = g[q, 1::2]
-        return j
+        return _difference_jacobian(batch, x, steps, q, n, geodesic)
 
     lo = np.concatenate([bounds[0], np.full(n, -np.inf)])
     hi = np.concatenate([bounds[1], np.full(n, np.inf)])
@@ -248,6 +223,45 @@ def _refine(
         res = least_squares(fun, x, bounds=(lo, hi), method="trf", tr_solver="lsmr", **common)
     out: NDArray[np.float64] = res.x[:q]
     return out
+
+
+def _difference_jacobian(
+    batch: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    x: NDArray[np.float64],
+    steps: NDArray[np.float64],
+    q: int,
+    n: int,
+    geodesic: bool,
+) -> NDArray[np.float64]:
+    """Return the Jacobian at ``x`` of :func:`_refine`'s residuals by differences (``batch``).
+
+    ``q`` placed parameters, then ``n`` circuit parameters (one per target point); ``steps``
+    holds the ``q`` parameters' steps, then the circuit parameters' one step.
+    """
+    # Central differences of all q + 1 directions (the q parameters, then every s at once:
+    # s_i moves residual i only) in one batched call. The long fits take the fourth-order
+    # stencil (8(r(x+h) − r(x−h)) − (r(x+2h) − r(x−2h)))/12h, error O(h⁴) + O(ε/h), about
+    # 1e-12 of the Jacobian's scale at h = 3e-4, where the central O(h²) + O(ε/h) at
+    # h = 1e-6 is about 2e-10: the long fits' scaled Jacobians span singular values of
+    # 10⁷ … 10⁹, and the directions along the valley are the small ones. Two arcs of
+    # `bench/open_arcs.py --seed 2` are recovered only so (docs/synthesis.md); the first
+    # fits keep the central differences (half the evaluations a Jacobian).
+    d = np.zeros((q + 1, q + n))
+    d[np.arange(q), np.arange(q)] = steps[:q]
+    d[q, q:] = steps[q]
+    m = q + 1
+    if geodesic:
+        r = batch(np.concatenate([x + d, x - d, x + 2 * d, x - 2 * d]))
+        g = (8 * (r[:m] - r[m : 2 * m]) - (r[2 * m : 3 * m] - r[3 * m :])) / (12 * steps[:, None])
+    else:
+        r = batch(np.concatenate([x + d, x - d]))
+        g = (r[:m] - r[m:]) / (2 * steps[:, None])
+    j = np.zeros((2 * n, q + n))
+    j[:, :q] = g[:q].T
+    rows = np.arange(n)
+    j[2 * rows, q + rows] = g[q, 0::2]
+    j[2 * rows + 1, q + rows] = g[q, 1::2]
+    return j
 
 
 SHORTEST_LINK = 1e-6

@@ -509,6 +509,42 @@ def motion(
         max_link = as_finite(max_link, "max_link")
         if max_link <= 0:
             raise LinkageError(f"max_link must be positive, got {max_link}")
+    dyads, names, free = _motion_dyads(p, circle_points, centre_points, beta, n, beta_pose)
+    pairs, r = _pairs_solved(p, dyads, names)
+    count = None if top is None else as_count(top, "top")
+    out, removed = _motion_candidates(p, dyads, pairs, r, span, box, free)
+    if max_link is None or span is not None:
+        limit = math.inf
+    else:
+        limit = max_link * rms_size(np.array([xy[:2] for xy in p]))
+
+    def rank(c: MotionCandidate) -> tuple[bool, bool, float]:
+        if c.reaches:
+            return (False, c.longest_link > limit, -c.min_transmission_angle)
+        # Not reaching: those that get further first (their figures are NaN).
+        return (True, False, -float(np.count_nonzero(np.isfinite(c.crank_angles))))
+
+    out.sort(key=rank)
+    if not out:
+        # An empty list says which filter emptied it (a candidate may fail both).
+        told = ", ".join(f"{k} {n}" for k, n in removed.items() if n)
+        warnings.warn(
+            f"motion: the filters removed all {int(np.count_nonzero(r['ok']))} four-bars "
+            f"(removed by {told}): loosen them",
+            stacklevel=2,
+        )
+    return out if count is None else out[:count]
+
+
+def _motion_dyads(
+    p: list[tuple[float, float, float]],
+    circle_points: ArrayLike | None,
+    centre_points: ArrayLike | None,
+    beta: ArrayLike | None,
+    n: int,
+    beta_pose: int | None,
+) -> tuple[list[Dyad], list[str], int | None]:
+    """Return :func:`motion`'s dyads, their names in messages, and the free pose (four poses)."""
     free: int | None = None
     if len(p) == 3:
         if beta is not None or beta_pose is not None:
@@ -531,6 +567,13 @@ def motion(
         _not_one_rotation(p)
         dyads, free = _dyads_four(p, beta, n, free_pose)
         names = [f"dyad {i}" for i in range(len(dyads))]
+    return dyads, names, free
+
+
+def _pairs_solved(
+    p: list[tuple[float, float, float]], dyads: list[Dyad], names: list[str]
+) -> tuple[list[tuple[int, int]], Any]:
+    """Return every ordered pair of ``dyads`` and the core's four-bars of them (arrays by name)."""
     if len(dyads) < 2:
         raise LinkageError(f"needs at least 2 dyads to make a four-bar, got {len(dyads)}")
     # Every ordered pair is a candidate: the cost grows as the square of the dyads.
@@ -550,7 +593,19 @@ def motion(
             f"no two of the {len(dyads)} dyads make a four-bar: {names[i]} driving {names[j]}: "
             f"{r['error'][0]}"
         )
-    count = None if top is None else as_count(top, "top")
+    return pairs, r
+
+
+def _motion_candidates(
+    p: list[tuple[float, float, float]],
+    dyads: list[Dyad],
+    pairs: list[tuple[int, int]],
+    r: Any,
+    span: tuple[float, float] | None,
+    box: Any,
+    free: int | None,
+) -> tuple[list[MotionCandidate], dict[str, int]]:
+    """Return the four-bars of ``pairs`` within ``span`` and ``box``, and how many each removed."""
     out = []
     removed = {"lengths": 0, "pivots": 0}
     for m, (i, j) in enumerate(pairs):
@@ -588,27 +643,7 @@ def motion(
                 beta_pose=free,
             )
         )
-    if max_link is None or span is not None:
-        limit = math.inf
-    else:
-        limit = max_link * rms_size(np.array([xy[:2] for xy in p]))
-
-    def rank(c: MotionCandidate) -> tuple[bool, bool, float]:
-        if c.reaches:
-            return (False, c.longest_link > limit, -c.min_transmission_angle)
-        # Not reaching: those that get further first (their figures are NaN).
-        return (True, False, -float(np.count_nonzero(np.isfinite(c.crank_angles))))
-
-    out.sort(key=rank)
-    if not out:
-        # An empty list says which filter emptied it (a candidate may fail both).
-        told = ", ".join(f"{k} {n}" for k, n in removed.items() if n)
-        warnings.warn(
-            f"motion: the filters removed all {int(np.count_nonzero(r['ok']))} four-bars "
-            f"(removed by {told}): loosen them",
-            stacklevel=2,
-        )
-    return out if count is None else out[:count]
+    return out, removed
 
 
 def _span(value: Any) -> tuple[float, float]:
