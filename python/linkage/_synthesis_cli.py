@@ -14,8 +14,8 @@ from typing import cast
 from linkage import synthesis
 from linkage._choices import PathKind
 from linkage._core import LinkageError
-from linkage._schema import SYNTHESIS_REFINE_MAX, SYNTHESIS_TOP_MAX
 from linkage._slider_crank import SliderCrank
+from linkage.synthesis.limits import SYNTHESIS_REFINE_MAX, SYNTHESIS_TOP_MAX
 
 CLI_CONSTRAINTS = {
     "full_turn": "--full-turn",

@@ -28,8 +28,8 @@ from linkage._choices import AtlasKind, PathKind
 from linkage._core import LinkageError
 from linkage._files import read_json, sweep_stale
 from linkage._progress import Bar
+from linkage._shared.cache_dir import cache_dir
 from linkage._version import __version__
-from linkage.catalog import cache_dir
 from linkage.synthesis.kinds import (
     _ARC_KIND,
     _ENTRY_WIDTH,

@@ -15,7 +15,6 @@ from linkage._arrays import as_count, as_finite, as_flag, as_point
 from linkage._choices import AtlasKind, PathKind
 from linkage._core import LinkageError
 from linkage._progress import Bar
-from linkage._schema import SYNTHESIS_REFINE_MAX, SYNTHESIS_TOP_MAX
 from linkage._size import mean as _mean
 from linkage._size import pow2 as _pow2
 from linkage.synthesis import stages
@@ -40,6 +39,7 @@ from linkage.synthesis.candidates import (
 )
 from linkage.synthesis.fitting import _bounds, _Budget, _distinct, _finish, _measure
 from linkage.synthesis.kinds import _KIND, EXACT, FOURBAR, TIGHT, Float2D, _Kind, _kind, _threads
+from linkage.synthesis.limits import SYNTHESIS_REFINE_MAX, SYNTHESIS_TOP_MAX
 from linkage.synthesis.stages import (
     SLID,
     SLIDES,

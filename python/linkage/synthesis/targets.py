@@ -12,10 +12,10 @@ from numpy.typing import ArrayLike
 
 from linkage._arrays import as_real_array
 from linkage._core import LinkageError
-from linkage._schema import POINTS_MAX
 from linkage._size import pow2 as _pow2
 from linkage._size import rms_size
 from linkage.synthesis.kinds import EXACT, Float2D
+from linkage.synthesis.limits import POINTS_MAX
 
 MIN_POINTS = 5
 """Fewest target points: a four-bar's coupler curve has five shape parameters beyond placement."""
