@@ -477,7 +477,7 @@ class _Budget:
 _Budget.__module__ = "linkage.synthesis"  # as before the split: pickles and reprs name it so
 
 
-def _slid(
+def _slid_along_curves(
     kind: _Kind,
     params: NDArray[np.float64],
     crossed: NDArray[np.bool_],

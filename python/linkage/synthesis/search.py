@@ -45,10 +45,10 @@ from linkage.synthesis.stages import (
     SLIDES,
     _atlas_pool,
     _cognate_candidates,
-    _de,
     _equation_pool,
+    _evolution_starts,
     _from_parts,
-    _hops,
+    _restarts,
     _shape_order,
 )
 from linkage.synthesis.targets import _target, target_size
@@ -431,7 +431,7 @@ class _Run:
         closed, accept = search.closed, search.accept
         centre = target.mean(axis=0)
         fits = search.refine if closed else 3 * search.refine
-        bar = _bar(search.progress, fits * len(search.kinds))
+        bar = _progress_bar(search.progress, fits * len(search.kinds))
         atlases = _atlases(search.atlas, search.kinds)
         _note_builds(missing_atlases(search.kind, closed, atlases), bar)
         goal = EXACT * size if accept is None else max(EXACT * size, accept)
@@ -524,7 +524,7 @@ def _search_kind(run: _Run, k: _Kind) -> list[Candidate[Any]]:
         _open_later_stages(run, k, bounds, matches, mine, later)
     if not s.closed and mine and run.best_usable(mine) > run.goal:
         starts = [c for c in mine if run.admissible(c)] or mine
-        mine += _hops(starts, target, size, bounds, s.seed, run.threads, k, later)
+        mine += _restarts(starts, target, size, bounds, s.seed, run.threads, k, later)
     if s.closed and s.refine > 0 and run.best_usable(mine) > run.goal:
         # A closed target no match fitted exactly: parts of it searched as open arcs, their
         # best fits refined on the whole target (docs/synthesis.md, step 4).
@@ -619,7 +619,7 @@ def _open_later_stages(
                 budget=later,
             )
     if run.best_usable(mine) > run.goal and not later.out:
-        # The same nearest shapes re-placed along their curves (_slid), ranked again
+        # The same nearest shapes re-placed along their curves (_slid_along_curves), ranked again
         # and fitted as the first (docs/synthesis.md, step 4).
         slid = _atlas_pool(k, at, target, 4 * SLID, 4 * many, run.threads, slide=SLIDES)
         if s.full_turn or s.min_transmission > 0:
@@ -688,7 +688,7 @@ def _global_search(run: _Run) -> list[Candidate[Any]]:
         if bar is not None:
             # Generations (of both assemblies for four-bars), then refinements.
             bar.stage(f"global search ({k.name})", (2 if k is FOURBAR else 1) * s.maxiter + 8)
-        de = _de(
+        starts = _evolution_starts(
             run.target,
             s.closed,
             run.size,
@@ -702,12 +702,12 @@ def _global_search(run: _Run) -> list[Candidate[Any]]:
             min_transmission=s.min_transmission,
         )
         found += _finish(
-            [(x, c, "global") for x, c in de],
+            [(x, c, "global") for x, c in starts],
             run.target,
             s.closed,
             run.size,
             _bounds(s.lengths, s.pivots, run.size, k),
-            min(s.refine, len(de)),
+            min(s.refine, len(starts)),
             run.threads,
             bar,
             kind=k,
@@ -721,7 +721,7 @@ def _pair(value: Any, name: str) -> tuple[float, float]:
     return a, b
 
 
-def _bar(progress: bool, total: int) -> Bar | None:
+def _progress_bar(progress: bool, total: int) -> Bar | None:
     return Bar("synthesis", total=total) if progress else None
 
 

@@ -18,7 +18,14 @@ from linkage._core import LinkageError
 from linkage._slider_crank import SliderCrank
 from linkage.synthesis.atlas import Atlas
 from linkage.synthesis.candidates import Candidate, _crossed, _params_of
-from linkage.synthesis.fitting import _Budget, _errors, _finish, _measure, _placed, _slid
+from linkage.synthesis.fitting import (
+    _Budget,
+    _errors,
+    _finish,
+    _measure,
+    _placed,
+    _slid_along_curves,
+)
 from linkage.synthesis.kinds import _ARC_KIND, EXACT, FOURBAR, SLIDER, Float2D, _Kind
 from linkage.synthesis.targets import target_size
 
@@ -31,7 +38,7 @@ SLIDER_EQUATION_POINTS = 13
 they lie on (``linkage_core::SLIDER_EQUATION_POINTS``: a circular quartic, 13 coefficients)."""
 
 
-def _de(
+def _evolution_starts(
     target: Float2D,
     closed: bool,
     size: float,
@@ -378,7 +385,7 @@ HOPS = 12
 """Perturbed restarts of the least-squares fit for an open target that no arc match fits exactly."""
 
 
-def _hops(
+def _restarts(
     found: list[Candidate[Any]],
     target: Float2D,
     size: float,
@@ -554,9 +561,10 @@ def _atlas_pool(
     """Return the ``keep`` best placed atlas matches of ``target``, of the ``k`` nearest shapes.
 
     Each nearest entry is placed by the similarity between its curve's frame and the target's
-    (both ends of the major axis), moved along its curve by ``slide`` rounds of :func:`_slid`
-    (an open target's), and scored by the polyline distance both ways (an arc atlas's entries,
-    :data:`ARCS` or :data:`SLIDER_ARCS`, against an open target: one way).
+    (both ends of the major axis), moved along its curve by ``slide`` rounds of
+    :func:`_slid_along_curves` (an open target's), and scored by the polyline distance both ways
+    (an arc atlas's entries, :data:`ARCS` or :data:`SLIDER_ARCS`, against an open target: one
+    way).
     """
     closed = at.kind not in _ARC_KIND
     variants, frame_t = _core.synth_descriptors(target, at.harmonics, closed)
@@ -588,7 +596,7 @@ def _atlas_pool(
         return []
     p, cr_a = np.array(placed), np.array(crossed)
     if slide:
-        p = _slid(kind, p, cr_a, target, slide, threads)
+        p = _slid_along_curves(kind, p, cr_a, target, slide, threads)
     e, _ = _errors(p, cr_a, target, closed, threads=threads, kind=kind)
     worst = np.maximum(e[:, 0], e[:, 2]) if closed else e[:, 0]
     score = np.where(np.isfinite(worst), worst, np.inf)
@@ -597,8 +605,8 @@ def _atlas_pool(
 
 
 SLID = 24
-"""Matches re-placed by :func:`_slid` and fitted for an open target that no earlier stage fitted
-exactly (the best of ``4 × SLID``, from the wider matches' nearest shapes)."""
+"""Matches re-placed by :func:`_slid_along_curves` and fitted for an open target that no earlier
+stage fitted exactly (the best of ``4 × SLID``, from the wider matches' nearest shapes)."""
 
 SLIDES = 3
-"""Rounds of :func:`_slid`."""
+"""Rounds of :func:`_slid_along_curves`."""
