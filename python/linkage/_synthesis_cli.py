@@ -1,7 +1,7 @@
 """``linkage synth``: path synthesis from the command line (the table of candidates it prints).
 
-Application code over :mod:`linkage.synthesis`, which it calls through the package (so what is
-replaced there, as tests do, is what runs).
+Application code over :mod:`linkage.synthesis`. ``linkage.synthesis.command`` calls it with the
+package's :func:`~linkage.synthesis.path` (what is replaced there, as tests do, is what runs).
 """
 
 from __future__ import annotations
@@ -9,13 +9,16 @@ from __future__ import annotations
 import argparse
 import math
 import time
+from collections.abc import Callable
 from typing import cast
 
-from linkage import synthesis
 from linkage._choices import PathKind
 from linkage._core import LinkageError
 from linkage._slider_crank import SliderCrank
+from linkage.synthesis.candidates import Candidates, change_point_gap, long_link, why_none
 from linkage.synthesis.limits import SYNTHESIS_REFINE_MAX, SYNTHESIS_TOP_MAX
+from linkage.synthesis.search import path
+from linkage.synthesis.targets import _target, rounded_to, target_size
 
 CLI_CONSTRAINTS = {
     "full_turn": "--full-turn",
@@ -27,8 +30,8 @@ CLI_CONSTRAINTS = {
 """``linkage synth``'s options for :func:`path`'s constraints (and ``refine``)."""
 
 
-def command(args: argparse.Namespace) -> int:
-    """``linkage synth curve.csv``: print the candidates as a table with units."""
+def command(args: argparse.Namespace, search: Callable[..., Candidates] = path) -> int:
+    """``linkage synth curve.csv``: print the candidates ``search`` finds as a table with units."""
     if not 1 <= int(args.top) <= SYNTHESIS_TOP_MAX:
         raise LinkageError(f"--top must be between 1 and {SYNTHESIS_TOP_MAX}, got {args.top}")
     refine = int(getattr(args, "refine", 8))
@@ -40,8 +43,8 @@ def command(args: argparse.Namespace) -> int:
     kind = cast(PathKind, getattr(args, "kind", "fourbar"))
     t0 = time.perf_counter()
     # Read once: the search takes the cleaned points, the table rounds to their size.
-    target = synthesis._target(args.curve, not args.open)
-    found = synthesis.path(
+    target = _target(args.curve, not args.open)
+    found = search(
         target,
         closed=not args.open,
         top=int(args.top),
@@ -64,17 +67,17 @@ def command(args: argparse.Namespace) -> int:
     what = {"fourbar": "four-bar", "slider-crank": "slider-crank", "any": "linkage"}[kind]
     if not found:
         # One line and status 2, as `linkage run` says it of a scene.
-        why, _ = synthesis.why_none(found, CLI_CONSTRAINTS, args.units or "")
+        why, _ = why_none(found, CLI_CONSTRAINTS, args.units or "")
         raise LinkageError(f"no valid {what} found for {args.curve} in {took:.1f} s: {why}")
     print(
         f"{len(found)} {what}(s) for {args.curve}, best first ({took:.1f} s; errors are the "
         f"largest / RMS distance of the target points to the coupler curve{u and ', in' + u}):"
     )
-    size = synthesis.target_size(target)
+    size = target_size(target)
 
     def g(x: float) -> str:
         # Coordinates and lengths to 1e-5 of the target's size: an exact fit's round-off reads 0.
-        return f"{synthesis.rounded_to(x, size, 5):.4g}"
+        return f"{rounded_to(x, size, 5):.4g}"
 
     # One table ranked as found; under "any" a column holds a four-bar's or a slider-crank's
     # number, named by both.
@@ -143,10 +146,10 @@ def command(args: argparse.Namespace) -> int:
     notes = []
     for c in found:
         note = []
-        near = synthesis.change_point_gap(c, size)
+        near = change_point_gap(c, size)
         if near is not None:
             note.append(f"{near[0]:.1e}{u} from a change point: can flip branch")
-        k = synthesis.long_link(c, size)
+        k = long_link(c, size)
         if k is not None and getattr(args, "lengths", None) is None:
             note.append(f"link {k:.0f}× size: ranked after")
         notes.append("; ".join(note))

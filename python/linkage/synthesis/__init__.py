@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import Any, TypeVar
 
 from linkage import _core as _core
 
@@ -229,16 +229,35 @@ def timed(fn: Callable[..., _T], *args: Any, **kw: Any) -> tuple[_T, float]:
     return out, time.perf_counter() - t0
 
 
-if not TYPE_CHECKING:  # mypy reads no module __getattr__, so every other name stays checked
+# The public functions say they are linkage.synthesis's, as before the split (as numpy's
+# set_module does): reprs, pickles by reference and the docs name the public path.
+for _public in (
+    atlas_kinds,
+    change_point_gap,
+    clean_target,
+    default_atlas,
+    is_cached,
+    largest_distance,
+    long_link,
+    longest_link,
+    missing_atlases,
+    path,
+    read_points,
+    rounded_to,
+    source_text,
+    target_size,
+    why_none,
+):
+    _public.__module__ = __name__
 
-    def __getattr__(name: str) -> Any:
-        """Return ``command`` or ``CLI_CONSTRAINTS``, now in :mod:`linkage._synthesis_cli`.
 
-        Command-line code is not the domain's: it left this package, and ``cli.py`` still finds
-        it here until it imports it from there (then this goes).
-        """
-        if name in ("command", "CLI_CONSTRAINTS"):
-            from linkage import _synthesis_cli  # noqa: PLC0415 (application code, on demand)
+def command(args: Any) -> int:
+    """Run ``linkage synth`` (:func:`linkage._synthesis_cli.command`, where it now lives).
 
-            return getattr(_synthesis_cli, name)
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    Command-line code is not the domain's: it left this package, and ``cli.py`` still calls it
+    here until it imports it from there (then this goes). It searches with this package's
+    :func:`path`, as it did when it lived here.
+    """
+    from linkage import _synthesis_cli  # noqa: PLC0415 (application code, on demand)
+
+    return _synthesis_cli.command(args, path)

@@ -43,6 +43,20 @@ from linkage.synthesis.kinds import (
     _threads,
 )
 
+__all__ = [
+    "ATLAS_FILES",
+    "ATLAS_FORMAT",
+    "ATLAS_HARMONICS_MAX",
+    "ATLAS_META_MAX",
+    "ATLAS_SAMPLES_MAX",
+    "Atlas",
+    "AtlasArg",
+    "atlas_kinds",
+    "default_atlas",
+    "is_cached",
+    "missing_atlases",
+]
+
 ATLAS_FORMAT = 3
 """Bumped whenever the stored atlas's content or meaning changes."""
 

@@ -21,6 +21,22 @@ from linkage._fourbar import FourBar
 from linkage._slider_crank import SliderCrank
 from linkage.synthesis.kinds import EXACT, SLIDER, _Kind
 
+__all__ = [
+    "CHANGE_POINT_NEAR",
+    "CONSTRAINT_NAMES",
+    "LONG_LINK",
+    "NEAR",
+    "Candidate",
+    "Candidates",
+    "LinkageT",
+    "change_point_gap",
+    "largest_distance",
+    "long_link",
+    "longest_link",
+    "source_text",
+    "why_none",
+]
+
 LONG_LINK = 20.0
 """Default ``max_link`` of :func:`path`: candidates with a link longer than this many target
 sizes rank after all others (a 25 mm curve drawn with links of metres is no design)."""

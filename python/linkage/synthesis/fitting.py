@@ -35,6 +35,15 @@ from linkage.synthesis.candidates import (
 from linkage.synthesis.kinds import _KIND, FOURBAR, SLIDER, Float2D, _Kind
 from linkage.synthesis.targets import target_size
 
+__all__ = [
+    "GUARD",
+    "LATER_EVALUATIONS",
+    "LATER_POINTS",
+    "SHORTEST_LINK",
+    "STALL",
+    "STALL_WINDOW",
+]
+
 
 def _placed(
     entry: NDArray[np.float64],

@@ -17,6 +17,21 @@ from linkage._arrays import as_count
 from linkage._choices import AtlasKind, LinkageKind
 from linkage._core import LinkageError
 
+__all__ = [
+    "ARCS",
+    "DEFAULT_ARC_ENTRIES",
+    "DEFAULT_ENTRIES",
+    "DEFAULT_SLIDER_ARC_ENTRIES",
+    "DEFAULT_SLIDER_ENTRIES",
+    "EXACT",
+    "FOURBAR",
+    "KINDS",
+    "SLIDER",
+    "SLIDER_ARCS",
+    "TIGHT",
+    "Float2D",
+]
+
 DEFAULT_ENTRIES = 200_000
 """Entries of the default four-bar atlas (built once into the cache folder)."""
 

@@ -53,6 +53,13 @@ from linkage.synthesis.stages import (
 )
 from linkage.synthesis.targets import _target, target_size
 
+__all__ = [
+    "FAR",
+    "FIT_POINTS",
+    "UNIT_RANGE",
+    "path",
+]
+
 
 def path(
     points: str | os.PathLike[str] | ArrayLike,

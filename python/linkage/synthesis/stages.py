@@ -29,6 +29,24 @@ from linkage.synthesis.fitting import (
 from linkage.synthesis.kinds import _ARC_KIND, EXACT, FOURBAR, SLIDER, Float2D, _Kind
 from linkage.synthesis.targets import target_size
 
+__all__ = [
+    "COGNATES_OF",
+    "CURVE_EQUATION_POINTS",
+    "EQUATION_STARTS",
+    "HOPS",
+    "PART_FITS",
+    "PART_GAP",
+    "PART_MATCHES",
+    "PART_POINTS",
+    "POLISH",
+    "POLISH_NFEV",
+    "SLID",
+    "SLIDER_EQUATION_POINTS",
+    "SLIDES",
+    "VALLEY",
+    "WIDER",
+]
+
 CURVE_EQUATION_POINTS = 16
 """Fewest target points from which a four-bar is sought through the equation of the curve they
 lie on (``linkage_core::CURVE_EQUATION_POINTS``: the equation has 16 coefficients)."""

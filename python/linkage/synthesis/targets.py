@@ -17,6 +17,16 @@ from linkage._size import rms_size
 from linkage.synthesis.kinds import EXACT, Float2D
 from linkage.synthesis.limits import POINTS_MAX
 
+__all__ = [
+    "MIN_POINTS",
+    "POINTS_FILE_MAX",
+    "SMALLEST_EXTENT",
+    "clean_target",
+    "read_points",
+    "rounded_to",
+    "target_size",
+]
+
 MIN_POINTS = 5
 """Fewest target points: a four-bar's coupler curve has five shape parameters beyond placement."""
 
