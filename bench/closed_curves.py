@@ -63,19 +63,19 @@ def main() -> None:
         cases.append((fb, n, mode, np.roll(pts, int(rng.integers(n)), axis=0)))
     synthesis.default_atlas()
     synthesis.default_atlas(kind="fourbar-arcs")
-    least = synthesis.CURVE_EQUATION_POINTS
+    least = synthesis.stages.CURVE_EQUATION_POINTS
     exact = [0, 0]
     spent = [[], []]
     for i, (fb, n, mode, target) in enumerate(cases):
         size = synthesis.target_size(target)
         errors, times = [], []
         for with_equation in (False, True):
-            synthesis.CURVE_EQUATION_POINTS = least if with_equation else 10**9
+            synthesis.stages.CURVE_EQUATION_POINTS = least if with_equation else 10**9
             t = time.perf_counter()
             found = synthesis.path(target, top=1)
             times.append(time.perf_counter() - t)
             errors.append(found[0].error / size if found else np.inf)
-        synthesis.CURVE_EQUATION_POINTS = least
+        synthesis.stages.CURVE_EQUATION_POINTS = least
         for k in (0, 1):
             exact[k] += errors[k] <= 1e-6
             spent[k].append(times[k])

@@ -89,19 +89,19 @@ def main() -> None:
 
     errs, times, rows = [], [], []
     off_errs, ratios = [], []
-    least = (synthesis.CURVE_EQUATION_POINTS, synthesis.SLIDER_EQUATION_POINTS)
+    least = (synthesis.stages.CURVE_EQUATION_POINTS, synthesis.stages.SLIDER_EQUATION_POINTS)
 
     def run(target: np.ndarray, size: float, with_equation: bool) -> tuple[float, float]:
         # The stage is off when no target has enough points for it.
         on = least if with_equation else (10**9, 10**9)
-        synthesis.CURVE_EQUATION_POINTS, synthesis.SLIDER_EQUATION_POINTS = on
+        synthesis.stages.CURVE_EQUATION_POINTS, synthesis.stages.SLIDER_EQUATION_POINTS = on
         try:
             t0 = time.perf_counter()
             kw = {"atlas": atlas} if atlas is not None else {}
             found = synthesis.path(target, closed=False, top=1, kind=args.kind, **kw)
             dt = time.perf_counter() - t0
         finally:
-            synthesis.CURVE_EQUATION_POINTS, synthesis.SLIDER_EQUATION_POINTS = least
+            synthesis.stages.CURVE_EQUATION_POINTS, synthesis.stages.SLIDER_EQUATION_POINTS = least
         return (found[0].error / size if found else math.inf), dt
 
     for name, target in cases:

@@ -402,10 +402,10 @@ def test_the_default_atlas_is_keyed_on_the_version_and_the_cores_content(
     """The key was the core library's byte size: a rebuilt core of the same size reused an atlas
     built by the other."""
     before = synthesis._default_folder(None, 8, "fourbar")
-    monkeypatch.setattr(synthesis, "core_identity", lambda: "another build")
+    monkeypatch.setattr(synthesis.atlas, "core_identity", lambda: "another build")
     assert synthesis._default_folder(None, 8, "fourbar") != before
     monkeypatch.undo()
-    monkeypatch.setattr(synthesis, "__version__", "0.0.0-other")
+    monkeypatch.setattr(synthesis.atlas, "__version__", "0.0.0-other")
     assert synthesis._default_folder(None, 8, "fourbar") != before
 
 

@@ -18,7 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import linkage
-from linkage._precision import (
+from linkage.synthesis.precision_points import (
     centre_point_curve,
     chebyshev_points,
     circle_point_curve,

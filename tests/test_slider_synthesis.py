@@ -167,7 +167,7 @@ def test_open_arc_is_matched(arc_atlas: Atlas, monkeypatch) -> None:  # type: ig
     global search alone reached 7.3e-5 of the size here, 7e-5 … 1.2e-1 over six arcs. The
     curve's equation, the search's first stage, recovers it too: it is off here, to test the
     atlas.)"""
-    monkeypatch.setattr(synthesis, "SLIDER_EQUATION_POINTS", 10**9)
+    monkeypatch.setattr(synthesis.stages, "SLIDER_EQUATION_POINTS", 10**9)
     rng = np.random.default_rng(203)
     rod = math.exp(rng.uniform(math.log(1.5), math.log(4)))
     sc = linkage.SliderCrank(

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 
 import linkage
 from linkage import synthesis
+from linkage._synthesis_cli import CLI_CONSTRAINTS
 from linkage.synthesis import Atlas
 
 
@@ -149,7 +150,7 @@ def test_the_curve_equation_recovers_the_closed_curves_the_atlas_misses(
 ) -> None:
     """The same targets with the parts stage and the global search off: the four-bars from the
     curve's equation, refined, draw them exactly."""
-    monkeypatch.setattr(synthesis, "PART_POINTS", 10**9)
+    monkeypatch.setattr(synthesis.stages, "PART_POINTS", 10**9)
     rng = np.random.default_rng(sorted(MISSED_CLOSED).index(name))
     target, _ = placed(missed_closed_target(name), rng)
     found = synthesis.path(target, atlas=atlas, top=1, global_search=False)
@@ -187,8 +188,8 @@ def arc_atlas() -> Atlas:
 def no_equation(monkeypatch) -> None:  # type: ignore[no-untyped-def]
     """Turn off the search's first stage, the linkages from the curve's equation, for a test
     of a later stage (it recovers these targets before the later stages run)."""
-    monkeypatch.setattr(synthesis, "CURVE_EQUATION_POINTS", 10**9)
-    monkeypatch.setattr(synthesis, "SLIDER_EQUATION_POINTS", 10**9)
+    monkeypatch.setattr(synthesis.stages, "CURVE_EQUATION_POINTS", 10**9)
+    monkeypatch.setattr(synthesis.stages, "SLIDER_EQUATION_POINTS", 10**9)
 
 
 def arc_of(fb: linkage.FourBar, rng: np.random.Generator, frac: float) -> np.ndarray:
@@ -518,7 +519,7 @@ def test_an_empty_result_says_which_constraint_removed_the_fits(atlas: Atlas, sc
     )
     assert gone.error < size_of(target)
     assert not (box[0][0] <= gone.linkage.o[0] <= box[1][0])
-    why, blamed = synthesis.why_none(found, synthesis.CLI_CONSTRAINTS)
+    why, blamed = synthesis.why_none(found, CLI_CONSTRAINTS)
     assert blamed == "pivots" and f"fits failing --pivots: {found.removed['pivots']})" in why
     pins = ", ".join(f"({x:.3g}, {y:.3g})" for x, y in (gone.linkage.o, gone.linkage.c))
     assert f"the closest, error {gone.error:.3g}, fails --pivots (pivots {pins}): loosen it" in why
@@ -622,7 +623,7 @@ def test_cli_synth(tmp_path, capsys, monkeypatch, atlas: Atlas) -> None:  # type
 
     reads: list[object] = []
     read = synthesis.read_points
-    monkeypatch.setattr(synthesis, "read_points", lambda p: reads.append(p) or read(p))
+    monkeypatch.setattr(synthesis.targets, "read_points", lambda p: reads.append(p) or read(p))
 
     fb = linkage.catalog.get("hoecken")
     assert isinstance(fb, linkage.FourBar)
@@ -769,10 +770,10 @@ def test_progress_names_a_default_atlas_build(tmp_path, monkeypatch, capsys) -> 
     """The first open-target search builds the default arc atlas (~5 s at the default size)
     before its first fit: the progress bar says so first, and not once the atlas is cached."""
     monkeypatch.setenv("LINKAGE_CACHE_DIR", str(tmp_path))
-    monkeypatch.setattr(synthesis, "DEFAULT_ARC_ENTRIES", 5600)
+    monkeypatch.setattr(synthesis.kinds, "DEFAULT_ARC_ENTRIES", 5600)
     # The message is under test, not the search: no further stages after the first fit.
     for name in ("POLISH", "WIDER", "HOPS"):
-        monkeypatch.setattr(synthesis, name, 0)
+        monkeypatch.setattr(synthesis.stages, name, 0)
     fb = linkage.catalog.get("hoecken")
     assert isinstance(fb, linkage.FourBar)
     arc = fb.sweep(np.linspace(0.0, 3.0, 20)).point

@@ -103,9 +103,9 @@ def test_an_unfittable_open_target_stops_its_later_stages_at_the_budget(
         budgets.append(of(points))
         return budgets[-1]
 
-    monkeypatch.setattr(synthesis, "_residuals", counted)
+    monkeypatch.setattr(synthesis.fitting, "_residuals", counted)
     monkeypatch.setattr(synthesis._Budget, "of", staticmethod(recorded))
-    monkeypatch.setattr(synthesis, "LATER_EVALUATIONS", 20_000)
+    monkeypatch.setattr(synthesis.fitting, "LATER_EVALUATIONS", 20_000)
     kw = dict(closed=False, top=1, atlas=arcs, refine=2, global_search=False)
     found = synthesis.path(pts, **kw)  # type: ignore[arg-type]
     assert found and found[0].error > 0.05 * synthesis.target_size(pts)  # none draws it
@@ -119,7 +119,7 @@ def test_an_unfittable_open_target_stops_its_later_stages_at_the_budget(
     # Without the budget the same search evaluates far more.
     rows[0] = 0
     budgets.clear()
-    monkeypatch.setattr(synthesis, "LATER_EVALUATIONS", 10**12)
+    monkeypatch.setattr(synthesis.fitting, "LATER_EVALUATIONS", 10**12)
     synthesis.path(pts, **kw)  # type: ignore[arg-type]
     assert rows[0] > bounded + b.left
 

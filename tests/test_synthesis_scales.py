@@ -84,7 +84,7 @@ def test_accept_ends_the_search_once_a_candidate_is_good_enough(monkeypatch) -> 
     # size, so without accept= the long fits run (to 3e-5); with accept=1e-2 of the size they
     # must not, and the answer is within it. (The curve's equation, the search's first stage,
     # recovers this arc exactly: it is turned off here to test the stages accept= governs.)
-    monkeypatch.setattr(synthesis, "CURVE_EQUATION_POINTS", 10**9)
+    monkeypatch.setattr(synthesis.stages, "CURVE_EQUATION_POINTS", 10**9)
     arc = FOURBAR.sweep(np.linspace(1.0, 4.0, 40)).point
     size = target_size(arc)
     calls = []
@@ -94,7 +94,7 @@ def test_accept_ends_the_search_once_a_candidate_is_good_enough(monkeypatch) -> 
         calls.append(1)
         return real(*args, **kw)
 
-    monkeypatch.setattr(synthesis, "_polish", counted)
+    monkeypatch.setattr(synthesis.stages, "_polish", counted)
     quick = synthesis.path(arc, closed=False, top=1, accept=1e-2 * size)
     assert quick and quick[0].error <= 1e-2 * size and not calls
     full = synthesis.path(arc, closed=False, top=1)

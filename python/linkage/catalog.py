@@ -37,6 +37,7 @@ from linkage._core import LinkageError
 from linkage._files import read_json, sweep_stale, write_atomic
 from linkage._fourbar import FourBar
 from linkage._mechanism import Mechanism
+from linkage._shared.cache_dir import cache_dir
 from linkage._version import __version__
 from linkage.cam import leg_lift
 from linkage.geometry import straightness
@@ -588,48 +589,6 @@ def _with_errors(fine: list[Figures], coarse: list[Figures]) -> list[Figures]:
             )
         )
     return out
-
-
-def cache_dir() -> Path:
-    r"""Return the folder the catalogue table is cached in.
-
-    ``$LINKAGE_CACHE_DIR``, else the user's cache folder (``$XDG_CACHE_HOME/linkage``,
-    ``~/.cache/linkage``; ``~/Library/Caches/linkage`` on macOS, ``%LOCALAPPDATA%\linkage\Cache`` on
-    Windows).
-
-    Returns
-    -------
-    Path
-        The folder (not created here).
-
-    Examples
-    --------
-    >>> import os
-    >>> from linkage.catalog import cache_dir
-    >>> saved = os.environ.pop("LINKAGE_CACHE_DIR", None)
-    >>> os.environ["LINKAGE_CACHE_DIR"] = os.path.join("somewhere", "cache")
-    >>> cache_dir().parts
-    ('somewhere', 'cache')
-
-    Unset or empty, it is the user's cache folder:
-
-    >>> os.environ["LINKAGE_CACHE_DIR"] = ""
-    >>> "linkage" in cache_dir().parts, cache_dir().is_absolute()
-    (True, True)
-    >>> if saved is None:
-    ...     del os.environ["LINKAGE_CACHE_DIR"]
-    ... else:
-    ...     os.environ["LINKAGE_CACHE_DIR"] = saved
-    """
-    env = os.environ.get("LINKAGE_CACHE_DIR")
-    if env:
-        return Path(env)
-    if sys.platform == "win32" and os.environ.get("LOCALAPPDATA"):
-        return Path(os.environ["LOCALAPPDATA"]) / "linkage" / "Cache"
-    if sys.platform == "darwin":
-        return Path.home() / "Library" / "Caches" / "linkage"
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    return (Path(xdg) if xdg and os.path.isabs(xdg) else Path.home() / ".cache") / "linkage"
 
 
 CACHE_MAX = 1 << 20

@@ -31,6 +31,7 @@ from linkage._files import TooLarge, read_bytes
 from linkage._mechanism import JOINT_KINDS as _JOINT_KINDS
 from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
 from linkage.drive import LAWS
+from linkage.synthesis import limits as _synthesis_limits
 from linkage.walker import GAITS
 
 if sys.version_info >= (3, 11):  # pragma: no cover - depends on the interpreter
@@ -126,14 +127,14 @@ MEMORY_CAP = 2 * 1024**3
 :func:`linkage.build.estimate_memory`."""
 FILE_MAX = 1 << 20
 """Largest scene file, in bytes (1 MiB; a scene is a few hundred bytes)."""
-SYNTHESIS_TOP_MAX = 50
+SYNTHESIS_TOP_MAX = _synthesis_limits.SYNTHESIS_TOP_MAX
 """Most candidates a ``[synthesis]`` scene may ask for (``top``)."""
-SYNTHESIS_REFINE_MAX = 200
+SYNTHESIS_REFINE_MAX = _synthesis_limits.SYNTHESIS_REFINE_MAX
 """Most atlas matches a ``[synthesis]`` scene may ask to refine (``refine``; the search's time
 grows with it)."""
 SEED_MAX = 2**32 - 1
 """Largest random seed of the global search."""
-POINTS_MAX = 10_000
+POINTS_MAX = _synthesis_limits.POINTS_MAX
 """Most target points of a ``[synthesis]`` scene (each costs a distance per candidate)."""
 NAME = re.compile(r"[a-z0-9][a-z0-9_-]{0,63}")
 """A scene name: a slug, the report folder's name (no '.', '/', spaces or capitals)."""
