@@ -11,8 +11,10 @@ from pathlib import Path
 import pytest
 
 from linkage import OUTPUTS as SWEEP_OUTPUTS
-from linkage import _schema, build, runner, scene
+from linkage import _schema, scene
 from linkage.cli import main
+from linkage.report import stages as runner
+from linkage.scene import builders as build
 
 ROOT = Path(__file__).parent.parent
 BAD = Path(__file__).parent / "scenes" / "bad"

@@ -12,8 +12,32 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._choices import Assembly, Reach, Side, SweepMode
 from linkage._core import LinkageError
+from linkage._shared.choices import Assembly, Reach, Side, SweepMode
+
+__all__ = [
+    "C",
+    "Float1D",
+    "UnknownNameError",
+    "as_angles",
+    "as_choice",
+    "as_count",
+    "as_finite",
+    "as_flag",
+    "as_length",
+    "as_point",
+    "as_points",
+    "as_rate",
+    "as_real",
+    "as_real_array",
+    "assembly_named",
+    "check_memory",
+    "choices",
+    "memory_limit",
+    "one_of",
+    "said",
+    "side_of",
+]
 
 Float1D = NDArray[np.float64]
 C = TypeVar("C", bound=str)

@@ -5,6 +5,10 @@ from __future__ import annotations
 import sys
 import time
 
+__all__ = [
+    "Bar",
+]
+
 
 class Bar:
     """A one-line progress bar redrawn in place on a terminal; elsewhere a line every tenth.

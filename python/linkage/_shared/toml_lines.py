@@ -11,6 +11,15 @@ import re
 from collections.abc import Sequence
 from typing import Any
 
+__all__ = [
+    "MAX_NESTING",
+    "Locator",
+    "NotText",
+    "decode",
+    "label",
+    "nesting",
+]
+
 MAX_NESTING = 32
 """Deepest ``[``/``{`` nesting a scene may use (a scene needs 3; the TOML parser recurses)."""
 

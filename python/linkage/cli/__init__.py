@@ -31,7 +31,7 @@ from typing import Any
 
 from linkage import catalog, scene
 from linkage._core import LinkageError
-from linkage.report_folder import STOP_SIGNALS, recording
+from linkage._shared.report_folder import STOP_SIGNALS, recording
 
 __all__ = [
     "EXIT_ERROR",
@@ -208,7 +208,8 @@ def _run(args: argparse.Namespace, state: dict[str, Path]) -> int:
     # (not the interpreter's start and `import linkage`, which come before any command).
     t0 = time.perf_counter()
     # matplotlib (0.3 s) only for `run`, not for check/catalog/--help.
-    from linkage import report, runner  # noqa: PLC0415
+    from linkage import report  # noqa: PLC0415
+    from linkage.report import stages as runner  # noqa: PLC0415
 
     sc = _load(args.scene)
     if args.out is not None:

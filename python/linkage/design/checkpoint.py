@@ -43,11 +43,17 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._cache_files import npy_header
 from linkage._core import LinkageError
-from linkage._files import json_depth, read_bytes, sweep_stale, temp_name_pattern, write_atomic
-from linkage.legs import FIGURES, family
-from linkage.report_folder import STOP_SIGNALS
+from linkage._shared.cache_files import npy_header
+from linkage._shared.files import (
+    json_depth,
+    read_bytes,
+    sweep_stale,
+    temp_name_pattern,
+    write_atomic,
+)
+from linkage._shared.report_folder import STOP_SIGNALS
+from linkage.walking.legs import FIGURES, family
 
 if TYPE_CHECKING:  # pragma: no cover - imports for annotations only
     from linkage.design.search import Study

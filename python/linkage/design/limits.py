@@ -12,10 +12,10 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, NoReturn
 
-from linkage._arrays import _bytes, memory_limit
 from linkage._core import LinkageError
+from linkage._shared.arrays import _bytes, memory_limit
 from linkage.design.cluster import scheduler_address
-from linkage.legs import FIGURES, OBJECTIVES, family
+from linkage.walking.legs import FIGURES, OBJECTIVES, family
 
 if TYPE_CHECKING:  # pragma: no cover - imports for annotations only
     from linkage.design.search import Study

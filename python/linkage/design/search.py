@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 from pymoo.algorithms.moo.nsga2 import NSGA2  # type: ignore[import-untyped]
 from pymoo.core.problem import Problem  # type: ignore[import-untyped]
 
-from linkage._progress import Bar
+from linkage._shared.progress import Bar
 from linkage.design import checkpoint as _checkpoint
 from linkage.design.cluster import SchedulerError, connect, gather, scheduler_address
 from linkage.design.limits import (
@@ -31,7 +31,7 @@ from linkage.design.limits import (
     param_domain,
     search_memory,
 )
-from linkage.legs import FIGURES, OBJECTIVES, Settings, family
+from linkage.walking.legs import FIGURES, OBJECTIVES, Settings, family
 
 __all__ = [
     "INITIAL_POPULATION",

@@ -16,10 +16,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage._core import LinkageError
-from linkage._files import read_bytes
-from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, nesting
+from linkage._shared.files import read_bytes
+from linkage._shared.toml_lines import MAX_NESTING, Locator, NotText, decode, nesting
 from linkage.design.search import Constraints, Study, StudyError
-from linkage.legs import FAMILIES, OBJECTIVES, Settings
+from linkage.walking.legs import FAMILIES, OBJECTIVES, Settings
 
 __all__ = ["STUDY_LIMIT", "StudyFile", "load_study"]
 

@@ -22,9 +22,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_count, as_finite, as_length, check_memory
 from linkage._core import LinkageError
-from linkage.drive import Program, Segment
+from linkage._shared.arrays import as_count, as_finite, as_length, check_memory
+from linkage.drives.drive import Program, Segment
 
 __all__ = ["CamProfile", "DiscCam", "leg_lift", "leg_lift_cam"]
 

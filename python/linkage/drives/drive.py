@@ -25,7 +25,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import (
+from linkage._core import LinkageError
+from linkage._shared.arrays import (
     as_angles,
     as_count,
     as_finite,
@@ -33,11 +34,10 @@ from linkage._arrays import (
     as_length,
     check_memory,
 )
-from linkage._choices import Law
-from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage.geometry import foot_path
+from linkage._shared.choices import Law
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
+from linkage.motion.geometry import foot_path
 
 __all__ = [
     "LAWS",

@@ -16,10 +16,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_real_array, assembly_named, choices, one_of
-from linkage._choices import Assembly
 from linkage._core import LinkageError
-from linkage._mechanism import Mechanism
+from linkage._shared.arrays import (
+    as_angles,
+    as_count,
+    as_real_array,
+    assembly_named,
+    choices,
+    one_of,
+)
+from linkage._shared.choices import Assembly
+from linkage.kinematics.mechanism import Mechanism
 
 _ASSEMBLIES = choices("assembly")
 

@@ -11,14 +11,30 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
-from linkage._choices import Assembly, Output, SweepMode
 from linkage._core import LinkageError
-from linkage._mechanism import BASES, DEFAULT_OUTPUTS, Mechanism
-from linkage._sweep import SWEPT_BY, Sweep
+from linkage._shared.arrays import (
+    as_angles,
+    as_count,
+    as_finite,
+    as_length,
+    as_point,
+    choices,
+    one_of,
+)
+from linkage._shared.choices import Assembly, Output, SweepMode
+from linkage.kinematics.mechanism import BASES, DEFAULT_OUTPUTS, Mechanism
+from linkage.kinematics.sweep import SWEPT_BY, Sweep
 
 if TYPE_CHECKING:  # drive.py imports this module
-    from linkage.drive import Drive
+    from linkage.drives.drive import Drive
+
+__all__ = [
+    "JOINTS",
+    "LINKS",
+    "ArrayOrFloat",
+    "FourBar",
+    "named_joint",
+]
 
 JOINTS = ("O", "C", "A", "B", "P")
 LINKS = ("ground", "crank", "coupler", "rocker")

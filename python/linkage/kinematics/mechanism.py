@@ -14,7 +14,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from linkage import _core
-from linkage._arrays import (
+from linkage._core import LinkageError
+from linkage._shared.arrays import (
     UnknownNameError,
     as_angles,
     as_choice,
@@ -24,13 +25,12 @@ from linkage._arrays import (
     as_rate,
     choices,
 )
-from linkage._choices import Output, Reach, Side
-from linkage._core import LinkageError
-from linkage._mobility import Mobility
-from linkage._sweep import OUTPUTS, SWEPT_BY, Sweep
+from linkage._shared.choices import Output, Reach, Side
+from linkage.kinematics.mobility import Mobility
+from linkage.kinematics.sweep import OUTPUTS, SWEPT_BY, Sweep
 
 if TYPE_CHECKING:  # drive.py imports this module
-    from linkage.drive import Drive
+    from linkage.drives.drive import Drive
 
 DEFAULT_OUTPUTS: tuple[Output, ...] = ("point", "joints")
 
@@ -96,7 +96,7 @@ def check_pairs(
 
     Examples
     --------
-    >>> from linkage._mechanism import check_pairs
+    >>> from linkage.kinematics.mechanism import check_pairs
     >>> links = ("ground", "crank", "coupler", "rocker")
     >>> check_pairs([("ground", "coupler"), ("rocker", "crank")], links)
     ((('ground', 'coupler'), ('rocker', 'crank')), [(0, 2), (3, 1)])

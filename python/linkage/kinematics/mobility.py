@@ -9,6 +9,11 @@ import numpy as np
 from linkage import _core
 from linkage._core import LinkageError
 
+__all__ = [
+    "Mobility",
+    "mobility",
+]
+
 
 @dataclass(frozen=True)
 class Mobility:

@@ -11,9 +11,15 @@ from typing import Any, get_args
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._arrays import UnknownNameError, as_angles, as_real
-from linkage._choices import Output
 from linkage._core import RATE_MARGIN, LinkageError
+from linkage._shared.arrays import UnknownNameError, as_angles, as_real
+from linkage._shared.choices import Output
+
+__all__ = [
+    "OUTPUTS",
+    "SWEPT_BY",
+    "Sweep",
+]
 
 OUTPUTS: tuple[Output, ...] = get_args(Output)
 """Names accepted by ``outputs=``: the trace point, every joint, their rates, the instant centres

@@ -26,7 +26,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import (
+from linkage._core import LinkageError
+from linkage._shared.arrays import (
     UnknownNameError,
     as_angles,
     as_finite,
@@ -34,10 +35,9 @@ from linkage._arrays import (
     as_rate,
     as_real_array,
 )
-from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage.drive import Drive
+from linkage.drives.drive import Drive
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
 
 __all__ = ["Forces", "LinkMass", "PointLoad", "forces", "joint_forces"]
 

@@ -16,11 +16,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_finite, as_flag, as_points
 from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mobility import Mobility as Mobility  # re-exported: linkage.geometry.Mobility
-from linkage._mobility import mobility as mobility
+from linkage._shared.arrays import as_angles, as_count, as_finite, as_flag, as_points
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mobility import (
+    Mobility as Mobility,  # re-exported: linkage.geometry.Mobility
+)
+from linkage.kinematics.mobility import mobility as mobility
 
 __all__ = [
     "FootPath",

@@ -46,15 +46,15 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._arrays import choices, side_of
-from linkage._choices import Reach, Side, View
 from linkage._core import LinkageError, polyline_distance
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage._slider_crank import SliderCrank
-from linkage._version import __version__
+from linkage._shared.arrays import choices, side_of
+from linkage._shared.choices import Reach, Side, View
+from linkage._shared.version import __version__
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
-from linkage.figures import Result, Row, branch_word, length_unit, torque_unit
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
+from linkage.kinematics.slider_crank import SliderCrank
+from linkage.report.figures import Result, Row, branch_word, length_unit, torque_unit
 from linkage.synthesis import Candidate
 
 __all__ = [

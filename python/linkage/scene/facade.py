@@ -36,8 +36,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from linkage import _schema, build
-from linkage._schema import (
+from linkage.scene import builders as build
+from linkage.scene import schema as _schema
+from linkage.scene.schema import (
     ANGLE_MAX_DEG,
     CAM,
     CAM_SEGMENT,

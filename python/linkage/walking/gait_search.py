@@ -24,14 +24,14 @@ from typing import TYPE_CHECKING, get_args
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._arrays import as_choice, as_count, as_finite
-from linkage._choices import Objective
 from linkage._core import LinkageError
-from linkage.drive import crank_schedule, stance_profile
+from linkage._shared.arrays import as_choice, as_count, as_finite
+from linkage._shared.choices import Objective
+from linkage.drives.drive import crank_schedule, stance_profile
 
 if TYPE_CHECKING:
     # Not imported when running: linkage.walker imports this module.
-    from linkage.walker import Walker
+    from linkage.walking.walker import Walker
 
 __all__ = ["search_duty_factor", "search_phases"]
 

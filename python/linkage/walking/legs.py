@@ -29,7 +29,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._core import LinkageError
-from linkage._mechanism import Mechanism
+from linkage.kinematics.mechanism import Mechanism
 
 __all__ = [
     "CRANK",

@@ -25,8 +25,9 @@ from typing import Any, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from linkage import _core, gait_search
-from linkage._arrays import (
+from linkage import _core
+from linkage._core import LinkageError
+from linkage._shared.arrays import (
     as_angles,
     as_count,
     as_finite,
@@ -34,16 +35,16 @@ from linkage._arrays import (
     as_point,
     check_memory,
 )
-from linkage._choices import Objective, Plane
-from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage._slider_crank import SliderCrank
-from linkage.drive import Drive, Program
+from linkage._shared.choices import Objective, Plane
+from linkage.drives.drive import Drive, Program
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
+from linkage.kinematics.slider_crank import SliderCrank
+from linkage.walking import gait_search
 
 # The searches moved to linkage.gait_search; their old names here keep working.
-from linkage.gait_search import search_duty_factor as search_duty_factor
-from linkage.gait_search import search_phases as search_phases
+from linkage.walking.gait_search import search_duty_factor as search_duty_factor
+from linkage.walking.gait_search import search_phases as search_phases
 
 __all__ = [
     "GAITS",

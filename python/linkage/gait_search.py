@@ -1,0 +1,7 @@
+"""Re-exports :mod:`linkage.walking.gait_search` at its 0.1 path (older imports, pickles)."""
+
+from linkage.walking.gait_search import *  # noqa: F403
+from linkage.walking.gait_search import __all__ as __all__
+from linkage.walking.gait_search import (  # private names older code and the tests use
+    _Walkers as _Walkers,
+)
