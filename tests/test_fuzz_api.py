@@ -38,7 +38,8 @@ from linkage.drive import (
     motion_law,
 )
 from linkage.forces import LinkMass, PointLoad, joint_forces
-from linkage.walker import Leg, Walker, gait_phases, search_duty_factor
+from linkage.gait_search import search_duty_factor
+from linkage.walker import Leg, Walker, gait_phases
 
 EXAMPLES = int(os.environ.get("LINKAGE_FUZZ_EXAMPLES", "100"))
 FAST = settings(

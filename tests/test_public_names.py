@@ -62,5 +62,5 @@ def test_all_names_every_public_function_and_class(name):
 def test_a_star_import_gives_the_public_names_only():
     names: dict[str, object] = {}
     exec("from linkage.walker import *", names)
-    assert {"Walker", "Leg", "gait_phases", "GAITS", "search_phases"} <= set(names)
+    assert {"Walker", "Leg", "gait_phases", "GAITS"} <= set(names)
     assert "Array" not in names and "np" not in names

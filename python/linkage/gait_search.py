@@ -2,6 +2,3 @@
 
 from linkage.walking.gait_search import *  # noqa: F403
 from linkage.walking.gait_search import __all__ as __all__
-from linkage.walking.gait_search import (  # private names older code and the tests use
-    _Walkers as _Walkers,
-)

@@ -383,3 +383,10 @@ def _check_finite(arr: Float1D, name: str) -> None:
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         raise LinkageError(f"{name} must be finite: {name}[{k}] is {float(arr[k])}")
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"UnknownNameError": UnknownNameError}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._arrays"

@@ -38,7 +38,7 @@ import zipfile
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -53,10 +53,8 @@ from linkage._shared.files import (
     write_atomic,
 )
 from linkage._shared.report_folder import STOP_SIGNALS
+from linkage.design.limits import Study
 from linkage.walking.legs import FIGURES, family
-
-if TYPE_CHECKING:  # pragma: no cover - imports for annotations only
-    from linkage.design.search import Study
 
 __all__ = ["MAGIC", "VERSION", "Saved", "load", "restore", "save", "size_limit", "sweep"]
 

@@ -8,10 +8,10 @@ import threading
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._core import LinkageError
@@ -29,8 +29,26 @@ from linkage._shared.choices import Output, Reach, Side
 from linkage.kinematics.mobility import Mobility
 from linkage.kinematics.sweep import OUTPUTS, SWEPT_BY, Sweep
 
-if TYPE_CHECKING:  # drive.py imports this module
-    from linkage.drives.drive import Drive
+
+# The drives (linkage.drive) are one layer up; what the kinematics takes of one is this protocol.
+class Drive(Protocol):
+    """Anything that gives crank angle, speed and acceleration against time."""
+
+    def angles(
+        self, t: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """Return ``(θ, ω, α)``, crank angle, speed and acceleration, at times ``t``.
+
+        Examples
+        --------
+        Every drive of this module is one, e.g. :class:`ConstantSpeed`:
+
+        >>> from linkage.drive import ConstantSpeed
+        >>> ConstantSpeed(omega=2.0, theta0=1.0).angles([0.0, 0.5])
+        (array([1., 2.]), array([2., 2.]), array([0., 0.]))
+        """
+        ...
+
 
 DEFAULT_OUTPUTS: tuple[Output, ...] = ("point", "joints")
 
@@ -1028,3 +1046,12 @@ JOINT_KINDS: dict[str, JointKind] = {
 SWEPT_BY[Mechanism] = "sweep"
 
 __all__ = ["JOINT_KINDS", "JointKind", "Mechanism", "check_outputs", "check_pairs"]
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"Mechanism": Mechanism, "JointKind": JointKind}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._mechanism"
+__test__["Drive"] = Drive  # the protocol of linkage.drive, which re-exports it
+Drive.__module__ = "linkage.drive"

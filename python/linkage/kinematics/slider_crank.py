@@ -367,3 +367,10 @@ class SliderCrank:
 # A pickled mechanism may be built from a SliderCrank's; a pickled sweep may be its circuit.
 BASES.append(SliderCrank)
 SWEPT_BY[SliderCrank] = "circuit"
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"SliderCrank": SliderCrank}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._slider_crank"

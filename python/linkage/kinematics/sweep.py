@@ -545,3 +545,10 @@ def _rebuild(linkage: Any, method: Any, arguments: Any, time: Any) -> Sweep:
             raise LinkageError("not a pickled Sweep: its times do not match its samples")
         s.time = t.reshape(()) if scalar else t
     return s
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"Sweep": Sweep}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._sweep"

@@ -35,9 +35,8 @@ from linkage._shared.arrays import (
     as_rate,
     as_real_array,
 )
-from linkage.drives.drive import Drive
 from linkage.kinematics.fourbar import FourBar
-from linkage.kinematics.mechanism import Mechanism
+from linkage.kinematics.mechanism import Drive, Mechanism
 
 __all__ = ["Forces", "LinkMass", "PointLoad", "forces", "joint_forces"]
 
@@ -398,3 +397,10 @@ def forces(
         gravity=gravity,
         loads=loads,
     )
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"LinkMass": LinkMass, "PointLoad": PointLoad, "Forces": Forces}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.forces"

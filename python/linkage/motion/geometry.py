@@ -547,3 +547,14 @@ def ball_point(fb: FourBar, theta: float) -> Inflection:
         stacklevel=2,
     )
     return inflection_circle(fb, theta)
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {
+    "StraightPart": StraightPart,
+    "FootPath": FootPath,
+    "Inflection": Inflection,
+}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.geometry"

@@ -482,3 +482,10 @@ def pair(
         value=tuple(float(v) for v in pair),
         error=err,
     )
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"Row": Row, "SynthesisRun": SynthesisRun, "Result": Result}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.figures"

@@ -5,6 +5,8 @@ constants and types), each imported on first use: the schema (:mod:`linkage.scen
 the builders (:mod:`linkage.scene.builders`) can be imported without the build step.
 """
 
+# ruff: noqa: F405 (__all__ lists the facade's names, star-imported for type checkers only)
+
 from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
@@ -73,5 +75,5 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    """The module's names, the facade's included."""
+    """Return the module's names, the facade's included."""
     return sorted(set(globals()) | set(__all__))

@@ -1175,3 +1175,10 @@ def _show(value: Any) -> str:
 def _did_you_mean(word: str, choices: Any) -> str:
     close = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1, cutoff=0.6)
     return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"SceneError": SceneError, "Scene": Scene}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._schema"
