@@ -1055,3 +1055,4 @@ for _cls in __test__.values():
     _cls.__module__ = "linkage._mechanism"
 __test__["Drive"] = Drive  # the protocol of linkage.drive, which re-exports it
 Drive.__module__ = "linkage.drive"
+_rebuild.__module__ = "linkage._mechanism"  # what its pickles name, as 0.1's did

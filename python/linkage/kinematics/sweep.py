@@ -552,3 +552,4 @@ def _rebuild(linkage: Any, method: Any, arguments: Any, time: Any) -> Sweep:
 __test__: dict[str, type] = {"Sweep": Sweep}
 for _cls in __test__.values():
     _cls.__module__ = "linkage._sweep"
+_rebuild.__module__ = "linkage._sweep"  # what its pickles name, as 0.1's did

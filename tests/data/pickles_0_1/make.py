@@ -1,6 +1,6 @@
 """Write the pickles of linkage 0.1 objects that tests/test_api_0_1.py loads (run with 0.1).
 
-    PYTHONPATH=<0.1 checkout>/python python tests/data/pickles_0_1/make.py
+PYTHONPATH=<0.1 checkout>/python python tests/data/pickles_0_1/make.py
 """
 
 import math
