@@ -30,7 +30,6 @@ from linkage.kinematics.mechanism import Mechanism
 from linkage.kinematics.slider_crank import SliderCrank
 from linkage.kinematics.sweep import OUTPUTS, Sweep
 from linkage.motion.geometry import (
-    ball_point,  # deprecated (0.2.0): inflection_circle
     circumcentre,
     curvature_centre,
     foot_path,
@@ -57,7 +56,6 @@ __all__ = [
     "Sweep",
     "Walker",
     "__version__",
-    "ball_point",
     "batch",
     "cam",
     "catalog",

@@ -17,7 +17,6 @@ True
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -38,7 +37,7 @@ from linkage._shared.arrays import (
 from linkage.kinematics.fourbar import FourBar
 from linkage.kinematics.mechanism import Drive, Mechanism
 
-__all__ = ["Forces", "LinkMass", "PointLoad", "forces", "joint_forces"]
+__all__ = ["Forces", "LinkMass", "PointLoad", "joint_forces"]
 
 Array = NDArray[np.float64]
 
@@ -326,76 +325,6 @@ def joint_forces(
         reactions=raw["reactions"],
         reaction_links=[(names[j], links[f], links[t]) for j, f, t in raw["reaction_links"]],
         time=times,
-    )
-
-
-def forces(
-    linkage_obj: FourBar | Mechanism,
-    theta: ArrayLike | None = None,
-    omega: ArrayLike | None = None,
-    alpha: ArrayLike = 0.0,
-    *,
-    time: ArrayLike | None = None,
-    drive: Drive | None = None,
-    masses: Mapping[str, LinkMass | tuple[float, tuple[float, float], float]],
-    gravity: Sequence[float] = (0.0, -9.81),
-    loads: Sequence[PointLoad] = (),
-) -> Forces:
-    """Joint reactions and driver torque: the deprecated name of :func:`joint_forces`.
-
-    .. deprecated:: 0.2.0
-        ``linkage.forces.forces`` shadows its module's name: use :func:`joint_forces` (same
-        arguments, same result). ``forces.forces`` will be removed in the release after 0.2.
-
-    Parameters
-    ----------
-    linkage_obj, theta, omega, alpha, time, drive, masses, gravity, loads
-        As :func:`joint_forces`.
-
-    Returns
-    -------
-    Forces
-        As :func:`joint_forces`.
-
-    Raises
-    ------
-    LinkageError, TypeError
-        As :func:`joint_forces`.
-
-    Warns
-    -----
-    DeprecationWarning
-        At every call (shown once per call site by Python's default filter).
-
-    Examples
-    --------
-    >>> import warnings, numpy as np, linkage
-    >>> from linkage.forces import LinkMass, joint_forces
-    >>> fb = linkage.FourBar(ground=0.02, crank=0.01, coupler=0.025, rocker=0.025)
-    >>> masses = {k: LinkMass(0.01, (0.005, 0), 1e-7) for k in ("crank", "coupler", "rocker")}
-    >>> with warnings.catch_warnings(record=True) as caught:
-    ...     warnings.simplefilter("always")
-    ...     old = linkage.forces.forces(fb, [0.0, 1.0], omega=1.0, masses=masses)
-    >>> new = joint_forces(fb, [0.0, 1.0], omega=1.0, masses=masses)
-    >>> caught[0].category.__name__, bool(np.array_equal(old.torque, new.torque))
-    ('DeprecationWarning', True)
-    """
-    warnings.warn(
-        "linkage.forces.forces is deprecated: use linkage.forces.joint_forces (same arguments "
-        "and result)",
-        DeprecationWarning,
-        stacklevel=2,
-    )
-    return joint_forces(
-        linkage_obj,
-        theta,
-        omega,
-        alpha,
-        time=time,
-        drive=drive,
-        masses=masses,
-        gravity=gravity,
-        loads=loads,
     )
 
 

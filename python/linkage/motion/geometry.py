@@ -8,7 +8,6 @@ gives NaN, a wrong shape raises.
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -29,7 +28,6 @@ __all__ = [
     "Inflection",
     "Mobility",
     "StraightPart",
-    "ball_point",
     "circumcentre",
     "curvature_centre",
     "foot_path",
@@ -498,55 +496,6 @@ def inflection_circle(fb: FourBar, theta: float) -> Inflection:
             f"(radius {radius!r}): the coupler is nearly translating"
         )
     return Inflection(pole, jpole, centre, float(radius), ball, local)
-
-
-def ball_point(fb: FourBar, theta: float) -> Inflection:
-    """Inflection circle and Ball point: the deprecated name of :func:`inflection_circle`.
-
-    .. deprecated:: 0.2.0
-        ``ball_point`` returns the whole inflection circle, not only the Ball point: use
-        :func:`inflection_circle` (same arguments, same result). ``ball_point`` will be removed
-        in the release after 0.2.
-
-    Parameters
-    ----------
-    fb : FourBar
-        The linkage; its coupler is the moving plane.
-    theta : float
-        One crank angle (radians).
-
-    Returns
-    -------
-    Inflection
-        As :func:`inflection_circle`.
-
-    Raises
-    ------
-    AssemblyError, LinkageError, TypeError
-        As :func:`inflection_circle`.
-
-    Warns
-    -----
-    DeprecationWarning
-        At every call (shown once per call site by Python's default filter).
-
-    Examples
-    --------
-    >>> import warnings, linkage
-    >>> fb = linkage.catalog.hoecken()
-    >>> with warnings.catch_warnings(record=True) as caught:
-    ...     warnings.simplefilter("always")
-    ...     old = linkage.ball_point(fb, 1.0)
-    >>> caught[0].category.__name__, old == linkage.inflection_circle(fb, 1.0)
-    ('DeprecationWarning', True)
-    """
-    warnings.warn(
-        "linkage.ball_point is deprecated: use linkage.inflection_circle (same arguments and "
-        "result)",
-        DeprecationWarning,
-        stacklevel=2,
-    )
-    return inflection_circle(fb, theta)
 
 
 # These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and

@@ -37,7 +37,6 @@ __all__ = [
     "MEMORY_CAP",
     "NAME",
     "NUMBERS",
-    "OUTPUTS",
     "PATH_KINDS",
     "POINTS_MAX",
     "REPORT_OUTPUTS",

@@ -56,7 +56,6 @@ __all__ = [
     "MEMORY_CAP",
     "NAME",
     "NUMBERS",
-    "OUTPUTS",
     "PATH_KINDS",
     "POINTS_MAX",
     "REPORT_OUTPUTS",
@@ -109,10 +108,6 @@ REPORT_OUTPUTS = (
 arrays a sweep computes). ``cad`` writes the mechanism at its first pose and every traced path
 as ``mechanism.dxf`` and ``mechanism.svg`` (of a ``[synthesis]`` scene: the best candidate);
 ``synthesis`` is the search of a ``[synthesis]`` scene and its report."""
-
-# Deprecated alias (0.2.0) of REPORT_OUTPUTS, which does not clash with linkage.OUTPUTS (a
-# sweep's outputs); a module attribute cannot warn cheaply. To be removed after 0.2.
-OUTPUTS = REPORT_OUTPUTS
 
 # `linkage run` with no scene: thesis 1's quadruped under its drive (also
 # examples/quadruped_hoecken.toml, kept equal by a test).
