@@ -281,7 +281,28 @@ def joint_forces(
             (float(lm.mass), float(lm.centre[0]), float(lm.centre[1]), float(lm.inertia))
         )
     g = as_point(gravity, "gravity")
-    core_loads = []
+    core_loads = _core_loads(loads, mech, n)
+    raw = _core.forces(
+        mech._core, th, np.ascontiguousarray(w), np.ascontiguousarray(a), inertia, g, core_loads
+    )
+    names = mech.joint_names
+    return Forces(
+        theta=th,
+        torque=raw["torque"],
+        power_torque=raw["power_torque"],
+        valid=raw["valid"],
+        reactions=raw["reactions"],
+        reaction_links=[(names[j], links[f], links[t]) for j, f, t in raw["reaction_links"]],
+        time=times,
+    )
+
+
+def _core_loads(
+    loads: Sequence[PointLoad], mech: Mechanism, n: int
+) -> list[tuple[int, int, Array, Array]]:
+    """Return the point loads checked, as the core takes them (link, joint, force, torque)."""
+    links = mech.links
+    core_loads: list[tuple[int, int, Array, Array]] = []
     for load in loads:
         if not isinstance(load, PointLoad):
             raise TypeError(f"loads must be PointLoad, got {type(load).__name__}")
@@ -313,19 +334,7 @@ def joint_forces(
                 np.ascontiguousarray(tq),
             )
         )
-    raw = _core.forces(
-        mech._core, th, np.ascontiguousarray(w), np.ascontiguousarray(a), inertia, g, core_loads
-    )
-    names = mech.joint_names
-    return Forces(
-        theta=th,
-        torque=raw["torque"],
-        power_torque=raw["power_torque"],
-        valid=raw["valid"],
-        reactions=raw["reactions"],
-        reaction_links=[(names[j], links[f], links[t]) for j, f, t in raw["reaction_links"]],
-        time=times,
-    )
+    return core_loads
 
 
 # These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
