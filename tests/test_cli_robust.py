@@ -20,9 +20,9 @@ from pathlib import Path
 
 import pytest
 
-from linkage import export, report_folder
+from linkage._shared import report_folder
 from linkage.cli import main
-from linkage.report import MARKER
+from linkage.report import MARKER, export
 
 SCENE = (
     'name = "fast"\noutputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'

@@ -21,10 +21,12 @@ from pathlib import Path
 
 import pytest
 
-from linkage import export, report, report_folder, runner
+from linkage import report
 from linkage._core import LinkageError
+from linkage._shared import report_folder
 from linkage.cli import main
-from linkage.report import MARKER
+from linkage.report import MARKER, export
+from linkage.report import stages as runner
 
 SCENE = (
     'name = "{name}"\noutputs = {outputs}\n[mechanism]\ncatalog = "hoecken"\n'

@@ -105,7 +105,7 @@ def test_batched_figures_match_one_leg_and_any_thread_count():
 
 def test_duty_factor_search_finds_the_stance_once_and_gives_the_same_answer():
     from linkage.drive import crank_schedule
-    from linkage.walker import search_duty_factor
+    from linkage.gait_search import search_duty_factor
 
     q = linkage.catalog.quadruped_hoecken()
     betas = (0.55, 0.6)

@@ -153,12 +153,7 @@ def test_multi_loop_forces_power_method_agrees():
     np.testing.assert_allclose(f.torque, f.power_torque, rtol=1e-9, atol=1e-9)
 
 
-def test_forces_forces_is_the_deprecated_name_of_joint_forces():
-    theta = np.linspace(0, 2 * math.pi, 7)
-    with pytest.warns(DeprecationWarning, match="joint_forces") as record:
-        old = linkage.forces.forces(leg(), theta, omega=1.0, masses=MASSES)
-    assert record[0].filename == __file__  # the caller's line, not the alias's
-    new = joint_forces(leg(), theta, omega=1.0, masses=MASSES)
-    np.testing.assert_array_equal(old.torque, new.torque)
-    np.testing.assert_array_equal(old.reactions, new.reactions)
-    assert old.reaction_links == new.reaction_links
+def test_forces_forces_the_deprecated_name_of_joint_forces_is_removed():
+    # linkage.forces.forces was a deprecated alias (it shadowed its module's name): removed.
+    assert not hasattr(linkage.forces, "forces")
+    assert "forces" not in linkage.forces.__all__

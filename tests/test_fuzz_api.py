@@ -38,7 +38,8 @@ from linkage.drive import (
     motion_law,
 )
 from linkage.forces import LinkMass, PointLoad, joint_forces
-from linkage.walker import Leg, Walker, gait_phases, search_duty_factor
+from linkage.gait_search import search_duty_factor
+from linkage.walker import Leg, Walker, gait_phases
 
 EXAMPLES = int(os.environ.get("LINKAGE_FUZZ_EXAMPLES", "100"))
 FAST = settings(
@@ -411,10 +412,6 @@ def test_inflection_circle(fb, theta):
     inf = call(lambda: geometry.inflection_circle(fb, theta))
     if inf is not None:
         assert math.isfinite(inf.radius) and inf.radius >= 0
-    # The deprecated name: a DeprecationWarning, then the same result or the same error.
-    with pytest.warns(DeprecationWarning, match="inflection_circle"):
-        old = call(lambda: linkage.ball_point(fb, theta))
-    assert repr(old) == repr(inf)
 
 
 @FAST
@@ -639,17 +636,8 @@ def test_forces(
     f = call(
         lambda: joint_forces(HOECKEN, theta, omega, alpha, masses=ms, gravity=gravity, loads=loads)
     )
-    # The deprecated name: a DeprecationWarning, then the same result or the same error.
-    with pytest.warns(DeprecationWarning, match="joint_forces"):
-        old = call(
-            lambda: linkage.forces.forces(
-                HOECKEN, theta, omega, alpha, masses=ms, gravity=gravity, loads=loads
-            )
-        )
-    assert (old is None) == (f is None)
     if f is None:
         return
-    np.testing.assert_array_equal(old.torque, f.torque)
     assert f.torque.shape == f.valid.shape
     assert np.isnan(f.torque[~f.valid]).all() and np.isfinite(f.torque[f.valid]).all()
     m = f.mean_abs_torque
@@ -885,7 +873,7 @@ def test_every_public_name_is_exercised():
     covered = {
         "OUTPUTS", "AssemblyError", "FourBar", "batch", "Leg", "LinkageError", "Mechanism", "Sweep",
         "SliderCrank",
-        "Walker", "ball_point", "cam", "catalog", "circumcentre", "curvature_centre", "drive",
+        "Walker", "cam", "catalog", "circumcentre", "curvature_centre", "drive",
         "foot_path", "gait_phases", "gait_search", "forces", "geometry", "inflection_circle",
         "mobility", "search_duty_factor",
         "straightness", "synthesis", "three_point_centres", "walker", "__version__",

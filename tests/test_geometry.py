@@ -338,15 +338,10 @@ def test_straightness_errors_and_none():
         g.circumcentre(np.zeros((3, 2)), np.zeros((4, 2)), np.zeros((3, 2)))
 
 
-def test_ball_point_is_the_deprecated_name_of_inflection_circle(hoecken):
-    with pytest.warns(DeprecationWarning, match="inflection_circle") as record:
-        old = linkage.ball_point(hoecken, 1.0)
-    assert record[0].filename == __file__  # the caller's line, not the alias's
-    # Both from the package namespace: pytest's importlib mode may import a second copy of
-    # linkage.geometry for its doctests, whose Inflection class is another class.
-    assert old == linkage.inflection_circle(hoecken, 1.0)
-    with pytest.warns(DeprecationWarning), pytest.raises(linkage.AssemblyError):
-        g.ball_point(linkage.catalog.evans_b(), math.pi)
+def test_ball_point_the_deprecated_name_of_inflection_circle_is_removed(hoecken):
+    # linkage.ball_point / linkage.geometry.ball_point were deprecated aliases: removed.
+    assert not hasattr(linkage, "ball_point") and not hasattr(g, "ball_point")
+    assert linkage.inflection_circle(hoecken, 1.0) == g.inflection_circle(hoecken, 1.0)
 
 
 def test_inflection_circle_errors():

@@ -345,7 +345,7 @@ def test_function_refuses_counts_beyond_memory_before_any_work(monkeypatch):
         raise AssertionError(f"f({x}) called before the memory check")
 
     # A 10 MB budget: 10**6 precision points need ~80 MB (f is never called).
-    monkeypatch.setattr("linkage._arrays.memory_limit", lambda: 10**7)
+    monkeypatch.setattr("linkage._shared.arrays.memory_limit", lambda: 10**7)
     with pytest.raises(MemoryError, match=r"1000000 precision points .*needs"):
         function(f, (1.0, 2.0), (0.5, 1.5), (1.0, 2.0), y_range=(0.0, 1.0), points=10**6)
     with pytest.raises(MemoryError, match="1000000 samples needs"):

@@ -11,8 +11,10 @@ from pathlib import Path
 import pytest
 
 from linkage import OUTPUTS as SWEEP_OUTPUTS
-from linkage import _schema, build, runner, scene
+from linkage import _schema, scene
 from linkage.cli import main
+from linkage.report import stages as runner
+from linkage.scene import builders as build
 
 ROOT = Path(__file__).parent.parent
 BAD = Path(__file__).parent / "scenes" / "bad"
@@ -214,7 +216,7 @@ def test_a_walker_with_feet_off_the_ground_reports_no_support_not_minus_infinity
     assert all("inf" not in cell for row in res.figures for cell in row)
 
 
-def test_scene_outputs_is_the_deprecated_name_of_report_outputs():
-    assert scene.OUTPUTS is scene.REPORT_OUTPUTS
+def test_scene_outputs_the_deprecated_name_of_report_outputs_is_removed():
+    assert not hasattr(scene, "OUTPUTS") and "OUTPUTS" not in scene.__all__
     # Not the outputs of a sweep (linkage.OUTPUTS), whose name it shared.
     assert "cad" in scene.REPORT_OUTPUTS and "cad" not in SWEEP_OUTPUTS

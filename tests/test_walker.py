@@ -11,7 +11,8 @@ import pytest
 import linkage
 from linkage import _core
 from linkage.drive import crank_schedule
-from linkage.walker import Leg, Walker, gait_phases, search_duty_factor
+from linkage.gait_search import search_duty_factor
+from linkage.walker import Leg, Walker, gait_phases
 
 THETA = np.linspace(0, 2 * np.pi, 1441)
 
@@ -196,11 +197,13 @@ def test_stance_and_figures_come_from_the_core_leg_figures():
         Walker(q.legs, ground_tol=-1.0).simulate(THETA)
 
 
-def test_the_searches_live_in_gait_search_and_keep_their_old_names():
+def test_the_searches_live_in_gait_search_and_their_old_names_are_gone():
     from linkage import gait_search
 
     assert search_duty_factor is gait_search.search_duty_factor is linkage.search_duty_factor
-    assert linkage.walker.search_phases is gait_search.search_phases
+    # linkage.walker.search_phases / search_duty_factor were deprecated aliases: removed.
+    assert not hasattr(linkage.walker, "search_phases")
+    assert not hasattr(linkage.walker, "search_duty_factor")
     q = linkage.catalog.quadruped_hoecken()
     by_method = q.search_phases("slip", step=math.pi / 2, samples=64)
     by_function = gait_search.search_phases(q, "slip", step=math.pi / 2, samples=64)

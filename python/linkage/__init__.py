@@ -22,16 +22,14 @@ from linkage import (
     synthesis,  # path synthesis (scipy imported on first use)
     walker,
 )
-from linkage._choices import Assembly, Output, Reach, Side
 from linkage._core import AssemblyError, LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage._slider_crank import SliderCrank
-from linkage._sweep import OUTPUTS, Sweep
-from linkage._version import __version__
-from linkage.gait_search import search_duty_factor
-from linkage.geometry import (
-    ball_point,  # deprecated (0.2.0): inflection_circle
+from linkage._shared.choices import Assembly, Output, Reach, Side
+from linkage._shared.version import __version__
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
+from linkage.kinematics.slider_crank import SliderCrank
+from linkage.kinematics.sweep import OUTPUTS, Sweep
+from linkage.motion.geometry import (
     circumcentre,
     curvature_centre,
     foot_path,
@@ -40,7 +38,8 @@ from linkage.geometry import (
     straightness,
     three_point_centres,
 )
-from linkage.walker import Leg, Walker, gait_phases
+from linkage.walking.gait_search import search_duty_factor
+from linkage.walking.walker import Leg, Walker, gait_phases
 
 __all__ = [
     "OUTPUTS",
@@ -57,7 +56,6 @@ __all__ = [
     "Sweep",
     "Walker",
     "__version__",
-    "ball_point",
     "batch",
     "cam",
     "catalog",

@@ -69,14 +69,14 @@ from typing import Any, Literal, get_args
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._arrays import said
-from linkage._choices import View
 from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage._sweep import Sweep
-from linkage.drive import Drive
-from linkage.walker import Simulation, Walker
+from linkage._shared.arrays import said
+from linkage._shared.choices import View
+from linkage.drives.drive import Drive
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
+from linkage.kinematics.sweep import Sweep
+from linkage.walking.walker import Simulation, Walker
 
 Array = NDArray[np.float64]
 Bounds = tuple[float, float, float, float]

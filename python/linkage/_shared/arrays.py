@@ -12,8 +12,32 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._choices import Assembly, Reach, Side, SweepMode
 from linkage._core import LinkageError
+from linkage._shared.choices import Assembly, Reach, Side, SweepMode
+
+__all__ = [
+    "C",
+    "Float1D",
+    "UnknownNameError",
+    "as_angles",
+    "as_choice",
+    "as_count",
+    "as_finite",
+    "as_flag",
+    "as_length",
+    "as_point",
+    "as_points",
+    "as_rate",
+    "as_real",
+    "as_real_array",
+    "assembly_named",
+    "check_memory",
+    "choices",
+    "memory_limit",
+    "one_of",
+    "said",
+    "side_of",
+]
 
 Float1D = NDArray[np.float64]
 C = TypeVar("C", bound=str)
@@ -344,3 +368,10 @@ def _check_finite(arr: Float1D, name: str) -> None:
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         raise LinkageError(f"{name} must be finite: {name}[{k}] is {float(arr[k])}")
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"UnknownNameError": UnknownNameError}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._arrays"

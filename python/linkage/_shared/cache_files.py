@@ -37,7 +37,7 @@ def core_identity() -> str:
 
     Examples
     --------
-    >>> from linkage._cache_files import core_identity
+    >>> from linkage._shared.cache_files import core_identity
     >>> len(core_identity()) in (0, 64)
     True
     """
@@ -89,7 +89,7 @@ def read_npy(path: str | os.PathLike[str], dtype: type, what: str) -> np.ndarray
     --------
     >>> import os, tempfile
     >>> import numpy as np
-    >>> from linkage._cache_files import read_npy
+    >>> from linkage._shared.cache_files import read_npy
     >>> tmp = tempfile.mkdtemp()
     >>> p = os.path.join(tmp, "a.npy")
     >>> np.save(p, np.ones((2, 3), dtype=np.float32))

@@ -13,6 +13,22 @@ from __future__ import annotations
 
 from typing import Literal
 
+__all__ = [
+    "Assembly",
+    "AtlasKind",
+    "Law",
+    "LinkageKind",
+    "Objective",
+    "Output",
+    "PathKind",
+    "Plane",
+    "Reach",
+    "Side",
+    "Spacing",
+    "SweepMode",
+    "View",
+]
+
 Assembly = Literal["open", "crossed"]
 """A four-bar's assembly: ``B`` left ("open") or right ("crossed") of the diagonal ``A → C``."""
 

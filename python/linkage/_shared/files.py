@@ -78,7 +78,7 @@ def read_bytes(path: PathLike, limit: int, what: str = "file", pipe: bool = Fals
     Examples
     --------
     >>> import tempfile, os
-    >>> from linkage._files import read_bytes
+    >>> from linkage._shared.files import read_bytes
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     p = os.path.join(tmp, "a.json")
     ...     _ = open(p, "w").write("[1, 2]")
@@ -152,7 +152,7 @@ def json_depth(text: str) -> int:
 
     Examples
     --------
-    >>> from linkage._files import json_depth
+    >>> from linkage._shared.files import json_depth
     >>> json_depth('{"a": [1, {"b": "[[["}]}')
     3
     """
@@ -176,7 +176,7 @@ def read_json(path: PathLike, limit: int, what: str = "file") -> Any:
     Examples
     --------
     >>> import tempfile, os
-    >>> from linkage._files import read_json
+    >>> from linkage._shared.files import read_json
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     p = os.path.join(tmp, "deep.json")
     ...     _ = open(p, "w").write("[" * 100_000 + "]" * 100_000)
@@ -217,7 +217,7 @@ def write_atomic(path: PathLike, data: bytes | str, mode: int = 0o644) -> None:
     Examples
     --------
     >>> import tempfile, os
-    >>> from linkage._files import write_atomic
+    >>> from linkage._shared.files import write_atomic
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     p = os.path.join(tmp, "cache.json")
     ...     write_atomic(p, "[1]")
@@ -300,3 +300,10 @@ def sweep_stale(folder: PathLike, pattern: re.Pattern[str]) -> list[str]:
             continue
         removed.append(name)
     return removed
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"TooLarge": TooLarge}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._files"

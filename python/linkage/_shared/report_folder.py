@@ -51,8 +51,8 @@ from pathlib import Path
 from typing import Any
 
 from linkage._core import LinkageError
-from linkage._files import pid_alive
-from linkage._version import __version__
+from linkage._shared.files import pid_alive
+from linkage._shared.version import __version__
 
 __all__ = [
     "DEFAULT_BASE",

@@ -11,6 +11,12 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+__all__ = [
+    "mean",
+    "pow2",
+    "rms_size",
+]
+
 
 def pow2(m: float) -> float:
     """Return the power of two just above the positive finite ``m`` (an exact divisor)."""

@@ -31,7 +31,7 @@ from typing import Any
 
 from linkage import catalog, scene
 from linkage._core import LinkageError
-from linkage.report_folder import STOP_SIGNALS, recording
+from linkage._shared.report_folder import STOP_SIGNALS, recording
 
 __all__ = [
     "EXIT_ERROR",
@@ -208,7 +208,8 @@ def _run(args: argparse.Namespace, state: dict[str, Path]) -> int:
     # (not the interpreter's start and `import linkage`, which come before any command).
     t0 = time.perf_counter()
     # matplotlib (0.3 s) only for `run`, not for check/catalog/--help.
-    from linkage import report, runner  # noqa: PLC0415
+    from linkage import report  # noqa: PLC0415
+    from linkage.report import stages as runner  # noqa: PLC0415
 
     sc = _load(args.scene)
     if args.out is not None:
@@ -267,37 +268,8 @@ def _design(args: argparse.Namespace, state: dict[str, Path]) -> int:
     return design.main_design(args.study, args.out, args.force, args.checkpoint, args.quiet)
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    r"""Entry point of the ``linkage`` console script.
-
-    ``argv`` are the arguments (default: the command line's); returns the exit status (see the
-    module's docstring). Errors are one line on stderr, never a traceback.
-
-    Examples
-    --------
-    >>> import os, tempfile
-    >>> from linkage.cli import main
-    >>> tmp = tempfile.TemporaryDirectory()
-    >>> scene = os.path.join(tmp.name, "leg.toml")
-    >>> with open(scene, "w") as fh:
-    ...     _ = fh.write('outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
-    ...                  '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
-    >>> main(["check", scene])
-    ok: leg: outputs trajectory
-    0
-    >>> main(["run", scene, "--out", os.path.join(tmp.name, "report"), "--quiet"])
-    0
-    >>> sorted(os.listdir(os.path.join(tmp.name, "report")))
-    ['.linkage-report', 'data.csv', 'data.npz', 'index.html', 'summary.json', 'trajectory.png']
-
-    A mistake is one line on stderr and exit status 2, with nothing written:
-
-    >>> main(["run", os.path.join(tmp.name, "missing.toml"), "--out", os.path.join(tmp.name, "x")])
-    2
-    >>> sorted(os.listdir(tmp.name))
-    ['leg.toml', 'report']
-    >>> tmp.cleanup()
-    """
+def _parser() -> argparse.ArgumentParser:
+    """Return the parser of the ``linkage`` command and its sub-commands."""
     parser = argparse.ArgumentParser(
         prog="linkage", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
@@ -406,6 +378,41 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     syn.add_argument("--quiet", action="store_true", help="no progress bar")
     syn.set_defaults(func=lambda a, _s: __import__("linkage.synthesis").synthesis.command(a))
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    r"""Entry point of the ``linkage`` console script.
+
+    ``argv`` are the arguments (default: the command line's); returns the exit status (see the
+    module's docstring). Errors are one line on stderr, never a traceback.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from linkage.cli import main
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> scene = os.path.join(tmp.name, "leg.toml")
+    >>> with open(scene, "w") as fh:
+    ...     _ = fh.write('outputs = ["trajectory"]\n[mechanism]\ncatalog = "hoecken"\n'
+    ...                  '[drive]\nkind = "constant"\nrpm = 50.0\nsamples = 73\n')
+    >>> main(["check", scene])
+    ok: leg: outputs trajectory
+    0
+    >>> main(["run", scene, "--out", os.path.join(tmp.name, "report"), "--quiet"])
+    0
+    >>> sorted(os.listdir(os.path.join(tmp.name, "report")))
+    ['.linkage-report', 'data.csv', 'data.npz', 'index.html', 'summary.json', 'trajectory.png']
+
+    A mistake is one line on stderr and exit status 2, with nothing written:
+
+    >>> main(["run", os.path.join(tmp.name, "missing.toml"), "--out", os.path.join(tmp.name, "x")])
+    2
+    >>> sorted(os.listdir(tmp.name))
+    ['leg.toml', 'report']
+    >>> tmp.cleanup()
+    """
+    parser = _parser()
     stdout = sys.stdout
     try:
         try:

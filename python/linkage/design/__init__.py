@@ -41,7 +41,7 @@ from linkage.design.search import (
     search,
 )
 from linkage.design.study_file import StudyFile, load_study
-from linkage.legs import (
+from linkage.walking.legs import (
     CRANK,
     FAMILIES,
     FIGURES,

@@ -38,19 +38,23 @@ import zipfile
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._cache_files import npy_header
 from linkage._core import LinkageError
-from linkage._files import json_depth, read_bytes, sweep_stale, temp_name_pattern, write_atomic
-from linkage.legs import FIGURES, family
-from linkage.report_folder import STOP_SIGNALS
-
-if TYPE_CHECKING:  # pragma: no cover - imports for annotations only
-    from linkage.design.search import Study
+from linkage._shared.cache_files import npy_header
+from linkage._shared.files import (
+    json_depth,
+    read_bytes,
+    sweep_stale,
+    temp_name_pattern,
+    write_atomic,
+)
+from linkage._shared.report_folder import STOP_SIGNALS
+from linkage.design.limits import Study
+from linkage.walking.legs import FIGURES, family
 
 __all__ = ["MAGIC", "VERSION", "Saved", "load", "restore", "save", "size_limit", "sweep"]
 

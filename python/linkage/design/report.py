@@ -18,8 +18,8 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage import report_folder
 from linkage._core import LinkageError
+from linkage._shared import report_folder
 from linkage.design.cluster import SchedulerError
 from linkage.design.search import (
     Front,
@@ -30,7 +30,7 @@ from linkage.design.search import (
     search,
 )
 from linkage.design.study_file import load_study
-from linkage.legs import FIGURES, OBJECTIVES, UNITS, family
+from linkage.walking.legs import FIGURES, OBJECTIVES, UNITS, family
 
 __all__ = ["chosen", "main_design", "scene_text", "write_report"]
 

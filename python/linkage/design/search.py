@@ -8,10 +8,8 @@ front and where the family's reference design sits relative to it.
 
 from __future__ import annotations
 
-import hashlib
-import json
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -21,17 +19,20 @@ from numpy.typing import NDArray
 from pymoo.algorithms.moo.nsga2 import NSGA2  # type: ignore[import-untyped]
 from pymoo.core.problem import Problem  # type: ignore[import-untyped]
 
-from linkage._progress import Bar
+from linkage._shared.progress import Bar
 from linkage.design import checkpoint as _checkpoint
 from linkage.design.cluster import SchedulerError, connect, gather, scheduler_address
 from linkage.design.limits import (
+    INITIAL_POPULATION,
+    NEIGHBOUR_SPREAD,
+    Constraints,
+    Study,
     StudyError,
     StudyMemoryError,
-    check_study,
     param_domain,
     search_memory,
 )
-from linkage.legs import FIGURES, OBJECTIVES, Settings, family
+from linkage.walking.legs import FIGURES, OBJECTIVES, Settings, family
 
 __all__ = [
     "INITIAL_POPULATION",
@@ -58,99 +59,6 @@ Array = NDArray[np.float64]
 
 
 # -- the study ----------------------------------------------------------------------------
-
-INITIAL_POPULATION = "reference, neighbours within 2 % of the box, uniform"
-"""How the first population is drawn (part of a checkpoint's fingerprint)."""
-
-NEIGHBOUR_SPREAD = 0.02
-"""Half-width of the reference's neighbourhood, as a fraction of each parameter's bounds."""
-
-
-@dataclass(frozen=True)
-class Constraints:
-    """Feasibility: the whole turn on one circuit and one stance run (always), and bounds."""
-
-    min_transmission: float = 20.0
-    """Smallest transmission angle (degrees)."""
-    foot_below_hip: float = 0.0
-    """Least depth of the ground below the hip (crank pivot), foot bar included."""
-    min_lift: float = 0.0
-    """Least lift (the obstacle the swing clears)."""
-    min_duty: float = 0.4
-    """Least duty factor (0.5: two legs in antiphase always have a foot down)."""
-
-
-@dataclass(frozen=True)
-class Study:
-    """A design study: family, bounds, objectives, constraints, budget, seed, execution."""
-
-    family: str = "fourbar"
-    objectives: tuple[str, ...] = ("stride", "straightness", "speed_variation")
-    bounds: dict[str, tuple[float, float]] = field(default_factory=dict)
-    constraints: Constraints = field(default_factory=Constraints)
-    settings: Settings = field(default_factory=Settings)
-    population: int = 64
-    budget: int = 640
-    seed: int = 1
-    workers: int = 0
-    """0: evaluate in this process; n: a LocalCluster of n single-threaded worker processes."""
-    scheduler: str | None = None
-    """Address of a running Dask scheduler (``tcp://host:8786``): use that cluster."""
-    chunk: int = 256
-    """Candidates per task."""
-    name: str = "design"
-
-    def __post_init__(self) -> None:
-        """Check every value (:func:`linkage.design.limits.check_study`)."""
-        check_study(self)
-
-    @property
-    def generations(self) -> int:
-        """Generations the budget pays for (the first population included)."""
-        return self.budget // self.population
-
-    def box(self) -> tuple[Array, Array]:
-        """Lower and upper bounds of every parameter (the family's, overridden).
-
-        Examples
-        --------
-        >>> from linkage.design import family
-        >>> from linkage.design.search import Study
-        >>> lo, hi = Study(bounds={"ground": (12.0, 40.0)}).box()
-        >>> dict(zip(family("fourbar").params, zip(lo.tolist(), hi.tolist())))["ground"]
-        (12.0, 40.0)
-        >>> lo.shape, bool((lo < hi).all())
-        ((6,), True)
-        """
-        fam = family(self.family)
-        b = fam.bounds()
-        b.update(self.bounds)
-        return (
-            np.array([b[p][0] for p in fam.params], dtype=float),
-            np.array([b[p][1] for p in fam.params], dtype=float),
-        )
-
-    def fingerprint(self) -> str:
-        """Return what a checkpoint must match to be resumed (everything but where it runs).
-
-        Examples
-        --------
-        >>> from linkage.design.search import Study
-        >>> fp = Study().fingerprint()
-        >>> len(fp), fp == Study(workers=2).fingerprint(), fp == Study(seed=2).fingerprint()
-        (16, True, False)
-        """
-        d = {
-            "family": self.family,
-            "objectives": self.objectives,
-            "box": [v.tolist() for v in self.box()],
-            "constraints": self.constraints.__dict__,
-            "settings": self.settings.__dict__,
-            "population": self.population,
-            "seed": self.seed,
-            "start": INITIAL_POPULATION,
-        }
-        return hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:16]
 
 
 def objectives_and_constraints(study: Study, figs: Array) -> tuple[Array, Array]:

@@ -8,18 +8,19 @@ from __future__ import annotations
 import math
 import re
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from linkage._core import LinkageError
-from linkage._files import read_bytes
-from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, nesting
+from linkage._shared.files import read_bytes
+from linkage._shared.toml_lines import MAX_NESTING, Locator, NotText, decode, nesting
 from linkage.design.search import Constraints, Study, StudyError
-from linkage.legs import FAMILIES, OBJECTIVES, Settings
+from linkage.walking.legs import FAMILIES, OBJECTIVES, Settings
 
 __all__ = ["STUDY_LIMIT", "StudyFile", "load_study"]
 
@@ -166,42 +167,8 @@ def load_study(path: str | Path) -> StudyFile:
             )
     if not objectives:
         raise err(["design"], "objectives", "needs at least one objective")
-    bounds: dict[str, tuple[float, float]] = {}
-    for key, value in d.get("bounds", {}).items():
-        if key not in fam.params:
-            raise err(
-                ["design", "bounds"],
-                key,
-                f"family {fam_name!r} has no parameter {key!r}; it has {', '.join(fam.params)}",
-            )
-        if (
-            not isinstance(value, list)
-            or len(value) != 2
-            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
-            or not all(math.isfinite(v) for v in value)
-            or not value[0] < value[1]
-        ):
-            raise err(
-                ["design", "bounds"],
-                key,
-                f"must be [lower, upper] with finite lower < upper, got {value!r}",
-            )
-        bounds[key] = (float(value[0]), float(value[1]))
-    cons: dict[str, float] = {}
-    for key, value in d.get("constraints", {}).items():
-        if key not in _CONSTRAINT_KEYS:
-            raise err(
-                ["design", "constraints"],
-                key,
-                f"unknown constraint; expected one of {', '.join(_CONSTRAINT_KEYS)}",
-            )
-        if (
-            not isinstance(value, (int, float))
-            or isinstance(value, bool)
-            or not math.isfinite(value)
-        ):
-            raise err(["design", "constraints"], key, f"must be a finite number, got {value!r}")
-        cons[key] = float(value)
+    bounds = _bounds(d, fam_name, fam.params, err)
+    cons = _constraints(d, err)
     ints = {
         "population": (4, 10**7),
         "budget": (4, 10**12),
@@ -253,6 +220,57 @@ def load_study(path: str | Path) -> StudyFile:
         if "scheduler" in d
         else "",
     )
+
+
+_Err = Callable[[Sequence[str], str, str], LinkageError]
+
+
+def _bounds(
+    d: dict[str, Any], fam_name: str, params: Sequence[str], err: _Err
+) -> dict[str, tuple[float, float]]:
+    """Return ``[design.bounds]`` checked: each a parameter of the family, finite lower < upper."""
+    bounds: dict[str, tuple[float, float]] = {}
+    for key, value in d.get("bounds", {}).items():
+        if key not in params:
+            raise err(
+                ["design", "bounds"],
+                key,
+                f"family {fam_name!r} has no parameter {key!r}; it has {', '.join(params)}",
+            )
+        if (
+            not isinstance(value, list)
+            or len(value) != 2
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+            or not all(math.isfinite(v) for v in value)
+            or not value[0] < value[1]
+        ):
+            raise err(
+                ["design", "bounds"],
+                key,
+                f"must be [lower, upper] with finite lower < upper, got {value!r}",
+            )
+        bounds[key] = (float(value[0]), float(value[1]))
+    return bounds
+
+
+def _constraints(d: dict[str, Any], err: _Err) -> dict[str, float]:
+    """Return ``[design.constraints]`` checked: each a known constraint, a finite number."""
+    cons: dict[str, float] = {}
+    for key, value in d.get("constraints", {}).items():
+        if key not in _CONSTRAINT_KEYS:
+            raise err(
+                ["design", "constraints"],
+                key,
+                f"unknown constraint; expected one of {', '.join(_CONSTRAINT_KEYS)}",
+            )
+        if (
+            not isinstance(value, (int, float))
+            or isinstance(value, bool)
+            or not math.isfinite(value)
+        ):
+            raise err(["design", "constraints"], key, f"must be a finite number, got {value!r}")
+        cons[key] = float(value)
+    return cons
 
 
 def _line_of(message: str) -> int:

@@ -22,9 +22,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_count, as_finite, as_length, check_memory
 from linkage._core import LinkageError
-from linkage.drive import Program, Segment
+from linkage._shared.arrays import as_count, as_finite, as_length, check_memory
+from linkage.drives.drive import Program, Segment
 
 __all__ = ["CamProfile", "DiscCam", "leg_lift", "leg_lift_cam"]
 
@@ -316,3 +316,10 @@ def leg_lift_cam(roller_radius: float = 2.0, base_radius: float = 6.5) -> DiscCa
     linkage.LinkageError: roller_radius must be a positive finite length, got 0.0
     """
     return DiscCam(leg_lift(1.4), base_radius, roller_radius=roller_radius)
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"CamProfile": CamProfile, "DiscCam": DiscCam}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.cam"

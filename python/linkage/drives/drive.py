@@ -19,13 +19,14 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import (
+from linkage._core import LinkageError
+from linkage._shared.arrays import (
     as_angles,
     as_count,
     as_finite,
@@ -33,11 +34,11 @@ from linkage._arrays import (
     as_length,
     check_memory,
 )
-from linkage._choices import Law
-from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage.geometry import foot_path
+from linkage._shared.choices import Law
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Drive as Drive  # its home: what the kinematics takes
+from linkage.kinematics.mechanism import Mechanism
+from linkage.motion.geometry import foot_path
 
 __all__ = [
     "LAWS",
@@ -133,23 +134,6 @@ class Segment:
             )
         if self.law is not None and self.law not in LAWS:
             raise LinkageError(f"unknown motion law {self.law!r}; choose from {', '.join(LAWS)}")
-
-
-class Drive(Protocol):
-    """Anything that gives crank angle, speed and acceleration against time."""
-
-    def angles(self, t: ArrayLike) -> tuple[Array, Array, Array]:
-        """Return ``(θ, ω, α)``, crank angle, speed and acceleration, at times ``t``.
-
-        Examples
-        --------
-        Every drive of this module is one, e.g. :class:`ConstantSpeed`:
-
-        >>> from linkage.drive import ConstantSpeed
-        >>> ConstantSpeed(omega=2.0, theta0=1.0).angles([0.0, 0.5])
-        (array([1., 2.]), array([2., 2.]), array([0., 0.]))
-        """
-        ...
 
 
 class Program:
@@ -802,3 +786,18 @@ def crank_schedule(
         speed_ripple=ripple,
         peak_alpha=float(np.abs(a_f).max()),
     )
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {
+    "Segment": Segment,
+    "Program": Program,
+    "ConstantSpeed": ConstantSpeed,
+    "GearTrain": GearTrain,
+    "Geared": Geared,
+    "CrankSchedule": CrankSchedule,
+    "StanceProfile": StanceProfile,
+}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.drive"

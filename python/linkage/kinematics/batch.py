@@ -16,10 +16,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_real_array, assembly_named, choices, one_of
-from linkage._choices import Assembly
 from linkage._core import LinkageError
-from linkage._mechanism import Mechanism
+from linkage._shared.arrays import (
+    as_angles,
+    as_count,
+    as_real_array,
+    assembly_named,
+    choices,
+    one_of,
+)
+from linkage._shared.choices import Assembly
+from linkage.kinematics.mechanism import Mechanism
 
 _ASSEMBLIES = choices("assembly")
 
@@ -137,17 +144,7 @@ def sweep_fourbars(
     elif ground is not None:
         raise LinkageError("give either ground or the rocker pivot c, not both")
     crossed = _assembly(assembly)
-    shapes = {k: v.shape for k, v in lengths.items()}
-    shapes.update({"point": pt.shape[:-1], "o": po.shape[:-1], "assembly": crossed.shape})
-    if pc is not None:
-        shapes["c"] = pc.shape[:-1]
-    try:
-        (m,) = np.broadcast_shapes(*shapes.values(), (1,))
-    except ValueError:
-        described = ", ".join(f"{k} {s}" for k, s in shapes.items())
-        raise LinkageError(
-            f"the linkage parameters must broadcast to one shape (M,): {described}"
-        ) from None
+    m = _common_length(lengths, pt, po, pc, crossed)
 
     def flat(a: NDArray[Any], dtype: Any = np.float64) -> NDArray[Any]:
         return np.ascontiguousarray(np.broadcast_to(a, (m,)), dtype=dtype)
@@ -166,29 +163,8 @@ def sweep_fourbars(
     for name, arr in (("point", pm), ("o", o_m), ("c", c_given)):
         if arr is not None:
             _check_finite(arr, name)
-    if c_given is None:
-        g = lens["ground"]
-        c_m = np.ascontiguousarray(o_m + np.stack([g, np.zeros_like(g)], axis=-1))
-    else:
-        c_m = c_given
-        same = np.all(c_m == o_m, axis=-1)
-        if same.any():
-            k = int(np.flatnonzero(same)[0])
-            raise LinkageError(f"o and c coincide (ground length 0) for linkage {k}")
-    if out is not None and not (
-        isinstance(out, tuple)
-        and len(out) == 2
-        and isinstance(out[0], np.ndarray)
-        and out[0].dtype == np.float64
-        and isinstance(out[1], np.ndarray)
-        and out[1].dtype == np.bool_
-    ):
-        got = (
-            ", ".join(f"{getattr(a, 'dtype', type(a).__name__)} {type(a).__name__}" for a in out)
-            if isinstance(out, tuple)
-            else type(out).__name__
-        )
-        raise TypeError(f"out must be a pair (float64 array, bool array), got ({got})")
+    c_m = _rocker_pivots(lens, o_m, c_given)
+    _check_out(out)
     points, valid = _core.batch_sweep(
         o_m,
         c_m,
@@ -203,6 +179,62 @@ def sweep_fourbars(
         out,
     )
     return points, valid
+
+
+def _check_out(out: Any) -> None:
+    """Refuse an ``out=`` that is not a pair (float64 array, bool array)."""
+    if out is not None and not (
+        isinstance(out, tuple)
+        and len(out) == 2
+        and isinstance(out[0], np.ndarray)
+        and out[0].dtype == np.float64
+        and isinstance(out[1], np.ndarray)
+        and out[1].dtype == np.bool_
+    ):
+        got = (
+            ", ".join(f"{getattr(a, 'dtype', type(a).__name__)} {type(a).__name__}" for a in out)
+            if isinstance(out, tuple)
+            else type(out).__name__
+        )
+        raise TypeError(f"out must be a pair (float64 array, bool array), got ({got})")
+
+
+def _common_length(
+    lengths: dict[str, NDArray[np.float64]],
+    pt: NDArray[np.float64],
+    po: NDArray[np.float64],
+    pc: NDArray[np.float64] | None,
+    crossed: NDArray[Any],
+) -> int:
+    """Return ``M``, the one length every linkage parameter broadcasts to."""
+    shapes = {k: v.shape for k, v in lengths.items()}
+    shapes.update({"point": pt.shape[:-1], "o": po.shape[:-1], "assembly": crossed.shape})
+    if pc is not None:
+        shapes["c"] = pc.shape[:-1]
+    try:
+        (m,) = np.broadcast_shapes(*shapes.values(), (1,))
+    except ValueError:
+        described = ", ".join(f"{k} {s}" for k, s in shapes.items())
+        raise LinkageError(
+            f"the linkage parameters must broadcast to one shape (M,): {described}"
+        ) from None
+    return int(m)
+
+
+def _rocker_pivots(
+    lens: dict[str, NDArray[Any]], o_m: NDArray[np.float64], c_given: NDArray[np.float64] | None
+) -> NDArray[np.float64]:
+    """Return each linkage's rocker pivot: given, or ``ground`` along x from ``o`` (not on it)."""
+    if c_given is None:
+        g = lens["ground"]
+        c_m = np.ascontiguousarray(o_m + np.stack([g, np.zeros_like(g)], axis=-1))
+    else:
+        c_m = c_given
+        same = np.all(c_m == o_m, axis=-1)
+        if same.any():
+            k = int(np.flatnonzero(same)[0])
+            raise LinkageError(f"o and c coincide (ground length 0) for linkage {k}")
+    return c_m
 
 
 def sweep_mechanisms(

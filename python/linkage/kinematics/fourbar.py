@@ -4,20 +4,33 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Any, Union, cast
+from typing import Any, Union, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
-from linkage._choices import Assembly, Output, SweepMode
 from linkage._core import LinkageError
-from linkage._mechanism import BASES, DEFAULT_OUTPUTS, Mechanism
-from linkage._sweep import SWEPT_BY, Sweep
+from linkage._shared.arrays import (
+    as_angles,
+    as_count,
+    as_finite,
+    as_length,
+    as_point,
+    choices,
+    one_of,
+)
+from linkage._shared.choices import Assembly, Output, SweepMode
+from linkage.kinematics.mechanism import BASES, DEFAULT_OUTPUTS, Drive, Mechanism
+from linkage.kinematics.sweep import SWEPT_BY, Sweep
 
-if TYPE_CHECKING:  # drive.py imports this module
-    from linkage.drive import Drive
+__all__ = [
+    "JOINTS",
+    "LINKS",
+    "ArrayOrFloat",
+    "FourBar",
+    "named_joint",
+]
 
 JOINTS = ("O", "C", "A", "B", "P")
 LINKS = ("ground", "crank", "coupler", "rocker")
@@ -637,3 +650,10 @@ class FourBar:
 # A pickled mechanism may be built from a FourBar's; a pickled sweep may be its circuit.
 BASES.append(FourBar)
 SWEPT_BY[FourBar] = "circuit"
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"FourBar": FourBar}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._fourbar"

@@ -8,13 +8,14 @@ import threading
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import (
+from linkage._core import LinkageError
+from linkage._shared.arrays import (
     UnknownNameError,
     as_angles,
     as_choice,
@@ -24,13 +25,30 @@ from linkage._arrays import (
     as_rate,
     choices,
 )
-from linkage._choices import Output, Reach, Side
-from linkage._core import LinkageError
-from linkage._mobility import Mobility
-from linkage._sweep import OUTPUTS, SWEPT_BY, Sweep
+from linkage._shared.choices import Output, Reach, Side
+from linkage.kinematics.mobility import Mobility
+from linkage.kinematics.sweep import OUTPUTS, SWEPT_BY, Sweep
 
-if TYPE_CHECKING:  # drive.py imports this module
-    from linkage.drive import Drive
+
+# The drives (linkage.drive) are one layer up; what the kinematics takes of one is this protocol.
+class Drive(Protocol):
+    """Anything that gives crank angle, speed and acceleration against time."""
+
+    def angles(
+        self, t: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """Return ``(θ, ω, α)``, crank angle, speed and acceleration, at times ``t``.
+
+        Examples
+        --------
+        Every drive of this module is one, e.g. :class:`ConstantSpeed`:
+
+        >>> from linkage.drive import ConstantSpeed
+        >>> ConstantSpeed(omega=2.0, theta0=1.0).angles([0.0, 0.5])
+        (array([1., 2.]), array([2., 2.]), array([0., 0.]))
+        """
+        ...
+
 
 DEFAULT_OUTPUTS: tuple[Output, ...] = ("point", "joints")
 
@@ -96,7 +114,7 @@ def check_pairs(
 
     Examples
     --------
-    >>> from linkage._mechanism import check_pairs
+    >>> from linkage.kinematics.mechanism import check_pairs
     >>> links = ("ground", "crank", "coupler", "rocker")
     >>> check_pairs([("ground", "coupler"), ("rocker", "crank")], links)
     ((('ground', 'coupler'), ('rocker', 'crank')), [(0, 2), (3, 1)])
@@ -1028,3 +1046,13 @@ JOINT_KINDS: dict[str, JointKind] = {
 SWEPT_BY[Mechanism] = "sweep"
 
 __all__ = ["JOINT_KINDS", "JointKind", "Mechanism", "check_outputs", "check_pairs"]
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"Mechanism": Mechanism, "JointKind": JointKind}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._mechanism"
+__test__["Drive"] = Drive  # the protocol of linkage.drive, which re-exports it
+Drive.__module__ = "linkage.drive"
+_rebuild.__module__ = "linkage._mechanism"  # what its pickles name, as 0.1's did

@@ -9,6 +9,11 @@ import numpy as np
 from linkage import _core
 from linkage._core import LinkageError
 
+__all__ = [
+    "Mobility",
+    "mobility",
+]
+
 
 @dataclass(frozen=True)
 class Mobility:
@@ -75,3 +80,10 @@ def mobility(links: int, lower_pairs: int, higher_pairs: int = 0) -> Mobility:
         raise LinkageError("links must count the ground at least")
     n, j1, j2 = int(links), int(lower_pairs), int(higher_pairs)
     return Mobility(n, j1, j2, _core.degrees_of_freedom(n, j1, j2))
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"Mobility": Mobility}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._mobility"

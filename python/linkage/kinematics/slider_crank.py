@@ -9,12 +9,26 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_finite, as_length, as_point, choices, one_of
-from linkage._choices import Output, Reach
 from linkage._core import LinkageError
-from linkage._fourbar import ArrayOrFloat, named_joint
-from linkage._mechanism import BASES, DEFAULT_OUTPUTS, Mechanism
-from linkage._sweep import SWEPT_BY, Sweep
+from linkage._shared.arrays import (
+    as_angles,
+    as_count,
+    as_finite,
+    as_length,
+    as_point,
+    choices,
+    one_of,
+)
+from linkage._shared.choices import Output, Reach
+from linkage.kinematics.fourbar import ArrayOrFloat, named_joint
+from linkage.kinematics.mechanism import BASES, DEFAULT_OUTPUTS, Mechanism
+from linkage.kinematics.sweep import SWEPT_BY, Sweep
+
+__all__ = [
+    "JOINTS",
+    "LINKS",
+    "SliderCrank",
+]
 
 JOINTS = ("O", "G", "A", "B", "P")
 LINKS = ("ground", "crank", "coupler", "slider")
@@ -353,3 +367,10 @@ class SliderCrank:
 # A pickled mechanism may be built from a SliderCrank's; a pickled sweep may be its circuit.
 BASES.append(SliderCrank)
 SWEPT_BY[SliderCrank] = "circuit"
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"SliderCrank": SliderCrank}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._slider_crank"

@@ -11,9 +11,15 @@ from typing import Any, get_args
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._arrays import UnknownNameError, as_angles, as_real
-from linkage._choices import Output
 from linkage._core import RATE_MARGIN, LinkageError
+from linkage._shared.arrays import UnknownNameError, as_angles, as_real
+from linkage._shared.choices import Output
+
+__all__ = [
+    "OUTPUTS",
+    "SWEPT_BY",
+    "Sweep",
+]
 
 OUTPUTS: tuple[Output, ...] = get_args(Output)
 """Names accepted by ``outputs=``: the trace point, every joint, their rates, the instant centres
@@ -539,3 +545,11 @@ def _rebuild(linkage: Any, method: Any, arguments: Any, time: Any) -> Sweep:
             raise LinkageError("not a pickled Sweep: its times do not match its samples")
         s.time = t.reshape(()) if scalar else t
     return s
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"Sweep": Sweep}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._sweep"
+_rebuild.__module__ = "linkage._sweep"  # what its pickles name, as 0.1's did

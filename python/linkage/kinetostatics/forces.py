@@ -17,7 +17,6 @@ True
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -26,7 +25,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import (
+from linkage._core import LinkageError
+from linkage._shared.arrays import (
     UnknownNameError,
     as_angles,
     as_finite,
@@ -34,12 +34,10 @@ from linkage._arrays import (
     as_rate,
     as_real_array,
 )
-from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage.drive import Drive
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Drive, Mechanism
 
-__all__ = ["Forces", "LinkMass", "PointLoad", "forces", "joint_forces"]
+__all__ = ["Forces", "LinkMass", "PointLoad", "joint_forces"]
 
 Array = NDArray[np.float64]
 
@@ -283,7 +281,28 @@ def joint_forces(
             (float(lm.mass), float(lm.centre[0]), float(lm.centre[1]), float(lm.inertia))
         )
     g = as_point(gravity, "gravity")
-    core_loads = []
+    core_loads = _core_loads(loads, mech, n)
+    raw = _core.forces(
+        mech._core, th, np.ascontiguousarray(w), np.ascontiguousarray(a), inertia, g, core_loads
+    )
+    names = mech.joint_names
+    return Forces(
+        theta=th,
+        torque=raw.torque,
+        power_torque=raw.power_torque,
+        valid=raw.valid,
+        reactions=raw.reactions,
+        reaction_links=[(names[j], links[f], links[t]) for j, f, t in raw.reaction_links],
+        time=times,
+    )
+
+
+def _core_loads(
+    loads: Sequence[PointLoad], mech: Mechanism, n: int
+) -> list[tuple[int, int, Array, Array]]:
+    """Return the point loads checked, as the core takes them (link, joint, force, torque)."""
+    links = mech.links
+    core_loads: list[tuple[int, int, Array, Array]] = []
     for load in loads:
         if not isinstance(load, PointLoad):
             raise TypeError(f"loads must be PointLoad, got {type(load).__name__}")
@@ -315,86 +334,11 @@ def joint_forces(
                 np.ascontiguousarray(tq),
             )
         )
-    raw = _core.forces(
-        mech._core, th, np.ascontiguousarray(w), np.ascontiguousarray(a), inertia, g, core_loads
-    )
-    names = mech.joint_names
-    return Forces(
-        theta=th,
-        torque=raw.torque,
-        power_torque=raw.power_torque,
-        valid=raw.valid,
-        reactions=raw.reactions,
-        reaction_links=[(names[j], links[f], links[t]) for j, f, t in raw.reaction_links],
-        time=times,
-    )
+    return core_loads
 
 
-def forces(
-    linkage_obj: FourBar | Mechanism,
-    theta: ArrayLike | None = None,
-    omega: ArrayLike | None = None,
-    alpha: ArrayLike = 0.0,
-    *,
-    time: ArrayLike | None = None,
-    drive: Drive | None = None,
-    masses: Mapping[str, LinkMass | tuple[float, tuple[float, float], float]],
-    gravity: Sequence[float] = (0.0, -9.81),
-    loads: Sequence[PointLoad] = (),
-) -> Forces:
-    """Joint reactions and driver torque: the deprecated name of :func:`joint_forces`.
-
-    .. deprecated:: 0.2.0
-        ``linkage.forces.forces`` shadows its module's name: use :func:`joint_forces` (same
-        arguments, same result). ``forces.forces`` will be removed in the release after 0.2.
-
-    Parameters
-    ----------
-    linkage_obj, theta, omega, alpha, time, drive, masses, gravity, loads
-        As :func:`joint_forces`.
-
-    Returns
-    -------
-    Forces
-        As :func:`joint_forces`.
-
-    Raises
-    ------
-    LinkageError, TypeError
-        As :func:`joint_forces`.
-
-    Warns
-    -----
-    DeprecationWarning
-        At every call (shown once per call site by Python's default filter).
-
-    Examples
-    --------
-    >>> import warnings, numpy as np, linkage
-    >>> from linkage.forces import LinkMass, joint_forces
-    >>> fb = linkage.FourBar(ground=0.02, crank=0.01, coupler=0.025, rocker=0.025)
-    >>> masses = {k: LinkMass(0.01, (0.005, 0), 1e-7) for k in ("crank", "coupler", "rocker")}
-    >>> with warnings.catch_warnings(record=True) as caught:
-    ...     warnings.simplefilter("always")
-    ...     old = linkage.forces.forces(fb, [0.0, 1.0], omega=1.0, masses=masses)
-    >>> new = joint_forces(fb, [0.0, 1.0], omega=1.0, masses=masses)
-    >>> caught[0].category.__name__, bool(np.array_equal(old.torque, new.torque))
-    ('DeprecationWarning', True)
-    """
-    warnings.warn(
-        "linkage.forces.forces is deprecated: use linkage.forces.joint_forces (same arguments "
-        "and result)",
-        DeprecationWarning,
-        stacklevel=2,
-    )
-    return joint_forces(
-        linkage_obj,
-        theta,
-        omega,
-        alpha,
-        time=time,
-        drive=drive,
-        masses=masses,
-        gravity=gravity,
-        loads=loads,
-    )
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"LinkMass": LinkMass, "PointLoad": PointLoad, "Forces": Forces}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.forces"

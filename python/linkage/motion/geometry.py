@@ -8,7 +8,6 @@ gives NaN, a wrong shape raises.
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -16,18 +15,19 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import as_angles, as_count, as_finite, as_flag, as_points
 from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mobility import Mobility as Mobility  # re-exported: linkage.geometry.Mobility
-from linkage._mobility import mobility as mobility
+from linkage._shared.arrays import as_angles, as_count, as_finite, as_flag, as_points
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mobility import (
+    Mobility as Mobility,  # re-exported: linkage.geometry.Mobility
+)
+from linkage.kinematics.mobility import mobility as mobility
 
 __all__ = [
     "FootPath",
     "Inflection",
     "Mobility",
     "StraightPart",
-    "ball_point",
     "circumcentre",
     "curvature_centre",
     "foot_path",
@@ -498,50 +498,12 @@ def inflection_circle(fb: FourBar, theta: float) -> Inflection:
     return Inflection(pole, jpole, centre, float(radius), ball, local)
 
 
-def ball_point(fb: FourBar, theta: float) -> Inflection:
-    """Inflection circle and Ball point: the deprecated name of :func:`inflection_circle`.
-
-    .. deprecated:: 0.2.0
-        ``ball_point`` returns the whole inflection circle, not only the Ball point: use
-        :func:`inflection_circle` (same arguments, same result). ``ball_point`` will be removed
-        in the release after 0.2.
-
-    Parameters
-    ----------
-    fb : FourBar
-        The linkage; its coupler is the moving plane.
-    theta : float
-        One crank angle (radians).
-
-    Returns
-    -------
-    Inflection
-        As :func:`inflection_circle`.
-
-    Raises
-    ------
-    AssemblyError, LinkageError, TypeError
-        As :func:`inflection_circle`.
-
-    Warns
-    -----
-    DeprecationWarning
-        At every call (shown once per call site by Python's default filter).
-
-    Examples
-    --------
-    >>> import warnings, linkage
-    >>> fb = linkage.catalog.hoecken()
-    >>> with warnings.catch_warnings(record=True) as caught:
-    ...     warnings.simplefilter("always")
-    ...     old = linkage.ball_point(fb, 1.0)
-    >>> caught[0].category.__name__, old == linkage.inflection_circle(fb, 1.0)
-    ('DeprecationWarning', True)
-    """
-    warnings.warn(
-        "linkage.ball_point is deprecated: use linkage.inflection_circle (same arguments and "
-        "result)",
-        DeprecationWarning,
-        stacklevel=2,
-    )
-    return inflection_circle(fb, theta)
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {
+    "StraightPart": StraightPart,
+    "FootPath": FootPath,
+    "Inflection": Inflection,
+}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.geometry"

@@ -29,8 +29,13 @@ from matplotlib.patches import Polygon
 from matplotlib.ticker import MaxNLocator
 from PIL import Image, ImageDraw, ImageFont
 
-from linkage import export, html_report
-from linkage.build import build_drive
+# The folder writer, re-exported: ``linkage.report.write_folder`` etc. keep working.
+from linkage._shared.report_folder import DEFAULT_BASE as DEFAULT_BASE
+from linkage._shared.report_folder import MARKER as MARKER
+from linkage._shared.report_folder import default_folder as default_folder
+from linkage._shared.report_folder import prepare as prepare
+from linkage._shared.report_folder import read_marker as read_marker
+from linkage._shared.report_folder import write_folder as write_folder
 from linkage.drawing import (
     Array,
     Drawing,
@@ -40,16 +45,11 @@ from linkage.drawing import (
     mechanism_drawing,
     walker_drawing,
 )
-from linkage.drive import CrankSchedule
-from linkage.figures import Result, crank_phase_deg, format_number, torque_unit, unit_label
-
-# The folder writer, re-exported: ``linkage.report.write_folder`` etc. keep working.
-from linkage.report_folder import DEFAULT_BASE as DEFAULT_BASE
-from linkage.report_folder import MARKER as MARKER
-from linkage.report_folder import default_folder as default_folder
-from linkage.report_folder import prepare as prepare
-from linkage.report_folder import read_marker as read_marker
-from linkage.report_folder import write_folder as write_folder
+from linkage.drives.drive import CrankSchedule
+from linkage.report import export
+from linkage.report import html as html_report
+from linkage.report.figures import Result, crank_phase_deg, format_number, torque_unit, unit_label
+from linkage.scene.builders import build_drive
 from linkage.synthesis import source_text
 
 __all__ = [

@@ -14,17 +14,18 @@ from typing import Union
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage._schema import Scene
-from linkage._slider_crank import SliderCrank
-from linkage._sweep import Sweep
-from linkage.cam import CamProfile
-from linkage.drive import Drive
-from linkage.forces import Forces
-from linkage.geometry import StraightPart
+from linkage.drives.cam import CamProfile
+from linkage.drives.drive import Drive
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
+from linkage.kinematics.slider_crank import SliderCrank
+from linkage.kinematics.sweep import Sweep
+from linkage.kinetostatics.forces import Forces
+from linkage.motion.geometry import StraightPart
+from linkage.scene.builders import check_counts as check_counts  # its home: the run's counts
+from linkage.scene.schema import Scene
 from linkage.synthesis import Candidate
-from linkage.walker import Simulation, Walker
+from linkage.walking.walker import Simulation, Walker
 
 __all__ = [
     "SIG_MAX",
@@ -483,20 +484,8 @@ def pair(
     )
 
 
-def check_counts(n: int, double: bool = True) -> tuple[int, ...]:
-    """Return the sample counts a run of ``n`` samples is checked at.
-
-    About half as many, on a grid that shares only its ends with the run's (``n_half − 1`` coprime
-    to ``n − 1``, so that no extreme is found again at a shared sample), and — when ``double`` —
-    twice as many, on the run's grid refined (every sample and the midpoints). The first catches
-    aliasing (a figure that depends on where the samples fall), the second the slow convergence of
-    extremes; a figure's error estimate is its largest difference from the two.
-
-    >>> from linkage.figures import check_counts
-    >>> check_counts(721), check_counts(8, double=False)
-    ((360, 1441), (4,))
-    """
-    half = max(3, (n - 1) // 2 + 1)
-    while half > 3 and math.gcd(half - 1, n - 1) != 1:
-        half -= 1
-    return (half, 2 * n - 1) if double else (half,)
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"Row": Row, "SynthesisRun": SynthesisRun, "Result": Result}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.figures"

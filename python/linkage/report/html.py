@@ -30,11 +30,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage._core import LinkageError
-from linkage._slider_crank import SliderCrank
-from linkage.build import build_drive
 from linkage.drawing import Drawing, leg_angles, mechanism_drawing, walker_drawing
-from linkage.drive import CrankSchedule
-from linkage.figures import Result, branch_text, crank_phase_deg, format_number, length_unit
+from linkage.drives.drive import CrankSchedule
+from linkage.kinematics.slider_crank import SliderCrank
+from linkage.report.figures import Result, branch_text, crank_phase_deg, format_number, length_unit
+from linkage.scene.builders import build_drive
 from linkage.synthesis import Candidate, long_link, rounded_to
 
 __all__ = ["MAX_FRAMES", "PAGE_SIZE", "PATH_POINTS", "frames", "page", "write_index"]

@@ -17,15 +17,16 @@ from numpy.typing import NDArray
 
 from linkage import _core
 from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage._schema import Scene
-from linkage._slider_crank import SliderCrank
-from linkage._sweep import Sweep
-from linkage.cam import CamProfile
 from linkage.drawing import sagittal_pivots
-from linkage.drive import Geared
-from linkage.figures import (
+from linkage.drives.cam import CamProfile
+from linkage.drives.drive import Geared
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
+from linkage.kinematics.slider_crank import SliderCrank
+from linkage.kinematics.sweep import Sweep
+from linkage.kinetostatics.forces import Forces
+from linkage.motion.geometry import StraightPart, straightness, three_point_centres
+from linkage.report.figures import (
     Result,
     Row,
     branch_text,
@@ -41,8 +42,7 @@ from linkage.figures import (
     torque_unit,
     versus,
 )
-from linkage.forces import Forces
-from linkage.geometry import StraightPart, straightness, three_point_centres
+from linkage.scene.schema import Scene
 from linkage.synthesis import (
     CHANGE_POINT_NEAR,
     Candidate,
@@ -50,7 +50,7 @@ from linkage.synthesis import (
     long_link,
     source_text,
 )
-from linkage.walker import Simulation, Walker
+from linkage.walking.walker import Simulation, Walker
 
 __all__ = [
     "CHANGE_POINT_NEAR",

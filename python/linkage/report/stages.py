@@ -18,13 +18,36 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import synthesis
-from linkage._choices import PathKind
 from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage._schema import Scene
-from linkage._sweep import Sweep
-from linkage.build import (
+from linkage._shared.choices import PathKind
+from linkage.drives.cam import CamProfile
+from linkage.drives.drive import CrankSchedule
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
+from linkage.kinematics.sweep import Sweep
+from linkage.kinetostatics.forces import Forces, joint_forces
+from linkage.motion.geometry import StraightPart, straightness
+from linkage.report.figures import (
+    Result,
+    Row,
+    SynthesisRun,
+    check_counts,
+    exact,
+    versus,
+)
+from linkage.report.stage_rows import STRAIGHT_RADIUS as STRAIGHT_RADIUS  # moved; its old home
+from linkage.report.stage_rows import (
+    cam_figures,
+    drive_label,
+    geometry_figures,
+    rate_figures,
+    straightness_figures,
+    synthesis_figures,
+    torque_figures,
+    trajectory_figures,
+    walker_figures,
+)
+from linkage.scene.builders import (
     ARITHMETIC,
     affordable_checks,
     build_cam,
@@ -41,31 +64,8 @@ from linkage.build import (
     synthesis_atlas,
     synthesis_target,
 )
-from linkage.cam import CamProfile
-from linkage.drive import CrankSchedule
-from linkage.figures import (
-    Result,
-    Row,
-    SynthesisRun,
-    check_counts,
-    exact,
-    versus,
-)
-from linkage.forces import Forces, joint_forces
-from linkage.geometry import StraightPart, straightness
-from linkage.stage_figures import STRAIGHT_RADIUS as STRAIGHT_RADIUS  # moved; its old home
-from linkage.stage_figures import (
-    cam_figures,
-    drive_label,
-    geometry_figures,
-    rate_figures,
-    straightness_figures,
-    synthesis_figures,
-    torque_figures,
-    trajectory_figures,
-    walker_figures,
-)
-from linkage.walker import Walker
+from linkage.scene.schema import Scene
+from linkage.walking.walker import Walker
 
 __all__ = ["CAM_SAMPLES", "CONSTRAINTS", "STRAIGHT_RADIUS", "run"]
 

@@ -24,9 +24,21 @@ from numpy.typing import NDArray
 
 from linkage import catalog, synthesis
 from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import JOINT_KINDS, Mechanism
-from linkage._schema import (
+from linkage.drives.cam import DiscCam
+from linkage.drives.drive import (
+    ConstantSpeed,
+    CrankSchedule,
+    Drive,
+    Geared,
+    GearTrain,
+    Program,
+    Segment,
+    crank_schedule,
+)
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import JOINT_KINDS, Mechanism
+from linkage.kinetostatics.forces import LinkMass, PointLoad, joint_forces
+from linkage.scene.schema import (
     CYCLES_MAX,
     MEMORY_CAP,
     POINTS_MAX,
@@ -40,20 +52,7 @@ from linkage._schema import (
     parse_only,
     read_text,
 )
-from linkage.cam import DiscCam
-from linkage.drive import (
-    ConstantSpeed,
-    CrankSchedule,
-    Drive,
-    Geared,
-    GearTrain,
-    Program,
-    Segment,
-    crank_schedule,
-)
-from linkage.figures import check_counts
-from linkage.forces import LinkMass, PointLoad, joint_forces
-from linkage.walker import Leg, Walker, gait_phases
+from linkage.walking.walker import Leg, Walker, gait_phases
 
 __all__ = [
     "ARITHMETIC",
@@ -67,6 +66,7 @@ __all__ = [
     "build_mechanism",
     "build_study",
     "build_walker",
+    "check_counts",
     "check_legs",
     "check_memory_estimate",
     "check_synthesis_memory",
@@ -856,6 +856,25 @@ def check_memory_estimate(
     if given:
         raise SceneError(f"samples: {problem}")
     raise scene.error(("drive",), "samples", problem)
+
+
+def check_counts(n: int, double: bool = True) -> tuple[int, ...]:
+    """Return the sample counts a run of ``n`` samples is checked at.
+
+    About half as many, on a grid that shares only its ends with the run's (``n_half − 1`` coprime
+    to ``n − 1``, so that no extreme is found again at a shared sample), and — when ``double`` —
+    twice as many, on the run's grid refined (every sample and the midpoints). The first catches
+    aliasing (a figure that depends on where the samples fall), the second the slow convergence of
+    extremes; a figure's error estimate is its largest difference from the two.
+
+    >>> from linkage.figures import check_counts
+    >>> check_counts(721), check_counts(8, double=False)
+    ((360, 1441), (4,))
+    """
+    half = max(3, (n - 1) // 2 + 1)
+    while half > 3 and math.gcd(half - 1, n - 1) != 1:
+        half -= 1
+    return (half, 2 * n - 1) if double else (half,)
 
 
 def affordable_checks(scene: Scene, study: FourBar | Mechanism | Walker, n: int) -> tuple[int, ...]:

@@ -36,8 +36,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from linkage import _schema, build
-from linkage._schema import (
+from linkage.scene import builders as build
+from linkage.scene import schema as _schema
+from linkage.scene.schema import (
     ANGLE_MAX_DEG,
     CAM,
     CAM_SEGMENT,
@@ -60,7 +61,6 @@ from linkage._schema import (
     MEMORY_CAP,
     NAME,
     NUMBERS,
-    OUTPUTS,
     PATH_KINDS,
     POINTS_MAX,
     REPORT_OUTPUTS,
@@ -108,7 +108,6 @@ __all__ = [
     "MEMORY_CAP",
     "NAME",
     "NUMBERS",
-    "OUTPUTS",
     "PATH_KINDS",
     "POINTS_MAX",
     "REPORT_OUTPUTS",

@@ -34,6 +34,55 @@ from linkage.drive import LAWS
 from linkage.synthesis import limits as _synthesis_limits
 from linkage.walker import GAITS
 
+__all__ = [
+    "ANGLE_MAX_DEG",
+    "CAM",
+    "CAM_SEGMENT",
+    "COORD_MAX",
+    "CYCLES_MAX",
+    "DEFAULT_SCENE",
+    "DRIVE",
+    "DRIVE_KINDS",
+    "FILE_MAX",
+    "FORMS",
+    "JOINT",
+    "JOINT_KINDS",
+    "LEG",
+    "LENGTH_RANGE",
+    "LOAD",
+    "MASS",
+    "MASS_MAX",
+    "MECHANISM",
+    "MECHANISM_OUTPUTS",
+    "MEMORY_CAP",
+    "NAME",
+    "NUMBERS",
+    "PATH_KINDS",
+    "POINTS_MAX",
+    "REPORT_OUTPUTS",
+    "SAMPLES_MAX",
+    "SCALE_RANGE",
+    "SEED_MAX",
+    "SEGMENT",
+    "SPEED_RANGE",
+    "STUDIES",
+    "SYNTHESIS",
+    "SYNTHESIS_OUTPUTS",
+    "SYNTHESIS_REFINE_MAX",
+    "SYNTHESIS_TOP_MAX",
+    "TEETH_MAX",
+    "TIME_RANGE",
+    "TOP",
+    "WALKER",
+    "WALKER_MODELS",
+    "WALKER_OUTPUTS",
+    "Scene",
+    "SceneError",
+    "base_folder",
+    "parse_only",
+    "read_text",
+]
+
 if sys.version_info >= (3, 11):  # pragma: no cover - depends on the interpreter
     import tomllib
 else:  # pragma: no cover
@@ -60,10 +109,6 @@ REPORT_OUTPUTS = (
 arrays a sweep computes). ``cad`` writes the mechanism at its first pose and every traced path
 as ``mechanism.dxf`` and ``mechanism.svg`` (of a ``[synthesis]`` scene: the best candidate);
 ``synthesis`` is the search of a ``[synthesis]`` scene and its report."""
-
-# Deprecated alias (0.2.0) of REPORT_OUTPUTS, which does not clash with linkage.OUTPUTS (a
-# sweep's outputs); a module attribute cannot warn cheaply. To be removed after 0.2.
-OUTPUTS = REPORT_OUTPUTS
 
 # `linkage run` with no scene: thesis 1's quadruped under its drive (also
 # examples/quadruped_hoecken.toml, kept equal by a test).
@@ -1126,3 +1171,10 @@ def _show(value: Any) -> str:
 def _did_you_mean(word: str, choices: Any) -> str:
     close = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1, cutoff=0.6)
     return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"SceneError": SceneError, "Scene": Scene}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage._schema"

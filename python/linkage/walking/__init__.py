@@ -1,3 +1,6 @@
-"""Walking machines: the walker (:mod:`linkage.walker`), leg families (:mod:`linkage.legs`), gait searches (:mod:`linkage.gait_search`)."""
+"""Walking machines: the walker, leg families and gait searches.
+
+The public paths are :mod:`linkage.walker`, :mod:`linkage.legs` and :mod:`linkage.gait_search`.
+"""
 
 __all__: list[str] = []

@@ -6,44 +6,28 @@ candidates: :func:`search_phases` the legs' crank phases under one crank drive,
 motor. The objective is the minimum static stability margin (``"margin"``, maximised) or the
 total foot slip per cycle among statically stable candidates (``"slip"``, minimised).
 
-Both are also reachable as before: ``Walker.search_phases`` and ``linkage.walker.search_*``.
-For those, :mod:`linkage.walker` imports this module, and this one does not import it: a
-walker is checked against the class ``_Walkers``, as which :class:`~linkage.walker.Walker`
-registers itself.
+The phase search is also :meth:`Walker.search_phases <linkage.walker.Walker.search_phases>`,
+which does the work: this module imports :mod:`linkage.walker`, not the other way.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
-from abc import ABC
 from collections.abc import Sequence
-from dataclasses import replace
-from typing import TYPE_CHECKING, get_args
+from typing import get_args
 
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._arrays import as_choice, as_count, as_finite
-from linkage._choices import Objective
 from linkage._core import LinkageError
-from linkage.drive import crank_schedule, stance_profile
-
-if TYPE_CHECKING:
-    # Not imported when running: linkage.walker imports this module.
-    from linkage.walker import Walker
+from linkage._shared.arrays import as_choice, as_count, as_finite
+from linkage._shared.choices import Objective
+from linkage.drives.drive import crank_schedule, stance_profile
+from linkage.walking.walker import Walker
 
 __all__ = ["search_duty_factor", "search_phases"]
 
 Array = NDArray[np.float64]
-
-
-class _Walkers(ABC):  # noqa: B024 (no abstract methods: a type to register with)
-    """The type of the walkers the searches take: :class:`linkage.walker.Walker` (registered).
-
-    An ``isinstance`` check against this class is one against ``Walker`` without importing
-    :mod:`linkage.walker`, which imports this module.
-    """
 
 
 def search_phases(
@@ -115,69 +99,9 @@ def search_phases(
     ...
     linkage.LinkageError: step must divide a full turn (2π/step a whole number ≥ 2)
     """
-    if not isinstance(walker, _Walkers):
+    if not isinstance(walker, Walker):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
-    objective = as_choice(objective, "objective", get_args(Objective))
-    step = as_finite(step, "step")
-    samples = as_count(samples, "samples")
-    rounds = as_count(rounds, "rounds", 0)
-    max_evals = as_count(max_evals, "max_evals", 0)
-    turns = 2 * math.pi / step if step > 0 else math.inf
-    if not (math.isfinite(turns) and turns < 2**53):
-        raise LinkageError(f"step must divide a full turn into at most 2**53 parts, got {step!r}")
-    g = round(turns)
-    if g < 2 or abs(g * step - 2 * math.pi) > 1e-9:
-        raise LinkageError("step must divide a full turn (2π/step a whole number ≥ 2)")
-    per = max(1, -(-samples // g))
-    n = g * per
-    walker._check_size(n)
-    theta = np.linspace(0, 2 * math.pi, n, endpoint=False)
-    # Every leg's track at phase 0 over one turn; a phase on the grid is a cyclic shift.
-    base = [replace(leg, phase=0.0).feet(theta, np.ones(n)) for leg in walker.legs]
-    t = theta.copy()
-
-    def score(k: Sequence[int]) -> float:
-        feet = np.stack([np.roll(base[i][0], -k[i] * per, axis=0) for i in range(len(k))], 1)
-        vel = np.stack([np.roll(base[i][1], -k[i] * per, axis=0) for i in range(len(k))], 1)
-        sim = walker._evaluate(theta, t, feet, vel)
-        if objective == "margin":
-            return sim.min_margin
-        if sim.min_margin < 0:
-            return -math.inf
-        return -float(sim.slip_distance.sum())
-
-    start = [round(p / step) % g for p in walker.phases]
-    free = len(walker.legs) - 1
-    exhaustive = g**free <= max_evals
-    if not exhaustive and rounds * free * g > max(max_evals, 1):
-        # Bounded time: the coordinate search tries every grid phase of every leg per round.
-        raise LinkageError(
-            f"step {step:g} gives {g} phases per leg: the search would need "
-            f"{rounds * free * g} evaluations, more than max_evals = {max_evals}"
-        )
-    if exhaustive:
-        # Exhaustive over the grid (the first leg fixed).
-        best_k, best_val = start, score(start)
-        for combo in itertools.product(range(g), repeat=free):
-            k = [start[0], *combo]
-            v = score(k)
-            if v > best_val + 1e-12:
-                best_k, best_val = k, v
-    else:
-        best_k, best_val = start, score(start)
-        for _ in range(rounds):
-            improved = False
-            for i in range(1, len(walker.legs)):
-                for c in range(g):
-                    k = list(best_k)
-                    k[i] = c
-                    v = score(k)
-                    if v > best_val + 1e-12:
-                        best_k, best_val, improved = k, v, True
-            if not improved:
-                break
-    phases = np.array([k * step for k in best_k])
-    return phases, best_val if objective == "margin" else -best_val
+    return walker.search_phases(objective, step, samples, rounds, max_evals)
 
 
 def search_duty_factor(
@@ -241,7 +165,7 @@ def search_duty_factor(
     ...
     linkage.LinkageError: no duty factor gives a feasible schedule
     """
-    if not isinstance(walker, _Walkers):
+    if not isinstance(walker, Walker):
         raise TypeError(f"walker must be a Walker, got {type(walker).__name__}")
     objective = as_choice(objective, "objective", get_args(Objective))
     samples = as_count(samples, "samples")

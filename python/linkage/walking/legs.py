@@ -29,7 +29,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
 from linkage._core import LinkageError
-from linkage._mechanism import Mechanism
+from linkage.kinematics.mechanism import Mechanism
 
 __all__ = [
     "CRANK",
@@ -493,3 +493,10 @@ def family(name: str) -> Family:
     if name not in FAMILIES:
         raise LinkageError(f"unknown leg family {name!r}; choose from {', '.join(FAMILIES)}")
     return FAMILIES[name]
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"Settings": Settings, "Family": Family}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.legs"

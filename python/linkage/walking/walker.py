@@ -16,6 +16,7 @@ the body is held level at constant height, and the ground is the lowest level an
 
 from __future__ import annotations
 
+import itertools
 import math
 import warnings
 from collections.abc import Sequence
@@ -25,25 +26,22 @@ from typing import Any, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from linkage import _core, gait_search
-from linkage._arrays import (
+from linkage import _core
+from linkage._core import LinkageError
+from linkage._shared.arrays import (
     as_angles,
+    as_choice,
     as_count,
     as_finite,
     as_flag,
     as_point,
     check_memory,
 )
-from linkage._choices import Objective, Plane
-from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
-from linkage._slider_crank import SliderCrank
-from linkage.drive import Drive, Program
-
-# The searches moved to linkage.gait_search; their old names here keep working.
-from linkage.gait_search import search_duty_factor as search_duty_factor
-from linkage.gait_search import search_phases as search_phases
+from linkage._shared.choices import Objective, Plane
+from linkage.drives.drive import Drive, Program
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
+from linkage.kinematics.slider_crank import SliderCrank
 
 __all__ = [
     "GAITS",
@@ -53,8 +51,6 @@ __all__ = [
     "Walker",
     "gait_phases",
     "leg_labels",
-    "search_duty_factor",
-    "search_phases",
 ]
 
 Array = NDArray[np.float64]
@@ -294,7 +290,6 @@ class Simulation:
         return out
 
 
-@gait_search._Walkers.register
 class Walker:
     """A body carrying legs, all driven by one crank drive (each leg at its own phase).
 
@@ -644,7 +639,69 @@ class Walker:
         ...
         linkage.LinkageError: objective must be one of 'margin', 'slip', got 'speed'
         """
-        return gait_search.search_phases(self, objective, step, samples, rounds, max_evals)
+        objective = as_choice(objective, "objective", get_args(Objective))
+        step = as_finite(step, "step")
+        samples = as_count(samples, "samples")
+        rounds = as_count(rounds, "rounds", 0)
+        max_evals = as_count(max_evals, "max_evals", 0)
+        turns = 2 * math.pi / step if step > 0 else math.inf
+        if not (math.isfinite(turns) and turns < 2**53):
+            raise LinkageError(
+                f"step must divide a full turn into at most 2**53 parts, got {step!r}"
+            )
+        g = round(turns)
+        if g < 2 or abs(g * step - 2 * math.pi) > 1e-9:
+            raise LinkageError("step must divide a full turn (2π/step a whole number ≥ 2)")
+        per = max(1, -(-samples // g))
+        n = g * per
+        self._check_size(n)
+        theta = np.linspace(0, 2 * math.pi, n, endpoint=False)
+        # Every leg's track at phase 0 over one turn; a phase on the grid is a cyclic shift.
+        base = [replace(leg, phase=0.0).feet(theta, np.ones(n)) for leg in self.legs]
+        t = theta.copy()
+
+        def score(k: Sequence[int]) -> float:
+            feet = np.stack([np.roll(base[i][0], -k[i] * per, axis=0) for i in range(len(k))], 1)
+            vel = np.stack([np.roll(base[i][1], -k[i] * per, axis=0) for i in range(len(k))], 1)
+            sim = self._evaluate(theta, t, feet, vel)
+            if objective == "margin":
+                return sim.min_margin
+            if sim.min_margin < 0:
+                return -math.inf
+            return -float(sim.slip_distance.sum())
+
+        start = [round(p / step) % g for p in self.phases]
+        free = len(self.legs) - 1
+        exhaustive = g**free <= max_evals
+        if not exhaustive and rounds * free * g > max(max_evals, 1):
+            # Bounded time: the coordinate search tries every grid phase of every leg per round.
+            raise LinkageError(
+                f"step {step:g} gives {g} phases per leg: the search would need "
+                f"{rounds * free * g} evaluations, more than max_evals = {max_evals}"
+            )
+        if exhaustive:
+            # Exhaustive over the grid (the first leg fixed).
+            best_k, best_val = start, score(start)
+            for combo in itertools.product(range(g), repeat=free):
+                k = [start[0], *combo]
+                v = score(k)
+                if v > best_val + 1e-12:
+                    best_k, best_val = k, v
+        else:
+            best_k, best_val = start, score(start)
+            for _ in range(rounds):
+                improved = False
+                for i in range(1, len(self.legs)):
+                    for c in range(g):
+                        k = list(best_k)
+                        k[i] = c
+                        v = score(k)
+                        if v > best_val + 1e-12:
+                            best_k, best_val, improved = k, v, True
+                if not improved:
+                    break
+        phases = np.array([k * step for k in best_k])
+        return phases, best_val if objective == "margin" else -best_val
 
     def _check_size(self, n: int) -> None:
         """Refuse a simulation of ``n`` samples that cannot fit in memory.
@@ -783,3 +840,10 @@ def gait_phases(gait: str, legs: Sequence[str]) -> Array:
     if missing:
         raise LinkageError(f"gait {gait!r} has no phase for legs {missing}")
     return np.array([-2 * math.pi * table[leg] for leg in legs])
+
+
+# These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and
+# reprs; doctest looks for a class's examples in its ``__module__``: ``__test__`` points here.
+__test__: dict[str, type] = {"Leg": Leg, "Simulation": Simulation, "Walker": Walker}
+for _cls in __test__.values():
+    _cls.__module__ = "linkage.walker"
