@@ -132,9 +132,10 @@ pub use numeric::turns::reduce_angle;
 #[cfg(feature = "std")]
 pub use sweep::engine::sweep_mechanisms;
 pub use sweep::engine::{
-    sweep, sweep_pairs, sweep_planned, Columns, Pairs, Plan, Rate, SweepOutputs, Swept,
-    SWEEP_CHUNK, SWEEP_WORK_CHUNK,
+    sweep, sweep_pairs, sweep_planned, Plan, Rate, SweepOutputs, Swept, SWEEP_CHUNK,
+    SWEEP_WORK_CHUNK,
 };
+pub use sweep::layout::{Columns, Pairs};
 pub use sweep::tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
 pub use walking::gait::{FourBarGait, GaitScratch, LegGait};
 pub use walking::support::{convex_hull, stability_margin, support_margins};

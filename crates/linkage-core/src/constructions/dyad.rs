@@ -2,6 +2,7 @@
 
 use nalgebra::RealField;
 
+use crate::numeric::pow2::pow2_scale;
 use crate::numeric::scalar::{cross, eps, length, lit, perp, Vec2};
 
 /// Which of the two mirror-image solutions of a dyad: the side of the directed line from the
@@ -123,46 +124,14 @@ fn triangle_area_given<T: RealField + Copy>(a: T, b: T, c: T, f2: T, tol: T) -> 
     Ok(prod.sqrt() * lit::<T>(0.25))
 }
 
-/// Whether `x ≥ 0` is a size at which [`pow2_scale`] is 1: within `[2⁻³², 2³²]`.
-#[inline(always)]
-pub(crate) fn unit_scale<T: RealField + Copy>(x: T) -> bool {
-    let step = lit::<T>(4_294_967_296.0); // 2³²
-    x <= step && x * step >= T::one()
-}
-
-/// A power of two `s` for rescaling by `x` without rounding: `1` for `x` in `[2⁻³², 2³²]`
-/// (ordinary sizes keep their bits), otherwise one with `x / s` in `[1, 2)` (for a positive
-/// finite `x`; within `2³²` of `x` for zero or infinity, `1` for NaN). Dividing by it is exact.
-///
-/// Why tight: the callers divide lengths by it and then form products of the quotients with
-/// other quantities that carry the linkage's scale (velocities, other lengths). A quotient left
-/// anywhere in `[2⁻³², 2³²]` would push such a product `2³²` closer to underflow or overflow —
-/// the rates of a linkage at 1e−300 lost digits to subnormal right-hand sides that way.
-#[inline]
-pub(crate) fn pow2_scale<T: RealField + Copy>(x: T) -> T {
-    if unit_scale(x) {
-        return T::one();
-    }
-    let step = lit::<T>(4_294_967_296.0); // 2³²
-    let mut s = T::one();
-    while x / s > step && (s * step).is_finite() {
-        s *= step;
-    }
-    while x / s < T::one() / step && s / step > T::zero() {
-        s /= step;
-    }
-    // Now within 2³² of `x`: settle the last bits (at most 32 halvings or doublings, and only
-    // for extreme sizes).
-    if x > T::zero() && x.is_finite() {
-        let two = lit::<T>(2.0);
-        while x / s >= two && (s * two).is_finite() {
-            s *= two;
-        }
-        while x / s < T::one() && s / two > T::zero() {
-            s /= two;
-        }
-    }
-    s
+/// The crank angles, measured from the ground direction, at which a crank of radius `r` about
+/// a pivot `g` from the rocker pivot puts a dyad `(r1, r2)` flat: `0` when `|g − r|`, `π` when
+/// `g + r` equals `|r1 − r2|` or `r1 + r2` to `8ε` of the lengths (a change point).
+pub(crate) fn flat_angles<T: RealField + Copy>(g: T, r: T, r1: T, r2: T) -> [Option<T>; 2] {
+    let (delta, sigma) = ((r1 - r2).abs(), r1 + r2);
+    let tol = eps::<T>() * lit::<T>(8.0) * (g + r + sigma);
+    let flat = |d: T| (d - delta).abs() <= tol || (d - sigma).abs() <= tol;
+    [flat((g - r).abs()).then(T::zero), flat(g + r).then(T::pi)]
 }
 
 /// Relative triangle slack (`f₂` over the longest side) below which a dyad asks its caller for a

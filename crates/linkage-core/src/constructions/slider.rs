@@ -4,9 +4,7 @@
 use nalgebra::RealField;
 
 use crate::constructions::dyad::DyadFailure;
-use crate::error::Error;
-use crate::mechanism::program::{Construction, Mechanism};
-use crate::numeric::scalar::{cross, eps, lit, nan, perp, Vec2};
+use crate::numeric::scalar::{cross, eps, lit, perp, Vec2};
 
 /// Which of the two intersections of a circle and a line.
 ///
@@ -87,8 +85,8 @@ pub enum LineDirection<T> {
 impl<T: RealField + Copy> LineDirection<T> {
     /// The line's direction at the joint positions `pos`.
     ///
-    /// A [`LineDirection::Fixed`] direction is returned as it is: a [`Mechanism`] stores it as a
-    /// unit vector ([`Mechanism::push`]), whatever `pos`. A [`LineDirection::Link`] direction is
+    /// A [`LineDirection::Fixed`] direction is returned as it is: a [`Mechanism`](crate::Mechanism) stores it as a
+    /// unit vector ([`Mechanism::push`](crate::Mechanism::push)), whatever `pos`. A [`LineDirection::Link`] direction is
     /// the unit vector `ê = (pos[to] − pos[from]) / |pos[to] − pos[from]|` turned
     /// counter-clockwise by `angle`: `(c·ê.x − s·ê.y, s·ê.x + c·ê.y)` with `(s, c)` the sine and
     /// cosine of `angle`.
@@ -129,61 +127,6 @@ impl<T: RealField + Copy> LineDirection<T> {
                 Some(Vec2::new(c * e.x - s * e.y, s * e.x + c * e.y))
             }
         }
-    }
-}
-
-impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
-    /// The unit direction of the line the slider `joint` slides on, in each sample of `joints`
-    /// (rows of [`Mechanism::len`] joint positions, as a sweep writes them), into `out` (one per
-    /// row): [`LineDirection::at`] of the slider's line, NaN where it is undetermined (the
-    /// carrying link's joints coincide or are NaN: a sample that did not assemble).
-    ///
-    /// ```
-    /// use linkage_core::{Error, LineDirection, Mechanism, Reach, Vec2};
-    /// // A slider through O on a line carried by the crank O → A, turned by 0.3 rad.
-    /// let mut m = Mechanism::<f64, 4>::new();
-    /// let o = m.fixed(Vec2::zeros()).unwrap();
-    /// let c = m.fixed(Vec2::new(3.0, 0.0)).unwrap();
-    /// let a = m.crank(o, 1.0, 0.0).unwrap();
-    /// let line = LineDirection::Link { from: o, to: a, angle: 0.3 };
-    /// let s = m.slider(c, 4.0, o, line, Reach::Ahead).unwrap();
-    /// // Two samples: the crank along +x, then a sample that did not assemble (NaN).
-    /// let mut joints = [Vec2::new(f64::NAN, f64::NAN); 8];
-    /// m.pose(0.0, &mut joints[..4]).unwrap();
-    /// let mut u = [Vec2::zeros(); 2];
-    /// m.line_directions(s, &joints, &mut u).unwrap();
-    /// assert!((u[0] - Vec2::new(0.3_f64.cos(), 0.3_f64.sin())).norm() < 1e-15);
-    /// assert!(u[1].x.is_nan() && u[1].y.is_nan());
-    /// // The crank pin is not a slider.
-    /// assert_eq!(m.line_directions(a, &joints, &mut u), Err(Error::NotASlider { joint: a }));
-    /// ```
-    ///
-    /// # Errors
-    /// [`Error::NotASlider`] when `joint` is not a slider joint of this mechanism;
-    /// [`Error::BufferLength`] when `joints` does not hold `out.len()` rows of
-    /// [`Mechanism::len`] joints.
-    pub fn line_directions(
-        &self,
-        joint: usize,
-        joints: &[Vec2<T>],
-        out: &mut [Vec2<T>],
-    ) -> Result<(), Error> {
-        let Some(&Construction::Slider { direction, .. }) = self.constructions().get(joint) else {
-            return Err(Error::NotASlider { joint });
-        };
-        let j = self.len();
-        if joints.len() / j != out.len() || !joints.len().is_multiple_of(j) {
-            return Err(Error::BufferLength {
-                what: "joints",
-                expected: out.len().saturating_mul(j),
-                got: joints.len(),
-            });
-        }
-        let undetermined = Vec2::new(nan::<T>(), nan::<T>());
-        for (u, row) in out.iter_mut().zip(joints.chunks_exact(j)) {
-            *u = direction.at(row).unwrap_or(undetermined);
-        }
-        Ok(())
     }
 }
 
@@ -269,7 +212,7 @@ impl<T: RealField + Copy> SliderDyad<T> {
         } else {
             // In units of a power of two near r (exact; 1 for ordinary sizes), so the product
             // neither overflows nor underflows at any linkage scale.
-            let sc = crate::constructions::dyad::pow2_scale(r);
+            let sc = crate::numeric::pow2::pow2_scale(r);
             (((r - e) / sc) * ((r + e) / sc)).sqrt() * sc
         };
         let foot = q - u * u.dot(&w);
@@ -346,6 +289,8 @@ impl<T: RealField + Copy> SliderDyad<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Error;
+    use crate::mechanism::program::Mechanism;
 
     #[test]
     fn line_outside_circle_reports_gap() {

@@ -46,8 +46,9 @@
 
 use nalgebra::RealField;
 
+use crate::constructions::dyad::flat_angles;
 use crate::error::{check_finite, Error};
-use crate::linkages::fourbar::{flat_angles, Assembly, FourBar};
+use crate::linkages::fourbar::{Assembly, FourBar};
 use crate::numeric::scalar::{lit, nan, Vec2};
 use crate::sweep::held::{self, BlockPoses};
 use crate::sweep::tracker::{Rates, Tracker};

@@ -299,7 +299,7 @@ impl<T: RealField + Copy> FourBar<T> {
     /// so sums and squares of them neither overflow nor underflow.
     fn scaled_lengths(&self) -> (T, T, T, T) {
         let (g, r, b, c) = (self.ground(), self.crank, self.coupler, self.rocker);
-        let s = crate::constructions::dyad::pow2_scale(g.max(r).max(b).max(c));
+        let s = crate::numeric::pow2::pow2_scale(g.max(r).max(b).max(c));
         if s == T::one() {
             (g, r, b, c)
         } else {
@@ -582,7 +582,7 @@ impl<T: RealField + Copy> FourBar<T> {
     /// is right at any scale (the cross product of tiny vectors underflows to 0).
     pub(crate) fn assembly_of(to_c: Vec2<T>, to_b: Vec2<T>) -> Assembly {
         let big = to_c.amax().max(to_b.amax());
-        let s = crate::constructions::dyad::pow2_scale(big);
+        let s = crate::numeric::pow2::pow2_scale(big);
         if cross(to_c / s, to_b / s) >= T::zero() {
             Assembly::Open
         } else {
@@ -611,7 +611,7 @@ impl<T: RealField + Copy> FourBar<T> {
         let big = [c - o, a - o, b - o, p - o]
             .iter()
             .fold(T::zero(), |m, v| m.max(v.amax()));
-        let s = crate::constructions::dyad::pow2_scale(big);
+        let s = crate::numeric::pow2::pow2_scale(big);
         let (e, rel) = ((b - a) / s, (p - a) / s);
         let len = crate::numeric::scalar::length(e);
         let (along, left) = (
@@ -658,7 +658,7 @@ impl<T: RealField + Copy> FourBar<T> {
         let (ba, bc) = (p.a - p.b, self.c - p.b);
         // The angle does not depend on scale: bring both sides near unit size first (a power
         // of two, exact) so the products neither overflow nor underflow at extreme sizes.
-        let s = crate::constructions::dyad::pow2_scale(ba.amax().max(bc.amax()));
+        let s = crate::numeric::pow2::pow2_scale(ba.amax().max(bc.amax()));
         let (ba, bc) = (ba / s, bc / s);
         Some(cross(ba, bc).abs().atan2(ba.dot(&bc)))
     }
@@ -846,16 +846,6 @@ impl<T: RealField + Copy> FourBar<T> {
         }
         Ok(ok)
     }
-}
-
-/// The crank angles, measured from the ground direction, at which a crank of radius `r` about
-/// a pivot `g` from the rocker pivot puts a dyad `(r1, r2)` flat: `0` when `|g − r|`, `π` when
-/// `g + r` equals `|r1 − r2|` or `r1 + r2` to `8ε` of the lengths (a change point).
-pub(crate) fn flat_angles<T: RealField + Copy>(g: T, r: T, r1: T, r2: T) -> [Option<T>; 2] {
-    let (delta, sigma) = ((r1 - r2).abs(), r1 + r2);
-    let tol = eps::<T>() * lit::<T>(8.0) * (g + r + sigma);
-    let flat = |d: T| (d - delta).abs() <= tol || (d - sigma).abs() <= tol;
-    [flat((g - r).abs()).then(T::zero), flat(g + r).then(T::pi)]
 }
 
 #[cfg(test)]

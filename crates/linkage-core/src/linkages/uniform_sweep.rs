@@ -101,7 +101,7 @@ impl<T: RealField + Copy> FourBar<T> {
         check_finite("theta0", theta0)?;
         check_finite("theta1", theta1)?;
         let (lo, hi) = (theta0.min(theta1), theta0.max(theta1));
-        let flats = crate::linkages::fourbar::flat_angles(
+        let flats = crate::constructions::dyad::flat_angles(
             self.ground(),
             self.crank,
             self.coupler,

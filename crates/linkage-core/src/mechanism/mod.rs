@@ -3,3 +3,4 @@
 pub(crate) mod bodies;
 pub(crate) mod program;
 pub(crate) mod rates;
+pub(crate) mod slider_lines;

@@ -564,7 +564,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         let dv = if b.crank_first { qa } else { -qa };
         let d = crate::numeric::scalar::length(dv);
         let (delta, sigma) = ((dyad.r1 - dyad.r2).abs(), dyad.r1 + dyad.r2);
-        let unit = crate::constructions::dyad::pow2_scale(g.max(r).max(sigma).max(d));
+        let unit = crate::numeric::pow2::pow2_scale(g.max(r).max(sigma).max(d));
         let (g, r, delta, sigma, ds) = if unit == T::one() {
             (g, r, delta, sigma, d)
         } else {
@@ -601,7 +601,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
     /// returns changes nothing).
     pub(crate) fn flat_positions(&self, i: usize) -> Option<FlatParity<T>> {
         let d = self.crank_fixed_dyad(i)?;
-        let [at_zero, at_pi] = crate::linkages::fourbar::flat_angles(d.g(), d.r, d.r1, d.r2);
+        let [at_zero, at_pi] = crate::constructions::dyad::flat_angles(d.g(), d.r, d.r1, d.r2);
         Some(FlatParity {
             zero: at_zero.is_some(),
             pi: at_pi.is_some(),
@@ -648,7 +648,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
         match self.steps[i] {
             Construction::Dyad { .. } => self.crank_fixed_dyad(i).is_none_or(|d| {
                 let (g, r, r1, r2) = (d.g(), d.r, d.r1, d.r2);
-                let [at_zero, at_pi] = crate::linkages::fourbar::flat_angles(g, r, r1, r2);
+                let [at_zero, at_pi] = crate::constructions::dyad::flat_angles(g, r, r1, r2);
                 at_zero.is_some() || at_pi.is_some()
             }),
             Construction::Slider { .. } => true,

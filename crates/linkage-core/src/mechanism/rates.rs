@@ -39,7 +39,7 @@ pub(crate) fn direction_rates<T: RealField + Copy>(
     // The rates are homogeneous of degree 0 in (d, d1, d2, d3): dividing all four by one power
     // of two near |d| (exact, and no change for ordinary sizes) keeps |d|² and the cross
     // products from overflowing or underflowing at any linkage scale.
-    let s = crate::constructions::dyad::pow2_scale(d.amax());
+    let s = crate::numeric::pow2::pow2_scale(d.amax());
     let (d, d1, d2, d3) = if s == T::one() {
         (d, d1, d2, d3)
     } else {
@@ -162,7 +162,7 @@ impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
                     // change for ordinary sizes): the system is the same, but neither the
                     // determinant nor `e·v`, `|w|²` overflow at any linkage scale.
                     let (e1, e2) = (p - pos[p1], p - pos[p2]);
-                    let s = crate::constructions::dyad::pow2_scale(e1.amax().max(e2.amax()));
+                    let s = crate::numeric::pow2::pow2_scale(e1.amax().max(e2.amax()));
                     // (no division at all in the common case s = 1)
                     let sc = |v: Vec2<T>| if s == T::one() { v } else { v / s };
                     let (e1, e2) = (sc(e1), sc(e2));
@@ -285,7 +285,7 @@ fn slider_rates<T: RealField + Copy>(
     // The link vector divided by a power of two near its length (exact; 1 for ordinary sizes):
     // each equation below is divided through by it, so no dot product of two large vectors
     // overflows at any linkage scale.
-    let unit = crate::constructions::dyad::pow2_scale((p - pa).amax());
+    let unit = crate::numeric::pow2::pow2_scale((p - pa).amax());
     let sc = |v: Vec2<T>| if unit == T::one() { v } else { v / unit };
     let e = sc(p - pa);
     let den = e.dot(&u);

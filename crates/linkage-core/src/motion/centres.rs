@@ -54,7 +54,7 @@ pub fn circumcentre<T: RealField + Copy>(p0: Vec2<T>, p1: Vec2<T>, p2: Vec2<T>) 
     // Work in units of a power of two near the largest coordinate (exact; 1 for coordinates in
     // [2⁻³², 2³²]), so neither the differences nor their squares overflow or underflow.
     let big = p0.amax().max(p1.amax()).max(p2.amax());
-    let s = crate::constructions::dyad::pow2_scale(big);
+    let s = crate::numeric::pow2::pow2_scale(big);
     let (q0, q1, q2) = (p0 / s, p1 / s, p2 / s);
     // Measure from the vertex opposite the longest side: the two shorter sides then meet there,
     // and their cross product has no cancellation (Shewchuk's advice for circumcentres).
@@ -112,8 +112,8 @@ pub fn path_curvature<T: RealField + Copy>(p: Vec2<T>, v: Vec2<T>, a: Vec2<T>) -
     // Velocity and acceleration in units of powers of two near their sizes (exact; skipped for
     // ordinary sizes): κ = (sa/sv²)·κ' and the centre offset scales by sv²/sa.
     let (sv, sa) = (
-        crate::constructions::dyad::pow2_scale(v.amax()),
-        crate::constructions::dyad::pow2_scale(a.amax()),
+        crate::numeric::pow2::pow2_scale(v.amax()),
+        crate::numeric::pow2::pow2_scale(a.amax()),
     );
     let ordinary = sv == T::one() && sa == T::one();
     let (v, a) = if ordinary { (v, a) } else { (v / sv, a / sa) };
@@ -373,8 +373,8 @@ pub fn line_intersection<T: RealField + Copy>(
     // Directions divided by powers of two near their sizes (exact; 1 for ordinary sizes): the
     // lines are the same, and the cross product cannot overflow.
     let (d, e) = (
-        d / crate::constructions::dyad::pow2_scale(d.amax()),
-        e / crate::constructions::dyad::pow2_scale(e.amax()),
+        d / crate::numeric::pow2::pow2_scale(d.amax()),
+        e / crate::numeric::pow2::pow2_scale(e.amax()),
     );
     let w = cross(d, e);
     let (nd, ne) = (d.norm(), e.norm());

@@ -82,7 +82,7 @@ pub(crate) fn size<T: RealField + Copy>(x: T, y: T) -> T {
 
 /// Euclidean length without overflow or underflow of the squares: `√(x² + y²)` when the sum
 /// of squares is a normal number, else the same formula on the vector divided by a power of two
-/// near its size, times that power ([`crate::constructions::dyad::pow2_scale`]: exact, so a linkage scaled by
+/// near its size, times that power ([`crate::numeric::pow2::pow2_scale`]: exact, so a linkage scaled by
 /// a power of two gets the same bits as at unit size, which `hypot` would not give).
 #[inline]
 pub(crate) fn length<T: RealField + Copy>(v: Vec2<T>) -> T {
@@ -90,7 +90,7 @@ pub(crate) fn length<T: RealField + Copy>(v: Vec2<T>) -> T {
     if n2.is_finite() && n2 > tiny_square::<T>() {
         n2.sqrt()
     } else if v.x.is_finite() && v.y.is_finite() && (v.x != T::zero() || v.y != T::zero()) {
-        let s = crate::constructions::dyad::pow2_scale(v.x.abs().max(v.y.abs()));
+        let s = crate::numeric::pow2::pow2_scale(v.x.abs().max(v.y.abs()));
         let (x, y) = (v.x / s, v.y / s);
         (x * x + y * y).sqrt() * s
     } else {

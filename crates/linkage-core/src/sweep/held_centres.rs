@@ -15,12 +15,12 @@
 
 use nalgebra::RealField;
 
-use crate::constructions::dyad::unit_scale;
 use crate::mechanism::bodies::{Bodies, BodyFrame, BodyId, GROUND};
 use crate::motion::centres::ZERO_RATE;
+use crate::numeric::pow2::unit_scale;
 use crate::numeric::scalar::{eps, lit, nan, size, tiny_square, Vec2};
-use crate::sweep::engine::{Columns, Pairs};
 use crate::sweep::held::{merge, BlockPoses, BlockRates, BLOCK};
+use crate::sweep::layout::{Columns, Pairs};
 
 /// `length` of `(x, y)` as the scalar code forms it in the common case, `√(x² + y²)`, and
 /// whether the scalar code takes another branch whose result may differ (a square sum that is

@@ -4,4 +4,5 @@
 pub(crate) mod engine;
 pub(crate) mod held;
 pub(crate) mod held_centres;
+pub(crate) mod layout;
 pub(crate) mod tracker;

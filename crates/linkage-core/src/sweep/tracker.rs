@@ -585,7 +585,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                         // overflow to ∞ and tie: compare them in units of a power of two near
                         // the larger (exact, and no change for ordinary sizes).
                         let unit =
-                            crate::constructions::dyad::pow2_scale(kept.amax().max(flipped.amax()));
+                            crate::numeric::pow2::pow2_scale(kept.amax().max(flipped.amax()));
                         let (kept, flipped) = if unit == T::one() {
                             (kept, flipped)
                         } else {

@@ -455,7 +455,7 @@ impl<T: RealField + Copy> BurmesterCurve<T> {
             big = big.max((p.origin - origin).amax());
         }
         let unit = if big > T::zero() {
-            crate::constructions::dyad::pow2_scale(big)
+            crate::numeric::pow2::pow2_scale(big)
         } else {
             T::one()
         };

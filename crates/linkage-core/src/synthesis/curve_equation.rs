@@ -466,7 +466,7 @@ pub(crate) fn unit_frame<T: RealField + Copy>(
     let largest = points
         .iter()
         .fold(T::zero(), |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let unit = crate::constructions::dyad::pow2_scale(largest);
+    let unit = crate::numeric::pow2::pow2_scale(largest);
     let n: T = lit(points.len() as f64);
     let centre = points.iter().fold(Vec2::zeros(), |s, p| s + p / unit) / n;
     let rms = (points

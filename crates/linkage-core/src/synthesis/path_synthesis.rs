@@ -20,10 +20,10 @@
 use alloc::vec::Vec;
 use nalgebra::RealField;
 
-use crate::constructions::dyad::pow2_scale;
 use crate::error::Error;
 use crate::linkages::fourbar::{Assembly, FourBar, InputRange};
 use crate::mechanism::program::Mechanism;
+use crate::numeric::pow2::pow2_scale;
 use crate::numeric::scalar::{lit, to_f64, Vec2};
 use crate::sweep::tracker::{Rates, Tracker};
 use crate::synthesis::efd::{Efd, Normalisation};

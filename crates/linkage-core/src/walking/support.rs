@@ -3,8 +3,8 @@
 
 use nalgebra::RealField;
 
-use crate::constructions::dyad::pow2_scale;
 use crate::error::Error;
+use crate::numeric::pow2::pow2_scale;
 use crate::numeric::scalar::{cross, Vec2};
 
 /// A power of two that brings the largest coordinate of `points` (and `extra`) near 1, so that
