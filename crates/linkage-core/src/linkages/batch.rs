@@ -50,7 +50,7 @@ use crate::constructions::dyad::flat_angles;
 use crate::error::{check_finite, Error};
 use crate::linkages::fourbar::{Assembly, FourBar};
 use crate::numeric::scalar::{lit, nan, Vec2};
-use crate::sweep::held::{self, BlockPoses};
+use crate::sweep::block_poses::{self, BlockPoses};
 use crate::sweep::tracker::{Rates, Tracker};
 
 /// Tracked samples between two calls of [`FourBarBatch::sweep_with`]'s `go_on`.
@@ -447,7 +447,7 @@ fn fast_path<T: RealField + Copy>(fb: &FourBar<T>, lo: T, hi: T) -> bool {
 }
 
 /// Solves again the samples of `theta` that `near` marks, as [`FourBar::pose`] does (the same
-/// bits): up to [`held::BLOCK`] of them at a time by the mechanism's block kernel, whose frame of
+/// bits): up to [`block_poses::BLOCK`] of them at a time by the mechanism's block kernel, whose frame of
 /// the crank base is formed once, not per sample; a sample the kernel cannot vouch for by the
 /// pose itself. Returns how many were solved. (Inlined, so the binding's AVX builds of the
 /// batch vectorise its kernel wider too.)
@@ -467,8 +467,9 @@ fn exact_near<T: RealField + Copy>(
     let mut marked = near.iter().enumerate().filter(|&(_, &n)| n).map(|(j, _)| j);
     let (mut joints, mut solved) = ([Vec2::zeros(); 5], 0);
     loop {
-        let (mut at, mut angles, mut m) = ([0; held::BLOCK], [T::zero(); held::BLOCK], 0);
-        for j in marked.by_ref().take(held::BLOCK) {
+        let (mut at, mut angles, mut m) =
+            ([0; block_poses::BLOCK], [T::zero(); block_poses::BLOCK], 0);
+        for j in marked.by_ref().take(block_poses::BLOCK) {
             (at[m], angles[m], m) = (j, theta[j], m + 1);
         }
         if m == 0 {

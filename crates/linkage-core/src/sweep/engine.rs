@@ -16,8 +16,8 @@ use crate::mechanism::program::{CrankRates, Mechanism};
 use crate::mechanism::rates::rate_margin;
 use crate::motion::centres::{path_curvature, relative_centre, BodyMotion, Centre};
 use crate::numeric::scalar::{lit, nan, Vec2};
-use crate::sweep::held::{padded, BlockPoses, BlockRates, BLOCK};
-use crate::sweep::held_centres::BlockCentres;
+use crate::sweep::block_centres::BlockCentres;
+use crate::sweep::block_poses::{padded, BlockPoses, BlockRates, BLOCK};
 use crate::sweep::layout::{Columns, Pairs};
 use crate::sweep::tracker::{Rates, Tracker};
 

@@ -1,6 +1,6 @@
 //! The layout of a sweep's outputs: which joints its per-joint columns hold ([`Columns`]) and
 //! which pairs of bodies it writes instant centres for ([`Pairs`]). Its own module so that the
-//! engine and the block kernel of centres ([`super::held_centres`]) both use it without using
+//! engine and the block kernel of centres ([`super::block_centres`]) both use it without using
 //! each other.
 use crate::error::Error;
 use crate::mechanism::bodies::{Bodies, BodyId};

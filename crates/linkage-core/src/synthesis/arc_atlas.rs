@@ -344,8 +344,7 @@ mod tests {
             ];
             let head: [f64; 5] = entry[..5].try_into().unwrap();
             let ok = [false, true].iter().any(|&flip| {
-                let p =
-                    crate::synthesis::path_synthesis::place_entry(&head, &frame_c, &frame_t, flip);
+                let p = crate::synthesis::circuit::place_entry(&head, &frame_c, &frame_t, flip);
                 (Vec2::new(p[0], p[1]) - want[0]).norm() < 1e-9
                     && (Vec2::new(p[2], p[3]) - want[1]).norm() < 1e-9
                     && (p[4] - 3.0 * entry[0]).abs() < 1e-9

@@ -31,8 +31,8 @@ use crate::linkages::fourbar::{Assembly, FourBar, GrashofClass, InputRange};
 use crate::linkages::slider_crank::SliderCrank;
 use crate::linkages::uniform_sweep::AngleMode;
 use crate::numeric::scalar::Vec2;
+use crate::synthesis::circuit::Circuit;
 use crate::synthesis::efd::{descriptor_len, Efd};
-use crate::synthesis::path_synthesis::Circuit;
 use crate::synthesis::slider_circuit::SliderCircuit;
 
 /// Link lengths of atlas four-bars relative to the ground: `(least, greatest)`.

@@ -577,7 +577,7 @@ pub fn fourbars_from_curve<T: RealField + Copy>(
 mod tests {
     use super::*;
     use crate::linkages::fourbar::{Assembly, FourBar};
-    use crate::synthesis::path_synthesis::{Circuit, CircuitPath, FootSearch};
+    use crate::synthesis::circuit::{Circuit, CircuitPath, FootSearch};
 
     /// `n` points of `fb`'s circuit from circuit parameter `from` to `to`.
     fn on_circuit(fb: [f64; 9], crossed: bool, n: usize, from: f64, to: f64) -> Vec<Vec2<f64>> {

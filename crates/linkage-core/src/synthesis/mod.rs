@@ -6,10 +6,10 @@
 pub(crate) mod arc_atlas;
 pub(crate) mod atlas;
 pub(crate) mod burmester;
+pub(crate) mod circuit;
 pub(crate) mod curve_equation;
 pub(crate) mod efd;
 pub(crate) mod freudenstein;
-pub(crate) mod path_synthesis;
 pub(crate) mod slider_arc_atlas;
 pub(crate) mod slider_circuit;
 pub(crate) mod slider_equation;
@@ -23,16 +23,16 @@ pub use burmester::{
     centre_point, circle_point, common_pole, pole, BodyPose, BurmesterCurve, BurmesterPair, Defect,
     MotionCandidate, MotionCheck, MAX_POSES,
 };
+pub use circuit::{
+    covering_arc, path_errors, path_residuals, place_entry, polyline_distances,
+    polyline_distances_each, ArcFigures, Circuit, CircuitPath, FootSearch, PathError, BRANCH_JOINT,
+    FOOT_STARTS, PLACED_PARAMS, POINT_JOINT,
+};
 pub use curve_equation::{fourbars_from_curve, CurveEquation, EquationFit, CURVE_EQUATION_POINTS};
 pub use efd::{
     descriptor_len, query_descriptors, Efd, Normalisation, MIN_CURVE_POINTS, QUERY_VARIANTS,
 };
 pub use freudenstein::{chebyshev_spacing, Freudenstein, FunctionCheck, FunctionGenerator};
-pub use path_synthesis::{
-    covering_arc, path_errors, path_residuals, place_entry, polyline_distances,
-    polyline_distances_each, ArcFigures, Circuit, CircuitPath, FootSearch, PathError, BRANCH_JOINT,
-    FOOT_STARTS, PLACED_PARAMS, POINT_JOINT,
-};
 pub use slider_arc_atlas::{slider_arc_frame, slider_arc_points, SLIDER_ARC_ENTRY_PARAMS};
 pub use slider_circuit::{
     place_slider_entry, slider_path_errors, slider_path_residuals, SliderCircuit, SLIDER_PARAMS,

@@ -32,10 +32,10 @@ use crate::error::Error;
 use crate::linkages::slider_crank::{Limits, RelativeRange, SliderCrank, SliderCrankPose};
 use crate::mechanism::program::Mechanism;
 use crate::numeric::scalar::{lit, Vec2};
-use crate::synthesis::efd::Normalisation;
-use crate::synthesis::path_synthesis::{
+use crate::synthesis::circuit::{
     errors_of, residuals_of, similarity, Circuit, FootSearch, PathError,
 };
+use crate::synthesis::efd::Normalisation;
 
 /// Numbers of a placed slider-crank: `[ox, oy, angle, offset, crank, coupler, along, left]`.
 pub const SLIDER_PARAMS: usize = 8;

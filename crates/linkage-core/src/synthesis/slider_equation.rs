@@ -410,7 +410,7 @@ pub fn slider_cranks_from_curve<T: RealField + Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::synthesis::path_synthesis::{Circuit, FootSearch};
+    use crate::synthesis::circuit::{Circuit, FootSearch};
     use crate::synthesis::slider_circuit::SliderCircuit;
 
     /// `n` points of the placed slider-crank `p`'s circuit from circuit parameter `from` to `to`.

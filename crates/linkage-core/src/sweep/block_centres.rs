@@ -19,7 +19,7 @@ use crate::mechanism::bodies::{Bodies, BodyFrame, BodyId, GROUND};
 use crate::motion::centres::ZERO_RATE;
 use crate::numeric::pow2::unit_scale;
 use crate::numeric::scalar::{eps, lit, nan, size, tiny_square, Vec2};
-use crate::sweep::held::{merge, BlockPoses, BlockRates, BLOCK};
+use crate::sweep::block_poses::{merge, BlockPoses, BlockRates, BLOCK};
 use crate::sweep::layout::{Columns, Pairs};
 
 /// `length` of `(x, y)` as the scalar code forms it in the common case, `√(x² + y²)`, and
@@ -188,7 +188,7 @@ impl<'p, T: RealField + Copy, const N: usize> BlockCentres<'p, T, N> {
                 }
                 continue;
             };
-            // Marks in a fresh array, merged only when there is one (see `held::merge`).
+            // Marks in a fresh array, merged only when there is one (see `block_poses::merge`).
             let (mut w, mut tol) = ([T::zero(); BLOCK], [T::zero(); BLOCK]);
             let (mut scalar, mut any) = ([false; BLOCK], false);
             let (xo, yo, xt, yt) = (&pos.x[o], &pos.y[o], &pos.x[t], &pos.y[t]);
