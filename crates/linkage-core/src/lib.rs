@@ -110,7 +110,9 @@ pub use error::Error;
 #[cfg(feature = "alloc")]
 pub use kinetostatics::{Dynamics, ForceSolution, ForceSweep, Inertia, Load, LoadSeries, Reaction};
 pub use linkages::batch::{BatchWork, FourBarBatch, GO_ON_EVERY};
-pub use linkages::fourbar::{Assembly, FourBar, FourBarPose, GrashofClass, InputRange};
+pub use linkages::fourbar::{
+    min_transmission_angle, Assembly, FourBar, FourBarPose, GrashofClass, InputRange,
+};
 pub use linkages::uniform_sweep::{AngleMode, MAX_TABLE};
 pub use mechanism::bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
 #[allow(

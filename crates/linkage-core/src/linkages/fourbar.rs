@@ -848,6 +848,25 @@ impl<T: RealField + Copy> FourBar<T> {
     }
 }
 
+/// The smallest transmission angle over a travel, folded to `[0, π/2]`, from the smallest sine
+/// of it met there: `asin(min(max(s, 0), 1))`. The sine is what a sweep measures anyway, the
+/// coupler–rocker dyad's assembly margin ([`crate::Sample::margin`], [`FourBarPose::margin`]),
+/// so a travel keeps a running minimum of margins and takes one arcsine at the end. A margin
+/// below 0 (a sample in the tracker's toggle band) is a transmission angle of 0, and so is NaN.
+/// Burmester's and Freudenstein's checks and the gait figures all call this one function.
+///
+/// ```
+/// use linkage_core::min_transmission_angle;
+/// assert_eq!(min_transmission_angle(1.0_f64), core::f64::consts::FRAC_PI_2);
+/// assert_eq!(min_transmission_angle(0.5_f64), 0.5_f64.asin());
+/// assert_eq!(min_transmission_angle(-1e-9_f64), 0.0);
+/// assert_eq!(min_transmission_angle(f64::NAN), 0.0);
+/// ```
+#[inline]
+pub fn min_transmission_angle<T: RealField + Copy>(min_sine: T) -> T {
+    min_sine.max(T::zero()).min(T::one()).asin()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -36,6 +36,7 @@
 use nalgebra::RealField;
 
 use crate::error::{check_finite, Error};
+use crate::linkages::fourbar::min_transmission_angle;
 use crate::linkages::fourbar::{FourBar, GrashofClass, InputRange};
 use crate::motion::centres::{circumcentre, Centre};
 use crate::numeric::scalar::{eps, length, lit, nan, perp, Vec2};
@@ -962,7 +963,7 @@ fn sweep_sense<T: RealField + Copy>(
                     }
                 }
                 if side0 != Some(side(&joints)) {
-                    out.min_transmission = margin.max(T::zero()).min(T::one()).asin();
+                    out.min_transmission = min_transmission_angle(margin);
                     out.defect = Some(Defect::FlatPosition);
                     return out;
                 }
@@ -975,7 +976,7 @@ fn sweep_sense<T: RealField + Copy>(
                 return out;
             }
         }
-        out.min_transmission = margin.max(T::zero()).min(T::one()).asin();
+        out.min_transmission = min_transmission_angle(margin);
         if j == 0 {
             side0 = Some(side(&joints));
         } else if side0 != Some(side(&joints)) {

@@ -27,6 +27,7 @@
 use nalgebra::RealField;
 
 use crate::error::{check_finite, check_length, Error};
+use crate::linkages::fourbar::min_transmission_angle;
 use crate::linkages::fourbar::{Assembly, FourBar, GrashofClass, InputRange};
 use crate::numeric::scalar::{eps, lit, nan, Vec2};
 use crate::sweep::tracker::{Rates, Tracker};
@@ -485,7 +486,7 @@ impl<T: RealField + Copy> FunctionGenerator<T> {
             psi[k] = v;
             prev = v;
         }
-        out.min_transmission = margin.max(T::zero()).min(T::one()).asin();
+        out.min_transmission = min_transmission_angle(margin);
         Ok(out)
     }
 }

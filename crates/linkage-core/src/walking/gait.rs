@@ -31,6 +31,7 @@ use nalgebra::RealField;
 
 use crate::error::{check_finite, Error};
 use crate::linkages::batch::FourBarBatch;
+use crate::linkages::fourbar::min_transmission_angle;
 use crate::linkages::fourbar::FourBar;
 use crate::linkages::uniform_sweep::AngleMode;
 use crate::numeric::scalar::{cross, lit, nan, Vec2};
@@ -451,7 +452,7 @@ impl<T: RealField + Copy> FourBar<T> {
         let gait = measure_unchecked(foot, rate, rel_tol * extent, lo.y, scratch.stance);
         FourBarGait {
             gait,
-            min_transmission: min_sin.min(T::one()).asin(),
+            min_transmission: min_transmission_angle(min_sin),
             full_turn: true,
         }
     }
