@@ -115,11 +115,6 @@ pub use linkages::fourbar::{
 };
 pub use linkages::uniform_sweep::{AngleMode, MAX_TABLE};
 pub use mechanism::bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
-#[allow(
-    deprecated,
-    reason = "the old name of CrankRates, kept for one release"
-)]
-pub use mechanism::program::Motion;
 pub use mechanism::program::{Construction, CrankRates, Mechanism};
 pub use mechanism::rates::rate_margin;
 pub use motion::centres::{

@@ -243,10 +243,6 @@ impl<T: RealField + Copy> CrankRates<T> {
     }
 }
 
-/// The old name of [`CrankRates`] ("motion" also names rate analysis and motion laws).
-#[deprecated(note = "renamed CrankRates")]
-pub type Motion<T> = CrankRates<T>;
-
 /// A planar mechanism: at most `N` joints, each placed by one [`Construction`] from joints
 /// before it, driven by one crank angle.
 ///

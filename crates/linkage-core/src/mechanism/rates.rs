@@ -78,23 +78,6 @@ fn carried<T: RealField + Copy>(
 }
 
 impl<T: RealField + Copy, const N: usize> Mechanism<T, N> {
-    /// The old name of [`Mechanism::rates`] ("motion" also names motion laws and Burmester
-    /// motion generation).
-    ///
-    /// # Errors
-    /// As [`Mechanism::rates`].
-    #[deprecated(note = "renamed Mechanism::rates")]
-    pub fn motion(
-        &self,
-        pos: &[Vec2<T>],
-        drive: CrankRates<T>,
-        vel: &mut [Vec2<T>],
-        acc: Option<&mut [Vec2<T>]>,
-        jerk: Option<&mut [Vec2<T>]>,
-    ) -> Result<bool, Error> {
-        self.rates(pos, drive, vel, acc, jerk)
-    }
-
     /// Velocities of every joint of a solved pose and, when the slices are given,
     /// accelerations and jerks (jerks need accelerations).
     ///
@@ -353,26 +336,6 @@ mod tests {
             + acc_at(th - 2.0 * h))
             / (12.0 * h);
         assert!((j[b] - fd).norm() < 1e-9, "{:?} vs {fd:?}", j[b]);
-    }
-
-    #[test]
-    #[allow(deprecated, reason = "the old name must still give the same rates")]
-    fn the_old_name_motion_gives_the_same_rates() {
-        let mut m = Mechanism::<f64, 4>::new();
-        let o = m.fixed(Vec2::new(0.0, 0.0)).unwrap();
-        let c = m.fixed(Vec2::new(4.0, 0.0)).unwrap();
-        let a = m.crank(o, 1.0, 0.0).unwrap();
-        m.dyad(a, c, 3.5, 3.0, crate::constructions::dyad::Side::Left)
-            .unwrap();
-        let mut p = [Vec2::zeros(); 4];
-        m.pose(0.7, &mut p).unwrap();
-        let drive = CrankRates::new(2.0, -0.5);
-        let (mut v1, mut a1) = ([Vec2::zeros(); 4], [Vec2::zeros(); 4]);
-        let (mut v2, mut a2) = ([Vec2::repeat(f64::NAN); 4], [Vec2::repeat(f64::NAN); 4]);
-        let r1 = m.rates(&p, drive, &mut v1, Some(&mut a1), None).unwrap();
-        let r2 = m.motion(&p, drive, &mut v2, Some(&mut a2), None).unwrap();
-        assert!(r1 && r2, "a generic pose is regular");
-        assert_eq!((v1, a1), (v2, a2), "motion forwards to rates");
     }
 
     #[test]
