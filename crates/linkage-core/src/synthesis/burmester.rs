@@ -845,6 +845,39 @@ fn check_motion<T: RealField + Copy>(
     }
 }
 
+/// The first pose whose crank angle (`t`, unwrapped from `t[0]`) a limited crank cannot reach
+/// from the interval it starts in, `None` when it reaches them all. A limited crank must stay
+/// inside the interval it starts in: exact limits, so no sampling can step over a locked zone.
+fn leaves_input_range<T: RealField + Copy>(fb: &FourBar<T>, t: &[T]) -> Option<usize> {
+    let tau = T::two_pi();
+    let interval = match fb.input_range() {
+        InputRange::Full => None,
+        InputRange::Never => return Some(0),
+        InputRange::Between { lo, hi } => Some((lo, hi)),
+        InputRange::TwoIntervals { first, second } => {
+            let inside = |(lo, hi): (T, T)| {
+                let r = lo + turns(t[0] - lo);
+                r <= hi || r - tau >= lo - lit::<T>(64.0) * eps::<T>() * tau
+            };
+            Some(if inside(first) { first } else { second })
+        }
+    };
+    if let Some((lo, hi)) = interval {
+        let slack = lit::<T>(64.0) * eps::<T>() * (tau + lo.abs() + hi.abs());
+        let mut r = lo + turns(t[0] - lo);
+        if r > hi + slack && r - tau >= lo - slack {
+            r -= tau;
+        }
+        for (j, &tj) in t.iter().enumerate() {
+            let x = r + (tj - t[0]);
+            if x < lo - slack || x > hi + slack {
+                return Some(j);
+            }
+        }
+    }
+    None
+}
+
 /// Sweeps the crank through the poses in turning sense `dir`.
 fn sweep_sense<T: RealField + Copy>(
     fb: &FourBar<T>,
@@ -886,36 +919,9 @@ fn sweep_sense<T: RealField + Copy>(
         out.defect = Some(Defect::Order);
         return out;
     }
-    // A limited crank must stay inside the interval it starts in: exact limits, so no sampling
-    // can step over a locked zone.
-    let interval = match fb.input_range() {
-        InputRange::Full => None,
-        InputRange::Never => {
-            out.defect = Some(Defect::Toggle { pose: 0 });
-            return out;
-        }
-        InputRange::Between { lo, hi } => Some((lo, hi)),
-        InputRange::TwoIntervals { first, second } => {
-            let inside = |(lo, hi): (T, T)| {
-                let r = lo + turns(t[0] - lo);
-                r <= hi || r - tau >= lo - lit::<T>(64.0) * eps::<T>() * tau
-            };
-            Some(if inside(first) { first } else { second })
-        }
-    };
-    if let Some((lo, hi)) = interval {
-        let slack = lit::<T>(64.0) * eps::<T>() * (tau + lo.abs() + hi.abs());
-        let mut r = lo + turns(t[0] - lo);
-        if r > hi + slack && r - tau >= lo - slack {
-            r -= tau;
-        }
-        for j in 0..n {
-            let x = r + (t[j] - t[0]);
-            if x < lo - slack || x > hi + slack {
-                out.defect = Some(Defect::Toggle { pose: j });
-                return out;
-            }
-        }
+    if let Some(pose) = leaves_input_range(fb, &t[..n]) {
+        out.defect = Some(Defect::Toggle { pose });
+        return out;
     }
     let m = fb.mechanism();
     let Ok(mut tracker) = Tracker::new(&m) else {
