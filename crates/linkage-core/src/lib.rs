@@ -82,6 +82,11 @@ pub mod catalog;
 #[cfg(feature = "synthesis")]
 pub mod synthesis;
 
+// Steps of the atlas search and the placement of its entries (`candidate`, `nearest`,
+// `place_entry`, `query_descriptors`, ...) and the `go_on` cadence (`GO_ON_EVERY`,
+// `SWEEP_WORK_CHUNK`) are re-exported flat as in 0.1 for the binding, but are
+// `#[doc(hidden)]` where they are defined: internals, not API.
+
 #[cfg(feature = "synthesis")]
 pub use linkages::slider_crank::{SliderCrank, SliderCrankPose};
 #[cfg(feature = "synthesis")]

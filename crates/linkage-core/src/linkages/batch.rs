@@ -54,6 +54,7 @@ use crate::sweep::block_poses::{self, BlockPoses};
 use crate::sweep::tracker::{Rates, Tracker};
 
 /// Tracked samples between two calls of [`FourBarBatch::sweep_with`]'s `go_on`.
+#[doc(hidden)]
 pub const GO_ON_EVERY: usize = 256;
 
 /// Crank angles per block of the fast kernel (their `sin`/`cos` live on the stack).

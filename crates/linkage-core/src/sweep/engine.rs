@@ -29,6 +29,7 @@ pub const SWEEP_CHUNK: usize = 4096;
 /// reach it (up to a few hundred for a jump of many turns), so counting work rather than
 /// samples bounds the time between two checks (about 10 ms on a desktop) whatever the spacing
 /// of the samples.
+#[doc(hidden)]
 pub const SWEEP_WORK_CHUNK: u64 = 1 << 15;
 
 /// A driver rate for a sweep: one value for every sample, or one per sample.

@@ -251,6 +251,7 @@ pub fn arc_points(entry: &[f64; ARC_ENTRY_PARAMS], spec: ArcSpec) -> Result<Vec<
 ///
 /// # Errors
 /// As [`arc_points`], [`Efd::open`] and [`Efd::normalised`].
+#[doc(hidden)]
 pub fn arc_frame(
     entry: &[f64; ARC_ENTRY_PARAMS],
     spec: ArcSpec,

@@ -463,6 +463,7 @@ fn sequence(i: u64) -> [f64; 5] {
 
 /// Candidate `i` of the atlas's sequence (see the module); `None` for a change point or a
 /// linkage that never assembles.
+#[doc(hidden)]
 pub fn candidate(i: u64) -> Option<FourBar<f64>> {
     let u = sequence(i);
     let (lo, hi) = (LENGTH_RANGE.0.ln(), LENGTH_RANGE.1.ln());
@@ -507,6 +508,7 @@ fn sequence4(i: u64) -> [f64; 4] {
 /// mirror images are both present), and the coupler point `coupler·(u, v)` with
 /// `u ∈ [−1, 2]`, `v ∈ [−1.5, 1.5]` as for four-bars. `None` for a change point
 /// (`|offset| + 1 = coupler`) or a linkage that does not move.
+#[doc(hidden)]
 pub fn slider_candidate(i: u64) -> Option<SliderCrank<f64>> {
     let u = sequence4(i);
     let (lo, hi) = (LENGTH_RANGE.0.ln(), LENGTH_RANGE.1.ln());
@@ -541,6 +543,7 @@ pub(crate) fn slider_entry_linkage(
 ///
 /// # Errors
 /// [`Error::BufferLength`] when `dim` is zero or does not divide the arrays' lengths.
+#[doc(hidden)]
 pub fn nearest(
     descriptors: &[f32],
     dim: usize,

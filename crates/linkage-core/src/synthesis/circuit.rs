@@ -29,6 +29,7 @@ use crate::sweep::tracker::{Rates, Tracker};
 use crate::synthesis::efd::{Efd, Normalisation};
 
 /// Local minima of the polyline distance refined by [`Circuit::foot`].
+#[doc(hidden)]
 pub const FOOT_STARTS: usize = 4;
 
 /// Quarter steps of the polyline [`Circuit::foot`] scans about each local minimum (five
@@ -243,9 +244,11 @@ impl<T: RealField + Copy> CircuitPath<T> {
 
 /// Joint of a [`Circuit::program`] whose branch the circuit passes to the other at a crank
 /// limit: a four-bar's `B` ([`FourBar::B`]), a slider-crank's slider.
+#[doc(hidden)]
 pub const BRANCH_JOINT: usize = 3;
 
 /// Joint of a [`Circuit::program`] that traces the curve: the coupler point.
+#[doc(hidden)]
 pub const POINT_JOINT: usize = 4;
 
 /// A one-degree-of-freedom linkage's circuit as a closed curve of the circuit parameter `s`
@@ -744,6 +747,7 @@ fn segment_distance<T: RealField + Copy>(p: Vec2<T>, a: Vec2<T>, b: Vec2<T>) -> 
 /// let want = [5.0, 0.0, 5.0, 2.0, 1.0, 4.0, 3.0, 2.0, 0.5];
 /// assert!(p.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-15));
 /// ```
+#[doc(hidden)]
 pub fn place_entry<T: RealField + Copy>(
     entry: &[T; 5],
     curve: &Normalisation<T>,
@@ -923,6 +927,7 @@ pub fn polyline_distances_each<T: RealField + Copy>(
 /// assert!((start - 6.0).abs() < 1e-12 && (end - (0.5 + std::f64::consts::TAU)).abs() < 1e-12);
 /// assert_eq!(covering_arc(&[f64::NAN]), None);
 /// ```
+#[doc(hidden)]
 pub fn covering_arc<T: RealField + Copy>(feet: &[T]) -> Option<(T, T)> {
     let tau = T::two_pi();
     let wrap = |s: T| {

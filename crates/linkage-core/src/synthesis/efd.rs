@@ -328,6 +328,7 @@ impl<T: RealField + Copy> Efd<T> {
 }
 
 /// Query vectors of one target curve written by [`query_descriptors`].
+#[doc(hidden)]
 pub const QUERY_VARIANTS: usize = 4;
 
 /// The normalised descriptor vectors under which an atlas may hold the shape of the curve
@@ -340,6 +341,7 @@ pub const QUERY_VARIANTS: usize = 4;
 /// # Errors
 /// As [`Efd::closed`] and [`Efd::normalised`]; [`Error::BufferLength`] (`"query
 /// descriptors"`) for an `out` of the wrong length.
+#[doc(hidden)]
 pub fn query_descriptors<T: RealField + Copy>(
     points: &[Vec2<T>],
     harmonics: usize,

@@ -112,6 +112,7 @@ pub fn slider_arc_points(
 ///
 /// # Errors
 /// As [`slider_arc_points`], [`Efd::open`](crate::Efd::open) and [`Efd::normalised`](crate::Efd::normalised).
+#[doc(hidden)]
 pub fn slider_arc_frame(
     entry: &[f64; SLIDER_ARC_ENTRY_PARAMS],
     spec: ArcSpec,

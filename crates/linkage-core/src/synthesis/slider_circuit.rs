@@ -272,6 +272,7 @@ impl<T: RealField + Copy> Circuit<T> for SliderCircuit<T> {
 /// let want = [5.0, 0.0, std::f64::consts::FRAC_PI_2, 1.0, 2.0, 6.0, 2.0, -0.5];
 /// assert!(p.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-15));
 /// ```
+#[doc(hidden)]
 pub fn place_slider_entry<T: RealField + Copy>(
     entry: &[T; 4],
     curve: &Normalisation<T>,
