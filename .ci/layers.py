@@ -56,7 +56,7 @@ def binding_layer(unit: str) -> int:
 
 
 def core_layer(unit: str) -> int | None:
-    """The layer of a core unit, None for a unit the table does not know."""
+    """Return the layer of a core unit, None for a unit the table does not know."""
     for n, units in enumerate(CORE_LAYERS):
         if unit in units:
             return n
@@ -70,7 +70,7 @@ CRATES = {
 
 
 def mask(src: str) -> str:
-    """src with comments, strings and char literals replaced by spaces (newlines kept)."""
+    """Return src with comments, strings and char literals blanked (newlines kept)."""
     out = list(src)
     i, n = 0, len(src)
 
@@ -126,7 +126,7 @@ TEST_ATTR = re.compile(r"#\[cfg\([^\n]*\btest\b[^\n]*\)\]")
 
 
 def strip_tests(text: str) -> tuple[str, set[str]]:
-    """Masked text with `#[cfg(test)] mod x { ... }` blocks blanked; names of `#[cfg(test)] mod x;`."""
+    """Blank `#[cfg(test)] mod x { ... }` blocks; return the text and the `mod x;` test files."""
     out = list(text)
     test_files: set[str] = set()
     for m in TEST_ATTR.finditer(text):
@@ -163,7 +163,7 @@ def module_of(rel: str) -> list[str]:
 
 
 def group_heads(body: str) -> list[list[str]]:
-    """The paths of a `{a::b, c::{d, e}, f}` group, as segment lists (nested groups: their heads)."""
+    """Return the paths of a `{a::b, c::{d, e}, f}` group as segment lists (nested: heads)."""
     items, depth, cur = [], 0, ""
     for ch in body:
         if ch == "{":
@@ -204,7 +204,7 @@ def inline_modules(text: str) -> list[tuple[int, int, str]]:
 
 
 def uses(text: str) -> list[tuple[int, str, list[str], list[str]]]:
-    """(line, 'crate' or 'super...', path segments, enclosing inline modules) per path into the crate."""
+    """Return (line, crate/super..., segments, enclosing inline mods) per path into the crate."""
     found = []
     spans = inline_modules(text)
     for m in PATH.finditer(text):
@@ -249,7 +249,7 @@ def check(root: str, src_rel: str, layer_of) -> tuple[list[str], int, int]:
         with open(os.path.join(src, rel), encoding="utf-8") as f:
             text, tests = strip_tests(mask(f.read()))
         masked[rel] = text
-        test_mods |= {mod + (t,) for t in tests}
+        test_mods |= {(*mod, t) for t in tests}
     errors: list[str] = []
     edges: dict[tuple[str, ...], dict[tuple[str, ...], tuple[str, int]]] = {m: {} for m in modules}
     n_uses = 0
@@ -366,6 +366,7 @@ def cycles(edges, src_rel: str) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
+    """Check the crates, print the violations or a summary; 1 on a violation."""
     args = list(argv[1:])
     only = list(CRATES)
     if "--only" in args:
