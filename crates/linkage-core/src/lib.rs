@@ -120,8 +120,8 @@ pub use linkages::fourbar::{
 };
 pub use linkages::uniform_sweep::{AngleMode, MAX_TABLE};
 pub use mechanism::bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
+pub use mechanism::joint_rates::rate_margin;
 pub use mechanism::program::{Construction, CrankRates, Mechanism};
-pub use mechanism::rates::rate_margin;
 pub use motion::centres::{
     circumcentre, instant_centre, line_intersection, path_curvature, relative_centre, BodyMotion,
     Centre,

@@ -3,7 +3,7 @@
 use nalgebra::RealField;
 
 use crate::mechanism::bodies::{Bodies, BodyFrame, BodyId};
-use crate::mechanism::rates::direction_rates;
+use crate::mechanism::joint_rates::direction_rates;
 use crate::numeric::scalar::{cross, eps, length, lit, perp, size, Vec2};
 
 /// A point of the projective plane: finite, at infinity in a direction, or undefined.

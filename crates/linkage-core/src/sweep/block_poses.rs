@@ -482,7 +482,7 @@ impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
         alpha: &[T; BLOCK],
     ) {
         let zero = [T::zero(); BLOCK];
-        let m_star = crate::mechanism::rates::rate_margin::<T>();
+        let m_star = crate::mechanism::joint_rates::rate_margin::<T>();
         let (lo, hi) = (
             lit::<T>(2.328_306_436_538_696_3e-10),
             lit::<T>(4_294_967_296.0),

@@ -12,8 +12,8 @@ use nalgebra::RealField;
 
 use crate::error::Error;
 use crate::mechanism::bodies::{Bodies, BodyId, GROUND};
+use crate::mechanism::joint_rates::rate_margin;
 use crate::mechanism::program::{CrankRates, Mechanism};
-use crate::mechanism::rates::rate_margin;
 use crate::motion::centres::{path_curvature, relative_centre, BodyMotion, Centre};
 use crate::numeric::scalar::{lit, nan, Vec2};
 use crate::sweep::block_centres::BlockCentres;

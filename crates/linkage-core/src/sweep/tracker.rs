@@ -860,7 +860,7 @@ impl<'m, T: RealField + Copy, const N: usize> Tracker<'m, T, N> {
                 got: 0,
             });
         } else {
-            regular = margin >= crate::mechanism::rates::rate_margin::<T>();
+            regular = margin >= crate::mechanism::joint_rates::rate_margin::<T>();
         }
         Ok(Sample { margin, regular })
     }
