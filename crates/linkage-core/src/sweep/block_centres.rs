@@ -5,7 +5,7 @@
 //! samples in straight loops the compiler vectorises — so each sample gets the bits that the
 //! sample-by-sample sweep gives it.
 //!
-//! Rates are per unit crank angle (a [`BlockRates`] for the drive `ω = 1, α = 0`). Which pair
+//! Rates are per unit crank angle (a [`BlockJointRates`] for the drive `ω = 1, α = 0`). Which pair
 //! of bodies shares a joint is looked up once a block, not once a sample.
 //!
 //! # What a block does not do itself
@@ -19,7 +19,7 @@ use crate::mechanism::bodies::{Bodies, BodyFrame, BodyId, GROUND};
 use crate::motion::centres::ZERO_RATE;
 use crate::numeric::pow2::unit_scale;
 use crate::numeric::scalar::{eps, lit, nan, size, tiny_square, Vec2};
-use crate::sweep::block_poses::{merge, BlockPoses, BlockRates, BLOCK};
+use crate::sweep::block_poses::{merge, BlockJointRates, BlockPoses, BLOCK};
 use crate::sweep::layout::{Columns, Pairs};
 
 /// `length` of `(x, y)` as the scalar code forms it in the common case, `√(x² + y²)`, and
@@ -165,7 +165,7 @@ impl<'p, T: RealField + Copy, const N: usize> BlockCentres<'p, T, N> {
         &mut self,
         bodies: &Bodies<N>,
         pos: &BlockPoses<T, N>,
-        unit: &BlockRates<T, N>,
+        unit: &BlockJointRates<T, N>,
     ) {
         let (one, e) = (T::one(), eps::<T>());
         let zr = lit::<T>(ZERO_RATE) * e;
@@ -225,7 +225,7 @@ impl<'p, T: RealField + Copy, const N: usize> BlockCentres<'p, T, N> {
         bodies: &Bodies<N>,
         id: BodyId,
         pos: &'a BlockPoses<T, N>,
-        unit: &'a BlockRates<T, N>,
+        unit: &'a BlockJointRates<T, N>,
     ) -> Body<'a, T> {
         match bodies.frame(id) {
             BodyFrame::Link { origin, .. } if id != GROUND => Body {
@@ -260,7 +260,7 @@ impl<'p, T: RealField + Copy, const N: usize> BlockCentres<'p, T, N> {
         &mut self,
         bodies: &Bodies<N>,
         pos: &BlockPoses<T, N>,
-        unit: &BlockRates<T, N>,
+        unit: &BlockJointRates<T, N>,
         (k0, m, np): (usize, usize, usize),
         mut centres: Option<&mut [Vec2<T>]>,
         mut directions: Option<&mut [Vec2<T>]>,
@@ -359,7 +359,7 @@ impl<'p, T: RealField + Copy, const N: usize> BlockCentres<'p, T, N> {
     pub(crate) fn curvature(
         &mut self,
         pos: &BlockPoses<T, N>,
-        unit: &BlockRates<T, N>,
+        unit: &BlockJointRates<T, N>,
         columns: Columns,
         (k0, m, j): (usize, usize, usize),
         mut kappa: Option<&mut [T]>,

@@ -446,7 +446,7 @@ impl<T: RealField + Copy, const N: usize> BlockPoses<T, N> {
 /// Velocities and accelerations of a block of posed samples (structure of arrays), by the
 /// formulas of [`Mechanism::rates`] term for term for fixed joints, cranks, dyads and carried
 /// points (a block never holds a slider).
-pub(crate) struct BlockRates<T, const N: usize> {
+pub(crate) struct BlockJointRates<T, const N: usize> {
     pub(crate) vx: [[T; BLOCK]; N],
     pub(crate) vy: [[T; BLOCK]; N],
     pub(crate) ax: [[T; BLOCK]; N],
@@ -458,11 +458,11 @@ pub(crate) struct BlockRates<T, const N: usize> {
     pub(crate) scalar: [bool; BLOCK],
 }
 
-impl<T: RealField + Copy, const N: usize> BlockRates<T, N> {
+impl<T: RealField + Copy, const N: usize> BlockJointRates<T, N> {
     /// An empty block.
     pub(crate) fn new() -> Self {
         let z = [[T::zero(); BLOCK]; N];
-        BlockRates {
+        BlockJointRates {
             vx: z,
             vy: z,
             ax: z,

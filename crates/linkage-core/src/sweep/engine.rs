@@ -17,7 +17,7 @@ use crate::mechanism::program::{CrankRates, Mechanism};
 use crate::motion::centres::{path_curvature, relative_centre, BodyMotion, Centre};
 use crate::numeric::scalar::{lit, nan, Vec2};
 use crate::sweep::block_centres::BlockCentres;
-use crate::sweep::block_poses::{padded, BlockPoses, BlockRates, BLOCK};
+use crate::sweep::block_poses::{padded, BlockJointRates, BlockPoses, BLOCK};
 use crate::sweep::layout::{Columns, Pairs};
 use crate::sweep::tracker::{Rates, Tracker};
 
@@ -491,7 +491,7 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
     fn block_write(
         &self,
         blk: &BlockPoses<T, N>,
-        rates: Option<(&BlockRates<T, N>, &[T; BLOCK], &[T; BLOCK])>,
+        rates: Option<(&BlockJointRates<T, N>, &[T; BLOCK], &[T; BLOCK])>,
         toggle_margin: T,
         theta: &[T],
         k0: usize,
@@ -575,7 +575,7 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
     fn block_centres(
         &self,
         blk: &BlockPoses<T, N>,
-        unit: &mut BlockRates<T, N>,
+        unit: &mut BlockJointRates<T, N>,
         cen: &mut BlockCentres<T, N>,
         (k0, m): (usize, usize),
         out: &mut SweepOutputs<'_, T>,
@@ -631,12 +631,12 @@ impl<'m, T: RealField + Copy, const N: usize> Engine<'m, T, N> {
         if let Some(r) = reference {
             blk.orient(self.mech, r);
         }
-        let mut rts = BlockRates::<T, N>::new();
+        let mut rts = BlockJointRates::<T, N>::new();
         // Unit-drive rates and body turns, built only for sweeps that ask for centres or
         // curvatures (their tables are sized by the capacity).
         let mut scratch = (self.wants_centres || self.wants_curvature).then(|| {
             (
-                BlockRates::<T, N>::new(),
+                BlockJointRates::<T, N>::new(),
                 BlockCentres::<T, N>::new(&self.bodies, out.pairs),
             )
         });
