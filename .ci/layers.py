@@ -46,13 +46,23 @@ BINDING_CONVERT = ("convert", "conv")
 BINDING_MIDDLE = 3
 
 
+# True: a binding module named after a core folder takes that folder's order (binding
+# `linkages` may then use binding `mechanism`, as the core's do); other modules stay peers above
+# them. False (the rule of issue 30): every such module is a peer of every other.
+BINDING_MIRRORS_CORE = False
+
+
 def binding_layer(unit: str) -> int:
-    """0-2 for the shared helpers, 4 for `lib`, 3 for every other binding module (peers)."""
+    """0-2 for the shared helpers, the top for `lib`, one middle layer for every other module."""
     if unit in BINDING_BOTTOM:
         return BINDING_BOTTOM[unit]
     if unit.startswith(BINDING_CONVERT):
         return BINDING_BOTTOM["args"]
-    return BINDING_MIDDLE + 1 if unit == "lib" else BINDING_MIDDLE
+    top = BINDING_MIDDLE + (len(CORE_LAYERS) if BINDING_MIRRORS_CORE else 1)
+    if unit == "lib":
+        return top
+    core = core_layer(unit) if BINDING_MIRRORS_CORE else None
+    return BINDING_MIDDLE + core if core is not None else top - 1
 
 
 def core_layer(unit: str) -> int | None:
