@@ -344,17 +344,17 @@ pub(crate) fn check_length<T: nalgebra::RealField + Copy>(
     value: T,
 ) -> Result<T, Error> {
     if value.is_finite() && value > T::zero() {
-        if value < crate::scalar::min_normal::<T>() {
+        if value < crate::numeric::scalar::min_normal::<T>() {
             return Err(Error::SubnormalLength {
                 what,
-                value: crate::scalar::to_f64(value),
+                value: crate::numeric::scalar::to_f64(value),
             });
         }
         Ok(value)
     } else {
         Err(Error::InvalidLength {
             what,
-            value: crate::scalar::to_f64(value),
+            value: crate::numeric::scalar::to_f64(value),
         })
     }
 }
@@ -369,7 +369,7 @@ pub(crate) fn check_finite<T: nalgebra::RealField + Copy>(
     } else {
         Err(Error::NotFinite {
             what,
-            value: crate::scalar::to_f64(value),
+            value: crate::numeric::scalar::to_f64(value),
         })
     }
 }
@@ -408,7 +408,7 @@ mod message_tests {
     fn a_bound_or_a_count_is_not_called_a_length() {
         // A new user's trial: a pantograph scale of 0.5 and a one-gear train were each "not a
         // positive finite length".
-        let scale = crate::catalog_impl::hoecken_pantograph(0.5_f64)
+        let scale = crate::catalog::hoecken_pantograph(0.5_f64)
             .map(|_| ())
             .unwrap_err();
         assert_eq!(
@@ -434,7 +434,7 @@ mod message_tests {
             ),
             "{teeth:?}"
         );
-        let huge = crate::catalog_impl::hoecken_pantograph(1e308_f64)
+        let huge = crate::catalog::hoecken_pantograph(1e308_f64)
             .map(|_| ())
             .unwrap_err();
         assert!(matches!(huge, Error::NotRepresentable { .. }), "{huge:?}");

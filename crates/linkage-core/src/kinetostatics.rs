@@ -6,11 +6,11 @@ use alloc::vec::Vec;
 
 use nalgebra::{DMatrix, DVector, RealField};
 
-use crate::bodies::{Bodies, BodyFrame, BodyId, GROUND};
-use crate::centres::BodyMotion;
 use crate::error::{check_finite, Error};
-use crate::mechanism::{Construction, Mechanism};
-use crate::scalar::{cross, perp, Vec2};
+use crate::mechanism::bodies::{Bodies, BodyFrame, BodyId, GROUND};
+use crate::mechanism::program::{Construction, Mechanism};
+use crate::motion::centres::BodyMotion;
+use crate::numeric::scalar::{cross, perp, Vec2};
 
 /// Mass properties of one body, its centre of mass in the body's frame: `along` its frame's
 /// axis (from the frame's origin joint toward its second joint, or along a slider's line) and
@@ -484,7 +484,7 @@ impl<'m, T: RealField + Copy, const N: usize> Dynamics<'m, T, N> {
         loads: &[Load<T>],
     ) -> T {
         if self.check_inputs(pos, vel, acc, loads).is_err() {
-            return crate::scalar::nan::<T>();
+            return crate::numeric::scalar::nan::<T>();
         }
         let zero = vec![Vec2::zeros(); pos.len()];
         let motions: Vec<BodyMotion<T>> = self
@@ -650,9 +650,9 @@ impl<T: RealField + Copy, const N: usize> Dynamics<'_, T, N> {
         })?;
         len("reactions (samples × reactions)", rows, out.reactions.len())?;
         len("couples (samples × reactions)", rows, out.couples.len())?;
-        let nan = crate::scalar::nan::<T>();
+        let nan = crate::numeric::scalar::nan::<T>();
         let j = self.mech.len();
-        let mut tracker = crate::tracker::Tracker::new(self.mech)?;
+        let mut tracker = crate::sweep::tracker::Tracker::new(self.mech)?;
         let (mut p, mut v, mut a) = ([Vec2::zeros(); N], [Vec2::zeros(); N], [Vec2::zeros(); N]);
         let mut sample_loads = Vec::with_capacity(loads.len());
         for k in 0..n {
@@ -662,8 +662,8 @@ impl<T: RealField + Copy, const N: usize> Dynamics<'_, T, N> {
             let row = k * nr..(k + 1) * nr;
             out.reactions[row.clone()].fill(Vec2::new(nan, nan));
             out.couples[row.clone()].fill(nan);
-            let rates = crate::tracker::Rates::acceleration(&mut v[..j], &mut a[..j]);
-            let motion = crate::mechanism::CrankRates::new(omega[k], alpha[k]);
+            let rates = crate::sweep::tracker::Rates::acceleration(&mut v[..j], &mut a[..j]);
+            let motion = crate::mechanism::program::CrankRates::new(omega[k], alpha[k]);
             if tracker
                 .step(theta[k], Some(motion), &mut p[..j], rates)
                 .is_err()

@@ -57,145 +57,87 @@ compile_error!("linkage-core needs a math backend: enable the `std` feature or t
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
-mod batch;
-mod bodies;
-#[cfg(feature = "synthesis")]
-mod burmester;
-mod cam;
-mod catalog_impl;
-mod centres;
+// The layers, lowest first (ARCHITECTURE.md; `.ci/layers.py` checks that a module imports only
+// from lower ones): numeric -> error -> choice -> constructions, drive -> mechanism -> motion
+// -> sweep -> linkages, kinetostatics -> catalog, walking -> synthesis.
 mod choice;
-mod dyad;
+mod constructions;
+mod drive;
 mod error;
-mod fourbar;
-#[cfg(feature = "synthesis")]
-mod freudenstein;
-mod gait;
-mod gear_train;
-mod held;
-mod held_centres;
-mod inflection;
 #[cfg(feature = "alloc")]
 mod kinetostatics;
+mod linkages;
 mod mechanism;
-mod motion_law;
-#[cfg(feature = "std")]
-mod parallel;
-mod rates;
-mod scalar;
-mod schedule;
-mod slider;
-mod straightness;
-mod support;
+mod motion;
+mod numeric;
 mod sweep;
-mod tracker;
-mod trig;
-mod turns;
-mod uniform_sweep;
-
-// Path synthesis (feature `synthesis`, needs `std` for its threads).
-#[cfg(feature = "synthesis")]
-mod arc_atlas;
-#[cfg(feature = "synthesis")]
-mod atlas;
-#[cfg(feature = "synthesis")]
-mod curve_equation;
-#[cfg(feature = "synthesis")]
-mod efd;
-#[cfg(feature = "synthesis")]
-mod path_synthesis;
-#[cfg(feature = "synthesis")]
-mod slider_arc_atlas;
-#[cfg(feature = "synthesis")]
-mod slider_circuit;
-#[cfg(feature = "synthesis")]
-mod slider_crank;
-#[cfg(feature = "synthesis")]
-mod slider_equation;
-#[cfg(feature = "synthesis")]
-pub use arc_atlas::{arc_frame, arc_points, ArcSpec, ARC_ENTRY_PARAMS, ARC_FRACTIONS};
-#[cfg(feature = "synthesis")]
-pub use atlas::{
-    candidate, nearest, slider_candidate, Atlas, AtlasSpec, ENTRY_PARAMS, LENGTH_RANGE,
-    SLIDER_ENTRY_PARAMS,
-};
-#[cfg(feature = "synthesis")]
-pub use curve_equation::{fourbars_from_curve, CurveEquation, EquationFit, CURVE_EQUATION_POINTS};
-#[cfg(feature = "synthesis")]
-pub use efd::{
-    descriptor_len, query_descriptors, Efd, Normalisation, MIN_CURVE_POINTS, QUERY_VARIANTS,
-};
-#[cfg(feature = "synthesis")]
-pub use path_synthesis::{
-    covering_arc, path_errors, path_residuals, place_entry, polyline_distances,
-    polyline_distances_each, ArcFigures, Circuit, CircuitPath, FootSearch, PathError, BRANCH_JOINT,
-    FOOT_STARTS, PLACED_PARAMS, POINT_JOINT,
-};
-#[cfg(feature = "synthesis")]
-pub use slider_arc_atlas::{slider_arc_frame, slider_arc_points, SLIDER_ARC_ENTRY_PARAMS};
-#[cfg(feature = "synthesis")]
-pub use slider_circuit::{
-    place_slider_entry, slider_path_errors, slider_path_residuals, SliderCircuit, SLIDER_PARAMS,
-};
-#[cfg(feature = "synthesis")]
-pub use slider_crank::{SliderCrank, SliderCrankPose};
-#[cfg(feature = "synthesis")]
-pub use slider_equation::{
-    slider_cranks_from_curve, SliderEquation, SliderEquationFit, SLIDER_EQUATION_POINTS,
-};
+mod walking;
 
 /// The repository README's Rust examples, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
 
-/// The straight-line linkages of the source documents (docs/domain.md), ready to sweep.
-pub mod catalog {
-    pub use crate::catalog_impl::*;
-}
-
-pub use batch::{BatchWork, FourBarBatch, GO_ON_EVERY};
-pub use bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
+pub mod catalog;
 #[cfg(feature = "synthesis")]
-pub use burmester::{
-    centre_point, circle_point, common_pole, pole, BodyPose, BurmesterCurve, BurmesterPair, Defect,
-    MotionCandidate, MotionCheck, MAX_POSES,
+pub mod synthesis;
+
+// Steps of the atlas search and the placement of its entries (`candidate`, `nearest`,
+// `place_entry`, `query_descriptors`, ...) and the `go_on` cadence (`GO_ON_EVERY`,
+// `SWEEP_WORK_CHUNK`) are re-exported flat as in 0.1 for the binding, but are
+// `#[doc(hidden)]` where they are defined: internals, not API.
+
+#[cfg(feature = "synthesis")]
+pub use linkages::slider_crank::{SliderCrank, SliderCrankPose};
+#[cfg(feature = "synthesis")]
+pub use synthesis::{
+    arc_frame, arc_points, candidate, centre_point, chebyshev_spacing, circle_point, common_pole,
+    covering_arc, descriptor_len, fourbars_from_curve, nearest, path_errors, path_residuals,
+    place_entry, place_slider_entry, pole, polyline_distances, polyline_distances_each,
+    query_descriptors, slider_arc_frame, slider_arc_points, slider_candidate,
+    slider_cranks_from_curve, slider_path_errors, slider_path_residuals, ArcFigures, ArcSpec,
+    Atlas, AtlasSpec, BodyPose, BurmesterCurve, BurmesterPair, Circuit, CircuitPath, CurveEquation,
+    Defect, Efd, EquationFit, FootSearch, Freudenstein, FunctionCheck, FunctionGenerator,
+    MotionCandidate, MotionCheck, Normalisation, PathError, SliderCircuit, SliderEquation,
+    SliderEquationFit, ARC_ENTRY_PARAMS, ARC_FRACTIONS, BRANCH_JOINT, CURVE_EQUATION_POINTS,
+    ENTRY_PARAMS, FOOT_STARTS, LENGTH_RANGE, MAX_POSES, MIN_CURVE_POINTS, PLACED_PARAMS,
+    POINT_JOINT, QUERY_VARIANTS, SLIDER_ARC_ENTRY_PARAMS, SLIDER_ENTRY_PARAMS,
+    SLIDER_EQUATION_POINTS, SLIDER_PARAMS,
 };
-pub use cam::{CamPoint, FlatFollower, RollerFollower};
-pub use centres::{
+
+pub use constructions::dyad::{triangle_area, Dyad, DyadFailure, DyadPose, Side};
+pub use constructions::slider::{LineDirection, Reach, SliderDyad, SliderPose};
+pub use drive::cam::{CamPoint, FlatFollower, RollerFollower};
+pub use drive::gear_train::GearTrain;
+pub use drive::motion_law::{Derivatives, Discontinuity, MotionLaw, Program, Segment};
+pub use drive::schedule::{ScheduleTable, StanceSchedule};
+pub use error::Error;
+#[cfg(feature = "alloc")]
+pub use kinetostatics::{Dynamics, ForceSolution, ForceSweep, Inertia, Load, LoadSeries, Reaction};
+pub use linkages::batch::{BatchWork, FourBarBatch, GO_ON_EVERY};
+pub use linkages::fourbar::{
+    min_transmission_angle, Assembly, FourBar, FourBarPose, GrashofClass, InputRange,
+};
+pub use linkages::uniform_sweep::{AngleMode, MAX_TABLE};
+pub use mechanism::bodies::{Bodies, BodyFrame, BodyId, Mobility, GROUND};
+pub use mechanism::joint_rates::rate_margin;
+pub use mechanism::program::{Construction, CrankRates, Mechanism};
+pub use motion::centres::{
     circumcentre, instant_centre, line_intersection, path_curvature, relative_centre, BodyMotion,
     Centre,
 };
-pub use dyad::{triangle_area, Dyad, DyadFailure, DyadPose, Side};
-pub use error::Error;
-pub use fourbar::{Assembly, FourBar, FourBarPose, GrashofClass, InputRange};
-#[cfg(feature = "synthesis")]
-pub use freudenstein::{chebyshev_spacing, Freudenstein, FunctionCheck, FunctionGenerator};
-pub use gait::{FourBarGait, GaitScratch, LegGait};
-pub use gear_train::GearTrain;
-pub use inflection::{inflection, Inflection};
-#[cfg(feature = "alloc")]
-pub use kinetostatics::{Dynamics, ForceSolution, ForceSweep, Inertia, Load, LoadSeries, Reaction};
-#[allow(
-    deprecated,
-    reason = "the old name of CrankRates, kept for one release"
-)]
-pub use mechanism::Motion;
-pub use mechanism::{Construction, CrankRates, Mechanism};
-pub use motion_law::{Derivatives, Discontinuity, MotionLaw, Program, Segment};
-pub use rates::rate_margin;
-pub use scalar::Vec2;
-pub use schedule::{ScheduleTable, StanceSchedule};
-pub use slider::{LineDirection, Reach, SliderDyad, SliderPose};
-pub use straightness::{straight_part, StraightPart};
-pub use support::{convex_hull, stability_margin, support_margins};
+pub use motion::inflection::{inflection, Inflection};
+pub use motion::straightness::{straight_part, StraightPart};
+pub use numeric::scalar::Vec2;
+pub use numeric::trig::{sin_cos_f64, sin_cos_f64_slice};
+pub use numeric::turns::reduce_angle;
 #[cfg(feature = "std")]
-pub use sweep::sweep_mechanisms;
-pub use sweep::{
-    sweep, sweep_pairs, sweep_planned, Columns, Pairs, Plan, Rate, SweepOutputs, Swept,
-    SWEEP_CHUNK, SWEEP_WORK_CHUNK,
+pub use sweep::engine::sweep_mechanisms;
+pub use sweep::engine::{
+    sweep, sweep_pairs, sweep_planned, Plan, Rate, SweepOutputs, Swept, SWEEP_CHUNK,
+    SWEEP_WORK_CHUNK,
 };
-pub use tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
-pub use trig::{sin_cos_f64, sin_cos_f64_slice};
-pub use turns::reduce_angle;
-pub use uniform_sweep::{AngleMode, MAX_TABLE};
+pub use sweep::layout::{Columns, Pairs};
+pub use sweep::tracker::{Rates, Sample, Tracker, DEFAULT_TOGGLE_MARGIN};
+pub use walking::gait::{FourBarGait, GaitScratch, LegGait};
+pub use walking::support::{convex_hull, stability_margin, support_margins};
