@@ -8,8 +8,8 @@ fence; the reason is required, and a marker anywhere else fails.
 
 Every relative link ``[text](path)`` of README.md, docs/*.md and ARCHITECTURE.md must name a file
 or folder that exists. In the source tree every link is checked; in the copy of the tests that
-``make wheel-test`` runs against the installed wheel (tests, examples, docs, README.md), links
-into folders that copy leaves out (``crates/``, ``bench/``, ...) are not.
+``make wheel-test`` runs against the installed wheel (tests, examples, docs, README.md,
+ARCHITECTURE.md), links into folders that copy leaves out (``crates/``, ``bench/``) are not.
 """
 
 from __future__ import annotations
@@ -36,9 +36,8 @@ def pages() -> list[Path]:
 
 
 def linked_pages() -> list[Path]:
-    """Return the pages whose links are checked: the above and ARCHITECTURE.md (source tree)."""
-    extra = [ROOT / "ARCHITECTURE.md"] if SOURCE_TREE else []
-    return [*pages(), *extra]
+    """Return the pages whose links are checked: the above and ARCHITECTURE.md."""
+    return [*pages(), ROOT / "ARCHITECTURE.md"]
 
 
 def name(page: Path) -> str:
@@ -108,8 +107,7 @@ def links(page: Path) -> list[tuple[int, str]]:
 def test_the_front_page_links_to_the_docs():
     targets = {t for _, t in links(README)}
     assert {"docs/numerics.md", "docs/evidence.md", "docs/scenes.md"} <= targets, targets
-    if SOURCE_TREE:
-        assert "ARCHITECTURE.md" in targets and (ROOT / "ARCHITECTURE.md").is_file()
+    assert "ARCHITECTURE.md" in targets and (ROOT / "ARCHITECTURE.md").is_file()
 
 
 @pytest.mark.parametrize("page", linked_pages(), ids=name)
