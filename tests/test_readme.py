@@ -47,7 +47,7 @@ def name(page: Path) -> str:
 def blocks(page: Path = README) -> list[tuple[int, str]]:
     """Return the page's runnable ```python blocks as (first code line, source)."""
     text = page.read_text(encoding="utf-8")
-    found = []
+    found: list[tuple[int, str]] = []
     for m in FENCE.finditer(text):
         before = text[: m.start()].rstrip("\n").rsplit("\n", 1)[-1]
         if NOT_RUN.fullmatch(before):
@@ -56,12 +56,12 @@ def blocks(page: Path = README) -> list[tuple[int, str]]:
     return found
 
 
-def test_the_readme_has_python_blocks():
+def test_the_readme_has_python_blocks() -> None:
     assert blocks(), "README.md has no ```python block"
 
 
 @pytest.mark.parametrize("page", pages(), ids=name)
-def test_not_run_markers_sit_on_a_python_block_and_say_why(page: Path):
+def test_not_run_markers_sit_on_a_python_block_and_say_why(page: Path) -> None:
     text = page.read_text(encoding="utf-8")
     for m in NOT_RUN.finditer(text):
         line = text.count("\n", 0, m.start()) + 1
@@ -71,12 +71,14 @@ def test_not_run_markers_sit_on_a_python_block_and_say_why(page: Path):
 
 
 @pytest.mark.parametrize("page", pages(), ids=name)
-def test_every_python_block_runs_in_order(page, tmp_path, monkeypatch, linkage_cache_dir):
+def test_every_python_block_runs_in_order(
+    page: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, linkage_cache_dir: Path
+) -> None:
     # Caches (the catalogue table, the synthesis atlases) go to this run's shared folder, and
     # files the blocks write to a folder of their own.
     monkeypatch.setenv("LINKAGE_CACHE_DIR", str(linkage_cache_dir))
     monkeypatch.chdir(tmp_path)
-    namespace: dict = {"__name__": "__readme__"}
+    namespace: dict[str, object] = {"__name__": "__readme__"}
     for k, (line, source) in enumerate(blocks(page), 1):
         # Compiled with the page's line numbers, so a traceback points into the page.
         code = compile("\n" * (line - 1) + source, str(page), "exec")
@@ -104,14 +106,14 @@ def links(page: Path) -> list[tuple[int, str]]:
     return found
 
 
-def test_the_front_page_links_to_the_docs():
+def test_the_front_page_links_to_the_docs() -> None:
     targets = {t for _, t in links(README)}
     assert {"docs/numerics.md", "docs/evidence.md", "docs/scenes.md"} <= targets, targets
     assert "ARCHITECTURE.md" in targets and (ROOT / "ARCHITECTURE.md").is_file()
 
 
 @pytest.mark.parametrize("page", linked_pages(), ids=name)
-def test_every_relative_link_points_to_a_file(page: Path):
+def test_every_relative_link_points_to_a_file(page: Path) -> None:
     missing = []
     for line, target in links(page):
         path = (page.parent / target).resolve()
