@@ -25,9 +25,13 @@ $(STAMP): $(SOURCES)
 run: $(STAMP) ## Set up (venv, build) and run the main job: `linkage run` (report in ./linkage-report/).
 	$(BIN)/linkage run --force
 
+# pytest's workers (pytest-xdist) for `make test` and the suite in `make wheel-test`; 0: one process.
+PYTEST_WORKERS ?= 2
+
 test: $(STAMP) ## Set up and run every test: Rust unit/property/doc tests, pytest + doctests, stubs, types (not the wheel: wheel-test).
 	cargo test -p linkage-core --release
-	$(BIN)/pytest tests python/linkage --ignore=tests/test_wheel.py
+	$(BIN)/python -m pip install --quiet "pytest-xdist>=3.5"
+	$(BIN)/pytest tests python/linkage --ignore=tests/test_wheel.py $(if $(filter 0,$(PYTEST_WORKERS)),,-n $(PYTEST_WORKERS))
 	$(BIN)/python -m mypy.stubtest linkage._core
 	$(BIN)/mypy
 
@@ -54,7 +58,7 @@ wheel: $(STAMP) ## Build the shipped wheel (abi3, manylinux2014 via zig, strippe
 	@ls -l $(DIST)/linkage_kinematics-*
 
 wheel-test: wheel ## Install the wheel into a fresh venv of each declared Python (3.9-3.13); run it and the whole pytest suite outside the tree.
-	LINKAGE_WHEEL_DIST="$(CURDIR)/$(DIST)" $(BIN)/pytest tests/test_wheel.py -p no:cacheprovider \
+	LINKAGE_WHEEL_DIST="$(CURDIR)/$(DIST)" LINKAGE_TEST_WORKERS=$(PYTEST_WORKERS) $(BIN)/pytest tests/test_wheel.py -p no:cacheprovider \
 		-raP --durations=0 --durations-min=5
 
 firmware: ## Build the core and a firmware example (f32 + f64) for thumbv7em-none-eabihf: no std, no heap.

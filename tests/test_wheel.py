@@ -3,15 +3,16 @@
 ``make wheel`` writes to ``dist/`` the sdist and the wheel built from it: abi3, manylinux,
 stripped. This module checks both files, then, for every Python version the package declares
 (the ``Programming Language :: Python :: 3.x`` classifiers, which must run from the
-``requires-python`` minimum without a gap), makes a fresh venv in a temporary folder outside
-the source tree, installs the wheel's dependencies from PyPI and the wheel itself with
+``requires-python`` minimum without a gap), makes one fresh venv in a temporary folder outside
+the source tree, installs the wheel's runtime dependencies from PyPI and the wheel itself with
 ``--no-index``, and from that folder runs ``linkage run`` and a smoke script (import, a sweep
 checked against the link lengths, errors mapped to ``LinkageError`` and exit status 2), so the
-source tree's ``python/`` is never on the path. Then, in another fresh venv of each version,
-it installs the wheel with its ``test`` extra and runs the whole pytest suite (``make test``'s
-run: ``tests/`` and the doctests) against the installed package, from a copy of the files the
-tests read. A version without an interpreter here fails. The venvs and every cache the runs
-fill live in temporary folders removed afterwards.
+source tree's ``python/`` is never on the path and nothing but the runtime dependencies is
+installed. Then, in the same venv, it adds the wheel's ``test`` extra and runs the whole pytest
+suite (``make test``'s run: ``tests/`` and the doctests) against the installed package, from a
+copy of the files the tests read, on two workers (pytest-xdist). A version without an
+interpreter here fails. The venvs and every cache the runs fill live in temporary folders
+removed afterwards.
 
 It runs only when ``LINKAGE_WHEEL_DIST`` names the folder holding the built files
 (``make wheel-test`` builds them and sets it); ``make test`` leaves this module out.
@@ -335,14 +336,125 @@ rpm = 50.0
 """
 
 
+def smoke_runs(work: Path, venv: Path) -> None:
+    """Run ``linkage run``, a bad scene and the smoke script from the venv, outside the tree."""
+    py, bindir = venv / "bin" / "python", venv / "bin"
+    version = str(wheel_metadata()["Version"])
+
+    # The main job, by its console script, into a folder outside the tree.
+    out = work / "report"
+    stdout = ok(run([str(bindir / "linkage"), "run", "--out", str(out)], cwd=work))
+    assert f"report: {out}/" in stdout, stdout
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    assert (summary["tool"], summary["version"]) == ("linkage", version), summary
+    assert {"summary.json", "index.html", "data.csv", "animation.gif"} <= set(summary["files"])
+    for name in summary["files"]:
+        assert (out / name).stat().st_size > 0, name
+
+    # A mistake in a scene: exit status 2, one located line, no traceback.
+    bad = work / "bad.toml"
+    bad.write_text(BAD_SCENE, encoding="utf-8")
+    refused = run([str(bindir / "linkage"), "run", str(bad), "--out", str(work / "r2")], cwd=work)
+    assert refused.returncode == 2, (refused.returncode, refused.stderr)
+    lines = refused.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"linkage: error: {bad}:5:"), refused.stderr
+    assert "hoeken" in lines[0] and not (work / "r2").exists()
+
+    script = work / "smoke.py"
+    script.write_text(SMOKE, encoding="utf-8")
+    assert ok(run([str(py), "-I", str(script), version], cwd=work)) == "smoke ok\n"
+
+
+# What the tests read besides themselves: the examples, the docs they check the code against,
+# the README and ARCHITECTURE.md (their Python blocks run, their links resolve) and
+# pyproject.toml (pytest's options).
+# Not python/: the tests import the installed wheel.
+SUITE_FILES = ("tests", "examples", "docs", "README.md", "ARCHITECTURE.md", "pyproject.toml")
+SUITE_TIMEOUT = 1800  # seconds for the whole suite on one version (about 2 minutes here)
+# The suite runs on this many pytest-xdist workers (CI has 2 cores; `LINKAGE_TEST_WORKERS=0`
+# runs it in one process). pytest-xdist is installed beside the `test` extra.
+WORKERS = int(os.environ.get("LINKAGE_TEST_WORKERS", "2"))
+
+
+@pytest.fixture(scope="module")
+def suite_size() -> int:
+    """Return how many tests ``make test``'s pytest run collects in the tree (doctests included)."""
+    args = ["tests", "python/linkage", "--ignore=tests/test_wheel.py", "-p", "no:cacheprovider"]
+    listed = subprocess.run(
+        [sys.executable, "-m", "pytest", "--collect-only", "-q", *args],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=TIMEOUT,
+    )
+    found = re.search(r"^(\d+) tests? collected", listed.stdout, re.M)
+    assert listed.returncode == 0 and found, listed.stdout[-5000:] + listed.stderr
+    return int(found.group(1))
+
+
+def full_suite(work: Path, venv: Path, suite_size: int, minor: int) -> None:
+    """Add the ``test`` extra to the venv; run every test against the installed package.
+
+    ``make test``'s pytest run (``tests/`` but this module, and the package's doctests) on a copy
+    of the files the tests read, outside the tree, against the installed package: the doctests
+    are collected from the venv's ``linkage``, and the run's header (``tests/conftest.py``)
+    must name the venv's ``linkage/__init__.py``. Every test must pass, and as many as the tree
+    collects: a failure, an error, a skip or a test left uncollected fails this test.
+    """
+    py, bindir = venv / "bin" / "python", venv / "bin"
+
+    # The test dependencies from PyPI (binary only), our wheel from dist/ and nowhere else.
+    version = str(wheel_metadata()["Version"])
+    pip = [str(py), "-m", "pip", "install", "--quiet", "--only-binary=:all:"]
+    xdist = ["pytest-xdist>=3.5"] if WORKERS else []
+    ok(run([*pip, f"{WHEEL}[test]", *xdist], cwd=work))
+    ok(run([str(py), "-m", "pip", "check"], cwd=work))
+    where = ok(run([str(py), "-I", "-c", "import linkage; print(linkage.__file__)"], cwd=work))
+    package = Path(where.strip()).parent
+    assert venv in package.parents, package
+
+    tree = work / "tree"
+    skip = shutil.ignore_patterns("__pycache__", ".hypothesis", "test_wheel.py")
+    for name in SUITE_FILES:
+        if (ROOT / name).is_dir():
+            shutil.copytree(ROOT / name, tree / name, ignore=skip)
+        else:
+            shutil.copy2(ROOT / name, tree / name)
+    assert not (tree / "python").exists()
+
+    config = ["-c", str(tree / "pyproject.toml"), "--rootdir", str(tree), "-p", "no:cacheprovider"]
+    workers = ["-n", str(WORKERS)] if WORKERS else []
+    suite = run(
+        [str(bindir / "pytest"), *config, *workers, "tests", str(package)], tree, SUITE_TIMEOUT
+    )
+    out = suite.stdout
+    assert suite.returncode == 0, (
+        f"pytest exited {suite.returncode}:\n{out[-20000:]}\n{suite.stderr}"
+    )
+    assert f"linkage {version}: {package / '__init__.py'}" in out.splitlines(), out[:2000]
+    closing = out.rstrip().splitlines()[-1]
+    counts = re.fullmatch(r"=+ (\d+) passed(?:, \d+ warnings?)? in ([\d.]+)s.* =+", closing)
+    assert counts, f"not every test passed: {closing}"
+    assert int(counts.group(1)) == suite_size, f"{closing}; `make test` collects {suite_size}"
+    print(f"Python 3.{minor}: {closing.strip('= ')}, linkage from {package}")
+
+
 @pytest.mark.parametrize("minor", VERSIONS, ids=[f"py3.{v}" for v in VERSIONS])
-def test_wheel_installs_and_runs_outside_the_tree(minor: int, work: Path) -> None:
-    """Install the wheel into a fresh venv of 3.<minor>; run ``linkage run`` and the smoke script."""
+def test_wheel_runs_outside_the_tree_and_passes_the_suite(
+    minor: int, work: Path, suite_size: int
+) -> None:
+    """On a fresh venv of 3.<minor>: the wheel with only its runtime dependencies runs ``linkage
+    run`` and the smoke script; then, with its ``test`` extra added, the whole suite passes.
+
+    One venv serves both (the runtime dependencies are installed once, matplotlib's font list
+    is built once): the smoke runs come first, before anything but the runtime dependencies is
+    installed, so a dependency the wheel forgot to declare still fails them.
+    """
     exe = interpreter(minor)
     assert exe, f"no CPython 3.{minor} with venv here; it is declared, so it must be tested"
     venv = work / "venv"
     ok(run([str(exe), "-m", "venv", str(venv)], cwd=work))
-    py, bindir = venv / "bin" / "python", venv / "bin"
+    py = venv / "bin" / "python"
 
     # The dependencies from PyPI (binary only: no build of numpy), then our wheel and nothing else.
     meta = wheel_metadata()
@@ -362,97 +474,7 @@ def test_wheel_installs_and_runs_outside_the_tree(minor: int, work: Path) -> Non
         )
     )
     ok(run([str(py), "-m", "pip", "check"], cwd=work))
-
-    # The main job, by its console script, into a folder outside the tree.
-    out = work / "report"
-    stdout = ok(run([str(bindir / "linkage"), "run", "--out", str(out)], cwd=work))
-    assert f"report: {out}/" in stdout, stdout
-    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
-    assert (summary["tool"], summary["version"]) == ("linkage", meta["Version"]), summary
-    assert {"summary.json", "index.html", "data.csv", "animation.gif"} <= set(summary["files"])
-    for name in summary["files"]:
-        assert (out / name).stat().st_size > 0, name
-
-    # A mistake in a scene: exit status 2, one located line, no traceback.
-    bad = work / "bad.toml"
-    bad.write_text(BAD_SCENE, encoding="utf-8")
-    refused = run([str(bindir / "linkage"), "run", str(bad), "--out", str(work / "r2")], cwd=work)
-    assert refused.returncode == 2, (refused.returncode, refused.stderr)
-    lines = refused.stderr.splitlines()
-    assert len(lines) == 1 and lines[0].startswith(f"linkage: error: {bad}:5:"), refused.stderr
-    assert "hoeken" in lines[0] and not (work / "r2").exists()
-
-    script = work / "smoke.py"
-    script.write_text(SMOKE, encoding="utf-8")
-    assert ok(run([str(py), "-I", str(script), str(meta["Version"])], cwd=work)) == "smoke ok\n"
-
-
-# What the tests read besides themselves: the examples, the docs they check the code against,
-# the README (its Python blocks run) and pyproject.toml (pytest's options). Not python/: the
-# tests import the installed wheel.
-SUITE_FILES = ("tests", "examples", "docs", "README.md", "pyproject.toml")
-SUITE_TIMEOUT = 1800  # seconds for the whole suite on one version (about 2 minutes here)
-
-
-@pytest.fixture(scope="module")
-def suite_size() -> int:
-    """Return how many tests ``make test``'s pytest run collects in the tree (doctests included)."""
-    args = ["tests", "python/linkage", "--ignore=tests/test_wheel.py", "-p", "no:cacheprovider"]
-    listed = subprocess.run(
-        [sys.executable, "-m", "pytest", "--collect-only", "-q", *args],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=TIMEOUT,
-    )
-    found = re.search(r"^(\d+) tests? collected", listed.stdout, re.M)
-    assert listed.returncode == 0 and found, listed.stdout[-5000:] + listed.stderr
-    return int(found.group(1))
-
-
-@pytest.mark.parametrize("minor", VERSIONS, ids=[f"py3.{v}" for v in VERSIONS])
-def test_full_suite_passes_on_the_installed_wheel(minor: int, work: Path, suite_size: int) -> None:
-    """Install the wheel with its ``test`` extra into a fresh venv of 3.<minor>; run every test.
-
-    ``make test``'s pytest run (``tests/`` but this module, and the package's doctests) on a copy
-    of the files the tests read, outside the tree, against the installed package: the doctests
-    are collected from the venv's ``linkage``, and the run's header (``tests/conftest.py``)
-    must name the venv's ``linkage/__init__.py``. Every test must pass, and as many as the tree
-    collects: a failure, an error, a skip or a test left uncollected fails this test.
-    """
-    exe = interpreter(minor)
-    assert exe, f"no CPython 3.{minor} with venv here; it is declared, so it must be tested"
-    venv = work / "venv"
-    ok(run([str(exe), "-m", "venv", str(venv)], cwd=work))
-    py, bindir = venv / "bin" / "python", venv / "bin"
-
-    # The test dependencies from PyPI (binary only), our wheel from dist/ and nowhere else.
-    version = str(wheel_metadata()["Version"])
-    pip = [str(py), "-m", "pip", "install", "--quiet", "--only-binary=:all:"]
-    ok(run([*pip, f"{WHEEL}[test]"], cwd=work))
-    ok(run([str(py), "-m", "pip", "check"], cwd=work))
-    where = ok(run([str(py), "-I", "-c", "import linkage; print(linkage.__file__)"], cwd=work))
-    package = Path(where.strip()).parent
-    assert venv in package.parents, package
-
-    tree = work / "tree"
-    skip = shutil.ignore_patterns("__pycache__", ".hypothesis", "test_wheel.py")
-    for name in SUITE_FILES:
-        if (ROOT / name).is_dir():
-            shutil.copytree(ROOT / name, tree / name, ignore=skip)
-        else:
-            shutil.copy2(ROOT / name, tree / name)
-    assert not (tree / "python").exists()
-
-    config = ["-c", str(tree / "pyproject.toml"), "--rootdir", str(tree), "-p", "no:cacheprovider"]
-    suite = run([str(bindir / "pytest"), *config, "tests", str(package)], tree, SUITE_TIMEOUT)
-    out = suite.stdout
-    assert suite.returncode == 0, (
-        f"pytest exited {suite.returncode}:\n{out[-20000:]}\n{suite.stderr}"
-    )
-    assert f"linkage {version}: {package / '__init__.py'}" in out.splitlines(), out[:2000]
-    closing = out.rstrip().splitlines()[-1]
-    counts = re.fullmatch(r"=+ (\d+) passed(?:, \d+ warnings?)? in ([\d.]+)s.* =+", closing)
-    assert counts, f"not every test passed: {closing}"
-    assert int(counts.group(1)) == suite_size, f"{closing}; `make test` collects {suite_size}"
-    print(f"Python 3.{minor}: {closing.strip('= ')}, linkage from {package}")
+    installed = ok(run([str(py), "-m", "pip", "list", "--format=freeze"], cwd=work))
+    assert not re.search(r"^(pytest|hypothesis|mpmath)==", installed, re.M | re.I), installed
+    smoke_runs(work, venv)
+    full_suite(work, venv, suite_size, minor)
