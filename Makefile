@@ -30,7 +30,6 @@ PYTEST_WORKERS ?= 2
 
 test: $(STAMP) ## Set up and run every test: Rust unit/property/doc tests, pytest + doctests, stubs, types (not the wheel: wheel-test).
 	cargo test -p linkage-core --release
-	$(BIN)/python -m pip install --quiet "pytest-xdist>=3.5"
 	$(BIN)/pytest tests python/linkage --ignore=tests/test_wheel.py $(if $(filter 0,$(PYTEST_WORKERS)),,-n $(PYTEST_WORKERS))
 	$(BIN)/python -m mypy.stubtest linkage._core
 	$(BIN)/mypy

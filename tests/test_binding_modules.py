@@ -164,7 +164,7 @@ def test_constants_are_the_cores(module: str, name: str, value: object) -> None:
 
 
 def test_one_size_wording() -> None:
-    from linkage._arrays import _bytes, check_memory
+    from linkage._shared.arrays import _bytes, check_memory
 
     assert _core.size_text_of(3 << 30) == "3 GiB (3221225472 bytes)"
     assert _core.size_text_of(1023) == "1023 bytes"

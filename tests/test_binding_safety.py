@@ -93,21 +93,21 @@ def test_float_arguments_too_large_for_a_float_are_linkage_errors() -> None:
     with pytest.raises(LinkageError, match="too large for a float"):
         _core.FourBar((0, 0), (10**309, 0), 1, 1, 1, (0, 0), "open")
     with pytest.raises(LinkageError, match="too large for a float"):
-        _core.program_eval(0.0, [10**400], [1.0], [None], np.zeros(1))
+        _core.drive.evaluate_program(0.0, [10**400], [1.0], [None], np.zeros(1))
 
 
 def test_gear_teeth_beyond_u32_and_ratio_underflow_are_linkage_errors() -> None:
     with pytest.raises(LinkageError, match="tooth count"):
-        _core.gear_train_simple([1, 2**40])
+        _core.drive.simple_gear_train([1, 2**40])
     with pytest.raises(LinkageError, match="tooth count"):
-        _core.gear_train_simple([-1, 3])
+        _core.drive.simple_gear_train([-1, 3])
     with pytest.raises(LinkageError, match="driven teeth"):
-        _core.gear_train_compound([(1, 2**63)])
+        _core.drive.compound_gear_train([(1, 2**63)])
     # 1e-360 has no float: an error, not a ratio of 0.
     with pytest.raises(LinkageError, match="gear train ratio"):
-        _core.gear_train_compound([(1, 10**9)] * 40)
+        _core.drive.compound_gear_train([(1, 10**9)] * 40)
     # Far outside the float range on the way, exactly 1 at the end.
-    ratio, sign = _core.gear_train_compound([(1, 10**9)] * 40 + [(10**9, 1)] * 40)
+    ratio, sign = _core.drive.compound_gear_train([(1, 10**9)] * 40 + [(10**9, 1)] * 40)
     assert ratio == pytest.approx(1.0, rel=1e-13) and sign == 1
 
 
@@ -150,7 +150,7 @@ def test_sweep_beyond_this_machine_is_memory_error() -> None:
         "fb.circuit(10**8)",  # 16.8 GB
         # 3e6 samples of Hart's inversor with instant centres: ~4 GB of outputs.
         "m.sweep(np.linspace(0, 1, 3 * 10**6), instant_centres=True, curvature=True)",
-        "_core.motion_law_eval('cycloidal', np.zeros(10**8))",  # 3.2 GB out of 0.8 GB in
+        "_core.drive.evaluate_motion_law('cycloidal', np.zeros(10**8))",  # 3.2 GB out of 0.8 GB in
     ],
 )
 def test_allocation_refused_under_address_space_limit_is_memory_error(call: str) -> None:
@@ -159,7 +159,7 @@ def test_allocation_refused_under_address_space_limit_is_memory_error(call: str)
         import numpy as np
         from linkage import _core
         fb = _core.FourBar((0, 0), (20, 0), 10, 25, 25, (50, 0), "open")
-        m = _core.catalog_linkage("hart")[0]
+        m = _core.catalog.linkage("hart")[0]
         try:
             {call}
         except MemoryError as e:
@@ -179,7 +179,7 @@ def test_hull_with_overflowing_orientation_tests_does_not_panic() -> None:
     pts = np.array(
         [[[big, big], [-big, -big], [big, -big], [-big, big], [0.0, big], [np.nan, 0.0]]]
     )
-    margin, hull, count = _core.support_margins(pts, np.zeros((1, 2)))
+    margin, hull, count = _core.walking.support_margins(pts, np.zeros((1, 2)))
     assert count[0] == 4
     assert margin[0] == big
     assert np.isfinite(hull[0, :4]).all() and np.isnan(hull[0, 4:]).all()
@@ -190,13 +190,13 @@ def test_hull_random_extreme_points_never_panic() -> None:
     choices = np.array([np.nan, np.inf, -np.inf, 0.0, 1e308, -1e308, 5e-324, 1.0, -1.0])
     pts = rng.choice(choices, size=(500, 6, 2))
     cg = rng.choice(choices, size=(500, 2))
-    margin, _, count = _core.support_margins(pts, cg)
+    margin, _, count = _core.walking.support_margins(pts, cg)
     assert margin.shape == (500,) and (count <= 7).all()
 
 
 def test_pantograph_at_huge_scale_is_linkage_error() -> None:
     with pytest.raises(LinkageError, match="pantograph scale"):
-        _core.catalog_linkage("hoecken_pantograph", 1e308)
+        _core.catalog.linkage("hoecken_pantograph", 1e308)
 
 
 def test_messages_say_what_is_wrong_not_a_length_template() -> None:
@@ -248,7 +248,7 @@ def test_misaligned_out_array_is_refused() -> None:
 
 
 def test_mechanism_shared_between_threads_never_reports_a_borrow() -> None:
-    m, _, _ = _core.catalog_linkage("hart")
+    m, _, _ = _core.catalog.linkage("hart")
     theta = np.linspace(0.0, 6.0, 20_000)
     errors: list[BaseException] = []
 
@@ -284,7 +284,7 @@ def test_mechanism_shared_between_threads_never_reports_a_borrow() -> None:
 
 
 def test_program_with_overflowing_period_evaluates_at_t() -> None:
-    out = _core.program_eval(
+    out = _core.drive.evaluate_program(
         10.0, [1e308, 1e308], [1.0, 1.0], ["cycloidal", "cycloidal"], np.array([0.5e308, 1.5e308])
     )
     assert out[:, 0] == pytest.approx([10.5, 11.5], abs=1e-12)
@@ -306,9 +306,11 @@ def test_forces_reaction_columns_do_not_depend_on_valid_samples() -> None:
     m = fb.mechanism()
     inertia = [(0.0, 0.0, 0.0, 0.0)] + [(1.0, 0.0, 0.0, 1.0)] * 3
     theta = np.array([0.0, 1.0])
-    ok = _core.forces(m, theta, np.ones(2), np.zeros(2), inertia, (0.0, -9.81), [])
+    ok = _core.kinetostatics.forces(m, theta, np.ones(2), np.zeros(2), inertia, (0.0, -9.81), [])
     # A crank speed of 1e308 overflows every sample: no valid one, the same columns.
-    bad = _core.forces(m, theta, np.full(2, 1e308), np.zeros(2), inertia, (0.0, -9.81), [])
+    bad = _core.kinetostatics.forces(
+        m, theta, np.full(2, 1e308), np.zeros(2), inertia, (0.0, -9.81), []
+    )
     assert ok["reaction_links"] and bad["reaction_links"] == ok["reaction_links"]
     assert bad["reactions"].shape == ok["reactions"].shape
 
@@ -316,13 +318,13 @@ def test_forces_reaction_columns_do_not_depend_on_valid_samples() -> None:
 def test_wrong_tuple_lengths_are_linkage_errors() -> None:
     # pyo3 reports these as a bare ValueError; the extension turns them into LinkageError.
     with pytest.raises(LinkageError, match="length 2"):
-        _core.gear_train_compound([(1, 2, 3)])  # type: ignore[list-item]
+        _core.drive.compound_gear_train([(1, 2, 3)])  # type: ignore[list-item]
     with pytest.raises(LinkageError, match="length 2"):
         _core.FourBar((0, 0, 0), (1, 0), 1, 1, 1, (0, 0), "open")  # type: ignore[arg-type]
     m = _hoecken().mechanism()
     z = np.zeros(1)
     with pytest.raises(LinkageError, match="length 4"):
-        _core.forces(m, z, z, z, [(1.0, 0.0)], (0.0, 0.0), [])  # type: ignore[list-item]
+        _core.kinetostatics.forces(m, z, z, z, [(1.0, 0.0)], (0.0, 0.0), [])  # type: ignore[list-item]
 
 
 def test_threads_the_system_refuses_are_swept_on_the_calling_thread() -> None:

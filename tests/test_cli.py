@@ -15,6 +15,7 @@ import pytest
 from PIL import Image
 
 import linkage
+import linkage.report_folder
 from linkage.cli import main
 from linkage.report import MARKER
 

@@ -56,7 +56,9 @@ def test_core_figures_of_the_quadruped_leg():
     fb = linkage.catalog.hoecken()
     theta = np.linspace(0, 2 * np.pi, 1440, endpoint=False)
     s = fb.sweep(theta, omega=1.0, outputs=("velocity",))
-    g, stance = _core.leg_gait(np.ascontiguousarray(s.point), np.ascontiguousarray(s.velocity), 0.1)
+    g, stance = _core.walking.leg_gait(
+        np.ascontiguousarray(s.point), np.ascontiguousarray(s.velocity), 0.1
+    )
     assert g["duty_factor"] == pytest.approx(0.58, abs=0.005)
     assert g["stride"] == pytest.approx(44.376, abs=0.01)
     assert g["lift"] == pytest.approx(2 * math.sqrt(600) - 40, abs=1e-9)
@@ -69,7 +71,7 @@ def test_core_figures_of_the_quadruped_leg():
         assert gi["stance_count"] == sim.stance[:, i].sum()
     # Across sampling: 360 vs 1440 samples per turn.
     coarse = fb.sweep(theta[::4], omega=1.0, outputs=("velocity",))
-    g4, _ = _core.leg_gait(
+    g4, _ = _core.walking.leg_gait(
         np.ascontiguousarray(coarse.point), np.ascontiguousarray(coarse.velocity), 0.1
     )
     assert abs(g4["duty_factor"] - g["duty_factor"]) < 2 / 360

@@ -35,14 +35,12 @@ ROOT = Path(linkage.__file__).parent
 LAYERS = {
     "linkage._core": 0,  # the compiled extension: imports nothing of the package
     "linkage._shared": 1,  # arrays, files, caches, choices, sizes, progress, version, TOML lines
-    "linkage._shared.cache_dir": 1,  # (helper synth, issue 30)
     "linkage.kinematics": 2,  # mechanism, four-bar, slider-crank, sweep, mobility, batch
     "linkage.motion": 3,  # geometry of motion (linkage.geometry)
     "linkage.drives": 4,  # linkage.drive, linkage.cam
     "linkage.kinetostatics": 4,  # linkage.forces
     "linkage.walking": 5,  # walker, legs, gait searches
-    "linkage.synthesis": 5,  # path synthesis (a package: helper synth, issue 30)
-    "linkage._precision": 5,  # precision points: becomes part of linkage.synthesis
+    "linkage.synthesis": 5,  # path and precision-point synthesis
     "linkage.catalog": 6,
     "linkage.drawing": 6,
     "linkage.design": 6,
@@ -50,18 +48,12 @@ LAYERS = {
     "linkage.scene": 8,  # schema, builders, facade
     "linkage.report": 9,  # the report folder, HTML page, figures, stage rows, stages, export
     "linkage.cli": 10,
-    "linkage._synthesis_cli": 10,  # (helper synth, issue 30)
     "linkage.__main__": 11,  # python -m linkage
 }
 
-# Imports known to go the wrong way and being removed (issue 30: the synthesis package stops
-# importing the scene schema and the catalogue, and takes in linkage._precision).
-# EMPTY THIS SET WHEN linkage.synthesis LANDS.
-KNOWN_BEING_FIXED = {
-    ("linkage.synthesis", "linkage._schema"),
-    ("linkage.synthesis", "linkage.catalog"),
-    ("linkage.synthesis", "linkage._precision"),
-}
+# Imports known to go the wrong way and being removed: none (keep it so; an entry here is a
+# debt with a name).
+KNOWN_BEING_FIXED: set[tuple[str, str]] = set()
 
 
 def dotted(path: Path, root: Path = ROOT) -> str:

@@ -75,23 +75,23 @@ def test_jansen_assembles_at_every_large_angle() -> None:
 
 
 def test_reduce_angle_is_exact_and_keeps_a_phase() -> None:
-    """``_core.reduce_angle``: θ mod 4π exact to an ulp, small angles as they are; adding a
+    """``_core.numeric.reduce_angle``: θ mod 4π exact to an ulp, small angles as they are; adding a
     phase to it keeps the phase, where ``θ + φ`` rounds it away at large θ (a walker's legs)."""
     from linkage import _core
 
     theta = np.array([1e6, -1.6e15, 1e16, 1e22, 1e300, -1e300])
-    got = _core.reduce_angle(theta)
+    got = _core.numeric.reduce_angle(theta)
     with mpmath.workprec(3000):
         four_pi = 4 * mpmath.pi
         for t, r in zip(theta, got):
             x = mpmath.mpf(float(t))
             assert r == pytest.approx(float(x - mpmath.floor(x / four_pi) * four_pi), abs=2e-15)
     small = np.array([0.0, -1.0, 63.5, -63.5])
-    np.testing.assert_array_equal(_core.reduce_angle(small), small)
+    np.testing.assert_array_equal(_core.numeric.reduce_angle(small), small)
     leg = catalog.jansen()
     phase = 0.7
     for t in (1e16, 1e300):
         want = leg.sweep([exact_reduction(t) + phase]).point
         np.testing.assert_allclose(
-            leg.sweep(_core.reduce_angle(np.array([t])) + phase).point, want, atol=1e-12
+            leg.sweep(_core.numeric.reduce_angle(np.array([t])) + phase).point, want, atol=1e-12
         )

@@ -28,7 +28,6 @@ PUBLIC = sorted(
 UNLISTED = {
     "linkage.synthesis": {
         "clean_target",
-        "command",
         "largest_distance",
         "rounded_to",
         "target_size",

@@ -318,6 +318,6 @@ def test_a_candidate_through_a_crank_limit_is_exported_with_its_limits_and_branc
 def _core_distances(points: np.ndarray, path: np.ndarray) -> np.ndarray:
     from linkage import _core
 
-    return _core.polyline_distance(
+    return _core.synthesis.polyline_distance(
         np.ascontiguousarray(points, dtype=np.float64), np.ascontiguousarray(path)
     )

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 import linkage
 from linkage import synthesis
-from linkage._synthesis_cli import CLI_CONSTRAINTS
+from linkage.cli.synthesize import CLI_CONSTRAINTS
 from linkage.synthesis import Atlas
 
 

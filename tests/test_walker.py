@@ -59,13 +59,13 @@ def test_quadruped_moves_diagonal_pairs():
 def test_stability_margin_against_a_hand_computed_polygon():
     # Pads (points) at the corners of a 4 × 2 rectangle: margin at (1, 0.5) is 0.5 (bottom edge).
     pts = np.array([[[0, 0], [4, 0], [4, 2], [0, 2], [np.nan, np.nan]]], dtype=float)
-    margin, _hull, count = _core.support_margins(pts, np.array([[1.0, 0.5]]))
+    margin, _hull, count = _core.walking.support_margins(pts, np.array([[1.0, 0.5]]))
     assert margin[0] == pytest.approx(0.5) and count[0] == 4
-    margin, _, _ = _core.support_margins(pts, np.array([[5.0, 1.0]]))
+    margin, _, _ = _core.walking.support_margins(pts, np.array([[5.0, 1.0]]))
     assert margin[0] == pytest.approx(-1.0)
     # A triangle (3, 4, 5): the inradius point (1, 1) is 1 from every side.
     tri = np.array([[[0, 0], [4, 0], [0, 3]]], dtype=float)
-    assert _core.support_margins(tri, np.array([[1.0, 1.0]]))[0][0] == pytest.approx(1.0)
+    assert _core.walking.support_margins(tri, np.array([[1.0, 1.0]]))[0][0] == pytest.approx(1.0)
 
 
 def test_margin_sign_flips_when_the_cg_leaves_the_polygon():
@@ -179,14 +179,14 @@ def test_duty_factor_search_with_schedule():
 
 def test_stance_and_figures_come_from_the_core_leg_figures():
     """One implementation: the walker's stance mask, duty factor, stride and lift are the
-    core's leg figures (``_core.leg_gait``) of each foot's sagittal path with the walker's
+    core's leg figures (``_core.walking.leg_gait``) of each foot's sagittal path with the walker's
     ground and tolerance."""
     q = linkage.catalog.quadruped_hoecken()
     sim = q.simulate(THETA)
     for i in range(len(sim.legs)):
         path = np.ascontiguousarray(sim.feet[:, i, [0, 2]])
         rate = np.ascontiguousarray(sim.foot_velocity[:, i, [0, 2]])
-        g, stance = _core.leg_gait(path, rate, 0.1, sim.ground)
+        g, stance = _core.walking.leg_gait(path, rate, 0.1, sim.ground)
         np.testing.assert_array_equal(stance, sim.stance[:, i])
         assert g == sim.gaits[i]
         # The rule itself: within the tolerance of the lowest foot level.

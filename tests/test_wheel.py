@@ -372,7 +372,7 @@ def smoke_runs(work: Path, venv: Path) -> None:
 SUITE_FILES = ("tests", "examples", "docs", "README.md", "ARCHITECTURE.md", "pyproject.toml")
 SUITE_TIMEOUT = 1800  # seconds for the whole suite on one version (about 2 minutes here)
 # The suite runs on this many pytest-xdist workers (CI has 2 cores; `LINKAGE_TEST_WORKERS=0`
-# runs it in one process). pytest-xdist is installed beside the `test` extra.
+# runs it in one process). pytest-xdist is in the `test` extra.
 WORKERS = int(os.environ.get("LINKAGE_TEST_WORKERS", "2"))
 
 
@@ -406,8 +406,7 @@ def full_suite(work: Path, venv: Path, suite_size: int, minor: int) -> None:
     # The test dependencies from PyPI (binary only), our wheel from dist/ and nowhere else.
     version = str(wheel_metadata()["Version"])
     pip = [str(py), "-m", "pip", "install", "--quiet", "--only-binary=:all:"]
-    xdist = ["pytest-xdist>=3.5"] if WORKERS else []
-    ok(run([*pip, f"{WHEEL}[test]", *xdist], cwd=work))
+    ok(run([*pip, f"{WHEEL}[test]"], cwd=work))
     ok(run([str(py), "-m", "pip", "check"], cwd=work))
     where = ok(run([str(py), "-I", "-c", "import linkage; print(linkage.__file__)"], cwd=work))
     package = Path(where.strip()).parent

@@ -1,23 +1,4 @@
 """Old path of :mod:`linkage.synthesis.precision_points` (Burmester, Freudenstein)."""
 
-from linkage.synthesis.precision_points import (
-    Dyad,
-    FunctionGenerator,
-    MotionCandidate,
-    centre_point_curve,
-    chebyshev_points,
-    circle_point_curve,
-    function,
-    motion,
-)
-
-__all__ = [
-    "Dyad",
-    "FunctionGenerator",
-    "MotionCandidate",
-    "centre_point_curve",
-    "chebyshev_points",
-    "circle_point_curve",
-    "function",
-    "motion",
-]
+from linkage.synthesis.precision_points import *  # noqa: F403
+from linkage.synthesis.precision_points import __all__ as __all__

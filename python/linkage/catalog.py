@@ -31,16 +31,16 @@ from pathlib import Path
 import numpy as np
 
 from linkage import _core
-from linkage._arrays import as_count, as_finite, check_memory
-from linkage._cache_files import core_identity
 from linkage._core import LinkageError
-from linkage._files import read_json, sweep_stale, write_atomic
-from linkage._fourbar import FourBar
-from linkage._mechanism import Mechanism
+from linkage._shared.arrays import as_count, as_finite, check_memory
 from linkage._shared.cache_dir import cache_dir
-from linkage._version import __version__
+from linkage._shared.cache_files import core_identity
+from linkage._shared.files import read_json, sweep_stale, write_atomic
+from linkage._shared.version import __version__
 from linkage.cam import leg_lift
 from linkage.geometry import straightness
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.mechanism import Mechanism
 from linkage.legs import family
 from linkage.walker import Leg, Walker, gait_phases
 
@@ -75,18 +75,18 @@ __all__ = [
     "watt",
 ]
 
-FOUR_BARS: tuple[str, ...] = tuple(_core.catalog_names()[0])
+FOUR_BARS: tuple[str, ...] = tuple(_core.catalog.names()[0])
 """Names of the catalogue's four-bars (the core's catalogue)."""
-MULTI_LOOP: tuple[str, ...] = tuple(_core.catalog_names()[1])
+MULTI_LOOP: tuple[str, ...] = tuple(_core.catalog.names()[1])
 """Names of the catalogue's multi-loop linkages (the core's catalogue)."""
 
 
 def _four_bar(name: str) -> FourBar:
-    return FourBar._from_core(_core.catalog_four_bar(name))
+    return FourBar._from_core(_core.catalog.four_bar(name))
 
 
 def _linkage(name: str, scale: float = 2.0) -> Mechanism:
-    found = _core.catalog_linkage(name, as_finite(scale, "scale"))
+    found = _core.catalog.linkage(name, as_finite(scale, "scale"))
     return Mechanism._from_core(found.mechanism, found.joint_names, found.trace)
 
 

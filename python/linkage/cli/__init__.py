@@ -257,6 +257,12 @@ def _catalog(args: argparse.Namespace, state: dict[str, Path]) -> int:
     return 0
 
 
+def _synth(args: argparse.Namespace, state: dict[str, Path]) -> int:
+    from linkage.cli import synthesize  # noqa: PLC0415 (scipy and the atlases on demand)
+
+    return synthesize.command(args)
+
+
 def _design(args: argparse.Namespace, state: dict[str, Path]) -> int:
     try:
         from linkage import design  # noqa: PLC0415 (needs the optional extra [design])
@@ -377,7 +383,7 @@ def _parser() -> argparse.ArgumentParser:
         help="an error (target units) good enough to stop the search's later stages",
     )
     syn.add_argument("--quiet", action="store_true", help="no progress bar")
-    syn.set_defaults(func=lambda a, _s: __import__("linkage.synthesis").synthesis.command(a))
+    syn.set_defaults(func=_synth)
     return parser
 
 

@@ -183,7 +183,7 @@ class DiscCam:
         phi = np.linspace(0.0, 2 * math.pi, n)
         s, v, a, _ = self.program.eval(phi)
         y = np.ascontiguousarray(np.c_[s, v, a])
-        raw = _core.cam_geometry(phi, y, self.base_radius, self.roller_radius, self.offset)
+        raw = _core.drive.cam_geometry(phi, y, self.base_radius, self.roller_radius, self.offset)
         prof = CamProfile(
             phi=phi,
             displacement=s,

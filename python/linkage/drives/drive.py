@@ -56,7 +56,7 @@ __all__ = [
 ]
 
 Array = NDArray[np.float64]
-LAWS: tuple[str, ...] = tuple(_core.motion_law_names())
+LAWS: tuple[str, ...] = tuple(_core.drive.motion_law_names())
 """Names of the motion laws."""
 
 
@@ -108,7 +108,7 @@ def motion_law(name: Law, u: ArrayLike) -> tuple[Array, Array, Array, Array]:
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, got {type(name).__name__}")
     uu, _scalar = as_angles(u, "u")
-    out = _core.motion_law_eval(name, uu)
+    out = _core.drive.evaluate_motion_law(name, uu)
     cols = tuple(out[:, k] for k in range(4))
     return cols  # type: ignore[return-value]
 
@@ -207,7 +207,7 @@ class Program:
         (array([0., 1., 2., 2.]), array([0.      , 3.141593, 0.      , 0.      ]))
         """
         tt, _ = as_angles(t, "t")
-        out = _core.program_eval(*self._args(), tt)
+        out = _core.drive.evaluate_program(*self._args(), tt)
         _check_rows(out, tt, ("value", "rate", "second derivative", "third derivative"))
         return out[:, 0], out[:, 1], out[:, 2], out[:, 3]
 
@@ -244,7 +244,7 @@ class Program:
         >>> [(after, order) for after, order, _ in cycloidal.discontinuities()]
         [(0, 3), (1, 3)]
         """
-        raw = _core.program_discontinuities(*self._args(), as_finite(tol, "tol"))
+        raw = _core.drive.program_discontinuities(*self._args(), as_finite(tol, "tol"))
         return [(int(after), int(order), float(jump)) for after, order, jump in raw]
 
 
@@ -339,7 +339,7 @@ class GearTrain:
         ...
         linkage.LinkageError: tooth counts must be positive, got 0
         """
-        train = _core.gear_train_simple([_teeth(z) for z in teeth])
+        train = _core.drive.simple_gear_train([_teeth(z) for z in teeth])
         return cls(train.ratio, train.sign)
 
     @classmethod
@@ -383,7 +383,7 @@ class GearTrain:
                     f"stages must be (driver, driven) pairs, got {len(stage)} values"
                 )
             pairs.append((_teeth(stage[0]), _teeth(stage[1])))
-        train = _core.gear_train_compound(pairs)
+        train = _core.drive.compound_gear_train(pairs)
         return cls(train.ratio, train.sign)
 
     def output_speed(self, input_speed: float) -> float:
@@ -573,7 +573,7 @@ class CrankSchedule:
         True
         """
         tt, _ = as_angles(t, "t")
-        out = _core.schedule_eval(
+        out = _core.drive.evaluate_schedule(
             self.dt,
             2 * np.pi,
             np.asarray(self.theta, dtype=np.float64),
@@ -754,7 +754,7 @@ def crank_schedule(
     th_st, u, d = stance.theta, stance.u, stance.direction
     # The schedule itself (stance at V/u, a swing closing the turn) is the core's
     # StanceSchedule; here only the stance is found and the result measured.
-    table = _core.stance_schedule(th_st, u, v_target, beta, samples)
+    table = _core.drive.stance_schedule(th_st, u, v_target, beta, samples)
     dt, th_tab, w_tab = table.dt, table.theta, table.omega
     stance_time, stance_angles = table.stance_time, table.stance_angles
     period = dt * samples

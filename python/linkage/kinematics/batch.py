@@ -165,7 +165,7 @@ def sweep_fourbars(
             _check_finite(arr, name)
     c_m = _rocker_pivots(lens, o_m, c_given)
     _check_out(out)
-    points, valid = _core.batch_sweep(
+    points, valid = _core.linkages.sweep_four_bar_batch(
         o_m,
         c_m,
         lens["crank"],
@@ -290,7 +290,7 @@ def sweep_mechanisms(
             raise TypeError(f"mechanisms[{k}] must be a Mechanism, got {type(m).__name__}")
     th, _ = as_angles(theta, "theta")
     n = as_count(threads, "threads")
-    joints, valid = _core.sweep_mechanisms([m._core for m in ms], th, n)
+    joints, valid = _core.sweep.sweep_mechanisms([m._core for m in ms], th, n)
     return joints, valid
 
 

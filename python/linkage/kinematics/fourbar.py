@@ -590,7 +590,7 @@ class FourBar:
         >>> linkage.FourBar.uniform_sweep_isa() in ("avx512", "avx2", "portable")
         True
         """
-        return str(_core.sweep_simd())
+        return str(_core.sweep.instruction_set())
 
     def circuit(self, n: int = 721) -> Sweep:
         """Trace the whole coupler curve of the circuit in ``n`` samples.

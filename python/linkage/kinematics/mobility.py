@@ -79,7 +79,7 @@ def mobility(links: int, lower_pairs: int, higher_pairs: int = 0) -> Mobility:
     if links < 1:
         raise LinkageError("links must count the ground at least")
     n, j1, j2 = int(links), int(lower_pairs), int(higher_pairs)
-    return Mobility(n, j1, j2, _core.degrees_of_freedom(n, j1, j2))
+    return Mobility(n, j1, j2, _core.mechanism.degrees_of_freedom(n, j1, j2))
 
 
 # These classes' 0.1 module (a re-export of this one) stays their ``__module__``, for pickles and

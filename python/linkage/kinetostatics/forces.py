@@ -282,7 +282,7 @@ def joint_forces(
         )
     g = as_point(gravity, "gravity")
     core_loads = _core_loads(loads, mech, n)
-    raw = _core.forces(
+    raw = _core.kinetostatics.forces(
         mech._core, th, np.ascontiguousarray(w), np.ascontiguousarray(a), inertia, g, core_loads
     )
     names = mech.joint_names

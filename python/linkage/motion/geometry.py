@@ -101,7 +101,7 @@ def curvature_centre(
         for x, n in ((point, "point"), (velocity, "velocity"), (acceleration, "acceleration"))
     )
     shape, (fp, fv, fa) = _rows(p, v, a)
-    centres, kappa = _core.curvature_centres(fp, fv, fa)
+    centres, kappa = _core.motion.curvature_centres(fp, fv, fa)
     return centres.reshape(*shape, 2), kappa.reshape(shape)
 
 
@@ -140,7 +140,7 @@ def circumcentre(p0: ArrayLike, p1: ArrayLike, p2: ArrayLike) -> Points:
     """
     a, b, c = (_points(x, n) for x, n in ((p0, "p0"), (p1, "p1"), (p2, "p2")))
     shape, (fa, fb, fc) = _rows(a, b, c)
-    out: Points = _core.circumcentres(fa, fb, fc).reshape(*shape, 2)
+    out: Points = _core.motion.circumcentres(fa, fb, fc).reshape(*shape, 2)
     return out
 
 
@@ -295,7 +295,7 @@ def straightness(
         v = np.ascontiguousarray(v)
     closed = as_flag(closed, "closed")
     # The run, and its speed figures from the velocities (linkage_core::StraightPart::speed).
-    run = _core.straight_run(np.ascontiguousarray(p), t, closed, v)
+    run = _core.motion.straight_run(np.ascontiguousarray(p), t, closed, v)
     if run is None:
         return None
     idx = (run.start + np.arange(run.count)) % len(p)

@@ -19,7 +19,8 @@ from typing import Any, Union, cast
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._core import LinkageError, polyline_distance
+from linkage._core import LinkageError
+from linkage._core.synthesis import polyline_distance
 from linkage._shared.arrays import choices, side_of
 from linkage._shared.choices import Reach, Side
 from linkage._shared.version import __version__

@@ -403,7 +403,7 @@ def reference_gap(mech: FourBar | Mechanism, s: Sweep, reference: Array) -> floa
         b = theta[rows, np.minimum(j + 1, REFERENCE_SUBSAMPLES)]
     # Each point's distance from the polyline of its own last samples (broken where one does
     # not assemble), the least over its nearest samples, the largest over the points.
-    each = _core.polyline_distance_each(
+    each = _core.synthesis.polyline_distance_each(
         np.ascontiguousarray(ref, dtype=np.float64),
         np.ascontiguousarray(pts.reshape(-1, 2), dtype=np.float64),
         pts.shape[1],

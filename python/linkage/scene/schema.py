@@ -24,13 +24,13 @@ from pathlib import Path
 from typing import Any, get_args
 
 from linkage import catalog
-from linkage._arrays import choices, one_of
-from linkage._choices import PathKind
 from linkage._core import LinkageError
-from linkage._files import TooLarge, read_bytes
-from linkage._mechanism import JOINT_KINDS as _JOINT_KINDS
-from linkage._toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
+from linkage._shared.arrays import choices, one_of
+from linkage._shared.choices import PathKind
+from linkage._shared.files import TooLarge, read_bytes
+from linkage._shared.toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
 from linkage.drive import LAWS
+from linkage.kinematics.mechanism import JOINT_KINDS as _JOINT_KINDS
 from linkage.synthesis import limits as _synthesis_limits
 from linkage.walker import GAITS
 

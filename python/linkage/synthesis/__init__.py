@@ -249,15 +249,3 @@ for _public in (
     why_none,
 ):
     _public.__module__ = __name__
-
-
-def command(args: Any) -> int:
-    """Run ``linkage synth`` (:func:`linkage._synthesis_cli.command`, where it now lives).
-
-    Command-line code is not the domain's: it left this package, and ``cli.py`` still calls it
-    here until it imports it from there (then this goes). It searches with this package's
-    :func:`path`, as it did when it lived here.
-    """
-    from linkage import _synthesis_cli  # noqa: PLC0415 (application code, on demand)
-
-    return _synthesis_cli.command(args, path)

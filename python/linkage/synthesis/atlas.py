@@ -22,14 +22,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from linkage import _core
-from linkage._arrays import as_count
-from linkage._cache_files import core_identity, read_npy
-from linkage._choices import AtlasKind, PathKind
 from linkage._core import LinkageError
-from linkage._files import read_json, sweep_stale
-from linkage._progress import Bar
+from linkage._shared.arrays import as_count
 from linkage._shared.cache_dir import cache_dir
-from linkage._version import __version__
+from linkage._shared.cache_files import core_identity, read_npy
+from linkage._shared.choices import AtlasKind, PathKind
+from linkage._shared.files import read_json, sweep_stale
+from linkage._shared.progress import Bar
+from linkage._shared.version import __version__
 from linkage.synthesis.kinds import (
     _ARC_KIND,
     _ENTRY_WIDTH,
@@ -314,9 +314,9 @@ class Atlas:
             )
         if arcs:
             slider = k is SLIDER
-            desc, params, _ = _core.synth_arc_atlas_build(n, h, m, 8, _threads(threads), slider)
+            desc, params, _ = _core.synthesis.build_arc_atlas(n, h, m, 8, _threads(threads), slider)
             return cls(desc, params, h, m, k.arcs, 8)
-        build = _core.synth_atlas_build if k is FOURBAR else _core.synth_slider_atlas_build
+        build = _core.synthesis.build_atlas if k is FOURBAR else _core.synthesis.build_slider_atlas
         desc, params, _ = build(n, h, m, _threads(threads))
         return cls(desc, params, h, m, k.name)
 
@@ -470,7 +470,9 @@ class Atlas:
             raise LinkageError(
                 f"targets must have shape (m, {self.descriptors.shape[1]}), got {q.shape}"
             )
-        return _core.synth_atlas_nearest(self.descriptors, q, as_count(k, "k"), _threads(threads))
+        return _core.synthesis.nearest_entries(
+            self.descriptors, q, as_count(k, "k"), _threads(threads)
+        )
 
 
 Atlas.__module__ = "linkage.synthesis"  # as before the split: pickles and reprs name it so

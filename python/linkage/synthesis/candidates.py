@@ -15,10 +15,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._choices import LinkageKind
 from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._slider_crank import SliderCrank
+from linkage._shared.choices import LinkageKind
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.slider_crank import SliderCrank
 from linkage.synthesis.kinds import EXACT, SLIDER, _Kind
 
 __all__ = [
@@ -376,7 +376,9 @@ def largest_distance(points: ArrayLike, path: ArrayLike) -> float:
     """
     p = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     p = np.ascontiguousarray(p[np.all(np.isfinite(p), axis=1)])
-    d = _core.polyline_distance(p, np.ascontiguousarray(path, dtype=np.float64).reshape(-1, 2))
+    d = _core.synthesis.polyline_distance(
+        p, np.ascontiguousarray(path, dtype=np.float64).reshape(-1, 2)
+    )
     return float(d.max()) if len(d) else math.inf
 
 

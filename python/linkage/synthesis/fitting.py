@@ -17,8 +17,8 @@ from numpy.typing import NDArray
 
 from linkage import _core
 from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._slider_crank import SliderCrank
+from linkage.kinematics.fourbar import FourBar
+from linkage.kinematics.slider_crank import SliderCrank
 from linkage.synthesis.candidates import (
     NEAR,
     Candidate,
@@ -57,7 +57,7 @@ def _placed(
     The frames are the curves' normalisation frames; ``flip`` takes the other end of the major axis
     (``linkage_core::place_entry``, ``place_slider_entry``).
     """
-    place = _core.synth_place if kind is FOURBAR else _core.synth_slider_place
+    place = _core.synthesis.place_entry if kind is FOURBAR else _core.synthesis.place_slider_entry
     return place(
         np.ascontiguousarray(entry, dtype=np.float64),
         np.ascontiguousarray(frame_c, dtype=np.float64),
@@ -79,10 +79,10 @@ def _errors(
 ) -> tuple[Float2D, Float2D]:
     p = np.ascontiguousarray(params, dtype=np.float64)
     if kind is SLIDER:
-        return _core.synth_slider_errors(
+        return _core.synthesis.slider_path_errors(
             p, target, samples=samples, exact=exact, closed=closed, threads=threads
         )
-    return _core.synth_errors(
+    return _core.synthesis.path_errors(
         p,
         np.ascontiguousarray(crossed, dtype=bool),
         target,
@@ -100,8 +100,8 @@ def _residuals(
     p = np.ascontiguousarray(params, dtype=np.float64)
     s = np.ascontiguousarray(s, dtype=np.float64)
     if kind is SLIDER:
-        return _core.synth_slider_residuals(p, target, s)
-    return _core.synth_residuals(p, np.ascontiguousarray(crossed, dtype=bool), target, s)
+        return _core.synthesis.slider_residuals(p, target, s)
+    return _core.synthesis.residuals(p, np.ascontiguousarray(crossed, dtype=bool), target, s)
 
 
 def _refine(
@@ -439,7 +439,7 @@ def _arc(feet: NDArray[np.float64], closed: bool) -> tuple[float, float]:
     """
     if closed:
         return (0.0, 2 * math.pi)
-    arc = _core.synth_arc(np.ascontiguousarray(feet, dtype=np.float64))
+    arc = _core.synthesis.covering_arc(np.ascontiguousarray(feet, dtype=np.float64))
     return arc if arc is not None else (math.nan, math.nan)
 
 
@@ -751,11 +751,15 @@ def _measure(
             # linkage, reported with its angle in [-π, π] (so are its crank range and scene).
             x = x.copy()
             x[2] = math.remainder(float(x[2]), 2 * math.pi)
-            problem, full, th_lo, th_hi, mu, through = _core.synth_slider_info(x, lo_s, hi_s)
+            problem, full, th_lo, th_hi, mu, through = _core.synthesis.slider_circuit_info(
+                x, lo_s, hi_s
+            )
             fb = _linkage_of(x, crossed, kind)
             grashof = "crank-slider" if full else "rocker-slider"
         else:
-            problem, full, th_lo, th_hi, mu, through = _core.synth_info(x, crossed, lo_s, hi_s)
+            problem, full, th_lo, th_hi, mu, through = _core.synthesis.circuit_info(
+                x, crossed, lo_s, hi_s
+            )
             fb = _linkage_of(x, crossed, kind)
             grashof = cast(FourBar, fb).grashof()
         if problem is None and full and not closed:
@@ -763,9 +767,9 @@ def _measure(
             # part: its transmission angle counts over the turn (a candidate that read 53.5°
             # on its matched part came within 0.1° of a toggle elsewhere).
             whole = (
-                _core.synth_slider_info(x, 0.0, 2 * math.pi, check_samples=2)
+                _core.synthesis.slider_circuit_info(x, 0.0, 2 * math.pi, check_samples=2)
                 if kind is SLIDER
-                else _core.synth_info(x, crossed, 0.0, 2 * math.pi, check_samples=2)
+                else _core.synthesis.circuit_info(x, crossed, 0.0, 2 * math.pi, check_samples=2)
             )
             mu = min(mu, whole[4])
     except LinkageError:

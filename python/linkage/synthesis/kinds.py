@@ -13,9 +13,9 @@ from typing import Any, get_args
 import numpy as np
 from numpy.typing import NDArray
 
-from linkage._arrays import as_count
-from linkage._choices import AtlasKind, LinkageKind
 from linkage._core import LinkageError
+from linkage._shared.arrays import as_count
+from linkage._shared.choices import AtlasKind, LinkageKind
 
 __all__ = [
     "ARCS",

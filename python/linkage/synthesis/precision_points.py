@@ -27,7 +27,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from linkage import _core
-from linkage._arrays import (
+from linkage._core import LinkageError
+from linkage._shared.arrays import (
     as_count,
     as_finite,
     as_point,
@@ -36,10 +37,9 @@ from linkage._arrays import (
     check_memory,
     said,
 )
-from linkage._choices import Spacing
-from linkage._core import LinkageError
-from linkage._fourbar import FourBar
-from linkage._size import rms_size
+from linkage._shared.choices import Spacing
+from linkage._shared.size import rms_size
+from linkage.kinematics.fourbar import FourBar
 
 __all__ = [
     "Dyad",
@@ -237,7 +237,7 @@ def _beta_pose(value: Any) -> int | None:
 def _not_one_rotation(p: list[tuple[float, float, float]]) -> None:
     """Raise when the poses are rotations about one point: no four-bar guides them."""
     try:
-        centre = _core.burmester_common_pole(p)
+        centre = _core.synthesis.burmester_common_pole(p)
     except LinkageError as exc:  # coincident poses: name the argument, not a chosen point
         raise LinkageError(f"poses: {exc}") from None
     if centre is not None:
@@ -273,7 +273,7 @@ def _curve(
     free_pose = _beta_pose(beta_pose)
     _not_one_rotation(p)
     beta = _rotations(n)
-    free, centres, circles, _ = _core.burmester_curve(p, beta, free_pose)
+    free, centres, circles, _ = _core.synthesis.burmester_curve(p, beta, free_pose)
     return int(free), centres, circles
 
 
@@ -344,7 +344,7 @@ def _dyads_three(
     if circle_points is not None:
         for i, (x, y) in enumerate(_points(circle_points, "circle_points")):
             try:
-                g = _core.burmester_centre_point(p, (float(x), float(y)))
+                g = _core.synthesis.burmester_centre_point(p, (float(x), float(y)))
             except LinkageError as exc:
                 raise LinkageError(f"circle_points[{i}]: {exc}") from None
             dyads.append(Dyad(centre=(g[0], g[1]), circle=(float(x), float(y))))
@@ -352,7 +352,7 @@ def _dyads_three(
     if centre_points is not None:
         for i, (x, y) in enumerate(_points(centre_points, "centre_points")):
             try:
-                k = _core.burmester_circle_point(p, (float(x), float(y)))
+                k = _core.synthesis.burmester_circle_point(p, (float(x), float(y)))
             except LinkageError as exc:
                 raise LinkageError(f"centre_points[{i}]: {exc}") from None
             dyads.append(Dyad(centre=(float(x), float(y)), circle=(k[0], k[1])))
@@ -369,7 +369,7 @@ def _dyads_four(
         b = np.ascontiguousarray(np.atleast_1d(as_real_array(beta, "beta")), dtype=np.float64)
         if b.ndim != 1 or not np.all(np.isfinite(b)):
             raise LinkageError("beta must be finite angles, a scalar or 1-D")
-    free, centres, circles, _ = _core.burmester_curve(p, b, beta_pose)
+    free, centres, circles, _ = _core.synthesis.burmester_curve(p, b, beta_pose)
     out = []
     for g, k in zip(centres.reshape(-1, 2), circles.reshape(-1, 2)):
         if np.all(np.isfinite(g)) and np.all(np.isfinite(k)):
@@ -586,7 +586,7 @@ def _pairs_solved(
     crank = np.ascontiguousarray(row, dtype=np.float64).reshape(-1, 4)
     row = [[*dyads[j].centre, *dyads[j].circle] for _, j in pairs]
     rocker = np.ascontiguousarray(row, dtype=np.float64).reshape(-1, 4)
-    r = _core.motion_candidates(p, crank, rocker)
+    r = _core.synthesis.motion_candidates(p, crank, rocker)
     if not np.any(r["ok"]):
         i, j = pairs[0]
         raise LinkageError(
@@ -699,7 +699,7 @@ def chebyshev_points(x0: float, x1: float, n: int) -> NDArray[np.float64]:
     array([0.066987, 0.5     , 0.933013])
     """
     a, b = as_finite(x0, "x0"), as_finite(x1, "x1")
-    pts: NDArray[np.float64] = _core.chebyshev_points(a, b, as_count(n, "n"))
+    pts: NDArray[np.float64] = _core.synthesis.chebyshev_points(a, b, as_count(n, "n"))
     return pts
 
 
@@ -856,7 +856,7 @@ def function(
 
     phi, psi = phi_of(xs), psi_of(ys)
     grid = np.linspace(x0, x1, count)
-    r = _core.function_generator(phi, psi, g, np.ascontiguousarray(phi_of(grid)))
+    r = _core.synthesis.function_generator(phi, psi, g, np.ascontiguousarray(phi_of(grid)))
     q = r["params"]
     fb = _placed(q)
     want = psi_of(_values(f, grid))

@@ -11,12 +11,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from linkage._arrays import as_count, as_finite, as_flag, as_point
-from linkage._choices import AtlasKind, PathKind
 from linkage._core import LinkageError
-from linkage._progress import Bar
-from linkage._size import mean as _mean
-from linkage._size import pow2 as _pow2
+from linkage._shared.arrays import as_count, as_finite, as_flag, as_point
+from linkage._shared.choices import AtlasKind, PathKind
+from linkage._shared.progress import Bar
+from linkage._shared.size import mean as _mean
+from linkage._shared.size import pow2 as _pow2
 from linkage.synthesis import stages
 from linkage.synthesis.atlas import (
     Atlas,

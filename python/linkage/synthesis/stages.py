@@ -15,7 +15,7 @@ from numpy.typing import NDArray
 
 from linkage import _core
 from linkage._core import LinkageError
-from linkage._slider_crank import SliderCrank
+from linkage.kinematics.slider_crank import SliderCrank
 from linkage.synthesis.atlas import Atlas
 from linkage.synthesis.candidates import Candidate, _crossed, _params_of
 from linkage.synthesis.fitting import (
@@ -182,7 +182,9 @@ def _equation_pool(
     slider = kind is SLIDER
     if len(target) < (SLIDER_EQUATION_POINTS if slider else CURVE_EQUATION_POINTS):
         return []
-    solve = _core.synth_slider_curve_equation if slider else _core.synth_curve_equation
+    solve = (
+        _core.synthesis.slider_cranks_from_curve if slider else _core.synthesis.fourbars_from_curve
+    )
     try:
         params, _, _, _, _ = solve(np.ascontiguousarray(target))
     except LinkageError:
@@ -318,9 +320,13 @@ def _shape_order(
     x, crossed, _ = entry
     try:
         if kind is SLIDER:
-            problem, full, _, _, mu, _ = _core.synth_slider_info(x, 0.0, 2 * math.pi, 64)
+            problem, full, _, _, mu, _ = _core.synthesis.slider_circuit_info(
+                x, 0.0, 2 * math.pi, 64
+            )
         else:
-            problem, full, _, _, mu, _ = _core.synth_info(x, crossed, 0.0, 2 * math.pi, 64)
+            problem, full, _, _, mu, _ = _core.synthesis.circuit_info(
+                x, crossed, 0.0, 2 * math.pi, 64
+            )
     except LinkageError:
         return (3, 0.0)
     if problem is not None or (full_turn and not full):
@@ -585,7 +591,7 @@ def _atlas_pool(
     way).
     """
     closed = at.kind not in _ARC_KIND
-    variants, frame_t = _core.synth_descriptors(target, at.harmonics, closed)
+    variants, frame_t = _core.synthesis.query_descriptors(target, at.harmonics, closed)
     idx, _, _ = at.nearest(variants, min(max(k, 16), len(at)), threads)
     placed, crossed = [], []
     # An entry near several query variants is listed once for each: place it once.
@@ -595,16 +601,18 @@ def _atlas_pool(
             if not closed:
                 slider = kind is SLIDER
                 cr = not slider and bool(entry[5])
-                frame_c = _core.synth_arc_frame(entry, at.harmonics, at.samples, at.phases, slider)
+                frame_c = _core.synthesis.arc_entry_frame(
+                    entry, at.harmonics, at.samples, at.phases, slider
+                )
             elif kind is FOURBAR:
                 base = np.array([0.0, 0.0, 1.0, 0.0, *entry[:5]])
                 cr = bool(entry[5])
-                frame_c = _core.synth_frame(base, cr, at.harmonics, at.samples)
+                frame_c = _core.synthesis.circuit_frame(base, cr, at.harmonics, at.samples)
             else:
                 coupler, offset, along, left = entry[:4]
                 base = np.array([0.0, 0.0, 0.0, offset, 1.0, coupler, along, left])
                 cr = False
-                frame_c = _core.synth_slider_frame(base, at.harmonics, at.samples)
+                frame_c = _core.synthesis.slider_circuit_frame(base, at.harmonics, at.samples)
         except LinkageError:
             continue
         for flip in (False, True):

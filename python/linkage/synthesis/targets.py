@@ -10,10 +10,10 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from linkage._arrays import as_real_array
 from linkage._core import LinkageError
-from linkage._size import pow2 as _pow2
-from linkage._size import rms_size
+from linkage._shared.arrays import as_real_array
+from linkage._shared.size import pow2 as _pow2
+from linkage._shared.size import rms_size
 from linkage.synthesis.kinds import EXACT, Float2D
 from linkage.synthesis.limits import POINTS_MAX
 

@@ -197,7 +197,7 @@ def _four_bar_figures(x: Array, s: Settings, threads: int) -> Array:
     m = len(x)
     o = np.zeros((m, 2))
     c = np.ascontiguousarray(np.stack([ground * np.cos(angle), ground * np.sin(angle)], axis=1))
-    raw = _core.four_bar_gaits(
+    raw = _core.walking.four_bar_gaits(
         o,
         c,
         np.full(m, CRANK),
@@ -210,7 +210,7 @@ def _four_bar_figures(x: Array, s: Settings, threads: int) -> Array:
         s.stance_tol,
         threads=threads,
     )
-    col = {n: raw[:, k] for k, n in enumerate(_core.gait_columns())}
+    col = {n: raw[:, k] for k, n in enumerate(_core.walking.gait_columns())}
     return _assemble(col, s.foot_bar)
 
 
@@ -243,7 +243,7 @@ def _mechanism_figures(family: Family, x: Array, s: Settings) -> Array:
     if not (np.isfinite(path).all() and np.isfinite(rate).all()):
         return nan
     extent = float(np.ptp(path, axis=0).max())
-    g, _ = _core.leg_gait(path, rate, s.stance_tol * extent)
+    g, _ = _core.walking.leg_gait(path, rate, s.stance_tol * extent)
     # Transmission angle of every dyad: the angle between its two links at the joint.
     joints = sw.joints
     names = m.joint_names

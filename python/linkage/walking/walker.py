@@ -524,7 +524,7 @@ class Walker:
         for i in range(m):
             path = np.ascontiguousarray(np.stack([feet[:, i, 0], z[:, i]], axis=1))
             rate = np.ascontiguousarray(np.stack([vel[:, i, 0], vel[:, i, 2]], axis=1))
-            g, stance[:, i] = _core.leg_gait(path, rate, tol, ground)
+            g, stance[:, i] = _core.walking.leg_gait(path, rate, tol, ground)
             gaits.append(g)
         vx = np.where(stance, vel[:, :, 0], np.nan)
         with np.errstate(invalid="ignore"), _quiet():
@@ -548,7 +548,7 @@ class Walker:
         pts = feet[:, :, None, :2] + corners[None, None] * half[None, :, None, None]
         pts = np.where(stance[:, :, None, None], pts, np.nan).reshape(n, 4 * m, 2)
         cg = np.ascontiguousarray(np.broadcast_to(np.asarray(self.cg), (n, 2)))
-        margin, hull, count = _core.support_margins(np.ascontiguousarray(pts), cg)
+        margin, hull, count = _core.walking.support_margins(np.ascontiguousarray(pts), cg)
         # No foot on the ground: no support at all, the worst possible margin.
         margin = np.where(count == 0, -np.inf, margin)
         return Simulation(

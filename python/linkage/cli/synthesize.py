@@ -1,7 +1,7 @@
 """``linkage synth``: path synthesis from the command line (the table of candidates it prints).
 
-Application code over :mod:`linkage.synthesis`. ``linkage.synthesis.command`` calls it with the
-package's :func:`~linkage.synthesis.path` (what is replaced there, as tests do, is what runs).
+Application code over :mod:`linkage.synthesis`, called by :mod:`linkage.cli`; ``command``
+searches with :func:`linkage.synthesis.path` unless told otherwise.
 """
 
 from __future__ import annotations
@@ -12,13 +12,15 @@ import time
 from collections.abc import Callable
 from typing import cast
 
-from linkage._choices import PathKind
 from linkage._core import LinkageError
-from linkage._slider_crank import SliderCrank
+from linkage._shared.choices import PathKind
+from linkage.kinematics.slider_crank import SliderCrank
 from linkage.synthesis.candidates import Candidates, change_point_gap, long_link, why_none
 from linkage.synthesis.limits import SYNTHESIS_REFINE_MAX, SYNTHESIS_TOP_MAX
 from linkage.synthesis.search import path
 from linkage.synthesis.targets import _target, rounded_to, target_size
+
+__all__ = ["CLI_CONSTRAINTS", "command"]
 
 CLI_CONSTRAINTS = {
     "full_turn": "--full-turn",
