@@ -59,7 +59,7 @@ def python_functions(path: Path) -> Iterator[tuple[int, int, str, int]]:
     """Yield (line, length, name, first line above decorators) of every function in a file."""
     tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
     for node in ast.walk(tree):
-        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
             end = node.end_lineno or node.lineno
             top = min([node.lineno, *(d.lineno for d in node.decorator_list)])
             yield node.lineno, end - node.lineno + 1, node.name, top
