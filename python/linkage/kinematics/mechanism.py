@@ -69,6 +69,77 @@ def _known_outputs(out: tuple[str, ...], has_omega: bool) -> tuple[str, ...]:
     return _check_outputs(out, has_omega)
 
 
+def _drive_angles(
+    theta: ArrayLike | None,
+    omega: ArrayLike | None,
+    alpha: ArrayLike | None,
+    time: ArrayLike | None,
+    drive: Drive | None,
+) -> tuple[ArrayLike, ArrayLike | None, ArrayLike | None, NDArray[np.float64] | None, bool | None]:
+    """Return ``Mechanism.sweep``'s ``theta, omega, alpha``, its times and whether they are scalar.
+
+    With ``time`` and ``drive``, the angles and rates come from ``drive.angles(times)``;
+    otherwise ``theta, omega, alpha`` are returned as given, with no times (and None for
+    whether the times are scalar).
+
+    Raises
+    ------
+    LinkageError
+        For ``time`` and ``drive`` given alone or with ``theta``, ``omega`` or ``alpha``.
+    TypeError
+        For a ``drive`` without an ``angles`` method, or with neither ``theta`` nor a drive.
+    """
+    if drive is not None or time is not None:
+        if drive is None or time is None:
+            raise LinkageError("a sweep in time needs both time= and drive=")
+        if theta is not None or omega is not None or alpha is not None:
+            raise LinkageError("give either theta (with omega, alpha) or time= and drive=")
+        if not hasattr(drive, "angles"):
+            raise TypeError(f"drive must have an angles(t) method, got {type(drive).__name__}")
+        times, scalar_time = as_angles(time, "time")
+        theta, omega, alpha = drive.angles(times)
+        return theta, omega, alpha, times, scalar_time
+    if theta is None:
+        raise TypeError("sweep() needs theta (crank angles) or time= and drive=")
+    return theta, omega, alpha, None, None
+
+
+def _angles_rates(
+    theta: ArrayLike, omega: ArrayLike | None, alpha: ArrayLike | None, scalar_time: bool | None
+) -> tuple[NDArray[np.float64], NDArray[np.float64] | None, NDArray[np.float64] | None, bool]:
+    """Return ``Mechanism.sweep``'s angles and rates as arrays, and whether the sweep is scalar.
+
+    ``scalar_time`` (None unless the sweep is in time) overrides whether ``theta`` is a scalar.
+    """
+    # Non-finite angles and rates are refused by the extension, with the same messages.
+    th, scalar = as_angles(theta, "theta", finite=False)
+    if scalar_time is not None:
+        scalar = scalar_time
+    n = th.shape[0]
+    w = as_rate(omega, "omega", n, finite=False)
+    a = as_rate(alpha, "alpha", n, finite=False)
+    return th, w, a, scalar
+
+
+def _asked_pairs(
+    out: tuple[str, ...], pairs: Iterable[tuple[str, str]] | None, links: tuple[str, ...]
+) -> tuple[dict[str, Any], tuple[tuple[str, str], ...] | None]:
+    """Return the extension's keywords for ``out`` and ``pairs``, and the checked link pairs.
+
+    Raises
+    ------
+    LinkageError
+        For ``pairs`` without ``"instant_centres"`` in ``out``, or as :func:`check_pairs` does.
+    """
+    asked: dict[str, Any] = _asked(out)
+    if pairs is None:
+        return asked, None
+    if not asked["instant_centres"]:
+        raise LinkageError("pairs= names instant centres: add 'instant_centres' to outputs")
+    link_pairs, index = check_pairs(pairs, links)
+    return {**asked, "pairs": index}, link_pairs
+
+
 def _same_as_before(raw: Mapping[str, Any], more: Mapping[str, Any], column: int | None) -> None:
     """Check a completion (``more``, every joint and flag) against what the sweep returned.
 
@@ -818,33 +889,10 @@ class Mechanism:
         core, names, links = frozen._core, tuple(frozen._names), frozen.links
         if not names:
             raise LinkageError("the mechanism has no joints")
-        times = None
-        if drive is not None or time is not None:
-            if drive is None or time is None:
-                raise LinkageError("a sweep in time needs both time= and drive=")
-            if theta is not None or omega is not None or alpha is not None:
-                raise LinkageError("give either theta (with omega, alpha) or time= and drive=")
-            if not hasattr(drive, "angles"):
-                raise TypeError(f"drive must have an angles(t) method, got {type(drive).__name__}")
-            times, scalar_time = as_angles(time, "time")
-            theta, omega, alpha = drive.angles(times)
-        elif theta is None:
-            raise TypeError("sweep() needs theta (crank angles) or time= and drive=")
+        theta, omega, alpha, times, scalar_time = _drive_angles(theta, omega, alpha, time, drive)
         out = check_outputs(outputs, omega)
-        asked: dict[str, Any] = _asked(out)
-        link_pairs = None
-        if pairs is not None:
-            if not asked["instant_centres"]:
-                raise LinkageError("pairs= names instant centres: add 'instant_centres' to outputs")
-            link_pairs, index = check_pairs(pairs, links)
-            asked = {**asked, "pairs": index}
-        # Non-finite angles and rates are refused by the extension, with the same messages.
-        th, scalar = as_angles(theta, "theta", finite=False)
-        if times is not None:
-            scalar = scalar_time
-        n = th.shape[0]
-        w = as_rate(omega, "omega", n, finite=False)
-        a = as_rate(alpha, "alpha", n, finite=False)
+        asked, link_pairs = _asked_pairs(out, pairs, links)
+        th, w, a, scalar = _angles_rates(theta, omega, alpha, scalar_time)
         trace = frozen._index(frozen.trace, "trace")
         # Without "joints" the per-joint outputs hold the trace point only, and the margin,
         # gap and regular flags are left out: every joint and the flags are computed on first
