@@ -20,14 +20,13 @@ mod kinetostatics;
 mod linkages;
 mod mechanism;
 mod memory;
+mod module;
 mod motion;
 mod numeric;
+mod simd;
 mod sweep;
 mod synthesis;
 mod walking;
-
-/// Maximum joints of a mechanism built from Python.
-pub const CAPACITY: usize = 64;
 
 /// The 0.1 flat names of `_core` and the submodule attribute each is (the same object), kept
 /// until the Python call sites use the submodules. `flat_names.tsv` is this table.
@@ -115,24 +114,6 @@ const FLAT_CONSTANTS: [(&str, &str); 18] = [
     ("FOOT_STARTS", "synthesis.FOOT_STARTS"),
 ];
 
-/// A new submodule `parent.<name>`, also importable as `linkage._core.<name>` (pyo3 adds no
-/// `sys.modules` entry for a submodule, so `import linkage._core.<name>` needs this one).
-fn submodule<'py>(
-    parent: &Bound<'py, PyModule>,
-    name: &str,
-    doc: &str,
-) -> PyResult<Bound<'py, PyModule>> {
-    let py = parent.py();
-    let m = PyModule::new(py, name)?;
-    let full = format!("linkage._core.{name}");
-    // Before any function is added: a function's `__module__` is its module's `__name__`.
-    m.setattr("__name__", &full)?;
-    m.setattr("__doc__", doc)?;
-    parent.add(name, &m)?;
-    py.import("sys")?.getattr("modules")?.set_item(&full, &m)?;
-    Ok(m)
-}
-
 /// `parent.<flat>` bound to the submodule attribute `module.name` (`"module.name"`).
 fn add_flat(parent: &Bound<'_, PyModule>, flat: &str, dotted: &str) -> PyResult<()> {
     let (module, name) = dotted
@@ -148,7 +129,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LinkageError", py.get_type::<error::LinkageError>())?;
     m.add("AssemblyError", py.get_type::<error::AssemblyError>())?;
     error::register(m)?;
-    m.add("CAPACITY", CAPACITY)?;
+    m.add("CAPACITY", module::CAPACITY)?;
     // Below this assembly margin rates are NaN (`linkage_core::rate_margin`): one value, the
     // core's, for the Python checks too.
     m.add("RATE_MARGIN", linkage_core::rate_margin::<f64>())?;
