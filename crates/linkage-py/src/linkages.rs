@@ -12,6 +12,10 @@ pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<crate::linkages::fourbar::FourBar>()?;
     m.add_class::<crate::linkages::slider_crank::SliderCrank>()?;
     m.add_function(wrap_pyfunction!(crate::linkages::batch::batch_sweep, &m)?)?;
+    m.add_function(wrap_pyfunction!(
+        crate::linkages::fourbar::min_transmission_angle,
+        &m
+    )?)?;
     // Most samples per turn the table mode of the uniform sweep tabulates.
     m.add("MAX_TABLE", linkage_core::MAX_TABLE)?;
     Ok(())

@@ -385,3 +385,21 @@ fn fill(
     }
     Ok(())
 }
+
+/// The smallest transmission angle over a travel, folded to `[0, π/2]`, of each smallest sine
+/// in `min_sine` (`linkage_core::min_transmission_angle`: `asin(min(max(s, 0), 1))`, 0 for NaN):
+/// the one formula Burmester's and Freudenstein's checks, the gait figures and the Python
+/// synthesis constraints share.
+#[pyfunction]
+pub fn min_transmission_angle<'py>(
+    py: Python<'py>,
+    min_sine: crate::args::F64Array1<'py>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let s = min_sine
+        .as_slice()
+        .map_err(|_| linkage_error("min_sine must be a contiguous float64 array"))?;
+    let what = || format!("{} transmission angles", s.len());
+    let mut out = memory::with_capacity(&what, s.len())?;
+    out.extend(s.iter().map(|&x| linkage_core::min_transmission_angle(x)));
+    Ok(PyArray1::from_vec(py, out))
+}
