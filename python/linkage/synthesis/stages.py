@@ -47,11 +47,11 @@ __all__ = [
     "WIDER",
 ]
 
-CURVE_EQUATION_POINTS = 16
+CURVE_EQUATION_POINTS: int = _core.synthesis.CURVE_EQUATION_POINTS
 """Fewest target points from which a four-bar is sought through the equation of the curve they
 lie on (``linkage_core::CURVE_EQUATION_POINTS``: the equation has 16 coefficients)."""
 
-SLIDER_EQUATION_POINTS = 13
+SLIDER_EQUATION_POINTS: int = _core.synthesis.SLIDER_EQUATION_POINTS
 """Fewest target points from which a slider-crank is sought through the equation of the curve
 they lie on (``linkage_core::SLIDER_EQUATION_POINTS``: a circular quartic, 13 coefficients)."""
 
