@@ -40,16 +40,23 @@ CORE_LAYERS = [
 # (one module per core folder, each with its own `register`). A name not listed here is a peer
 # of the middle layer, so a new binding module fits without a change to this table.
 # The shared helpers use each other in this order: `error` (the Python exceptions), `memory`
-# (size wording, MemoryError), then `args` and any conversion helper (`convert*`, `conv*`).
-BINDING_BOTTOM = {"error": 0, "memory": 1, "args": 2}
+# (size wording, MemoryError), then `args` and any conversion helper (`convert*`, `conv*`),
+# `module` (the joint capacity, the submodule maker) and `simd` (the CPU check of the fast sweeps).
+BINDING_BOTTOM = {"error": 0, "memory": 1, "args": 2, "module": 2, "simd": 2}
 BINDING_CONVERT = ("convert", "conv")
 BINDING_MIDDLE = 3
 
 
 # True: a binding module named after a core folder takes that folder's order (binding
 # `linkages` may then use binding `mechanism`, as the core's do); other modules stay peers above
-# them. False (the rule of issue 30): every such module is a peer of every other.
-BINDING_MIRRORS_CORE = False
+# them. False: every such module is a peer of every other.
+# True, because the binding mirrors the core (issue 30, item 4): its pyclasses wrap core types
+# that are layered the same way. A Python `Mechanism` is the binding `mechanism`'s pyclass, and
+# `linkages` (`FourBar.mechanism()`), `sweep` (sweeps of many mechanisms), `kinetostatics`,
+# `catalog` and `synthesis` take or return one, as their core folders use core `mechanism`.
+# Moving that 700-line wrapper to a bottom helper would leave `mechanism` an empty shell; with
+# the core's order the binding has the core's one direction and still no peer or upward use.
+BINDING_MIRRORS_CORE = True
 
 
 def binding_layer(unit: str) -> int:

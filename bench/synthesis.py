@@ -121,7 +121,7 @@ def main() -> None:
         t0 = time.perf_counter()
         big = Atlas.build(1_000_000, threads=2)
         print(f"build {time.perf_counter() - t0:.1f} s (target <= 120 s)")
-        q, _ = synthesis._core.synth_descriptors(targets()[0][1], big.harmonics, True)
+        q, _ = synthesis._core.synthesis.query_descriptors(targets()[0][1], big.harmonics, True)
         times = []
         for _ in range(7):
             t0 = time.perf_counter()

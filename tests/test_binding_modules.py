@@ -1,6 +1,7 @@
-"""The binding mirrors the core: `_core` submodules, the 0.1 flat names, typed assembly errors
-and the core's constants (crates/linkage-py)."""
+"""The binding mirrors the core: `_core` submodules (the 0.1 flat names gone), typed assembly
+errors and the core's constants (crates/linkage-py)."""
 
+import ast
 import importlib
 import sys
 from collections.abc import Callable
@@ -13,7 +14,7 @@ import pytest
 import linkage
 from linkage import _core
 
-FLAT_NAMES = Path(__file__).parent.parent / "crates" / "linkage-py" / "flat_names.tsv"
+STUBS = Path(__file__).parent.parent / "python" / "linkage"
 SUBMODULES = (
     "numeric",
     "mechanism",
@@ -28,13 +29,123 @@ SUBMODULES = (
 )
 
 
-def flat_names() -> list[tuple[str, str, str]]:
-    rows = []
-    for line in FLAT_NAMES.read_text(encoding="utf-8").splitlines():
-        old, dotted = line.split("\t")
-        module, name = dotted.split(".")
-        rows.append((old, module, name))
-    return rows
+# The 0.1 flat names of `_core` (functions, then the core constants), removed in 0.2: the
+# package calls every one by its submodule.
+OLD_FLAT_NAMES = (
+    "reduce_angle",
+    "degrees_of_freedom",
+    "curvature_centres",
+    "circumcentres",
+    "straight_run",
+    "sweep_mechanisms",
+    "sweep_simd",
+    "batch_sweep",
+    "motion_law_names",
+    "motion_law_eval",
+    "program_eval",
+    "program_discontinuities",
+    "gear_train_simple",
+    "gear_train_compound",
+    "schedule_eval",
+    "stance_schedule",
+    "cam_geometry",
+    "forces",
+    "catalog_four_bar",
+    "catalog_linkage",
+    "catalog_names",
+    "leg_gait",
+    "four_bar_gaits",
+    "gait_columns",
+    "support_margins",
+    "burmester_centre_point",
+    "burmester_circle_point",
+    "burmester_common_pole",
+    "burmester_curve",
+    "motion_candidates",
+    "chebyshev_points",
+    "function_generator",
+    "synth_atlas_build",
+    "synth_slider_atlas_build",
+    "synth_arc_atlas_build",
+    "synth_arc_frame",
+    "synth_atlas_nearest",
+    "synth_descriptors",
+    "synth_frame",
+    "synth_slider_frame",
+    "synth_place",
+    "synth_slider_place",
+    "synth_residuals",
+    "synth_slider_residuals",
+    "synth_errors",
+    "synth_slider_errors",
+    "synth_info",
+    "synth_slider_info",
+    "synth_arc",
+    "synth_curve_equation",
+    "synth_slider_curve_equation",
+    "polyline_distance",
+    "polyline_distance_each",
+    "FOUR_BARS",
+    "MULTI_LOOP",
+    "DEFAULT_TOGGLE_MARGIN",
+    "MAX_TABLE",
+    "CURVE_EQUATION_POINTS",
+    "SLIDER_EQUATION_POINTS",
+    "ENTRY_PARAMS",
+    "SLIDER_ENTRY_PARAMS",
+    "ARC_ENTRY_PARAMS",
+    "SLIDER_ARC_ENTRY_PARAMS",
+    "ARC_FRACTIONS",
+    "LENGTH_RANGE",
+    "PLACED_PARAMS",
+    "SLIDER_PARAMS",
+    "QUERY_VARIANTS",
+    "MIN_CURVE_POINTS",
+    "MAX_POSES",
+    "FOOT_STARTS",
+)
+
+# `_core`'s own top level: the errors, the three pyclasses whose `__module__` is `linkage._core`,
+# the shared items that are no folder's (joint capacity, rate margin, string choices, assembly
+# sides, size and memory wording) and the submodules.
+TOP_LEVEL = {
+    "LinkageError",
+    "AssemblyError",
+    "Mechanism",
+    "FourBar",
+    "SliderCrank",
+    "CAPACITY",
+    "RATE_MARGIN",
+    "CHOICES",
+    "ASSEMBLY_SIDES",
+    "size_text_of",
+    "memory_message",
+    *SUBMODULES,
+}
+
+
+def stub_all(stub: Path) -> set[str]:
+    """The names a stub file's `__all__` lists, each checked to be defined or imported there."""
+    tree = ast.parse(stub.read_text(encoding="utf-8"))
+    listed: set[str] = set()
+    defined: set[str] = set()
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(
+            isinstance(t, ast.Name) and t.id == "__all__" for t in node.targets
+        ):
+            listed = set(ast.literal_eval(node.value))
+        elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+            defined.add(node.target.id)
+        elif isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            defined.add(node.name)
+        elif isinstance(node, ast.ImportFrom):
+            defined.update(a.asname for a in node.names if a.asname == a.name)
+    assert listed <= defined, (stub, listed - defined)
+    return listed
+
+
+def public(module: object) -> set[str]:
+    return {n for n in dir(module) if not n.startswith("_")}
 
 
 @pytest.mark.parametrize("name", SUBMODULES)
@@ -47,23 +158,24 @@ def test_each_submodule_imports_both_ways(name: str) -> None:
     assert by_import.__doc__
 
 
-def test_each_old_flat_name_is_its_submodule_attribute() -> None:
-    rows = flat_names()
-    assert len({old for old, _, _ in rows}) == len(rows)
-    for old, module, name in rows:
-        assert module in SUBMODULES, module
-        new = getattr(getattr(_core, module), name)
-        assert getattr(_core, old) is new, old
-        assert new.__module__ == f"linkage._core.{module}", old
+def test_the_old_flat_names_are_gone() -> None:
+    assert len(set(OLD_FLAT_NAMES)) == len(OLD_FLAT_NAMES) == 71
+    for old in OLD_FLAT_NAMES:
+        assert not hasattr(_core, old), old
 
 
-def test_every_function_at_top_level_is_in_the_table() -> None:
-    listed = {old for old, _, _ in flat_names()}
-    functions = {
-        n for n in dir(_core) if type(getattr(_core, n)).__name__ == "builtin_function_or_method"
-    }
-    # The shared helpers (memory wording) are top level by design.
-    assert functions - {"size_text_of", "memory_message"} == listed
+def test_the_top_level_is_what_its_stub_says() -> None:
+    assert public(_core) == stub_all(STUBS / "_core.pyi") == TOP_LEVEL
+
+
+@pytest.mark.parametrize("name", SUBMODULES)
+def test_each_submodule_is_what_its_stub_says(name: str) -> None:
+    module = getattr(_core, name)
+    assert public(module) == stub_all(STUBS / "_core" / f"{name}.pyi"), name
+    for attr in public(module):
+        value = getattr(module, attr)
+        if callable(value) and not isinstance(value, type):
+            assert value.__module__ == f"linkage._core.{name}", attr
 
 
 def test_classes_and_errors_stay_at_top_level() -> None:
@@ -151,7 +263,10 @@ def core_constant(name: str) -> str:
 def test_constants_are_the_cores(module: str, name: str, value: object) -> None:
     got = getattr(getattr(_core, module), name)
     assert got == value
-    assert getattr(_core, name) is got
+    if name == "CAPACITY":
+        assert _core.CAPACITY is got
+    else:
+        assert not hasattr(_core, name)
     if name not in ("CAPACITY", "SLIDER_ARC_ENTRY_PARAMS", "FOUR_BARS", "MULTI_LOOP"):
         text = core_constant(name)
         if isinstance(value, (int, float)):
@@ -197,25 +312,25 @@ def test_results_with_a_shape_are_typed() -> None:
     assert _core.drive.CamGeometry.__doc__ and _core.motion.StraightRun.length.__doc__
 
 
-def test_typed_results_keep_the_old_shapes_for_the_flat_names() -> None:
-    # 0.1 callers unpack tuples and index dicts; the flat names return the same objects.
-    ratio, sign = _core.gear_train_simple([10, 20])
+def test_typed_results_keep_the_old_shapes() -> None:
+    # 0.1 callers unpack tuples and index dicts; the typed results still allow both.
+    ratio, sign = _core.drive.simple_gear_train([10, 20])
     train = _core.drive.simple_gear_train([10, 20])
     assert isinstance(train, _core.drive.GearRatio)
     assert (ratio, sign) == (train.ratio, train.sign) == train.astuple() == (0.5, -1)
     assert (len(train), train[0], train[-1]) == (2, 0.5, -1)
     found = _core.catalog.linkage("hart")
-    mech, names, trace = _core.catalog_linkage("hart")
+    mech, names, trace = _core.catalog.linkage("hart")
     assert isinstance(mech, _core.Mechanism)
     assert (names, trace) == (found.joint_names, found.trace)
     assert isinstance(found.mechanism, _core.Mechanism) and found[0] is found.mechanism
     with pytest.raises(IndexError):
         found[3]
-    cam = _core.cam_geometry(np.linspace(0.0, 1.0, 3), np.zeros((3, 3)), 2.0)
+    cam = _core.drive.cam_geometry(np.linspace(0.0, 1.0, 3), np.zeros((3, 3)), 2.0)
     assert cam["pitch"] is cam.pitch
     with pytest.raises(KeyError):
         cam["nope"]
-    run = _core.straight_run(np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]), 1e-9, False)
+    run = _core.motion.straight_run(np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]), 1e-9, False)
     assert run is not None and run["count"] == 3
     with pytest.raises(KeyError):
         run["lift"]  # only for a closed path, as the 0.1 dict

@@ -367,12 +367,12 @@ def test_the_curve_equation_takes_sixteen_points_or_more() -> None:
     """The core's function names its least count; the search leaves the stage out below it."""
     pts = linkage.catalog.hoecken().circuit(16).point[:-1]
     with pytest.raises(linkage.LinkageError, match="needs at least 16 points on the curve, got 15"):
-        linkage._core.synth_curve_equation(np.ascontiguousarray(pts))
+        linkage._core.synthesis.fourbars_from_curve(np.ascontiguousarray(pts))
     assert synthesis._equation_pool(np.ascontiguousarray(pts), True, 1) == []
     bad = np.ascontiguousarray(linkage.catalog.hoecken().circuit(21).point[:-1])
     bad[4, 1] = np.nan
     with pytest.raises(linkage.LinkageError, match="curve point"):
-        linkage._core.synth_curve_equation(bad)
+        linkage._core.synthesis.fourbars_from_curve(bad)
 
 
 def test_full_turn_guides_the_search_not_only_the_ranking(
@@ -411,7 +411,7 @@ def test_arc_atlas_round_trips_and_finds_its_own_arcs(tmp_path) -> None:  # type
             np.c_[np.cos(np.arange(8.0)), np.sin(np.arange(8.0))], kind="slider-crank", atlas=a
         )
     with pytest.raises(linkage.LinkageError, match="arc phase"):
-        synthesis._core.synth_arc_frame(
+        synthesis._core.synthesis.arc_entry_frame(
             np.array([1.0, 2.0, 1.5, 0.5, 0.5, 0.0, 9.0, 0.0]), 8, 128, 8
         )
 
@@ -461,7 +461,7 @@ def assert_one_circuit(cand: synthesis.Candidate, n: int = 1001) -> None:
         s = np.where(
             k < half, math.pi * k / (half - 1), math.pi + math.pi * (k - half) / (n - half - 1)
         )
-    closed_form = linkage._core.synth_residuals(
+    closed_form = linkage._core.synthesis.residuals(
         cand.params[None, :], np.array([fb.assembly == "crossed"]), np.zeros((n, 2)), s[None, :]
     )[0]
     size = float(np.ptp(sweep.point, axis=0).max())
@@ -835,12 +835,12 @@ def test_placement_arc_and_polyline_distance_from_the_core_match_numpy() -> None
         )
         # Each point against its own polyline (reference_gap's measure).
         own = rng.normal(size=(15, 7, 2))
-        each = linkage._core.polyline_distance_each(pts, own.reshape(-1, 2), 7)
+        each = linkage._core.synthesis.polyline_distance_each(pts, own.reshape(-1, 2), 7)
         want = [_distance_reference(pts[i : i + 1], own[i]) for i in range(15)]
         np.testing.assert_allclose(each, want, rtol=1e-12)
     assert synthesis._arc(np.array([0.3, 1.0]), True) == (0.0, 2 * math.pi)
     with pytest.raises(linkage.LinkageError, match="polylines"):
-        linkage._core.polyline_distance_each(np.zeros((3, 2)), np.zeros((8, 2)), 3)
+        linkage._core.synthesis.polyline_distance_each(np.zeros((3, 2)), np.zeros((8, 2)), 3)
     # A NaN sample breaks the polyline: no segment across the gap (the old code drew one).
     path = np.array([[0.0, 0.0], [2.0, 0.0], [np.nan, np.nan], [2.0, 2.0]])
     assert synthesis.largest_distance(np.array([[2.0, 1.5]]), path) == pytest.approx(0.5)

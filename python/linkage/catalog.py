@@ -75,9 +75,9 @@ __all__ = [
     "watt",
 ]
 
-FOUR_BARS: tuple[str, ...] = tuple(_core.catalog.names()[0])
+FOUR_BARS: tuple[str, ...] = tuple(_core.catalog.FOUR_BARS)
 """Names of the catalogue's four-bars (the core's catalogue)."""
-MULTI_LOOP: tuple[str, ...] = tuple(_core.catalog.names()[1])
+MULTI_LOOP: tuple[str, ...] = tuple(_core.catalog.MULTI_LOOP)
 """Names of the catalogue's multi-loop linkages (the core's catalogue)."""
 
 

@@ -6,7 +6,7 @@ use pyo3::prelude::*;
 use crate::error::linkage_error;
 use crate::linkages::fourbar::FourBar;
 use crate::mechanism::Mechanism;
-use crate::CAPACITY;
+use crate::module::CAPACITY;
 
 /// Names of the catalogued four-bars and multi-loop linkages.
 #[pyfunction]
@@ -95,7 +95,7 @@ pub fn catalog_linkage(
 
 /// Adds the submodule `_core.catalog` (named classic linkages (`linkage_core::catalog`)).
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
-    let m = crate::submodule(
+    let m = crate::module::submodule(
         parent,
         "catalog",
         "Named classic linkages (`linkage_core::catalog`).",

@@ -335,7 +335,7 @@ pub fn stance_schedule<'py>(
 
 /// Adds the submodule `_core.drive` (motion laws, programs, gear trains, schedules and cams (`linkage_core` `drive/`)).
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
-    let m = crate::submodule(
+    let m = crate::module::submodule(
         parent,
         "drive",
         "Motion laws, programs, gear trains, schedules and cams (`linkage_core` `drive/`).",

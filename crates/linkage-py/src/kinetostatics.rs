@@ -173,7 +173,7 @@ pub fn forces<'py>(
 
 /// Adds the submodule `_core.kinetostatics` (joint forces and driving torque over a sweep (`linkage_core::kinetostatics`)).
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
-    let m = crate::submodule(
+    let m = crate::module::submodule(
         parent,
         "kinetostatics",
         "Joint forces and driving torque over a sweep (`linkage_core::kinetostatics`).",

@@ -14,7 +14,7 @@ use std::sync::{Mutex, MutexGuard};
 use crate::args::{choice, finite, named, Real};
 use crate::error::{linkage_error, to_py};
 use crate::memory;
-use crate::CAPACITY;
+use crate::module::CAPACITY;
 
 pub mod bodies;
 
@@ -393,7 +393,7 @@ impl Mechanism {
                         false
                     }
                 };
-                let simd = crate::linkages::fourbar::simd_level();
+                let simd = crate::simd::simd_level();
                 match &mech {
                     Sweepable::S8(m) => sweep_isa(simd, m, th, (w, a), out, &mut go_on),
                     Sweepable::S16(m) => sweep_isa(simd, m, th, (w, a), out, &mut go_on),
@@ -477,14 +477,14 @@ pub fn sweep_mechanisms<'py>(
 /// same in every build, so are the bits. Only the small capacities (up to 16 joints: four-bars,
 /// six-bars, Jansen's and Klann's legs) carry the extra builds.
 fn sweep_isa<const N: usize>(
-    simd: crate::linkages::fourbar::Simd,
+    simd: crate::simd::Simd,
     m: &CoreMechanism<f64, N>,
     theta: &[f64],
     (omega, alpha): (Rate<'_, f64>, Rate<'_, f64>),
     out: SweepOutputs<'_, f64>,
     go_on: &mut dyn FnMut() -> bool,
 ) -> Result<linkage_core::Swept, linkage_core::Error> {
-    use crate::linkages::fourbar::Simd;
+    use crate::simd::Simd;
     match simd {
         #[cfg(target_arch = "x86_64")]
         Simd::Avx512 => {
@@ -703,7 +703,7 @@ pub(crate) fn as_points<'a, D: numpy::ndarray::Dimension>(
 
 /// Adds the submodule `_core.mechanism` (the mechanism builder and its mobility (`linkage_core` `mechanism/`)).
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
-    let m = crate::submodule(
+    let m = crate::module::submodule(
         parent,
         "mechanism",
         "The mechanism builder and its mobility (`linkage_core` `mechanism/`).",
@@ -714,7 +714,7 @@ pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
         &m
     )?)?;
     // Maximum joints of a mechanism built from Python.
-    m.add("CAPACITY", crate::CAPACITY)?;
+    m.add("CAPACITY", crate::module::CAPACITY)?;
     // Below this assembly margin rates are NaN (`linkage_core::rate_margin`).
     m.add("RATE_MARGIN", linkage_core::rate_margin::<f64>())?;
     Ok(())

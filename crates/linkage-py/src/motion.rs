@@ -182,7 +182,7 @@ pub fn straight_run<'py>(
 
 /// Adds the submodule `_core.motion` (instant centres, path curvature and straight runs (`linkage_core` `motion/`)).
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
-    let m = crate::submodule(
+    let m = crate::module::submodule(
         parent,
         "motion",
         "Instant centres, path curvature and straight runs (`linkage_core` `motion/`).",

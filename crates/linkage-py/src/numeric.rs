@@ -24,7 +24,7 @@ pub fn reduce_angle<'py>(
 
 /// Adds the submodule `_core.numeric` (exact angle reduction (`linkage_core` `numeric/`)).
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
-    let m = crate::submodule(
+    let m = crate::module::submodule(
         parent,
         "numeric",
         "Exact angle reduction (`linkage_core` `numeric/`).",

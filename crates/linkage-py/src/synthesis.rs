@@ -8,7 +8,7 @@ pub mod precision;
 
 /// Adds the submodule `_core.synthesis` (precision-point and path synthesis (`linkage_core` `synthesis/`)).
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
-    let m = crate::submodule(
+    let m = crate::module::submodule(
         parent,
         "synthesis",
         "Precision-point and path synthesis (`linkage_core` `synthesis/`).",

@@ -7,7 +7,7 @@ pub mod support;
 
 /// Adds the submodule `_core.walking` (gaits of legs and of four-bar legs, support margins (`linkage_core` `walking/`)).
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
-    let m = crate::submodule(
+    let m = crate::module::submodule(
         parent,
         "walking",
         "Gaits of legs and of four-bar legs, support margins (`linkage_core` `walking/`).",

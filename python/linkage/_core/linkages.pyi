@@ -13,6 +13,7 @@ __all__ = [
     "MAX_TABLE",
     "FourBar",
     "SliderCrank",
+    "min_transmission_angle",
     "sweep_four_bar_batch",
 ]
 
@@ -31,3 +32,4 @@ def sweep_four_bar_batch(
     threads: int = 1,
     out: tuple[NDArray[np.float64], NDArray[np.bool_]] | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]: ...
+def min_transmission_angle(min_sine: NDArray[np.float64]) -> NDArray[np.float64]: ...

@@ -76,7 +76,7 @@ re-samples its entry's circuit this many times to place it (0.3 ms at 64, 0.6 ms
 ATLAS_META_MAX = 64 << 10
 """Largest ``meta.json`` an atlas may have, in bytes (:meth:`Atlas.save` writes about 100)."""
 
-_ARC_FRACTIONS = 7  # linkage_core::ARC_FRACTIONS.len(): an arc entry's last column indexes them
+_ARC_FRACTIONS = len(_core.synthesis.ARC_FRACTIONS)  # an arc entry's last column indexes them
 
 _ATLAS_TEMP = r"\.(?:{name})\.tmp(\d+)-[0-9a-f]{{8}}"
 """:meth:`Atlas.save`'s temporary folder beside ``name``: ``.<name>.tmp<pid>-<8 hex>``."""

@@ -13,6 +13,7 @@ from typing import Any, get_args
 import numpy as np
 from numpy.typing import NDArray
 
+from linkage import _core
 from linkage._core import LinkageError
 from linkage._shared.arrays import as_count
 from linkage._shared.choices import AtlasKind, LinkageKind
@@ -57,7 +58,13 @@ DEFAULT_SLIDER_ARC_ENTRIES = 560_000
 many circuits as the four-bar's (5,000 missed three arcs of ``bench/open_arcs.py --kind
 slider-crank`` that this finds; docs/synthesis.md)."""
 
-_ENTRY_WIDTH = {"fourbar": 6, "slider-crank": 4, ARCS: 8, SLIDER_ARCS: 6}
+# The columns of an atlas entry of each kind: the core's `*ENTRY_PARAMS`, never copied.
+_ENTRY_WIDTH = {
+    "fourbar": _core.synthesis.ENTRY_PARAMS,
+    "slider-crank": _core.synthesis.SLIDER_ENTRY_PARAMS,
+    ARCS: _core.synthesis.ARC_ENTRY_PARAMS,
+    SLIDER_ARCS: _core.synthesis.SLIDER_ARC_ENTRY_PARAMS,
+}
 
 Float2D = NDArray[np.float64]
 

@@ -47,11 +47,11 @@ __all__ = [
     "WIDER",
 ]
 
-CURVE_EQUATION_POINTS = 16
+CURVE_EQUATION_POINTS: int = _core.synthesis.CURVE_EQUATION_POINTS
 """Fewest target points from which a four-bar is sought through the equation of the curve they
 lie on (``linkage_core::CURVE_EQUATION_POINTS``: the equation has 16 coefficients)."""
 
-SLIDER_EQUATION_POINTS = 13
+SLIDER_EQUATION_POINTS: int = _core.synthesis.SLIDER_EQUATION_POINTS
 """Fewest target points from which a slider-crank is sought through the equation of the curve
 they lie on (``linkage_core::SLIDER_EQUATION_POINTS``: a circular quartic, 13 coefficients)."""
 
@@ -143,7 +143,8 @@ def _shortfall(
     ``|C − A|``, over ``[|g − r|, g + r]``, leaves the dyad's ``[|b − c|, b + c]``, over
     ``size``. The transmission angle (a closed target, whose matched part is the whole
     circuit): ``min_transmission`` less its least distance from a toggle, in radians — reached
-    at the base's extremes when the crank turns fully, zero (a toggle) when it rocks.
+    at the base's extremes when the crank turns fully, zero (a toggle) when it rocks — by the
+    core's one formula (``_core.linkages.min_transmission_angle``).
     """
     g = np.hypot(params[:, 2] - params[:, 0], params[:, 3] - params[:, 1])
     r, b, c = params[:, 4], params[:, 5], params[:, 6]
@@ -153,11 +154,17 @@ def _shortfall(
     if full_turn:
         out += (np.maximum(0.0, np.abs(b - c) - lo) + np.maximum(0.0, hi - (b + c))) / size
     if closed and min_transmission > 0:
+        # The transmission angle's cosine at the base's extremes; over the circuit its sine is
+        # least at one of them, and the core folds that sine to the angle's distance from a
+        # toggle (0 for a crank that rocks, and for NaN).
         with np.errstate(invalid="ignore", divide="ignore"):
-            mu_lo = np.arccos(np.clip((b * b + c * c - lo * lo) / (2 * b * c), -1.0, 1.0))
-            mu_hi = np.arccos(np.clip((b * b + c * c - hi * hi) / (2 * b * c), -1.0, 1.0))
-        least = np.where(turns, np.minimum(mu_lo, math.pi - mu_hi), 0.0)
-        out += np.maximum(0.0, min_transmission - np.nan_to_num(least))
+            k_lo = np.clip((b * b + c * c - lo * lo) / (2 * b * c), -1.0, 1.0)
+            k_hi = np.clip((b * b + c * c - hi * hi) / (2 * b * c), -1.0, 1.0)
+        sine = np.minimum(
+            np.sqrt((1.0 - k_lo) * (1.0 + k_lo)), np.sqrt((1.0 - k_hi) * (1.0 + k_hi))
+        )
+        least = _core.linkages.min_transmission_angle(np.where(turns, sine, 0.0))
+        out += np.maximum(0.0, min_transmission - least)
     return out
 
 

@@ -226,7 +226,7 @@ pub fn batch_sweep<'py>(
         let ok = vw
             .as_slice_mut()
             .map_err(|_| linkage_error("internal error: output not contiguous"))?;
-        let simd = crate::linkages::fourbar::sweep_simd();
+        let simd = crate::simd::sweep_simd();
         // Work in fast samples (a tracked sample counted as TRACKED_COST): a small call runs
         // here; a larger one on worker threads while this thread watches for Ctrl-C.
         let (lo, hi) = th

@@ -8,7 +8,8 @@ use crate::args::{choice, mid_sentence, named, xy, Real, RealPair};
 use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
 use crate::memory;
-use crate::CAPACITY;
+use crate::module::CAPACITY;
+use crate::simd::{simd_level, Simd};
 
 /// Pole, inflection pole, circle centre, radius, Ball point, Ball point in the coupler frame.
 type InflectionTuple = (
@@ -58,51 +59,6 @@ fn fast_sweep(
             }
         }
         _ => f.uniform_sweep(theta0, dtheta, first, mode, out),
-    }
-}
-
-/// Which build of the fast sweep runs on this CPU (only `simd_level` makes one).
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Simd {
-    Portable,
-    #[cfg_attr(
-        not(target_arch = "x86_64"),
-        allow(dead_code, reason = "made only by the x86_64 CPU check")
-    )]
-    Avx2,
-    #[cfg_attr(
-        not(target_arch = "x86_64"),
-        allow(dead_code, reason = "made only by the x86_64 CPU check")
-    )]
-    Avx512,
-}
-
-pub(crate) fn simd_level() -> Simd {
-    // LINKAGE_PORTABLE=1 keeps the portable build's code (for comparisons and tests).
-    if std::env::var_os("LINKAGE_PORTABLE").is_some_and(|v| !v.is_empty() && v != "0") {
-        return Simd::Portable;
-    }
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::is_x86_feature_detected as has;
-        if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
-            return Simd::Avx512;
-        }
-        if has!("avx2") && has!("fma") {
-            return Simd::Avx2;
-        }
-    }
-    Simd::Portable
-}
-
-/// The instruction set the fast uniform sweep uses here: `"avx512"`, `"avx2"` or `"portable"`.
-#[pyfunction]
-#[pyo3(name = "instruction_set")]
-pub fn sweep_simd() -> &'static str {
-    match simd_level() {
-        Simd::Avx512 => "avx512",
-        Simd::Avx2 => "avx2",
-        Simd::Portable => "portable",
     }
 }
 
@@ -428,4 +384,22 @@ fn fill(
         fast_sweep(simd, f, theta0, dtheta, first, mode, part).map_err(|e| e.to_string())?;
     }
     Ok(())
+}
+
+/// The smallest transmission angle over a travel, folded to `[0, π/2]`, of each smallest sine
+/// in `min_sine` (`linkage_core::min_transmission_angle`: `asin(min(max(s, 0), 1))`, 0 for NaN):
+/// the one formula Burmester's and Freudenstein's checks, the gait figures and the Python
+/// synthesis constraints share.
+#[pyfunction]
+pub fn min_transmission_angle<'py>(
+    py: Python<'py>,
+    min_sine: crate::args::F64Array1<'py>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let s = min_sine
+        .as_slice()
+        .map_err(|_| linkage_error("min_sine must be a contiguous float64 array"))?;
+    let what = || format!("{} transmission angles", s.len());
+    let mut out = memory::with_capacity(&what, s.len())?;
+    out.extend(s.iter().map(|&x| linkage_core::min_transmission_angle(x)));
+    Ok(PyArray1::from_vec(py, out))
 }

@@ -9,7 +9,7 @@ use crate::args::{choice, named, xy, Real, RealPair};
 use crate::error::{linkage_error, to_py};
 use crate::mechanism::Mechanism;
 use crate::memory;
-use crate::CAPACITY;
+use crate::module::CAPACITY;
 
 /// An offset slider-crank with a coupler point.
 #[pyclass(module = "linkage._core", frozen)]
