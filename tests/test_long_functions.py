@@ -1,8 +1,7 @@
 """`.ci/long_functions.py` (run by `make check`): no function over 150 lines outside marked kernels.
 
-The checker and the sources it measures are not in the copy of the tests that `make wheel-test`
-runs against the installed wheel (tests, docs, examples only): there these tests pass without
-running it (a skip would fail that run); `make test` and `make check` run it on the tree.
+It checks the source tree, not the installed package: `make wheel-test` leaves this file out of
+the copy of the suite it runs against the wheel (`TREE_ONLY` in tests/test_wheel.py).
 """
 
 from __future__ import annotations
@@ -16,7 +15,6 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 CHECKER = ROOT / ".ci" / "long_functions.py"
-SOURCE_TREE = (ROOT / "Cargo.toml").is_file()
 
 
 def run(*args: str | Path) -> subprocess.CompletedProcess[str]:
@@ -26,8 +24,6 @@ def run(*args: str | Path) -> subprocess.CompletedProcess[str]:
 
 
 def test_the_tree_has_no_long_function() -> None:
-    if not SOURCE_TREE:
-        return
     done = run(ROOT)
     assert done.returncode == 0, done.stdout + done.stderr
     assert "none over 150 lines" in done.stdout
@@ -50,8 +46,6 @@ def rust_function(length: int, above: str = "") -> str:
     ("name", "make"), [("long.py", python_function), ("long.rs", rust_function)]
 )
 def test_a_planted_long_function_fails(tmp_path: Path, name: str, make: Callable[..., str]) -> None:
-    if not SOURCE_TREE:
-        return
     (tmp_path / name).write_text(make(151), encoding="utf-8")
     done = run(tmp_path, tmp_path / name)
     assert done.returncode == 1, done.stdout
@@ -62,8 +56,6 @@ def test_a_planted_long_function_fails(tmp_path: Path, name: str, make: Callable
     ("name", "make"), [("long.py", python_function), ("long.rs", rust_function)]
 )
 def test_150_lines_pass(tmp_path: Path, name: str, make: Callable[..., str]) -> None:
-    if not SOURCE_TREE:
-        return
     (tmp_path / name).write_text(make(150), encoding="utf-8")
     done = run(tmp_path, tmp_path / name)
     assert done.returncode == 0, done.stdout
@@ -79,8 +71,6 @@ def test_150_lines_pass(tmp_path: Path, name: str, make: Callable[..., str]) -> 
 def test_a_marked_numeric_kernel_passes(
     tmp_path: Path, name: str, make: Callable[..., str], comment: str
 ) -> None:
-    if not SOURCE_TREE:
-        return
     (tmp_path / name).write_text(make(151, comment), encoding="utf-8")
     assert run(tmp_path, tmp_path / name).returncode == 0
     # The mark must give a reason.

@@ -370,6 +370,9 @@ def smoke_runs(work: Path, venv: Path) -> None:
 # pyproject.toml (pytest's options).
 # Not python/: the tests import the installed wheel.
 SUITE_FILES = ("tests", "examples", "docs", "README.md", "ARCHITECTURE.md", "pyproject.toml")
+# Tests of the source tree's own checkers (.ci/layers.py, .ci/long_functions.py), which read the
+# Rust and Python sources, not the installed package: left out of the copy, and of the count.
+TREE_ONLY = ("test_layers.py", "test_long_functions.py")
 SUITE_TIMEOUT = 1800  # seconds for the whole suite on one version (about 2 minutes here)
 # The suite runs on this many pytest-xdist workers (CI has 2 cores; `LINKAGE_TEST_WORKERS=0`
 # runs it in one process). pytest-xdist is in the `test` extra.
@@ -378,8 +381,10 @@ WORKERS = int(os.environ.get("LINKAGE_TEST_WORKERS", "2"))
 
 @pytest.fixture(scope="module")
 def suite_size() -> int:
-    """Return how many tests ``make test``'s pytest run collects in the tree (doctests included)."""
-    args = ["tests", "python/linkage", "--ignore=tests/test_wheel.py", "-p", "no:cacheprovider"]
+    """How many tests ``make test``'s pytest run collects in the tree (doctests included), but the
+    source-tree checks (:data:`TREE_ONLY`)."""
+    ignored = [f"--ignore=tests/{name}" for name in ("test_wheel.py", *TREE_ONLY)]
+    args = ["tests", "python/linkage", *ignored, "-p", "no:cacheprovider"]
     listed = subprocess.run(
         [sys.executable, "-m", "pytest", "--collect-only", "-q", *args],
         cwd=ROOT,
@@ -413,7 +418,7 @@ def full_suite(work: Path, venv: Path, suite_size: int, minor: int) -> None:
     assert venv in package.parents, package
 
     tree = work / "tree"
-    skip = shutil.ignore_patterns("__pycache__", ".hypothesis", "test_wheel.py")
+    skip = shutil.ignore_patterns("__pycache__", ".hypothesis", "test_wheel.py", *TREE_ONLY)
     for name in SUITE_FILES:
         if (ROOT / name).is_dir():
             shutil.copytree(ROOT / name, tree / name, ignore=skip)

@@ -258,9 +258,11 @@ def _catalog(args: argparse.Namespace, state: dict[str, Path]) -> int:
 
 
 def _synth(args: argparse.Namespace, state: dict[str, Path]) -> int:
-    from linkage.cli import synthesize  # noqa: PLC0415 (scipy and the atlases on demand)
+    from linkage import synthesis  # noqa: PLC0415 (scipy and the atlases on demand)
+    from linkage.cli import synthesize  # noqa: PLC0415
 
-    return synthesize.command(args)
+    # The package's path() as it is when called (a test or a user may have replaced it).
+    return synthesize.command(args, synthesis.path)
 
 
 def _design(args: argparse.Namespace, state: dict[str, Path]) -> int:

@@ -5,8 +5,8 @@ The search covers leg families and their figures from the core, evaluates candid
 
 A *family* is a parametrised leg generator with documented bounds and a reference point (the
 design a source chose). A candidate's figures come from the core's leg figures
-(``linkage_core::gait``; :func:`linkage._core.four_bar_gaits` for four-bars, batched,
-:func:`linkage._core.leg_gait` on a swept foot path for multi-loop legs). The search is
+(``linkage_core::gait``; :func:`linkage._core.walking.four_bar_gaits` for four-bars, batched,
+:func:`linkage._core.walking.leg_gait` on a swept foot path for multi-loop legs). The search is
 deterministic for a seed: candidates are independent, chunks are gathered in order, and the
 four-bar batch gives the same bits for any split, so the front is the same serially, on a
 ``LocalCluster`` or on a real cluster.

@@ -375,7 +375,9 @@ def main_design(
     except SchedulerError as exc:
         where = f"{sf.scheduler_at}: " if sf.scheduler_at else f"{sf.path}: "
         raise LinkageError(f"{where}{exc} (nothing was written)") from None
-    except KeyboardInterrupt:
+    except BaseException:
+        # Ctrl-C, or the error a library made of it (Dask may), or a failure after the search
+        # began: the checkpoint it wrote stays, and the user is told where.
         if ck.is_file() and not ck.is_symlink():
             _note(f"the search so far is kept in {ck}: the same command resumes it")
         raise
