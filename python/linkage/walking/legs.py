@@ -5,9 +5,10 @@ figures (``linkage_core::gait``).
 
 A family builds a candidate as scene joint constructions (trace ``F``, the foot), so every
 candidate is also a :class:`linkage.Mechanism` and a ready-to-run scene. Four-bar legs are
-evaluated by the core's batched leg figures (:func:`linkage._core.walking.four_bar_gaits`), multi-loop
-legs by a sweep and :func:`linkage._core.walking.leg_gait`. Used by :mod:`linkage.design` (the
-search) and :mod:`linkage.catalog` (the reference legs); needs no optional package.
+evaluated by the core's batched leg figures (:func:`linkage._core.walking.four_bar_gaits`),
+multi-loop legs by a sweep and :func:`linkage._core.walking.leg_gait`. Used by
+:mod:`linkage.design` (the search) and :mod:`linkage.catalog` (the reference legs); needs no
+optional package.
 
 >>> import numpy as np
 >>> from linkage.legs import FIGURES, Settings, family
