@@ -40,6 +40,7 @@ check: $(STAMP) firmware firmware-size ## Formatting, lints (clippy -D warnings,
 	$(BIN)/python .ci/assert_messages.py
 	$(BIN)/python .ci/layers.py
 	$(BIN)/python .ci/long_functions.py
+	$(BIN)/pytest -q -p no:cacheprovider tests/test_imports.py
 	RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -p linkage-core
 	$(BIN)/ruff check python tests bench
 	$(BIN)/ruff format --check python tests bench
