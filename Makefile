@@ -30,7 +30,7 @@ PYTEST_WORKERS ?= 2
 
 test: $(STAMP) ## Set up and run every test: Rust unit/property/doc tests, pytest + doctests, stubs, types (not the wheel: wheel-test).
 	cargo test -p linkage-core --release
-	$(BIN)/pytest tests python/linkage --ignore=tests/test_wheel.py $(if $(filter 0,$(PYTEST_WORKERS)),,-n $(PYTEST_WORKERS))
+	$(BIN)/pytest tests python/linkage --ignore=tests/test_wheel.py $(if $(filter 0,$(PYTEST_WORKERS)),,-n $(PYTEST_WORKERS) --dist loadfile)
 	$(BIN)/python -m mypy.stubtest linkage._core linkage._core.numeric linkage._core.drive linkage._core.mechanism linkage._core.motion linkage._core.sweep linkage._core.linkages linkage._core.kinetostatics linkage._core.catalog linkage._core.walking linkage._core.synthesis
 	$(BIN)/mypy
 

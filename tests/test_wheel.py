@@ -36,6 +36,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from test_readme import TREE_ONLY
 
 try:
     import tomllib
@@ -370,9 +371,9 @@ def smoke_runs(work: Path, venv: Path) -> None:
 # pyproject.toml (pytest's options).
 # Not python/: the tests import the installed wheel.
 SUITE_FILES = ("tests", "examples", "docs", "README.md", "ARCHITECTURE.md", "pyproject.toml")
-# Tests of the source tree's own checkers (.ci/layers.py, .ci/long_functions.py), which read the
-# Rust and Python sources, not the installed package: left out of the copy, and of the count.
-TREE_ONLY = ("test_layers.py", "test_long_functions.py")
+# Tests that read the source tree (the checkers .ci/layers.py and .ci/long_functions.py, the
+# core's constants in crates/), not the installed package: left out of the copy, and of the count
+# (test_readme.TREE_ONLY, where the copy's link check reads it too).
 SUITE_TIMEOUT = 1800  # seconds for the whole suite on one version (about 2 minutes here)
 # The suite runs on this many pytest-xdist workers (CI has 2 cores; `LINKAGE_TEST_WORKERS=0`
 # runs it in one process). pytest-xdist is in the `test` extra.
@@ -427,7 +428,7 @@ def full_suite(work: Path, venv: Path, suite_size: int, minor: int) -> None:
     assert not (tree / "python").exists()
 
     config = ["-c", str(tree / "pyproject.toml"), "--rootdir", str(tree), "-p", "no:cacheprovider"]
-    workers = ["-n", str(WORKERS)] if WORKERS else []
+    workers = ["-n", str(WORKERS), "--dist", "loadfile"] if WORKERS else []
     suite = run(
         [str(bindir / "pytest"), *config, *workers, "tests", str(package)], tree, SUITE_TIMEOUT
     )
