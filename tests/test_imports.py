@@ -269,3 +269,17 @@ def test_the_facade_exports_every_public_name_of_the_schema():
     assert set(scene.__all__) == public - {"parse_only", "read_text"} | {"load", "parse"}
     for name in public & set(scene.__all__):
         assert getattr(scene, name) is getattr(_schema, name), name
+
+
+def test_the_package_imports_no_0_1_shim() -> None:
+    """Inside the package every module imports the new homes; the 0.1 paths are for users (the
+    package's own ``__init__`` names the public modules at their 0.1 paths, on purpose)."""
+    edges, alias = graph(), shims()
+    found = [
+        f"{module} imports the 0.1 path {target} (of {alias[target]})"
+        for module in sorted(edges)
+        if module not in alias and module != "linkage"
+        for target in sorted(edges[module])
+        if target in alias
+    ]
+    assert found == []

@@ -37,12 +37,12 @@ from linkage._shared.cache_dir import cache_dir
 from linkage._shared.cache_files import core_identity
 from linkage._shared.files import read_json, sweep_stale, write_atomic
 from linkage._shared.version import __version__
-from linkage.cam import leg_lift
-from linkage.geometry import straightness
+from linkage.drives.cam import leg_lift
 from linkage.kinematics.fourbar import FourBar
 from linkage.kinematics.mechanism import Mechanism
-from linkage.legs import family
-from linkage.walker import Leg, Walker, gait_phases
+from linkage.motion.geometry import straightness
+from linkage.walking.legs import family
+from linkage.walking.walker import Leg, Walker, gait_phases
 
 __all__ = [
     "CACHE_FORMAT",

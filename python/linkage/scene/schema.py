@@ -29,10 +29,10 @@ from linkage._shared.arrays import choices, one_of
 from linkage._shared.choices import PathKind
 from linkage._shared.files import TooLarge, read_bytes
 from linkage._shared.toml_lines import MAX_NESTING, Locator, NotText, decode, label, nesting
-from linkage.drive import LAWS
+from linkage.drives.drive import LAWS
 from linkage.kinematics.mechanism import JOINT_KINDS as _JOINT_KINDS
 from linkage.synthesis import limits as _synthesis_limits
-from linkage.walker import GAITS
+from linkage.walking.walker import GAITS
 
 __all__ = [
     "ANGLE_MAX_DEG",
