@@ -494,6 +494,28 @@ def test_a_warning_is_one_line_naming_no_source_file(monkeypatch, capsys):
     assert warnings.showwarning.__module__ == "warnings"  # restored after the command
 
 
+def test_another_librarys_deprecation_notice_is_not_said_as_linkages(monkeypatch, capsys):
+    """Under pytest (or -W), a DXF export's first import of ezdxf raised pyparsing's deprecation
+    notices, which the command printed as ``linkage: warning: 'parseString' deprecated``; the
+    tool's own warnings are still said."""
+    import warnings
+
+    from linkage import catalog, cli
+
+    def table(**_):
+        warnings.simplefilter("always")
+        warnings.warn_explicit(
+            "'parseString' deprecated", DeprecationWarning, "/venv/ezdxf/queryparser.py", 57
+        )
+        warnings.warn("the tool's own", stacklevel=2)
+        return []
+
+    monkeypatch.setattr(catalog, "table", table)
+    monkeypatch.setattr(catalog, "format_table", lambda rows, tol: ["(no rows)"])
+    assert cli.main(["catalog"]) == 0
+    assert capsys.readouterr().err == "linkage: warning: the tool's own\n"
+
+
 def test_a_straightness_tolerance_of_a_whole_size_or_more_is_refused(capsys):
     """``linkage catalog --tol 1e300`` printed a table of parts "within 1e+300 × size"."""
     from linkage import cli

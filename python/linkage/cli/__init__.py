@@ -463,6 +463,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _failed(exc, state)
 
 
+_PACKAGE = Path(__file__).resolve().parent.parent
+"""The installed ``linkage`` package's folder: warnings from inside it are the tool's own."""
+
 STDOUT = "<stdout>"
 """The file name given to an error writing the standard output."""
 
@@ -619,7 +622,19 @@ def _warnings_said() -> Iterator[None]:
     the message is what the user needs. The previous handler is restored afterwards.
     """
 
-    def show(message: Warning | str, *_: Any, **__: Any) -> None:
+    def show(
+        message: Warning | str,
+        category: type[Warning],
+        filename: str,
+        lineno: int,
+        file: Any = None,
+        line: str | None = None,
+    ) -> None:
+        # Another library's deprecation notice (pyparsing's, met through ezdxf) is for that
+        # library's programmers, not for the user of the command: Python hides it by default,
+        # but not under a test runner or -W, and it would print as if linkage said it.
+        if issubclass(category, DeprecationWarning) and _PACKAGE not in Path(filename).parents:
+            return
         _say(f"warning: {message}")
 
     with warnings.catch_warnings():
