@@ -21,6 +21,8 @@ import os
 import re
 import sys
 
+from rust_source import mask
+
 # Lowest layer first; units on one line are peers and may not use each other.
 CORE_LAYERS = [
     ["numeric"],  # scalar helpers, trig, turns, pow2 scaling, thread split
@@ -84,59 +86,6 @@ CRATES = {
     "core": ("crates/linkage-core/src", core_layer),
     "binding": ("crates/linkage-py/src", binding_layer),
 }
-
-
-def mask(src: str) -> str:
-    """Return src with comments, strings and char literals blanked (newlines kept)."""
-    out = list(src)
-    i, n = 0, len(src)
-
-    def blank(a: int, b: int) -> None:
-        for k in range(a, min(b, n)):
-            if out[k] != "\n":
-                out[k] = " "
-
-    while i < n:
-        c = src[i]
-        if src.startswith("//", i):
-            j = src.find("\n", i)
-            j = n if j < 0 else j
-            blank(i, j)
-            i = j
-        elif src.startswith("/*", i):
-            depth, j = 1, i + 2
-            while j < n and depth:
-                if src.startswith("/*", j):
-                    depth, j = depth + 1, j + 2
-                elif src.startswith("*/", j):
-                    depth, j = depth - 1, j + 2
-                else:
-                    j += 1
-            blank(i, j)
-            i = j
-        elif c == "r" and re.match(r'r#*"', src[i:]) and (i == 0 or not src[i - 1].isalnum()):
-            m = re.match(r'r(#*)"', src[i:])
-            assert m is not None, "matched just above"
-            end = src.find('"' + m.group(1), i + len(m.group(0)))
-            end = n if end < 0 else end + 1 + len(m.group(1))
-            blank(i, end)
-            i = end
-        elif c == '"':
-            j = i + 1
-            while j < n and src[j] != '"':
-                j += 2 if src[j] == "\\" else 1
-            blank(i, j + 1)
-            i = j + 1
-        elif c == "'":
-            m = re.match(r"'(\\.[^']*|[^\\'])'", src[i:])
-            if m:
-                blank(i, i + len(m.group(0)))
-                i += len(m.group(0))
-            else:  # a lifetime
-                i += 1
-        else:
-            i += 1
-    return "".join(out)
 
 
 TEST_ATTR = re.compile(r"#\[cfg\([^\n]*\btest\b[^\n]*\)\]")

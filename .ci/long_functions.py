@@ -22,6 +22,8 @@ import sys
 from collections.abc import Iterator
 from pathlib import Path
 
+from rust_source import mask
+
 LIMIT = 150
 MARK = "numeric kernel:"
 PY_ROOTS = ("python/linkage",)
@@ -65,69 +67,12 @@ def python_functions(path: Path) -> Iterator[tuple[int, int, str, int]]:
             yield node.lineno, end - node.lineno + 1, node.name, top
 
 
-def mask_rust(text: str) -> str:
-    """Blank comments, strings and char literals (newlines kept) so braces can be counted."""
-    out = list(text)
-    i, n = 0, len(text)
-
-    def blank(a: int, b: int) -> None:
-        for k in range(a, min(b, n)):
-            if out[k] != "\n":
-                out[k] = " "
-
-    while i < n:
-        c = text[i]
-        if text.startswith("//", i):
-            j = text.find("\n", i)
-            j = n if j < 0 else j
-            blank(i, j)
-            i = j
-        elif text.startswith("/*", i):
-            depth, j = 1, i + 2
-            while j < n and depth:
-                if text.startswith("/*", j):
-                    depth, j = depth + 1, j + 2
-                elif text.startswith("*/", j):
-                    depth, j = depth - 1, j + 2
-                else:
-                    j += 1
-            blank(i, j)
-            i = j
-        elif (m := re.compile(r'b?r(#*)"').match(text, i)) and (i == 0 or not _ident(text[i - 1])):
-            close = '"' + m.group(1)
-            j = text.find(close, m.end())
-            j = n if j < 0 else j + len(close)
-            blank(i, j)
-            i = j
-        elif c == '"':
-            j = i + 1
-            while j < n and text[j] != '"':
-                j += 2 if text[j] == "\\" else 1
-            blank(i, j + 1)
-            i = j + 1
-        elif c == "'":
-            # A char literal ('a', '\n', '\u{1F600}', '{'), not a lifetime ('a, 'static).
-            m = re.compile(r"'(\\(u\{[0-9a-fA-F]+\}|x[0-9a-fA-F]{2}|.)|[^\\'])'").match(text, i)
-            if m:
-                blank(i, m.end())
-                i = m.end()
-            else:
-                i += 1
-        else:
-            i += 1
-    return "".join(out)
-
-
-def _ident(c: str) -> bool:
-    return c.isalnum() or c == "_"
-
-
 FN = re.compile(r"\bfn\s+([A-Za-z_][A-Za-z0-9_]*)")
 
 
 def rust_functions(path: Path) -> Iterator[tuple[int, int, str, int]]:
     """Yield (line, length, name, signature line) of every `fn` with a body in a file."""
-    text = mask_rust(path.read_text(encoding="utf-8"))
+    text = mask(path.read_text(encoding="utf-8"))
     for m in FN.finditer(text):
         # The body opens at the first `{` at depth zero of () and <>-free context, unless a `;`
         # (a declaration in a trait) comes first.
